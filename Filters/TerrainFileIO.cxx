@@ -1,0 +1,161 @@
+#include "TerrainFileIO.h"
+
+#include "TerrainImageConversion.h"
+
+#include "Core/Error.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkXMLImageDataReader.h>
+#include <vtkXMLImageDataWriter.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <system_error>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace tsynth
+{
+namespace
+{
+
+// Collects VTK error events instead of letting them print.
+struct ErrorCatcher
+{
+  bool failed = false;
+  std::string message;
+  vtkNew<vtkCallbackCommand> callback;
+  ErrorCatcher()
+  {
+    callback->SetClientData(this);
+    callback->SetCallback(
+      [](vtkObject*, unsigned long, void* self, void* data)
+      {
+        auto* catcher = static_cast<ErrorCatcher*>(self);
+        catcher->failed = true;
+        if (data != nullptr && catcher->message.empty())
+        {
+          catcher->message = static_cast<const char*>(data);
+        }
+      });
+  }
+};
+
+} // namespace
+
+bool isVtiPath(const std::string& path)
+{
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(),
+    ext.end(),
+    ext.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".vti";
+}
+
+Heightfield readTerrainFile(const std::string& path, const ReadOptions& options, RasterInfo* info)
+{
+  if (!isVtiPath(path))
+  {
+    return readHeightfield(path, options, info);
+  }
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec))
+  {
+    throw Error("No such file: " + path + ".");
+  }
+  vtkNew<vtkXMLImageDataReader> reader;
+  ErrorCatcher catcher;
+  reader->AddObserver(vtkCommand::ErrorEvent, catcher.callback);
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  if (catcher.failed || image == nullptr || image->GetNumberOfPoints() == 0)
+  {
+    throw Error(path + " is not a VTK image file that can be read.");
+  }
+  Heightfield hf = imageToHeightfield(image);
+  if (options.cellX > 0.0)
+  {
+    hf.cellX = options.cellX;
+    hf.cellY = options.cellY > 0.0 ? options.cellY : options.cellX;
+  }
+  if (options.zUnit == ZUnit::Feet)
+  {
+    for (float& v : hf.z)
+    {
+      v = static_cast<float>(v * kMetresPerFoot);
+    }
+    hf.sourceZUnit = "ft";
+  }
+  if (hf.validCount() == 0)
+  {
+    throw Error(path + " holds no valid heights (every cell is nodata).");
+  }
+  if (info != nullptr)
+  {
+    *info = RasterInfo{};
+    info->path = path;
+    info->driver = "VTK XML image";
+    info->dataType = "Float32";
+    info->width = hf.width;
+    info->height = hf.height;
+    info->bands = 1;
+    info->cellX = hf.cellX;
+    info->cellY = hf.cellY;
+    info->cellSizeKnown = true;
+    info->cellSizeSource = options.cellX > 0.0 ? "options" : "image spacing";
+    info->zUnit = options.zUnit == ZUnit::Feet ? ZUnit::Feet : ZUnit::Metres;
+    info->zUnitSource = options.zUnit == ZUnit::Feet ? "options" : "file";
+    info->georef = hf.georef;
+  }
+  return hf;
+}
+
+void writeTerrainFile(const std::string& path, const Heightfield& hf)
+{
+  if (!isVtiPath(path))
+  {
+    writeHeightfield(path, hf);
+    return;
+  }
+  const fs::path p(path);
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+  {
+    throw Error("Cannot write " + path + ": folder " + dir.string() + " does not exist.");
+  }
+  const std::string tmp =
+    (dir / ("." + p.filename().string() + ".tmp-" + std::to_string(::getpid()))).string();
+
+  vtkNew<vtkImageData> image;
+  heightfieldToImage(hf, image);
+  vtkNew<vtkXMLImageDataWriter> writer;
+  ErrorCatcher catcher;
+  writer->AddObserver(vtkCommand::ErrorEvent, catcher.callback);
+  writer->SetInputData(image);
+  writer->SetFileName(tmp.c_str());
+  // Inline binary: ParaView 5.11 with Debian 12's expat cannot read appended data.
+  writer->SetDataModeToBinary();
+  writer->SetCompressorTypeToZLib();
+  const int ok = writer->Write();
+  if (ok == 0 || catcher.failed)
+  {
+    fs::remove(tmp, ec);
+    throw Error("Cannot write " + path + ".");
+  }
+  fs::rename(tmp, path, ec);
+  if (ec)
+  {
+    fs::remove(tmp, ec);
+    throw Error("Cannot write " + path + ": " + ec.message() + ".");
+  }
+}
+
+} // namespace tsynth

@@ -1,0 +1,29 @@
+// Moving heightfields between the kernels' type and vtkImageData (DESIGN.md data model).
+#pragma once
+
+#include "Core/Heightfield.h"
+
+class vtkDataArray;
+class vtkImageData;
+
+namespace tsynth
+{
+
+// Array names shared by every filter.
+constexpr const char* kElevationArray = "Elevation";
+constexpr const char* kValidArray = "Valid";
+
+// Sets a 2D image: extent [0, w-1] x [0, h-1], spacing = cell size, origin 0,
+// point scalars "Elevation" (float), "Valid" (uint8) when some cells are
+// invalid, and the georeference as field data ("CRS", "GeoTransform").
+void heightfieldToImage(const Heightfield& hf, vtkImageData* image);
+
+// Reads a 2D image's heights (the given array, or "Elevation", or the active
+// scalars) and its "Valid" mask and georeference. Throws tsynth::Error if the
+// image is not 2D in x-y or has no usable height array.
+Heightfield imageToHeightfield(vtkImageData* image, vtkDataArray* heights = nullptr);
+
+// Adds a float point array (NaN where invalid) of the image's size.
+void addPointArray(vtkImageData* image, const char* name, const float* values);
+
+} // namespace tsynth

@@ -1,0 +1,90 @@
+/**
+ * @class vtkTerrainReader
+ * @brief Reads a DEM (GeoTIFF, 8/16-bit PNG, SRTM .hgt, ESRI ASCII grid, any
+ * single-band raster GDAL reads, or .vti) into a 2D image in metres.
+ *
+ * Output: point scalars "Elevation" (float, metres), "Valid" (uint8) when the
+ * file has nodata, spacing = cell size in metres, origin at the lower-left cell
+ * centre, and the georeference as field data ("CRS", "GeoTransform").
+ * Vertical units, cell size and normalised ranges come from a NAME.json sidecar
+ * beside the file, from the file itself, or from the properties below, which
+ * override both.
+ */
+#pragma once
+
+#include "TerrainSynthesisFiltersModule.h"
+
+#include <vtkImageAlgorithm.h>
+
+#include <string>
+
+class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainReader : public vtkImageAlgorithm
+{
+public:
+  static vtkTerrainReader* New();
+  vtkTypeMacro(vtkTerrainReader, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum ZUnits
+  {
+    ZUNIT_AUTO = 0,
+    ZUNIT_METRES = 1,
+    ZUNIT_FEET = 2
+  };
+
+  vtkSetStringMacro(FileName);
+  vtkGetStringMacro(FileName);
+
+  ///@{
+  /// Unit of the stored heights: 0 auto (sidecar, then file, else metres), 1 metres, 2 feet.
+  vtkSetClampMacro(ZUnit, int, ZUNIT_AUTO, ZUNIT_FEET);
+  vtkGetMacro(ZUnit, int);
+  ///@}
+
+  ///@{
+  /// Cell size in metres; 0 (default) takes it from the sidecar or the georeference.
+  vtkSetClampMacro(CellSize, double, 0.0, 1.0e7);
+  vtkGetMacro(CellSize, double);
+  ///@}
+
+  ///@{
+  /// Read NAME.json beside the file (default on).
+  vtkSetMacro(UseSidecar, bool);
+  vtkGetMacro(UseSidecar, bool);
+  vtkBooleanMacro(UseSidecar, bool);
+  ///@}
+
+  ///@{
+  /// For 8/16-bit images that store a normalised range: value 0 maps to ZMin and
+  /// the type's maximum to ZMax. Used only when UseNormalisedRange is on.
+  vtkSetMacro(UseNormalisedRange, bool);
+  vtkGetMacro(UseNormalisedRange, bool);
+  vtkBooleanMacro(UseNormalisedRange, bool);
+  vtkSetMacro(ZMin, double);
+  vtkGetMacro(ZMin, double);
+  vtkSetMacro(ZMax, double);
+  vtkGetMacro(ZMax, double);
+  ///@}
+
+  /// 1 if the file exists and is a raster this reader understands.
+  int CanReadFile(const char* fileName);
+
+protected:
+  vtkTerrainReader();
+  ~vtkTerrainReader() override;
+
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  char* FileName = nullptr;
+  int ZUnit = ZUNIT_AUTO;
+  double CellSize = 0.0;
+  bool UseSidecar = true;
+  bool UseNormalisedRange = false;
+  double ZMin = 0.0;
+  double ZMax = 1.0;
+
+private:
+  vtkTerrainReader(const vtkTerrainReader&) = delete;
+  void operator=(const vtkTerrainReader&) = delete;
+};

@@ -1,0 +1,84 @@
+#include "Heightfield.h"
+
+#include <cmath>
+#include <limits>
+
+namespace tsynth
+{
+
+Heightfield::Heightfield(int w, int h, float value)
+  : width(w)
+  , height(h)
+  , z(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), value)
+{
+}
+
+std::size_t Heightfield::validCount() const
+{
+  if (valid.empty())
+  {
+    return z.size();
+  }
+  std::size_t n = 0;
+  for (std::uint8_t v : valid)
+  {
+    n += v != 0 ? 1 : 0;
+  }
+  return n;
+}
+
+HeightRange computeHeightRange(const Heightfield& hf)
+{
+  HeightRange r;
+  float lo = std::numeric_limits<float>::infinity();
+  float hi = -std::numeric_limits<float>::infinity();
+  double sum = 0.0;
+  for (std::size_t k = 0; k < hf.z.size(); ++k)
+  {
+    if (!hf.isValid(k))
+    {
+      continue;
+    }
+    const float v = hf.z[k];
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+    sum += v;
+    ++r.validCells;
+  }
+  if (r.validCells > 0)
+  {
+    r.min = lo;
+    r.max = hi;
+    r.mean = sum / static_cast<double>(r.validCells);
+  }
+  return r;
+}
+
+void normaliseMask(Heightfield& hf)
+{
+  bool anyInvalid = false;
+  for (std::size_t k = 0; k < hf.z.size(); ++k)
+  {
+    if (!std::isfinite(hf.z[k]) || !hf.isValid(k))
+    {
+      anyInvalid = true;
+      break;
+    }
+  }
+  if (!anyInvalid)
+  {
+    hf.valid.clear();
+    return;
+  }
+  hf.valid.resize(hf.z.size(), 1);
+  for (std::size_t k = 0; k < hf.z.size(); ++k)
+  {
+    if (!std::isfinite(hf.z[k]) || hf.valid[k] == 0)
+    {
+      hf.valid[k] = 0;
+      hf.z[k] = std::numeric_limits<float>::quiet_NaN();
+    }
+  }
+}
+
+} // namespace tsynth

@@ -1,0 +1,71 @@
+// A regular grid of heights in metres: the data every stage reads and writes.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tsynth
+{
+
+// Where a grid sits on the Earth, when it came from a georeferenced file.
+// Carried through unchanged so outputs can be written with the same frame.
+struct Georeference
+{
+  std::string crsWkt;                   // empty when the source had no CRS
+  std::array<double, 6> geoTransform{}; // GDAL order: x0, dx, rx, y0, ry, dy
+  bool hasGeoTransform = false;
+  bool isGeographic = false; // CRS in degrees (cell size was converted to metres)
+};
+
+// Heights are stored row-major with row 0 at the south (y = 0), so that
+// index (i, j) is the point x = i * cellX, y = j * cellY, the same layout
+// as vtkImageData. File readers flip rows (files keep row 0 at the north).
+struct Heightfield
+{
+  int width = 0;
+  int height = 0;
+  double cellX = 1.0; // metres
+  double cellY = 1.0; // metres
+  bool cellSizeKnown = false;
+  std::vector<float> z;            // metres; NaN where invalid
+  std::vector<std::uint8_t> valid; // empty means every cell is valid
+  Georeference georef;
+  std::string sourceZUnit = "m"; // unit of the source file ("m" or "ft")
+
+  Heightfield() = default;
+  Heightfield(int w, int h, float value = 0.0f);
+
+  std::size_t size() const { return z.size(); }
+  std::size_t index(int i, int j) const
+  {
+    return static_cast<std::size_t>(j) * static_cast<std::size_t>(width) +
+      static_cast<std::size_t>(i);
+  }
+  float at(int i, int j) const { return z[index(i, j)]; }
+  float& at(int i, int j) { return z[index(i, j)]; }
+  bool isValid(std::size_t k) const { return valid.empty() || valid[k] != 0; }
+  bool isValid(int i, int j) const { return isValid(index(i, j)); }
+  bool hasMask() const { return !valid.empty(); }
+
+  // Number of valid cells.
+  std::size_t validCount() const;
+};
+
+struct HeightRange
+{
+  float min = 0.0f;
+  float max = 0.0f;
+  double mean = 0.0;
+  std::size_t validCells = 0;
+};
+
+// Range and mean over valid cells only (nodata never enters the figures).
+HeightRange computeHeightRange(const Heightfield& hf);
+
+// Marks NaN and infinite heights invalid; drops the mask if every cell is valid.
+void normaliseMask(Heightfield& hf);
+
+} // namespace tsynth

@@ -1,0 +1,692 @@
+#include "HeightfieldIO.h"
+
+#include "Error.h"
+#include "Geodesy.h"
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <system_error>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace tsynth
+{
+namespace
+{
+
+void initialiseGdal()
+{
+  static std::once_flag once;
+  std::call_once(once,
+    []
+    {
+      // No .aux.xml files beside the user's rasters.
+      CPLSetConfigOption("GDAL_PAM_ENABLED", "NO");
+      GDALAllRegister();
+    });
+}
+
+// Silences GDAL's own printing while in scope; errors reach the user through
+// tsynth::Error with GDAL's last message appended.
+class QuietGdal
+{
+public:
+  QuietGdal()
+  {
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    CPLErrorReset();
+  }
+  ~QuietGdal() { CPLPopErrorHandler(); }
+  QuietGdal(const QuietGdal&) = delete;
+  QuietGdal& operator=(const QuietGdal&) = delete;
+  static std::string lastMessage()
+  {
+    const char* msg = CPLGetLastErrorMsg();
+    return (msg != nullptr && *msg != '\0') ? std::string(" (GDAL: ") + msg + ")" : std::string();
+  }
+};
+
+struct DatasetCloser
+{
+  void operator()(GDALDataset* ds) const { GDALClose(GDALDataset::ToHandle(ds)); }
+};
+using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
+
+void checkReadable(const std::string& path)
+{
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (ec || !fs::exists(st))
+  {
+    throw Error("No such file: " + path + ".");
+  }
+  if (fs::is_directory(st))
+  {
+    throw Error(path + " is a directory, not a raster file.");
+  }
+  if (::access(path.c_str(), R_OK) != 0)
+  {
+    throw Error("Cannot read " + path + ": permission denied.");
+  }
+  if (fs::file_size(path, ec) == 0)
+  {
+    throw Error(path + " is empty (zero bytes), not a raster.");
+  }
+}
+
+DatasetPtr openRaster(const std::string& path)
+{
+  initialiseGdal();
+  checkReadable(path);
+  QuietGdal quiet;
+  DatasetPtr ds(GDALDataset::FromHandle(
+    GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+  if (!ds)
+  {
+    throw Error(path + " is not a raster that GDAL can read" + QuietGdal::lastMessage() + ".");
+  }
+  if (ds->GetRasterXSize() <= 0 || ds->GetRasterYSize() <= 0 || ds->GetRasterCount() <= 0)
+  {
+    throw Error(path + " holds a raster of zero size.");
+  }
+  return ds;
+}
+
+// The band with the heights; a second band is accepted only as an alpha mask.
+GDALRasterBand* heightBand(GDALDataset& ds, const std::string& path)
+{
+  const int n = ds.GetRasterCount();
+  if (n == 2 && ds.GetRasterBand(2)->GetColorInterpretation() == GCI_AlphaBand)
+  {
+    return ds.GetRasterBand(1);
+  }
+  if (n != 1)
+  {
+    throw Error(path + " has " + std::to_string(n) +
+      " bands; a heightfield needs a single band (is it a colour image?).");
+  }
+  GDALRasterBand* band = ds.GetRasterBand(1);
+  if (band->GetColorTable() != nullptr)
+  {
+    throw Error(path + " is a palette (colour-indexed) image, not a heightfield.");
+  }
+  return band;
+}
+
+double integerTypeMax(GDALDataType t)
+{
+  switch (t)
+  {
+    case GDT_Byte:
+      return 255.0;
+    case GDT_UInt16:
+      return 65535.0;
+    default:
+      return 0.0;
+  }
+}
+
+void fillCellSizeFromGeoreference(RasterInfo& info, const OGRSpatialReference* srs, int rows)
+{
+  const auto& gt = info.georef.geoTransform;
+  const double px = std::hypot(gt[1], gt[4]);
+  const double py = std::hypot(gt[2], gt[5]);
+  if (srs != nullptr && srs->IsGeographic())
+  {
+    const double centreLatitude = gt[3] + gt[5] * rows * 0.5;
+    const double a = srs->GetSemiMajor();
+    const double invF = srs->GetInvFlattening();
+    const MetresPerDegree mpd = metresPerDegree(centreLatitude, a, invF);
+    info.cellX = px * mpd.east;
+    info.cellY = py * mpd.north;
+    info.georef.isGeographic = true;
+    char text[64];
+    std::snprintf(text, sizeof text, "geographic CRS at latitude %.2f deg", centreLatitude);
+    info.cellSizeSource = text;
+  }
+  else if (srs != nullptr && srs->IsProjected())
+  {
+    const double unit = srs->GetLinearUnits();
+    info.cellX = px * unit;
+    info.cellY = py * unit;
+    info.cellSizeSource = "projected CRS";
+  }
+  else
+  {
+    info.cellX = px;
+    info.cellY = py;
+    info.cellSizeSource = "geotransform (no CRS, taken as metres)";
+  }
+  info.cellSizeKnown = true;
+}
+
+RasterInfo describe(GDALDataset& ds, const std::string& path, const ReadOptions& options)
+{
+  RasterInfo info;
+  info.path = path;
+  info.driver = ds.GetDriver() != nullptr ? ds.GetDriver()->GetDescription() : "";
+  info.width = ds.GetRasterXSize();
+  info.height = ds.GetRasterYSize();
+  info.bands = ds.GetRasterCount();
+  GDALRasterBand* band = heightBand(ds, path);
+  info.dataType = GDALGetDataTypeName(band->GetRasterDataType());
+
+  int hasNodata = 0;
+  const double nodata = band->GetNoDataValue(&hasNodata);
+  if (hasNodata != 0)
+  {
+    info.nodata = nodata;
+  }
+
+  Sidecar sidecar;
+  if (options.useSidecar)
+  {
+    const std::string sc = sidecarPathFor(path);
+    if (sc != path && fs::exists(sc))
+    {
+      sidecar = readSidecar(sc);
+      info.sidecarPath = sc;
+      if (sidecar.nodata && !info.nodata)
+      {
+        info.nodata = sidecar.nodata;
+      }
+    }
+  }
+
+  // Georeference.
+  const OGRSpatialReference* srs = ds.GetSpatialRef();
+  if (srs != nullptr)
+  {
+    char* wkt = nullptr;
+    srs->exportToWkt(&wkt);
+    info.georef.crsWkt = wkt != nullptr ? wkt : "";
+    CPLFree(wkt);
+    const char* name = srs->GetName();
+    info.crsName = name != nullptr ? name : "";
+  }
+  double gt[6];
+  if (ds.GetGeoTransform(gt) == CE_None)
+  {
+    std::copy(gt, gt + 6, info.georef.geoTransform.begin());
+    info.georef.hasGeoTransform = true;
+    fillCellSizeFromGeoreference(info, srs, info.height);
+  }
+  else
+  {
+    info.cellSizeSource = "unknown (1 m assumed; give a sidecar or a cell size)";
+  }
+  if (sidecar.cellX)
+  {
+    if (info.georef.hasGeoTransform &&
+      (std::abs(*sidecar.cellX - info.cellX) > 1e-3 * info.cellX ||
+        std::abs(*sidecar.cellY - info.cellY) > 1e-3 * info.cellY))
+    {
+      info.warnings.push_back(info.sidecarPath + " gives a cell size of " +
+        std::to_string(*sidecar.cellX) + " x " + std::to_string(*sidecar.cellY) + " m but " + path +
+        "'s georeference gives " + std::to_string(info.cellX) + " x " + std::to_string(info.cellY) +
+        " m; using the sidecar (is it stale?).");
+    }
+    info.cellX = *sidecar.cellX;
+    info.cellY = *sidecar.cellY;
+    info.cellSizeKnown = true;
+    info.cellSizeSource = "sidecar";
+  }
+  if (options.cellX > 0.0)
+  {
+    info.cellX = options.cellX;
+    info.cellY = options.cellY > 0.0 ? options.cellY : options.cellX;
+    info.cellSizeKnown = true;
+    info.cellSizeSource = "options";
+  }
+  if (!(info.cellX > 0.0) || !(info.cellY > 0.0) || !std::isfinite(info.cellX) ||
+    !std::isfinite(info.cellY))
+  {
+    throw Error(path + " has a degenerate geotransform (cell size " + std::to_string(info.cellX) +
+      " x " + std::to_string(info.cellY) + "); give the cell size explicitly.");
+  }
+
+  // Vertical unit: options, then sidecar, then the band's own unit, else metres.
+  info.zUnit = ZUnit::Metres;
+  info.zUnitSource = "default";
+  const std::optional<ZUnit> bandUnit = parseZUnit(band->GetUnitType());
+  if (bandUnit && *bandUnit != ZUnit::Auto)
+  {
+    info.zUnit = *bandUnit;
+    info.zUnitSource = "file";
+  }
+  if (sidecar.zUnit)
+  {
+    if (info.zUnitSource == "file" && *sidecar.zUnit != info.zUnit)
+    {
+      info.warnings.push_back(info.sidecarPath + " says heights are in " +
+        zUnitName(*sidecar.zUnit) + " but " + path + " says " + zUnitName(info.zUnit) +
+        "; using the sidecar (is it stale?).");
+    }
+    info.zUnit = *sidecar.zUnit;
+    info.zUnitSource = "sidecar";
+  }
+  if (options.zUnit != ZUnit::Auto)
+  {
+    info.zUnit = options.zUnit;
+    info.zUnitSource = "options";
+  }
+
+  // Normalised range for integer images: options, else the sidecar.
+  const bool integerCodes = integerTypeMax(band->GetRasterDataType()) != 0.0;
+  if (options.zMin || options.zMax)
+  {
+    const double lo = options.zMin.value_or(0.0);
+    const double hi = options.zMax.value_or(0.0);
+    if (!options.zMin || !options.zMax || !(hi > lo))
+    {
+      throw Error("A normalised height range needs both z_min and z_max, with z_max > z_min.");
+    }
+    if (!integerCodes)
+    {
+      throw Error(path + " stores " + info.dataType +
+        " values; a z_min/z_max range applies only to 8- or 16-bit unsigned images.");
+    }
+    info.normalised = true;
+    info.zMin = lo;
+    info.zMax = hi;
+  }
+  else if (sidecar.zMin && sidecar.zMax)
+  {
+    if (integerCodes)
+    {
+      info.normalised = true;
+      info.zMin = *sidecar.zMin;
+      info.zMax = *sidecar.zMax;
+    }
+    else
+    {
+      // A sidecar shared by NAME.png and NAME.tif describes the PNG's codes only.
+      info.warnings.push_back("The range in " + info.sidecarPath + " applies to 8/16-bit images; " +
+        path + " stores " + info.dataType + " heights, so the range is ignored.");
+    }
+  }
+  return info;
+}
+
+std::string temporaryPathFor(const std::string& path)
+{
+  const fs::path p(path);
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  return (dir / ("." + p.filename().string() + ".tmp-" + std::to_string(::getpid()))).string();
+}
+
+// Removes a half-written file unless released.
+class TemporaryFile
+{
+public:
+  explicit TemporaryFile(std::string path)
+    : path_(std::move(path))
+  {
+  }
+  ~TemporaryFile()
+  {
+    if (!path_.empty())
+    {
+      std::error_code ec;
+      fs::remove(path_, ec);
+    }
+  }
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+  const std::string& path() const { return path_; }
+  void commitTo(const std::string& target)
+  {
+    std::error_code ec;
+    fs::rename(path_, target, ec);
+    if (ec)
+    {
+      throw Error("Cannot write " + target + ": " + ec.message() + ".");
+    }
+    path_.clear();
+  }
+
+private:
+  std::string path_;
+};
+
+void checkWritableDirectory(const std::string& path)
+{
+  const fs::path p(path);
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+  {
+    throw Error("Cannot write " + path + ": folder " + dir.string() + " does not exist.");
+  }
+}
+
+std::string lowerExtension(const std::string& path)
+{
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(),
+    ext.end(),
+    ext.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+GDALDriver* driverByName(const char* name)
+{
+  initialiseGdal();
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(name);
+  if (driver == nullptr)
+  {
+    throw Error(std::string("This GDAL has no ") + name + " driver.");
+  }
+  return driver;
+}
+
+// Copies a memory dataset into a file format that only supports CreateCopy (PNG).
+void createCopyTo(const char* driverName, GDALDataset& source, const std::string& path)
+{
+  QuietGdal quiet;
+  DatasetPtr out(
+    driverByName(driverName)->CreateCopy(path.c_str(), &source, FALSE, nullptr, nullptr, nullptr));
+  if (!out)
+  {
+    throw Error("Cannot write " + path + QuietGdal::lastMessage() + ".");
+  }
+}
+
+DatasetPtr memoryDataset(int width, int height, int bands, GDALDataType type)
+{
+  DatasetPtr mem(driverByName("MEM")->Create("", width, height, bands, type, nullptr));
+  if (!mem)
+  {
+    throw Error("Out of memory creating a " + std::to_string(width) + " x " +
+      std::to_string(height) + " image.");
+  }
+  return mem;
+}
+
+void writeGeoTiff(const std::string& target, const std::string& tmp, const Heightfield& hf)
+{
+  QuietGdal quiet;
+  char** opts = nullptr;
+  opts = CSLSetNameValue(opts, "COMPRESS", "DEFLATE");
+  opts = CSLSetNameValue(opts, "PREDICTOR", "3");
+  opts = CSLSetNameValue(opts, "TILED", "YES");
+  DatasetPtr ds(
+    driverByName("GTiff")->Create(tmp.c_str(), hf.width, hf.height, 1, GDT_Float32, opts));
+  CSLDestroy(opts);
+  if (!ds)
+  {
+    throw Error("Cannot write " + target + QuietGdal::lastMessage() + ".");
+  }
+  std::array<double, 6> gt{};
+  if (hf.georef.hasGeoTransform)
+  {
+    gt = hf.georef.geoTransform;
+  }
+  else
+  {
+    // Local frame in metres: lower-left cell centre at (0, 0), north up.
+    gt = { -0.5 * hf.cellX, hf.cellX, 0.0, (hf.height - 0.5) * hf.cellY, 0.0, -hf.cellY };
+  }
+  ds->SetGeoTransform(gt.data());
+  if (!hf.georef.crsWkt.empty())
+  {
+    ds->SetProjection(hf.georef.crsWkt.c_str());
+  }
+  GDALRasterBand* band = ds->GetRasterBand(1);
+  band->SetUnitType("m");
+  if (hf.hasMask())
+  {
+    band->SetNoDataValue(std::numeric_limits<double>::quiet_NaN());
+  }
+  std::vector<float> row(static_cast<std::size_t>(hf.width));
+  for (int r = 0; r < hf.height; ++r)
+  {
+    const int j = hf.height - 1 - r;
+    for (int i = 0; i < hf.width; ++i)
+    {
+      row[static_cast<std::size_t>(i)] =
+        hf.isValid(i, j) ? hf.at(i, j) : std::numeric_limits<float>::quiet_NaN();
+    }
+    if (band->RasterIO(
+          GF_Write, 0, r, hf.width, 1, row.data(), hf.width, 1, GDT_Float32, 0, 0, nullptr) !=
+      CE_None)
+    {
+      throw Error("Cannot write " + target + QuietGdal::lastMessage() + ".");
+    }
+  }
+  ds->FlushCache();
+  if (CPLGetLastErrorType() == CE_Failure || CPLGetLastErrorType() == CE_Fatal)
+  {
+    throw Error("Cannot write " + target + QuietGdal::lastMessage() + ".");
+  }
+}
+
+void writePng16(const std::string& target, const std::string& tmp, const Heightfield& hf)
+{
+  const HeightRange range = computeHeightRange(hf);
+  if (range.validCells == 0)
+  {
+    throw Error("Cannot write " + target + ": the heightfield has no valid cell.");
+  }
+  // Valid heights map to 1..65535 when nodata must be kept (0 marks it), else 0..65535.
+  const bool reserveZero = hf.hasMask();
+  const double lowCode = reserveZero ? 1.0 : 0.0;
+  double zLo = range.min;
+  double zHi = range.max > range.min ? static_cast<double>(range.max) : zLo + 1.0;
+  const double step = (zHi - zLo) / (65535.0 - lowCode);
+  const double zMinOfCodeZero = zLo - lowCode * step;
+
+  DatasetPtr mem = memoryDataset(hf.width, hf.height, 1, GDT_UInt16);
+  std::vector<std::uint16_t> codes(hf.size());
+  for (int r = 0; r < hf.height; ++r)
+  {
+    const int j = hf.height - 1 - r;
+    for (int i = 0; i < hf.width; ++i)
+    {
+      std::uint16_t code = 0;
+      if (hf.isValid(i, j))
+      {
+        const double c = lowCode + (hf.at(i, j) - zLo) / step;
+        code = static_cast<std::uint16_t>(std::clamp(std::lround(c), 0L, 65535L));
+      }
+      codes[static_cast<std::size_t>(r) * static_cast<std::size_t>(hf.width) +
+        static_cast<std::size_t>(i)] = code;
+    }
+  }
+  if (mem->GetRasterBand(1)->RasterIO(GF_Write,
+        0,
+        0,
+        hf.width,
+        hf.height,
+        codes.data(),
+        hf.width,
+        hf.height,
+        GDT_UInt16,
+        0,
+        0,
+        nullptr) != CE_None)
+  {
+    throw Error("Cannot write " + target + ".");
+  }
+  createCopyTo("PNG", *mem, tmp);
+
+  Sidecar sidecar;
+  sidecar.zUnit = ZUnit::Metres;
+  sidecar.cellX = hf.cellX;
+  sidecar.cellY = hf.cellY;
+  sidecar.zMin = zMinOfCodeZero;
+  sidecar.zMax = zMinOfCodeZero + 65535.0 * step;
+  if (reserveZero)
+  {
+    sidecar.nodata = 0.0;
+  }
+  TemporaryFile sidecarTmp(temporaryPathFor(sidecarPathFor(target)));
+  writeSidecar(sidecarTmp.path(), sidecar);
+  sidecarTmp.commitTo(sidecarPathFor(target));
+}
+
+} // namespace
+
+RasterInfo readRasterInfo(const std::string& path, const ReadOptions& options)
+{
+  DatasetPtr ds = openRaster(path);
+  return describe(*ds, path, options);
+}
+
+Heightfield readHeightfield(const std::string& path, const ReadOptions& options, RasterInfo* out)
+{
+  DatasetPtr ds = openRaster(path);
+  RasterInfo info = describe(*ds, path, options);
+  GDALRasterBand* band = heightBand(*ds, path);
+
+  const int w = info.width;
+  const int h = info.height;
+  const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  std::vector<float> raw(n);
+  std::vector<std::uint8_t> mask(n, 255);
+  {
+    QuietGdal quiet;
+    if (band->RasterIO(GF_Read, 0, 0, w, h, raw.data(), w, h, GDT_Float32, 0, 0, nullptr) !=
+      CE_None)
+    {
+      throw Error("Cannot read the heights of " + path + "; the file may be truncated or corrupt" +
+        QuietGdal::lastMessage() + ".");
+    }
+    // GDAL's mask band covers nodata values, alpha bands and per-dataset masks.
+    if ((band->GetMaskFlags() & GMF_ALL_VALID) == 0)
+    {
+      if (band->GetMaskBand()->RasterIO(
+            GF_Read, 0, 0, w, h, mask.data(), w, h, GDT_Byte, 0, 0, nullptr) != CE_None)
+      {
+        throw Error("Cannot read the validity mask of " + path + QuietGdal::lastMessage() + ".");
+      }
+    }
+  }
+
+  const double unitScale = info.zUnit == ZUnit::Feet ? kMetresPerFoot : 1.0;
+  const double typeMax = integerTypeMax(band->GetRasterDataType());
+  const bool sidecarNodata = info.nodata && !info.sidecarPath.empty();
+  const float nodataValue = info.nodata ? static_cast<float>(*info.nodata) : 0.0f;
+
+  Heightfield hf(w, h);
+  hf.cellX = info.cellX;
+  hf.cellY = info.cellY;
+  hf.cellSizeKnown = info.cellSizeKnown;
+  hf.georef = info.georef;
+  hf.sourceZUnit = zUnitName(info.zUnit);
+  hf.valid.assign(n, 1);
+  for (int r = 0; r < h; ++r)
+  {
+    const int j = h - 1 - r;
+    for (int i = 0; i < w; ++i)
+    {
+      const std::size_t src =
+        static_cast<std::size_t>(r) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
+      const std::size_t dst = hf.index(i, j);
+      const float v = raw[src];
+      if (mask[src] == 0 || !std::isfinite(v) || (sidecarNodata && v == nodataValue))
+      {
+        hf.valid[dst] = 0;
+        continue;
+      }
+      double z = v;
+      if (info.normalised)
+      {
+        z = info.zMin + (v / typeMax) * (info.zMax - info.zMin);
+      }
+      hf.z[dst] = static_cast<float>(z * unitScale);
+    }
+  }
+  normaliseMask(hf);
+  if (hf.validCount() == 0)
+  {
+    throw Error(path + " holds no valid heights (every cell is nodata).");
+  }
+  if (out != nullptr)
+  {
+    *out = std::move(info);
+  }
+  return hf;
+}
+
+bool isHeightfieldWriteExtension(const std::string& path)
+{
+  const std::string ext = lowerExtension(path);
+  return ext == ".tif" || ext == ".tiff" || ext == ".png";
+}
+
+void writeHeightfield(const std::string& path, const Heightfield& hf)
+{
+  if (hf.width <= 0 || hf.height <= 0 ||
+    hf.size() != static_cast<std::size_t>(hf.width) * static_cast<std::size_t>(hf.height))
+  {
+    throw Error("Cannot write " + path + ": the heightfield is empty or inconsistent.");
+  }
+  const std::string ext = lowerExtension(path);
+  if (!isHeightfieldWriteExtension(path))
+  {
+    throw Error(
+      "Cannot write " + path + ": unknown extension \"" + ext + "\" (use .tif, .png or .vti).");
+  }
+  checkWritableDirectory(path);
+  TemporaryFile tmp(temporaryPathFor(path));
+  if (ext == ".png")
+  {
+    writePng16(path, tmp.path(), hf);
+  }
+  else
+  {
+    writeGeoTiff(path, tmp.path(), hf);
+  }
+  tmp.commitTo(path);
+}
+
+void writeRgbPng(const std::string& path,
+  int width,
+  int height,
+  const std::vector<std::uint8_t>& rgb)
+{
+  if (width <= 0 || height <= 0 ||
+    rgb.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3)
+  {
+    throw Error("Cannot write " + path + ": the image is empty or inconsistent.");
+  }
+  checkWritableDirectory(path);
+  DatasetPtr mem = memoryDataset(width, height, 3, GDT_Byte);
+  int bandMap[3] = { 1, 2, 3 };
+  if (mem->RasterIO(GF_Write,
+        0,
+        0,
+        width,
+        height,
+        const_cast<std::uint8_t*>(rgb.data()),
+        width,
+        height,
+        GDT_Byte,
+        3,
+        bandMap,
+        3,
+        3 * width,
+        1,
+        nullptr) != CE_None)
+  {
+    throw Error("Cannot write " + path + ".");
+  }
+  TemporaryFile tmp(temporaryPathFor(path));
+  createCopyTo("PNG", *mem, tmp.path());
+  tmp.commitTo(path);
+}
+
+} // namespace tsynth

@@ -1,0 +1,76 @@
+// Reading and writing heightfields through GDAL (GeoTIFF, PNG, SRTM .hgt, ESRI ASCII, ...).
+#pragma once
+
+#include "Heightfield.h"
+#include "Sidecar.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tsynth
+{
+
+// Options that override what the file and its sidecar say.
+struct ReadOptions
+{
+  ZUnit zUnit = ZUnit::Auto;
+  double cellX = 0.0;         // > 0 overrides the cell size (metres)
+  double cellY = 0.0;         // > 0 overrides; if only cellX is set it is used for both
+  std::optional<double> zMin; // normalised-range integer images: value 0 maps here
+  std::optional<double> zMax; // ... and the type's maximum (255 or 65535) here
+  bool useSidecar = true;
+};
+
+// What a raster is, read from its header and sidecar without reading the heights.
+struct RasterInfo
+{
+  std::string path;
+  std::string driver;   // GDAL short name, e.g. "GTiff", "PNG", "SRTMHGT", "AAIGrid"
+  std::string dataType; // GDAL type name of the height band, e.g. "Int16"
+  int width = 0;
+  int height = 0;
+  int bands = 0;
+  double cellX = 1.0; // metres
+  double cellY = 1.0;
+  bool cellSizeKnown = false;
+  std::string cellSizeSource;  // "options", "sidecar", "projected CRS", "geographic CRS", ...
+  ZUnit zUnit = ZUnit::Metres; // unit the stored values are in
+  std::string zUnitSource;
+  bool normalised = false; // integer values mapped through [zMin, zMax]
+  double zMin = 0.0;
+  double zMax = 0.0;
+  std::optional<double> nodata;
+  std::string sidecarPath; // empty when no sidecar was used
+  Georeference georef;
+  std::string crsName;               // human-readable CRS name, empty if none
+  std::vector<std::string> warnings; // things the user should know that did not stop the read
+};
+
+// Reads the header. Throws tsynth::Error with one clear sentence on any problem
+// (missing file, not a raster, several colour bands, bad sidecar, ...).
+RasterInfo readRasterInfo(const std::string& path, const ReadOptions& options = {});
+
+// Reads heights in metres, rows flipped so row 0 is the south edge; nodata,
+// NaN and masked cells become invalid. Throws tsynth::Error if the raster has
+// no valid cell or cannot be read.
+Heightfield readHeightfield(const std::string& path,
+  const ReadOptions& options = {},
+  RasterInfo* info = nullptr);
+
+// Writes by extension: ".tif"/".tiff" GeoTIFF float32 (georeference kept, NaN
+// nodata), ".png" 16-bit PNG plus a NAME.json sidecar with the range and cell
+// size. The file appears complete or not at all (written aside, then renamed).
+void writeHeightfield(const std::string& path, const Heightfield& hf);
+
+// Writes an 8-bit RGB PNG; rgb holds width*height*3 bytes, first row at the top.
+void writeRgbPng(const std::string& path,
+  int width,
+  int height,
+  const std::vector<std::uint8_t>& rgb);
+
+// True if the extension names a format writeHeightfield writes.
+bool isHeightfieldWriteExtension(const std::string& path);
+
+} // namespace tsynth

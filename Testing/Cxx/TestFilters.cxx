@@ -1,0 +1,207 @@
+#include "TerrainFileIO.h"
+#include "TerrainImageConversion.h"
+#include "TestData.h"
+#include "vtkTerrainHillshade.h"
+#include "vtkTerrainReader.h"
+
+#include "Analysis/Hillshade.h"
+#include "Core/Error.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkStringArray.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+namespace
+{
+
+// Counts error events so a failing request is seen without printing.
+struct ErrorCounter
+{
+  int errors = 0;
+  vtkNew<vtkCallbackCommand> callback;
+  ErrorCounter()
+  {
+    callback->SetClientData(this);
+    callback->SetCallback([](vtkObject*, unsigned long, void* self, void*)
+      { ++static_cast<ErrorCounter*>(self)->errors; });
+  }
+};
+
+} // namespace
+
+TEST(Filters, ReaderGivesMetresSpacingAndGeoreference)
+{
+  vtkNew<vtkTerrainReader> reader;
+  reader->SetFileName(tsynth::test::sharedDem("mount_jackson_n39_w107_3arc.tif").c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  EXPECT_EQ(dims[0], 1201);
+  EXPECT_EQ(dims[1], 1201);
+  EXPECT_EQ(dims[2], 1);
+  double spacing[3];
+  image->GetSpacing(spacing);
+  EXPECT_NEAR(spacing[0], 71.5, 0.5);
+  EXPECT_NEAR(spacing[1], 92.5, 0.3);
+  vtkDataArray* z = image->GetPointData()->GetArray("Elevation");
+  ASSERT_NE(z, nullptr);
+  EXPECT_EQ(z->GetDataType(), VTK_FLOAT);
+  EXPECT_DOUBLE_EQ(z->GetRange()[0], 1897.0);
+  EXPECT_DOUBLE_EQ(z->GetRange()[1], 4385.0);
+  EXPECT_EQ(image->GetPointData()->GetArray("Valid"), nullptr); // no nodata in this tile
+  auto* crs = vtkStringArray::SafeDownCast(image->GetFieldData()->GetAbstractArray("CRS"));
+  ASSERT_NE(crs, nullptr);
+  EXPECT_NE(crs->GetValue(0).find("WGS 84"), std::string::npos);
+  ASSERT_NE(image->GetFieldData()->GetArray("GeoTransform"), nullptr);
+  EXPECT_NEAR(image->GetFieldData()->GetArray("GeoTransform")->GetComponent(0, 0), -107.0, 0.01);
+}
+
+TEST(Filters, ReaderUnitOverride)
+{
+  vtkNew<vtkTerrainReader> reader;
+  reader->SetFileName(tsynth::test::sharedDem("alaska.png").c_str());
+  reader->SetZUnit(vtkTerrainReader::ZUNIT_METRES);
+  reader->SetCellSize(10.0);
+  reader->Update();
+  double spacing[3];
+  reader->GetOutput()->GetSpacing(spacing);
+  EXPECT_DOUBLE_EQ(spacing[0], 10.0);
+  EXPECT_NEAR(reader->GetOutput()->GetPointData()->GetArray("Elevation")->GetRange()[1],
+    6180.0 / 0.3048,
+    40.0);
+}
+
+TEST(Filters, ReaderFailsTheRequestOnBadFiles)
+{
+  vtkNew<vtkTerrainReader> reader;
+  ErrorCounter counter;
+  reader->AddObserver(vtkCommand::ErrorEvent, counter.callback);
+  reader->SetFileName("/nonexistent/dem.tif");
+  reader->Update();
+  EXPECT_GE(counter.errors, 1);
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_EQ(reader->CanReadFile("/nonexistent/dem.tif"), 0);
+  EXPECT_EQ(reader->CanReadFile(tsynth::test::sharedDem("alaska.png").c_str()), 1);
+}
+
+TEST(Filters, HillshadeMatchesTheKernelAndKeepsNodata)
+{
+  tsynth::Heightfield hf(20, 10);
+  hf.cellX = 30.0;
+  hf.cellY = 60.0;
+  for (int j = 0; j < hf.height; ++j)
+  {
+    for (int i = 0; i < hf.width; ++i)
+    {
+      hf.at(i, j) = static_cast<float>(100.0 * std::sin(0.3 * i) + 5.0 * j);
+    }
+  }
+  hf.at(7, 4) = std::numeric_limits<float>::quiet_NaN();
+  tsynth::normaliseMask(hf);
+  vtkNew<vtkImageData> image;
+  tsynth::heightfieldToImage(hf, image);
+
+  vtkNew<vtkTerrainHillshade> shade;
+  shade->SetInputData(image);
+  shade->SetAltitude(30.0);
+  shade->Update();
+  vtkImageData* out = shade->GetOutput();
+  vtkDataArray* h = out->GetPointData()->GetArray("Hillshade");
+  vtkDataArray* s = out->GetPointData()->GetArray("Slope");
+  ASSERT_NE(h, nullptr);
+  ASSERT_NE(s, nullptr);
+  ASSERT_NE(out->GetPointData()->GetArray("Valid"), nullptr);
+  EXPECT_STREQ(out->GetPointData()->GetScalars()->GetName(), "Hillshade");
+
+  tsynth::HillshadeOptions o;
+  o.altitudeDeg = 30.0;
+  const auto expected = tsynth::computeHillshade(hf, o);
+  for (vtkIdType k = 0; k < h->GetNumberOfTuples(); ++k)
+  {
+    const auto kk = static_cast<std::size_t>(k);
+    if (std::isnan(expected.shade[kk]))
+    {
+      EXPECT_TRUE(std::isnan(h->GetComponent(k, 0)));
+      continue;
+    }
+    EXPECT_FLOAT_EQ(static_cast<float>(h->GetComponent(k, 0)), expected.shade[kk]);
+    EXPECT_FLOAT_EQ(static_cast<float>(s->GetComponent(k, 0)), expected.slopeDeg[kk]);
+  }
+  EXPECT_TRUE(std::isnan(h->GetComponent(static_cast<vtkIdType>(hf.index(7, 4)), 0)));
+}
+
+TEST(Filters, HillshadeRejectsAThreeDimensionalImage)
+{
+  vtkNew<vtkImageData> volume;
+  volume->SetDimensions(4, 4, 4);
+  volume->AllocateScalars(VTK_FLOAT, 1);
+  volume->GetPointData()->GetScalars()->SetName("Elevation");
+  vtkNew<vtkTerrainHillshade> shade;
+  ErrorCounter counter;
+  shade->AddObserver(vtkCommand::ErrorEvent, counter.callback);
+  shade->SetInputData(volume);
+  shade->Update();
+  EXPECT_GE(counter.errors, 1);
+}
+
+TEST(Filters, VtiRoundTripKeepsHeightsMaskAndGeoreference)
+{
+  tsynth::Heightfield hf =
+    tsynth::readTerrainFile(tsynth::test::sharedDem("mount_jackson_n39_w107_3arc.tif"));
+  hf.z[5] = std::numeric_limits<float>::quiet_NaN();
+  tsynth::normaliseMask(hf);
+  const std::string path = (tsynth::test::scratchDir() / "roundtrip.vti").string();
+  tsynth::writeTerrainFile(path, hf);
+  {
+    // Inline binary, never an appended-data section (see DESIGN.md on expat).
+    std::ifstream in(path);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text.find("AppendedData"), std::string::npos);
+    EXPECT_NE(text.find("format=\"binary\""), std::string::npos);
+  }
+  const tsynth::Heightfield back = tsynth::readTerrainFile(path);
+  ASSERT_EQ(back.width, hf.width);
+  ASSERT_EQ(back.height, hf.height);
+  EXPECT_DOUBLE_EQ(back.cellX, hf.cellX);
+  EXPECT_DOUBLE_EQ(back.cellY, hf.cellY);
+  EXPECT_EQ(back.validCount(), hf.validCount());
+  EXPECT_FALSE(back.isValid(5));
+  for (std::size_t k = 0; k < hf.size(); ++k)
+  {
+    if (hf.isValid(k))
+    {
+      ASSERT_EQ(back.z[k], hf.z[k]);
+    }
+  }
+  EXPECT_EQ(back.georef.crsWkt, hf.georef.crsWkt);
+  EXPECT_EQ(back.georef.geoTransform, hf.georef.geoTransform);
+
+  // A .vti written from VTK goes back to GeoTIFF with its georeference.
+  const std::string tif = (tsynth::test::scratchDir() / "from_vti.tif").string();
+  tsynth::writeTerrainFile(tif, back);
+  tsynth::RasterInfo info;
+  tsynth::readTerrainFile(tif, {}, &info);
+  EXPECT_TRUE(info.georef.isGeographic);
+  EXPECT_NEAR(info.cellX, hf.cellX, 1e-9);
+}
+
+TEST(Filters, VtiErrors)
+{
+  EXPECT_THROW(tsynth::readTerrainFile("/nonexistent/x.vti"), tsynth::Error);
+  const std::string junk = (tsynth::test::scratchDir() / "junk.vti").string();
+  std::ofstream(junk) << "<VTKFile> not really";
+  EXPECT_THROW(tsynth::readTerrainFile(junk), tsynth::Error);
+}

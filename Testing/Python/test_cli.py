@@ -1,0 +1,199 @@
+"""Tests of the tsynth command line: values, pictures, round trips and error handling."""
+import json
+import os
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import unittest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import harness  # noqa: E402
+from harness import PATHS  # noqa: E402
+
+
+def tsynth(*args):
+    return subprocess.run([PATHS.tsynth, *args], capture_output=True, text=True, timeout=240)
+
+
+def png_size(path):
+    with open(path, "rb") as f:
+        head = f.read(24)
+    if head[:8] != b"\x89PNG\r\n\x1a\n":
+        raise AssertionError("%s is not a PNG" % path)
+    return struct.unpack(">II", head[16:24])
+
+
+def info(path, *extra):
+    result = tsynth("info", path, "--json", *extra)
+    if result.returncode != 0:
+        raise AssertionError(result.stderr)
+    return json.loads(result.stdout)
+
+
+class CliTest(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.mkdtemp(prefix="tsynth-cli-")
+        self.dems = os.path.join(PATHS.shared_data, "dems")
+
+    def tearDown(self):
+        shutil.rmtree(self.tmp)
+
+    def path(self, name):
+        return os.path.join(self.tmp, name)
+
+    def assert_clean_failure(self, result, code, phrase, output=None):
+        self.assertEqual(result.returncode, code, result.stderr)
+        lines = [line for line in result.stderr.splitlines() if line.strip()]
+        self.assertEqual(len(lines), 1, "expected one sentence, got: %r" % result.stderr)
+        self.assertIn(phrase, lines[0])
+        if output is not None:
+            self.assertFalse(os.path.exists(output), "a failed command left %s behind" % output)
+        leftovers = [n for n in os.listdir(self.tmp) if ".tmp-" in n]
+        self.assertEqual(leftovers, [])
+
+    # Values -------------------------------------------------------------------------------
+
+    def test_info_reads_units_and_cell_sizes(self):
+        alaska = info(os.path.join(self.dems, "alaska.png"))
+        self.assertEqual(alaska["source_z_unit"], "ft")
+        self.assertAlmostEqual(alaska["z_max_m"], 6180.0, delta=10.0)
+        self.assertEqual(alaska["cell_size_m"], [90.0, 90.0])
+        alps = info(os.path.join(self.dems, "alps-montblanc.png"))
+        self.assertAlmostEqual(alps["z_min_m"], 454.0, places=2)
+        self.assertAlmostEqual(alps["z_max_m"], 4810.0, places=2)
+        jackson = info(os.path.join(self.dems, "mount_jackson_n39_w107_3arc.tif"))
+        self.assertTrue(jackson["geographic"])
+        self.assertAlmostEqual(jackson["cell_size_m"][0], 71.5, delta=0.5)
+        self.assertAlmostEqual(jackson["cell_size_m"][1], 92.5, delta=0.3)
+        self.assertEqual(jackson["crs"], "WGS 84")
+
+    def test_info_options_override_the_sidecar(self):
+        alaska = info(os.path.join(self.dems, "alaska.png"), "--z-unit", "m", "--cell", "30,45")
+        self.assertAlmostEqual(alaska["z_max_m"], 6180.0 / 0.3048, delta=40.0)
+        self.assertEqual(alaska["cell_size_m"], [30.0, 45.0])
+
+    def test_info_text_is_readable(self):
+        result = tsynth("info", os.path.join(self.dems, "alaska.png"))
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("648 x 648 cells", result.stdout)
+        self.assertIn("Stored in:  feet (sidecar)", result.stdout)
+
+    def test_bundled_data_is_readable(self):
+        for name in sorted(os.listdir(os.path.join(PATHS.bundled_data, "dems"))):
+            if name.endswith((".png", ".tif")):
+                with self.subTest(name=name):
+                    data = info(os.path.join(PATHS.bundled_data, "dems", name))
+                    self.assertGreater(data["z_max_m"], data["z_min_m"])
+                    self.assertNotEqual(data["cell_size_source"].split(" ")[0], "unknown")
+
+    # Pictures -----------------------------------------------------------------------------
+
+    def test_render_map_has_one_pixel_per_cell(self):
+        out = self.path("alps.png")
+        result = tsynth("render", os.path.join(self.dems, "alps-montblanc.png"), "-o", out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(png_size(out), (647, 647))
+
+    def test_render_3d_view(self):
+        out = self.path("jackson3d.png")
+        result = tsynth("render", os.path.join(self.dems, "mount_jackson_n39_w107_3arc.tif"),
+                        "-o", out, "--3d", "--size", "320x200")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(png_size(out), (320, 200))
+        self.assertGreater(os.path.getsize(out), 20000)  # a picture, not a blank frame
+
+    # Round trips --------------------------------------------------------------------------
+
+    def test_convert_round_trips_through_every_format(self):
+        source = os.path.join(self.dems, "mount_jackson_n39_w107_3arc.tif")
+        original = info(source)
+        for ext in ("tif", "png", "vti"):
+            with self.subTest(ext=ext):
+                out = self.path("jackson." + ext)
+                result = tsynth("convert", source, "-o", out)
+                self.assertEqual(result.returncode, 0, result.stderr)
+                back = info(out)
+                self.assertEqual((back["width"], back["height"]), (1201, 1201))
+                self.assertAlmostEqual(back["cell_size_m"][0], original["cell_size_m"][0], places=6)
+                self.assertAlmostEqual(back["cell_size_m"][1], original["cell_size_m"][1], places=6)
+                tolerance = 0.02 if ext == "png" else 1e-6
+                self.assertAlmostEqual(back["z_min_m"], original["z_min_m"], delta=tolerance)
+                self.assertAlmostEqual(back["z_max_m"], original["z_max_m"], delta=tolerance)
+        self.assertTrue(os.path.exists(self.path("jackson.json")))
+        self.assertTrue(info(self.path("jackson.tif"))["geographic"])
+
+    # Bad input ----------------------------------------------------------------------------
+
+    def test_missing_file(self):
+        out = self.path("out.png")
+        self.assert_clean_failure(tsynth("render", self.path("nope.tif"), "-o", out), 1,
+                                  "No such file", out)
+        self.assert_clean_failure(tsynth("info", self.path("nope.tif")), 1, "No such file")
+
+    def test_non_raster_file(self):
+        text = self.path("readme.tif")
+        with open(text, "w") as f:
+            f.write("hello, I am text\n")
+        out = self.path("out.tif")
+        self.assert_clean_failure(tsynth("convert", text, "-o", out), 1, "is not a raster", out)
+
+    def test_unreadable_corrupt_file(self):
+        corrupt = self.path("corrupt.png")
+        with open(os.path.join(self.dems, "alaska.png"), "rb") as f:
+            data = f.read()
+        with open(corrupt, "wb") as f:
+            f.write(data[:4000])  # a valid header and a fraction of the pixels
+        out = self.path("out.png")
+        self.assert_clean_failure(tsynth("render", corrupt, "-o", out), 1, corrupt, out)
+
+    def test_directory_and_empty_file(self):
+        self.assert_clean_failure(tsynth("info", self.tmp), 1, "is a directory")
+        empty = self.path("empty.tif")
+        open(empty, "w").close()
+        self.assert_clean_failure(tsynth("info", empty), 1, "empty")
+
+    def test_all_nodata_raster(self):
+        grid = self.path("void.asc")
+        with open(grid, "w") as f:
+            f.write("ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n"
+                    "NODATA_value -9999\n-9999 -9999\n-9999 -9999\n")
+        out = self.path("void.png")
+        self.assert_clean_failure(tsynth("render", grid, "-o", out), 1, "no valid heights", out)
+
+    def test_bad_sidecar_json(self):
+        dem = self.path("alaska.png")
+        shutil.copy(os.path.join(self.dems, "alaska.png"), dem)
+        with open(self.path("alaska.json"), "w") as f:
+            f.write('{"z_unit": "ft", "cell_size_m": }')
+        out = self.path("out.tif")
+        self.assert_clean_failure(tsynth("convert", dem, "-o", out), 1, "not valid JSON", out)
+        # --no-sidecar gets past it.
+        self.assertEqual(tsynth("info", dem, "--no-sidecar").returncode, 0)
+
+    def test_output_problems(self):
+        dem = os.path.join(self.dems, "alaska.png")
+        missing = self.path("no-such-folder/out.tif")
+        self.assert_clean_failure(tsynth("convert", dem, "-o", missing), 1, "does not exist")
+        self.assert_clean_failure(tsynth("convert", dem, "-o", self.path("out.xyz")), 2, ".tif")
+        self.assert_clean_failure(tsynth("render", dem), 2, "-o OUT.png")
+        self.assert_clean_failure(tsynth("render", dem, "-o", self.path("x.jpg")), 2, ".png")
+
+    def test_usage_errors(self):
+        self.assert_clean_failure(tsynth("frobnicate"), 2, "Unknown command")
+        self.assert_clean_failure(tsynth("info"), 2, "needs a DEM")
+        self.assert_clean_failure(tsynth("info", "a.tif", "--bogus"), 2, "Unknown option --bogus")
+        self.assert_clean_failure(tsynth("info", "a.tif", "--cell", "-4"), 2, "--cell")
+        self.assert_clean_failure(tsynth("info", "a.tif", "--z-unit", "yd"), 2, "--z-unit")
+
+    def test_help(self):
+        for command in ("info", "render", "convert"):
+            result = tsynth(command, "--help")
+            self.assertEqual(result.returncode, 0)
+            self.assertIn("Usage: tsynth " + command, result.stdout)
+        self.assertEqual(tsynth("--help").returncode, 0)
+
+
+if __name__ == "__main__":
+    harness.run(__name__)
