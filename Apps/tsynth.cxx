@@ -244,10 +244,12 @@ int runInfo(std::vector<std::string> args)
             << " m, mean " << range.mean << " m\n";
   std::cout << "Stored in:  " << (info.zUnit == tsynth::ZUnit::Feet ? "feet" : "metres") << " ("
             << info.zUnitSource << ")"
-            << (info.normalised ? ", normalised range " + std::to_string(info.zMin) + " to " +
-                     std::to_string(info.zMax)
-                                : std::string())
             << "\n";
+  if (info.normalised)
+  {
+    std::cout << "Range:      codes map linearly onto " << std::setprecision(2) << info.zMin
+              << " to " << info.zMax << " " << tsynth::zUnitName(info.zUnit) << "\n";
+  }
   std::cout << "Nodata:     " << invalid << " cells (" << std::setprecision(2) << invalidShare
             << "%)\n";
   std::cout << "CRS:        " << crs << (info.georef.isGeographic ? " (geographic)" : "") << "\n";
