@@ -621,6 +621,69 @@ Heightfield readHeightfield(const std::string& path, const ReadOptions& options,
   return hf;
 }
 
+ColourImage readColourImage(const std::string& path)
+{
+  DatasetPtr ds = openRaster(path);
+  ColourImage img;
+  img.width = ds->GetRasterXSize();
+  img.height = ds->GetRasterYSize();
+  img.channels = ds->GetRasterCount();
+  if (img.channels > 4)
+  {
+    throw Error(path + " has " + std::to_string(img.channels) +
+      " bands; a sketch image has 1 to 4 (grey, RGB, with or without alpha).");
+  }
+  GDALRasterBand* first = ds->GetRasterBand(1);
+  const GDALDataType type = first->GetRasterDataType();
+  if (type != GDT_Byte && type != GDT_UInt16)
+  {
+    throw Error(path + " stores " + std::string(GDALGetDataTypeName(type)) +
+      " values; a sketch image must be 8- or 16-bit.");
+  }
+  if (img.channels == 1 && first->GetColorTable() != nullptr)
+  {
+    img.channels = 3; // expand a palette image to RGB
+  }
+  const std::size_t n = static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height);
+  img.data.assign(n * static_cast<std::size_t>(img.channels), 0);
+  QuietGdal quiet;
+  if (ds->GetRasterCount() == 1 && first->GetColorTable() != nullptr)
+  {
+    std::vector<std::uint8_t> index(n);
+    if (first->RasterIO(GF_Read, 0, 0, img.width, img.height, index.data(), img.width, img.height,
+          GDT_Byte, 0, 0, nullptr) != CE_None)
+    {
+      throw Error("Cannot read the pixels of " + path + QuietGdal::lastMessage() + ".");
+    }
+    const GDALColorTable* table = first->GetColorTable();
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const GDALColorEntry* e = table->GetColorEntry(index[k]);
+      img.data[3 * k] = static_cast<std::uint8_t>(e != nullptr ? e->c1 : 0);
+      img.data[3 * k + 1] = static_cast<std::uint8_t>(e != nullptr ? e->c2 : 0);
+      img.data[3 * k + 2] = static_cast<std::uint8_t>(e != nullptr ? e->c3 : 0);
+    }
+    return img;
+  }
+  std::vector<std::uint16_t> values(n);
+  for (int b = 0; b < img.channels; ++b)
+  {
+    if (ds->GetRasterBand(b + 1)->RasterIO(GF_Read, 0, 0, img.width, img.height, values.data(),
+          img.width, img.height, GDT_UInt16, 0, 0, nullptr) != CE_None)
+    {
+      throw Error("Cannot read the pixels of " + path +
+        "; the file may be truncated or corrupt" + QuietGdal::lastMessage() + ".");
+    }
+    const int shift = type == GDT_UInt16 ? 8 : 0;
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      img.data[k * static_cast<std::size_t>(img.channels) + static_cast<std::size_t>(b)] =
+        static_cast<std::uint8_t>(values[k] >> shift);
+    }
+  }
+  return img;
+}
+
 bool isHeightfieldWriteExtension(const std::string& path)
 {
   const std::string ext = lowerExtension(path);

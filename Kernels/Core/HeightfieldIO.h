@@ -70,6 +70,25 @@ void writeRgbPng(const std::string& path,
   int height,
   const std::vector<std::uint8_t>& rgb);
 
+// An 8-bit image of 1 to 4 channels (grey, grey+alpha, RGB, RGBA), interleaved,
+// first row at the top (north) as in the file: sketches are read this way.
+struct ColourImage
+{
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  std::vector<std::uint8_t> data;
+  const std::uint8_t* pixel(int column, int rowFromTop) const
+  {
+    return data.data() + (static_cast<std::size_t>(rowFromTop) * static_cast<std::size_t>(width) +
+                           static_cast<std::size_t>(column)) * static_cast<std::size_t>(channels);
+  }
+};
+
+// Reads an image GDAL understands; 16-bit channels are scaled to 8 bits.
+// Throws tsynth::Error with one clear sentence.
+ColourImage readColourImage(const std::string& path);
+
 // True if the extension names a format writeHeightfield writes.
 bool isHeightfieldWriteExtension(const std::string& path);
 

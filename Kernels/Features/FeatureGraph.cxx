@@ -1,0 +1,343 @@
+#include "FeatureGraph.h"
+
+#include "../Core/Heightfield.h"
+#include "PixelGraph.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <numeric>
+
+namespace tsynth
+{
+namespace
+{
+
+constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+
+float heightAt(const Heightfield* hf, int i, int j)
+{
+  if (hf == nullptr || !hf->isValid(i, j))
+  {
+    return std::numeric_limits<float>::quiet_NaN();
+  }
+  return hf->at(i, j);
+}
+
+} // namespace
+
+double FeatureChain::length() const
+{
+  double sum = 0.0;
+  for (std::size_t k = 1; k < points.size(); ++k)
+  {
+    sum += std::hypot(points[k].x - points[k - 1].x, points[k].y - points[k - 1].y);
+  }
+  return sum;
+}
+
+int FeatureGraph::countKind(NodeKind kind) const
+{
+  return static_cast<int>(
+    std::count_if(nodes.begin(), nodes.end(), [&](const FeatureNode& n) { return n.kind == kind; }));
+}
+
+int FeatureGraph::countKind(NodeKind kind, FeatureType type) const
+{
+  return static_cast<int>(std::count_if(nodes.begin(), nodes.end(),
+    [&](const FeatureNode& n) { return n.kind == kind && n.type == type; }));
+}
+
+FeatureGraph buildFeatureGraph(
+  const PixelGraph& pixels, FeatureType type, const Heightfield* heights, double cellX, double cellY)
+{
+  FeatureGraph g;
+  g.width = pixels.width();
+  g.height = pixels.height();
+  g.cellX = cellX;
+  g.cellY = cellY;
+
+  std::vector<int> nodeOf(pixels.size(), -1);
+  auto addNode = [&](std::size_t idx) {
+    FeatureNode n;
+    n.position = { static_cast<double>(pixels.column(idx)), static_cast<double>(pixels.row(idx)) };
+    n.elevation = heightAt(heights, pixels.column(idx), pixels.row(idx));
+    n.degree = pixels.degree(idx);
+    n.kind = n.degree == 1 ? NodeKind::End : (n.degree >= 3 ? NodeKind::Branch : NodeKind::Path);
+    n.type = type;
+    nodeOf[idx] = static_cast<int>(g.nodes.size());
+    g.nodes.push_back(n);
+  };
+  for (std::size_t idx = 0; idx < pixels.size(); ++idx)
+  {
+    const int d = pixels.degree(idx);
+    if (d == 1 || d >= 3)
+    {
+      addNode(idx);
+    }
+  }
+
+  // visited[idx] bit k: the edge from idx in direction k is already in a chain.
+  std::vector<std::uint8_t> visited(pixels.size(), 0);
+  auto markEdge = [&](std::size_t idx, int k) {
+    visited[idx] = static_cast<std::uint8_t>(visited[idx] | (1U << k));
+    const std::size_t n = pixels.neighbour(idx, k);
+    visited[n] = static_cast<std::uint8_t>(visited[n] | (1U << PixelGraph::opposite(k)));
+  };
+  auto walk = [&](std::size_t start, int firstDirection) {
+    FeatureChain c;
+    c.type = type;
+    c.from = nodeOf[start];
+    std::size_t cur = start;
+    int k = firstDirection;
+    c.points.push_back({ static_cast<double>(pixels.column(cur)), static_cast<double>(pixels.row(cur)) });
+    c.elevation.push_back(heightAt(heights, pixels.column(cur), pixels.row(cur)));
+    while (true)
+    {
+      markEdge(cur, k);
+      cur = pixels.neighbour(cur, k);
+      c.points.push_back({ static_cast<double>(pixels.column(cur)), static_cast<double>(pixels.row(cur)) });
+      c.elevation.push_back(heightAt(heights, pixels.column(cur), pixels.row(cur)));
+      if (nodeOf[cur] >= 0)
+      {
+        break;
+      }
+      int next = -1;
+      for (int m = 0; m < 8; ++m)
+      {
+        if (pixels.hasLink(cur, m) && ((visited[cur] >> m) & 1U) == 0)
+        {
+          next = m;
+          break;
+        }
+      }
+      if (next < 0)
+      {
+        break; // cannot happen in a consistent graph; stop rather than loop
+      }
+      k = next;
+    }
+    c.to = nodeOf[cur];
+    const int id = static_cast<int>(g.chains.size());
+    g.nodes[static_cast<std::size_t>(c.from)].chains.push_back(id);
+    g.nodes[static_cast<std::size_t>(c.to)].chains.push_back(id);
+    g.chains.push_back(std::move(c));
+  };
+
+  for (std::size_t n = 0; n < g.nodes.size(); ++n)
+  {
+    const auto& p = g.nodes[n].position;
+    const std::size_t idx = pixels.index(static_cast<int>(p.x), static_cast<int>(p.y));
+    for (int k = 0; k < 8; ++k)
+    {
+      if (pixels.hasLink(idx, k) && ((visited[idx] >> k) & 1U) == 0)
+      {
+        walk(idx, k);
+      }
+    }
+  }
+  // Closed loops of degree-2 cells: anchor each at its first cell in raster order.
+  for (std::size_t idx = 0; idx < pixels.size(); ++idx)
+  {
+    if (pixels.links(idx) != 0 && visited[idx] == 0)
+    {
+      addNode(idx);
+      for (int k = 0; k < 8; ++k)
+      {
+        if (pixels.hasLink(idx, k))
+        {
+          walk(idx, k);
+          break;
+        }
+      }
+    }
+  }
+  computeBreadthFirstOrder(g);
+  return g;
+}
+
+void smoothChains(FeatureGraph& graph, int passes)
+{
+  for (FeatureChain& c : graph.chains)
+  {
+    const std::size_t n = c.points.size();
+    if (n < 3)
+    {
+      continue;
+    }
+    std::vector<Point2> next = c.points;
+    for (int pass = 0; pass < passes; ++pass)
+    {
+      for (std::size_t k = 1; k + 1 < n; ++k)
+      {
+        next[k].x = 0.25 * c.points[k - 1].x + 0.5 * c.points[k].x + 0.25 * c.points[k + 1].x;
+        next[k].y = 0.25 * c.points[k - 1].y + 0.5 * c.points[k].y + 0.25 * c.points[k + 1].y;
+      }
+      c.points = next;
+    }
+  }
+}
+
+void computeBreadthFirstOrder(FeatureGraph& g)
+{
+  const std::size_t n = g.nodes.size();
+  std::vector<int> component(n, -1);
+  std::vector<std::vector<int>> members;
+  for (std::size_t s = 0; s < n; ++s)
+  {
+    if (component[s] >= 0)
+    {
+      continue;
+    }
+    const int id = static_cast<int>(members.size());
+    members.emplace_back();
+    std::vector<int> stack{ static_cast<int>(s) };
+    component[s] = id;
+    while (!stack.empty())
+    {
+      const int v = stack.back();
+      stack.pop_back();
+      members.back().push_back(v);
+      for (int c : g.nodes[static_cast<std::size_t>(v)].chains)
+      {
+        const FeatureChain& ch = g.chains[static_cast<std::size_t>(c)];
+        const int w = ch.from == v ? ch.to : ch.from;
+        if (component[static_cast<std::size_t>(w)] < 0)
+        {
+          component[static_cast<std::size_t>(w)] = id;
+          stack.push_back(w);
+        }
+      }
+    }
+  }
+  std::vector<double> length(members.size(), 0.0);
+  for (const FeatureChain& c : g.chains)
+  {
+    length[static_cast<std::size_t>(component[static_cast<std::size_t>(c.from)])] += c.length();
+  }
+  std::vector<int> order(members.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return length[static_cast<std::size_t>(a)] > length[static_cast<std::size_t>(b)];
+  });
+
+  g.bfsOrder.clear();
+  g.componentCount = static_cast<int>(members.size());
+  std::vector<char> seen(n, 0);
+  for (std::size_t rank = 0; rank < order.size(); ++rank)
+  {
+    const auto& m = members[static_cast<std::size_t>(order[rank])];
+    int root = m.front();
+    for (int v : m)
+    {
+      const FeatureNode& a = g.nodes[static_cast<std::size_t>(v)];
+      const FeatureNode& b = g.nodes[static_cast<std::size_t>(root)];
+      const float ea = std::isnan(a.elevation) ? -std::numeric_limits<float>::infinity() : a.elevation;
+      const float eb = std::isnan(b.elevation) ? -std::numeric_limits<float>::infinity() : b.elevation;
+      if (a.degree > b.degree || (a.degree == b.degree && (ea > eb || (ea == eb && v < root))))
+      {
+        root = v;
+      }
+    }
+    std::deque<int> queue{ root };
+    seen[static_cast<std::size_t>(root)] = 1;
+    while (!queue.empty())
+    {
+      const int v = queue.front();
+      queue.pop_front();
+      g.nodes[static_cast<std::size_t>(v)].component = static_cast<int>(rank);
+      g.bfsOrder.push_back(v);
+      for (int c : g.nodes[static_cast<std::size_t>(v)].chains)
+      {
+        const FeatureChain& ch = g.chains[static_cast<std::size_t>(c)];
+        const int w = ch.from == v ? ch.to : ch.from;
+        if (seen[static_cast<std::size_t>(w)] == 0)
+        {
+          seen[static_cast<std::size_t>(w)] = 1;
+          queue.push_back(w);
+        }
+      }
+    }
+  }
+}
+
+void computeControlPoints(FeatureGraph& g, double radius)
+{
+  for (std::size_t v = 0; v < g.nodes.size(); ++v)
+  {
+    FeatureNode& node = g.nodes[v];
+    node.controls.clear();
+    // A loop chain (from == to == v) is listed twice: leave by its start, then by its end.
+    std::vector<int> usedLoopStart;
+    for (int c : node.chains)
+    {
+      const FeatureChain& ch = g.chains[static_cast<std::size_t>(c)];
+      bool forward = ch.from == static_cast<int>(v);
+      if (ch.from == ch.to)
+      {
+        forward = std::find(usedLoopStart.begin(), usedLoopStart.end(), c) == usedLoopStart.end();
+        if (forward)
+        {
+          usedLoopStart.push_back(c);
+        }
+      }
+      const std::size_t n = ch.points.size();
+      auto at = [&](std::size_t k) { return forward ? ch.points[k] : ch.points[n - 1 - k]; };
+      ControlPoint cp;
+      cp.chain = c;
+      cp.position = at(n - 1);
+      const Point2 o = node.position;
+      for (std::size_t k = 1; k < n; ++k)
+      {
+        const Point2 a = at(k - 1);
+        const Point2 b = at(k);
+        const double da = std::hypot(a.x - o.x, a.y - o.y);
+        const double db = std::hypot(b.x - o.x, b.y - o.y);
+        if (db >= radius)
+        {
+          const double t = db > da ? (radius - da) / (db - da) : 1.0;
+          cp.position = { a.x + t * (b.x - a.x), a.y + t * (b.y - a.y) };
+          cp.reached = true;
+          break;
+        }
+      }
+      cp.angle = std::atan2(cp.position.y - o.y, cp.position.x - o.x);
+      node.controls.push_back(cp);
+    }
+  }
+}
+
+void appendGraph(FeatureGraph& a, const FeatureGraph& b)
+{
+  const int nodeOffset = static_cast<int>(a.nodes.size());
+  const int chainOffset = static_cast<int>(a.chains.size());
+  if (a.nodes.empty() && a.chains.empty())
+  {
+    a.width = b.width;
+    a.height = b.height;
+    a.cellX = b.cellX;
+    a.cellY = b.cellY;
+  }
+  for (FeatureNode n : b.nodes)
+  {
+    for (int& c : n.chains)
+    {
+      c += chainOffset;
+    }
+    for (ControlPoint& cp : n.controls)
+    {
+      cp.chain += chainOffset;
+    }
+    a.nodes.push_back(std::move(n));
+  }
+  for (FeatureChain c : b.chains)
+  {
+    c.from += nodeOffset;
+    c.to += nodeOffset;
+    a.chains.push_back(std::move(c));
+  }
+  computeBreadthFirstOrder(a);
+}
+
+} // namespace tsynth

@@ -1,0 +1,579 @@
+#include "Sketch.h"
+
+#include "../Core/Error.h"
+#include "PixelGraph.h"
+#include "Ppa.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <map>
+#include <unordered_map>
+
+namespace tsynth
+{
+namespace
+{
+
+std::size_t pixelCount(const ColourImage& image)
+{
+  return static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+}
+
+// Channel c of pixel k, treating 1-2 channel images as grey.
+std::uint8_t channel(const ColourImage& image, std::size_t k, int c)
+{
+  const int ch = image.channels <= 2 ? 0 : c;
+  return image.data[k * static_cast<std::size_t>(image.channels) + static_cast<std::size_t>(ch)];
+}
+
+// True if a's and b's trees are joined by a path of at most maxSteps edges.
+bool connectedWithin(const PixelGraph& g, std::size_t a, std::size_t b, int maxSteps)
+{
+  std::deque<std::pair<std::size_t, int>> queue{ { a, 0 } };
+  std::vector<std::size_t> seen{ a };
+  while (!queue.empty())
+  {
+    const auto [c, d] = queue.front();
+    queue.pop_front();
+    if (c == b)
+    {
+      return true;
+    }
+    if (d == maxSteps)
+    {
+      continue;
+    }
+    for (int k = 0; k < 8; ++k)
+    {
+      if (g.hasLink(c, k))
+      {
+        const std::size_t n = g.neighbour(c, k);
+        if (std::find(seen.begin(), seen.end(), n) == seen.end())
+        {
+          seen.push_back(n);
+          queue.push_back({ n, d + 1 });
+        }
+      }
+    }
+  }
+  return false;
+}
+
+// Centre lines of one stroke class (mask in grid orientation, row 0 south).
+FeatureGraph strokeGraph(std::vector<std::uint8_t> mask, int w, int h, FeatureType type,
+  const SketchOptions& o, double& widthOut)
+{
+  const std::size_t area = static_cast<std::size_t>(std::count(mask.begin(), mask.end(), 1));
+  // Ragged stroke outlines thin into hairy centre lines: smooth the outline first.
+  {
+    std::vector<std::uint8_t> probe = mask;
+    thinMask(probe, w, h);
+    const double roughWidth = static_cast<double>(area) /
+      std::max<double>(1.0, static_cast<double>(std::count(probe.begin(), probe.end(), 1)));
+    Heightfield soft(w, h);
+    for (std::size_t k = 0; k < mask.size(); ++k)
+    {
+      soft.z[k] = mask[k];
+    }
+    soft = gaussianSmooth(soft, std::max(1.0, 0.35 * roughWidth));
+    for (std::size_t k = 0; k < mask.size(); ++k)
+    {
+      mask[k] = soft.z[k] >= 0.5f ? 1 : 0;
+    }
+  }
+  thinMask(mask, w, h);
+  const std::size_t skeleton = static_cast<std::size_t>(std::count(mask.begin(), mask.end(), 1));
+  const double width = skeleton > 0 ? static_cast<double>(area) / static_cast<double>(skeleton) : 0.0;
+  widthOut = width;
+
+  // 8-neighbour links, skipping a diagonal when an L-shaped pair of 4-links joins the same cells.
+  PixelGraph g(w, h);
+  std::vector<CellEdge> edges;
+  auto on = [&](int i, int j) {
+    return i >= 0 && j >= 0 && i < w && j < h && mask[g.index(i, j)] != 0;
+  };
+  for (int j = 0; j < h; ++j)
+  {
+    for (int i = 0; i < w; ++i)
+    {
+      if (!on(i, j))
+      {
+        continue;
+      }
+      for (int k = 0; k < 4; ++k)
+      {
+        const int ii = i + PixelGraph::kDx[k];
+        const int jj = j + PixelGraph::kDy[k];
+        if (!on(ii, jj))
+        {
+          continue;
+        }
+        if ((k == 1 || k == 3) && (on(ii, j) || on(i, jj)))
+        {
+          continue;
+        }
+        edges.push_back({ static_cast<std::uint32_t>(g.index(i, j)),
+          static_cast<std::uint32_t>(g.index(ii, jj)), 1.0f });
+      }
+    }
+  }
+  // A spanning forest removes the small cycles thinning leaves at junctions;
+  // cycles longer than a few stroke widths are real loops and come back.
+  PixelGraph forest = maximumSpanningForest(w, h, edges);
+  const int minLoop = std::max(12, static_cast<int>(std::lround(4.0 * width)));
+  std::vector<std::pair<std::size_t, int>> loops;
+  for (const CellEdge& e : edges)
+  {
+    const int dx = g.column(e.b) - g.column(e.a);
+    const int dy = g.row(e.b) - g.row(e.a);
+    int k = 0;
+    while (PixelGraph::kDx[k] != dx || PixelGraph::kDy[k] != dy)
+    {
+      ++k;
+    }
+    if (!forest.hasLink(e.a, k) && !connectedWithin(forest, e.a, e.b, minLoop))
+    {
+      loops.push_back({ e.a, k });
+    }
+  }
+  for (const auto& [a, k] : loops)
+  {
+    forest.link(a, k);
+  }
+  const int spur = std::max(3, static_cast<int>(std::lround(2.0 * width)));
+  forest.pruneShortBranches(spur);
+  forest.removeSmallComponents(std::max(5, 2 * spur));
+
+  FeatureGraph graph = buildFeatureGraph(forest, type, nullptr, o.cellSize, o.cellSize);
+  smoothChains(graph, o.smoothingPasses);
+  computeControlPoints(graph, o.controlRadius);
+  return graph;
+}
+
+SketchFeatures strokeFeatures(const ColourImage& image, const SketchOptions& o)
+{
+  SketchFeatures out;
+  out.kind = SketchKind::Strokes;
+  const int w = image.width;
+  const int h = image.height;
+  const std::size_t n = pixelCount(image);
+  std::vector<std::uint8_t> ridge(n, 0);
+  std::vector<std::uint8_t> valley(n, 0);
+  std::size_t otherColoured = 0;
+  for (int r = 0; r < h; ++r)
+  {
+    for (int i = 0; i < w; ++i)
+    {
+      const std::size_t k = static_cast<std::size_t>(r) * static_cast<std::size_t>(w) +
+        static_cast<std::size_t>(i);
+      const std::uint8_t rgb[3] = { channel(image, k, 0), channel(image, k, 1), channel(image, k, 2) };
+      const std::size_t g = static_cast<std::size_t>(h - 1 - r) * static_cast<std::size_t>(w) +
+        static_cast<std::size_t>(i);
+      if (isRidgeColour(rgb))
+      {
+        ridge[g] = 1;
+      }
+      else if (isValleyColour(rgb))
+      {
+        valley[g] = 1;
+      }
+      else if (std::max({ rgb[0], rgb[1], rgb[2] }) - std::min({ rgb[0], rgb[1], rgb[2] }) >= 40)
+      {
+        ++otherColoured;
+      }
+    }
+  }
+  const std::size_t strokes = static_cast<std::size_t>(
+    std::count(ridge.begin(), ridge.end(), 1) + std::count(valley.begin(), valley.end(), 1));
+  if (strokes == 0)
+  {
+    throw Error("The image is in colour but has no red ridge or blue valley strokes, so it is "
+                "not a stroke map (ridges R>=200 G<=80 B<=80, valleys B>=200 R<=80 G<=80).");
+  }
+  if (otherColoured > n / 100)
+  {
+    out.warnings.push_back(std::to_string(100 * otherColoured / n) +
+      "% of the pixels are coloured but neither ridge red nor valley blue; they are ignored.");
+  }
+  out.graph.width = w;
+  out.graph.height = h;
+  out.graph.cellX = out.graph.cellY = o.cellSize;
+  double widthSum = 0.0;
+  int classes = 0;
+  for (FeatureType type : { FeatureType::Ridge, FeatureType::Valley })
+  {
+    auto& mask = type == FeatureType::Ridge ? ridge : valley;
+    if (std::count(mask.begin(), mask.end(), 1) == 0)
+    {
+      continue;
+    }
+    double width = 0.0;
+    appendGraph(out.graph, strokeGraph(mask, w, h, type, o, width));
+    widthSum += width;
+    ++classes;
+  }
+  out.strokeWidth = classes > 0 ? widthSum / classes : 0.0;
+  return out;
+}
+
+SketchFeatures greyFeatures(const ColourImage& image, const SketchOptions& o)
+{
+  SketchFeatures out;
+  out.kind = SketchKind::Grey;
+  const int w = image.width;
+  const int h = image.height;
+  Heightfield hf(w, h);
+  hf.cellX = hf.cellY = o.cellSize;
+  std::vector<std::size_t> histogram(256, 0);
+  for (int r = 0; r < h; ++r)
+  {
+    for (int i = 0; i < w; ++i)
+    {
+      const std::size_t k = static_cast<std::size_t>(r) * static_cast<std::size_t>(w) +
+        static_cast<std::size_t>(i);
+      const std::uint8_t v = channel(image, k, 0);
+      hf.at(i, h - 1 - r) = v;
+      ++histogram[v];
+    }
+  }
+  const int background = static_cast<int>(
+    std::max_element(histogram.begin(), histogram.end()) - histogram.begin());
+  float contrast = 0.0f;
+  for (float v : hf.z)
+  {
+    contrast = std::max(contrast, std::abs(v - static_cast<float>(background)));
+  }
+  out.graph.width = w;
+  out.graph.height = h;
+  out.graph.cellX = out.graph.cellY = o.cellSize;
+  if (contrast < 1.0f)
+  {
+    out.warnings.push_back("The sketch is a single shade of grey: it has no features.");
+    return out;
+  }
+  // Stroke width from the marked area and its centre line.
+  std::vector<std::uint8_t> mask(hf.size(), 0);
+  for (std::size_t k = 0; k < hf.size(); ++k)
+  {
+    mask[k] = std::abs(hf.z[k] - static_cast<float>(background)) > 0.25f * contrast ? 1 : 0;
+  }
+  const double area = static_cast<double>(std::count(mask.begin(), mask.end(), 1));
+  thinMask(mask, w, h);
+  const double centre = std::max<double>(1.0, static_cast<double>(std::count(mask.begin(), mask.end(), 1)));
+  out.strokeWidth = area / centre;
+
+  // Flat-topped strokes become rounded ridges once smoothed by half their width.
+  PpaOptions p;
+  p.presmoothSigma = std::max(1.0, 0.5 * out.strokeWidth);
+  p.halfProfileLength = std::max(3, static_cast<int>(std::ceil(out.strokeWidth)) + 1);
+  p.minDip = 0.02 * contrast;
+  p.endReductions = 2;
+  p.minBranchLength = std::max(7, static_cast<int>(std::lround(2.0 * out.strokeWidth)));
+  p.minTreeSize = std::max(20, static_cast<int>(std::lround(4.0 * out.strokeWidth)));
+  p.smoothingPasses = o.smoothingPasses;
+  p.controlRadius = o.controlRadius;
+  // Ridges come from strokes brighter than the background, valleys from darker
+  // ones; the trough between two bright strokes is not a valley of the sketch.
+  bool brighter = false;
+  bool darker = false;
+  for (float v : hf.z)
+  {
+    brighter = brighter || v > static_cast<float>(background) + 0.25f * contrast;
+    darker = darker || v < static_cast<float>(background) - 0.25f * contrast;
+  }
+  for (FeatureType type : { FeatureType::Ridge, FeatureType::Valley })
+  {
+    if ((type == FeatureType::Ridge && brighter) || (type == FeatureType::Valley && darker))
+    {
+      FeatureExtraction e = extractFeatures(hf, type, p);
+      appendGraph(out.graph, e.graph);
+    }
+  }
+  if (out.graph.empty())
+  {
+    out.warnings.push_back("No ridges or valleys were found in the grey sketch.");
+  }
+  return out;
+}
+
+} // namespace
+
+bool isRidgeColour(const std::uint8_t* rgb)
+{
+  return rgb[0] >= 200 && rgb[1] <= 80 && rgb[2] <= 80;
+}
+
+bool isValleyColour(const std::uint8_t* rgb)
+{
+  return rgb[2] >= 200 && rgb[0] <= 80 && rgb[1] <= 80;
+}
+
+SketchKind classifySketch(const ColourImage& image)
+{
+  if (image.channels <= 2)
+  {
+    return SketchKind::Grey;
+  }
+  const std::size_t n = pixelCount(image);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const int r = channel(image, k, 0);
+    const int g = channel(image, k, 1);
+    const int b = channel(image, k, 2);
+    if (std::max({ r, g, b }) - std::min({ r, g, b }) > 8)
+    {
+      return SketchKind::Strokes;
+    }
+  }
+  return SketchKind::Grey;
+}
+
+SketchFeatures sketchFeatures(const ColourImage& image, const SketchOptions& o)
+{
+  if (image.width < o.patchSize || image.height < o.patchSize)
+  {
+    throw Error("The sketch is " + std::to_string(image.width) + " x " +
+      std::to_string(image.height) + " pixels, smaller than one patch (" +
+      std::to_string(o.patchSize) + " x " + std::to_string(o.patchSize) + ").");
+  }
+  return classifySketch(image) == SketchKind::Grey ? greyFeatures(image, o)
+                                                   : strokeFeatures(image, o);
+}
+
+void thinMask(std::vector<std::uint8_t>& m, int w, int h)
+{
+  // Zhang and Suen (1984): two sub-iterations peel boundary cells that are
+  // neither end points nor needed for connectivity.
+  auto at = [&](int i, int j) -> int {
+    return (i >= 0 && j >= 0 && i < w && j < h && m[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)] != 0) ? 1 : 0;
+  };
+  std::vector<std::size_t> remove;
+  for (bool changed = true; changed;)
+  {
+    changed = false;
+    for (int step = 0; step < 2; ++step)
+    {
+      remove.clear();
+      for (int j = 0; j < h; ++j)
+      {
+        for (int i = 0; i < w; ++i)
+        {
+          if (at(i, j) == 0)
+          {
+            continue;
+          }
+          // P2..P9 clockwise from north (y grows north here; the rule is symmetric).
+          const int p[8] = { at(i, j + 1), at(i + 1, j + 1), at(i + 1, j), at(i + 1, j - 1),
+            at(i, j - 1), at(i - 1, j - 1), at(i - 1, j), at(i - 1, j + 1) };
+          int neighbours = 0;
+          int transitions = 0;
+          for (int k = 0; k < 8; ++k)
+          {
+            neighbours += p[k];
+            transitions += (p[k] == 0 && p[(k + 1) % 8] == 1) ? 1 : 0;
+          }
+          if (neighbours < 2 || neighbours > 6 || transitions != 1)
+          {
+            continue;
+          }
+          const bool first = step == 0 ? (p[0] * p[2] * p[4] == 0 && p[2] * p[4] * p[6] == 0)
+                                       : (p[0] * p[2] * p[6] == 0 && p[0] * p[4] * p[6] == 0);
+          if (first)
+          {
+            remove.push_back(static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i));
+          }
+        }
+      }
+      for (std::size_t k : remove)
+      {
+        m[k] = 0;
+      }
+      changed = changed || !remove.empty();
+    }
+  }
+}
+
+FeatureGraph polylineFeatures(const std::vector<Polyline>& lines, int width, int height,
+  double cellX, double cellY, double snapTolerance, double controlRadius)
+{
+  struct Vertex
+  {
+    Point2 p;
+    float constraint = std::numeric_limits<float>::quiet_NaN();
+    std::vector<std::pair<int, FeatureType>> adjacent; // (vertex, type of the segment)
+  };
+  std::vector<Vertex> vertices;
+  const double tol = std::max(snapTolerance, 1e-9);
+  std::map<std::pair<long, long>, std::vector<int>> buckets;
+  auto vertexFor = [&](const Point2& p, float constraint) {
+    const long bx = static_cast<long>(std::floor(p.x / tol));
+    const long by = static_cast<long>(std::floor(p.y / tol));
+    for (long dx = -1; dx <= 1; ++dx)
+    {
+      for (long dy = -1; dy <= 1; ++dy)
+      {
+        auto it = buckets.find({ bx + dx, by + dy });
+        if (it == buckets.end())
+        {
+          continue;
+        }
+        for (int v : it->second)
+        {
+          const Point2& q = vertices[static_cast<std::size_t>(v)].p;
+          if (std::hypot(q.x - p.x, q.y - p.y) <= snapTolerance)
+          {
+            if (std::isnan(vertices[static_cast<std::size_t>(v)].constraint))
+            {
+              vertices[static_cast<std::size_t>(v)].constraint = constraint;
+            }
+            return v;
+          }
+        }
+      }
+    }
+    const int id = static_cast<int>(vertices.size());
+    vertices.push_back({ p, constraint, {} });
+    buckets[{ bx, by }].push_back(id);
+    return id;
+  };
+  auto addSegment = [&](int a, int b, FeatureType type) {
+    if (a == b)
+    {
+      return;
+    }
+    auto& adj = vertices[static_cast<std::size_t>(a)].adjacent;
+    if (std::any_of(adj.begin(), adj.end(), [&](const auto& e) { return e.first == b; }))
+    {
+      return; // the same segment drawn twice
+    }
+    adj.push_back({ b, type });
+    vertices[static_cast<std::size_t>(b)].adjacent.push_back({ a, type });
+  };
+  for (const Polyline& line : lines)
+  {
+    int prev = -1;
+    for (std::size_t k = 0; k < line.points.size(); ++k)
+    {
+      const float c = k < line.elevation.size() ? line.elevation[k] : std::numeric_limits<float>::quiet_NaN();
+      const int v = vertexFor(line.points[k], c);
+      if (prev >= 0)
+      {
+        addSegment(prev, v, line.type);
+      }
+      prev = v;
+    }
+  }
+
+  FeatureGraph g;
+  g.width = width;
+  g.height = height;
+  g.cellX = cellX;
+  g.cellY = cellY;
+  std::vector<int> nodeOf(vertices.size(), -1);
+  auto addNode = [&](int v) {
+    const Vertex& vx = vertices[static_cast<std::size_t>(v)];
+    FeatureNode n;
+    n.position = vx.p;
+    n.elevation = vx.constraint;
+    n.degree = static_cast<int>(vx.adjacent.size());
+    n.kind = n.degree == 1 ? NodeKind::End : (n.degree >= 3 ? NodeKind::Branch : NodeKind::Path);
+    n.type = vx.adjacent.empty() ? FeatureType::Ridge : vx.adjacent.front().second;
+    nodeOf[static_cast<std::size_t>(v)] = static_cast<int>(g.nodes.size());
+    g.nodes.push_back(n);
+  };
+  for (std::size_t v = 0; v < vertices.size(); ++v)
+  {
+    const std::size_t d = vertices[v].adjacent.size();
+    if (d == 1 || d >= 3)
+    {
+      addNode(static_cast<int>(v));
+    }
+  }
+  std::map<std::pair<int, int>, bool> used;
+  auto walk = [&](int start, int first) {
+    FeatureChain c;
+    c.from = nodeOf[static_cast<std::size_t>(start)];
+    c.type = FeatureType::Ridge;
+    int prev = start;
+    int cur = first;
+    auto push = [&](int v) {
+      c.points.push_back(vertices[static_cast<std::size_t>(v)].p);
+      c.elevation.push_back(vertices[static_cast<std::size_t>(v)].constraint);
+      c.constraint.push_back(vertices[static_cast<std::size_t>(v)].constraint);
+    };
+    for (const auto& e : vertices[static_cast<std::size_t>(start)].adjacent)
+    {
+      if (e.first == first)
+      {
+        c.type = e.second;
+      }
+    }
+    push(start);
+    while (true)
+    {
+      used[{ std::min(prev, cur), std::max(prev, cur) }] = true;
+      push(cur);
+      if (nodeOf[static_cast<std::size_t>(cur)] >= 0)
+      {
+        break;
+      }
+      int next = -1;
+      for (const auto& e : vertices[static_cast<std::size_t>(cur)].adjacent)
+      {
+        if (e.first != prev && !used.count({ std::min(cur, e.first), std::max(cur, e.first) }))
+        {
+          next = e.first;
+          break;
+        }
+      }
+      if (next < 0)
+      {
+        break;
+      }
+      prev = cur;
+      cur = next;
+    }
+    c.to = nodeOf[static_cast<std::size_t>(cur)];
+    const int id = static_cast<int>(g.chains.size());
+    g.nodes[static_cast<std::size_t>(c.from)].chains.push_back(id);
+    g.nodes[static_cast<std::size_t>(c.to)].chains.push_back(id);
+    g.chains.push_back(std::move(c));
+  };
+  auto walkAll = [&](int v) {
+    for (const auto& e : vertices[static_cast<std::size_t>(v)].adjacent)
+    {
+      if (!used.count({ std::min(v, e.first), std::max(v, e.first) }))
+      {
+        walk(v, e.first);
+      }
+    }
+  };
+  const std::size_t realNodes = g.nodes.size();
+  for (std::size_t v = 0; v < vertices.size(); ++v)
+  {
+    if (nodeOf[v] >= 0 && static_cast<std::size_t>(nodeOf[v]) < realNodes)
+    {
+      walkAll(static_cast<int>(v));
+    }
+  }
+  // Closed poly-lines: anchor each loop at its first vertex.
+  for (std::size_t v = 0; v < vertices.size(); ++v)
+  {
+    const auto& adj = vertices[v].adjacent;
+    const bool unused = std::any_of(adj.begin(), adj.end(), [&](const auto& e) {
+      return !used.count({ std::min(static_cast<int>(v), e.first), std::max(static_cast<int>(v), e.first) });
+    });
+    if (nodeOf[v] < 0 && unused)
+    {
+      addNode(static_cast<int>(v));
+      walk(static_cast<int>(v), adj.front().first);
+    }
+  }
+  computeBreadthFirstOrder(g);
+  computeControlPoints(g, controlRadius);
+  return g;
+}
+
+} // namespace tsynth

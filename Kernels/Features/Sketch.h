@@ -1,0 +1,67 @@
+// A user's sketch turned into feature graphs: grey sketch maps (through PPA),
+// stroke maps (red ridges, blue valleys, thinned to centre lines) and
+// poly-lines (used as drawn).
+#pragma once
+
+#include "../Core/Heightfield.h"
+#include "../Core/HeightfieldIO.h"
+#include "FeatureGraph.h"
+
+#include <string>
+#include <vector>
+
+namespace tsynth
+{
+
+enum class SketchKind
+{
+  Grey,   // one channel (or R = G = B): brighter is higher
+  Strokes // colour: red ridges, blue valleys
+};
+
+struct SketchOptions
+{
+  int patchSize = 80;         // a sketch smaller than one patch is refused
+  double controlRadius = 40.0; // cells (half the patch)
+  int smoothingPasses = 2;
+  double cellSize = 1.0;      // metres per sketch pixel, for the graph's coordinates
+};
+
+struct SketchFeatures
+{
+  FeatureGraph graph;
+  SketchKind kind = SketchKind::Grey;
+  double strokeWidth = 0.0; // estimated, pixels
+  std::vector<std::string> warnings;
+};
+
+// Pixel classes of a stroke map (DESIGN.md thresholds).
+bool isRidgeColour(const std::uint8_t* rgb);
+bool isValleyColour(const std::uint8_t* rgb);
+
+// Grey if every pixel has R, G and B within 8 of each other (or one channel).
+SketchKind classifySketch(const ColourImage& image);
+
+// Reads any sketch image: grey maps go through PPA (ridges and valleys), colour
+// images through stroke thinning. Throws tsynth::Error for a sketch smaller
+// than one patch or a colour image with no ridge or valley strokes.
+SketchFeatures sketchFeatures(const ColourImage& image, const SketchOptions& options = {});
+
+// Zhang-Suen thinning of a binary mask (row-major, width x height), in place.
+void thinMask(std::vector<std::uint8_t>& mask, int width, int height);
+
+// A poly-line in cell coordinates, with optional per-point height constraints.
+struct Polyline
+{
+  std::vector<Point2> points;
+  std::vector<float> elevation; // empty, or one value per point (NaN = none)
+  FeatureType type = FeatureType::Ridge;
+};
+
+// Builds a graph from poly-lines as drawn: end points and shared vertices within
+// `snapTolerance` cells are merged; vertices where three or more pieces meet
+// become branch nodes; a closed poly-line becomes a loop.
+FeatureGraph polylineFeatures(const std::vector<Polyline>& lines, int width, int height,
+  double cellX, double cellY, double snapTolerance = 1.0, double controlRadius = 40.0);
+
+} // namespace tsynth
