@@ -292,12 +292,19 @@ void computeControlPoints(FeatureGraph& g, double radius)
       {
         const Point2 a = at(k - 1);
         const Point2 b = at(k);
-        const double da = std::hypot(a.x - o.x, a.y - o.y);
         const double db = std::hypot(b.x - o.x, b.y - o.y);
         if (db >= radius)
         {
-          const double t = db > da ? (radius - da) / (db - da) : 1.0;
-          cp.position = { a.x + t * (b.x - a.x), a.y + t * (b.y - a.y) };
+          // Exact crossing: |a + t (b - a) - o| = radius; a is inside, b is not.
+          const double ux = b.x - a.x;
+          const double uy = b.y - a.y;
+          const double wx = a.x - o.x;
+          const double wy = a.y - o.y;
+          const double qa = ux * ux + uy * uy;
+          const double qb = 2.0 * (ux * wx + uy * wy);
+          const double qc = wx * wx + wy * wy - radius * radius;
+          const double t = qa > 0.0 ? (-qb + std::sqrt(std::max(0.0, qb * qb - 4.0 * qa * qc))) / (2.0 * qa) : 1.0;
+          cp.position = { a.x + t * ux, a.y + t * uy };
           cp.reached = true;
           break;
         }

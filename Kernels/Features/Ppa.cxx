@@ -118,7 +118,8 @@ Heightfield gaussianSmooth(const Heightfield& hf, double sigma)
   return out;
 }
 
-std::vector<std::uint8_t> profileTargets(const Heightfield& hf, int halfProfileLength, double minDip)
+std::vector<std::uint8_t> profileTargets(
+  const Heightfield& hf, int halfProfileLength, double minDip, double relativeDip)
 {
   const int w = hf.width;
   const int h = hf.height;
@@ -134,30 +135,37 @@ std::vector<std::uint8_t> profileTargets(const Heightfield& hf, int halfProfileL
       {
         continue;
       }
-      const float limit = static_cast<float>(hf.at(i, j) - minDip);
-      auto lowerAlong = [&](int dx, int dy) {
+      const float centre = hf.at(i, j);
+      // Deepest dip (centre minus lowest valid height) within len cells one way,
+      // and the largest height difference seen, for the relative threshold.
+      float relief = 0.0f;
+      auto dipAlong = [&](int dx, int dy) {
+        float dip = 0.0f;
         for (int t = 1; t <= len; ++t)
         {
           const int ii = i + t * dx;
           const int jj = j + t * dy;
           if (ii < 0 || jj < 0 || ii >= w || jj >= h)
           {
-            return false;
+            break;
           }
-          if (hf.isValid(ii, jj) && hf.at(ii, jj) < limit)
+          if (hf.isValid(ii, jj))
           {
-            return true;
+            const float d = centre - hf.at(ii, jj);
+            dip = std::max(dip, d);
+            relief = std::max(relief, std::abs(d));
           }
         }
-        return false;
+        return dip;
       };
+      float best = 0.0f;
       for (const auto& a : axes)
       {
-        if (lowerAlong(a[0], a[1]) && lowerAlong(-a[0], -a[1]))
-        {
-          targets[hf.index(i, j)] = 1;
-          break;
-        }
+        best = std::max(best, std::min(dipAlong(a[0], a[1]), dipAlong(-a[0], -a[1])));
+      }
+      if (best > 0.0f && best > minDip && best >= relativeDip * relief)
+      {
+        targets[hf.index(i, j)] = 1;
       }
     }
   }
@@ -284,7 +292,7 @@ FeatureExtraction extractFeatures(const Heightfield& hf, FeatureType type, const
   result.timings.presmooth = secondsSince(t0);
 
   auto t = Clock::now();
-  const std::vector<std::uint8_t> targets = profileTargets(work, o.halfProfileLength, o.minDip);
+  const std::vector<std::uint8_t> targets = profileTargets(work, o.halfProfileLength, o.minDip, o.relativeDip);
   result.timings.profile = secondsSince(t);
   result.statistics.targets =
     static_cast<std::size_t>(std::count(targets.begin(), targets.end(), std::uint8_t{ 1 }));

@@ -22,6 +22,11 @@ struct PpaOptions
   // Metres (or sketch units). 0 keeps every strict dip; raise it to ignore
   // ripples below the DEM's noise.
   double minDip = 0.0;
+  // The dip on both sides must also reach this fraction of the local relief (the
+  // largest height difference within the profile star). Unit-free: it rejects the
+  // faint "both sides lower" of convex slopes (round hill flanks, ridge ends)
+  // that are not ridges, on metres, feet or sketch grey levels alike.
+  double relativeDip = 0.1;
   // Gaussian pre-smoothing (cells) before the profile test; 0 = none. Sketches
   // with flat-topped strokes need about half the stroke width.
   double presmoothSigma = 0.0;
@@ -29,9 +34,9 @@ struct PpaOptions
   int endReductions = 3;
   // Dangling branches shorter than this many cells are removed after the end
   // reduction (World Machine's "short branch threshold").
-  int minBranchLength = 7;
+  int minBranchLength = 15;
   // Trees with fewer cells are removed.
-  int minTreeSize = 20;
+  int minTreeSize = 30;
   // Passes of [1 2 1] smoothing of chain interiors (geometry only).
   int smoothingPasses = 2;
   // Radius of the control-point circle in cells (half the patch size).
@@ -68,8 +73,9 @@ struct FeatureExtraction
 };
 
 // Marks profile targets (1) of a height grid; invalid cells are never targets
-// and never count as lower.
-std::vector<std::uint8_t> profileTargets(const Heightfield& hf, int halfProfileLength, double minDip);
+// and never count as lower. See PpaOptions for the thresholds.
+std::vector<std::uint8_t> profileTargets(
+  const Heightfield& hf, int halfProfileLength, double minDip, double relativeDip = 0.0);
 
 // An undirected edge between 8-neighbouring cells a and b, with its weight.
 struct CellEdge
