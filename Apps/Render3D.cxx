@@ -4,6 +4,7 @@
 
 #include "Analysis/ReliefImage.h"
 #include "Core/Error.h"
+#include "Core/OutputFile.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -22,8 +23,6 @@
 #include <vtkWindowToImageFilter.h>
 
 #include <cmath>
-#include <filesystem>
-#include <unistd.h>
 
 namespace tsynth
 {
@@ -164,26 +163,16 @@ void render3D(const Heightfield& input, const std::string& pngPath, const Render
   grab->ReadFrontBufferOff();
   grab->Update();
 
-  const std::filesystem::path p(pngPath);
-  const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : ".";
-  const std::string tmp =
-    (dir / ("." + p.filename().string() + ".tmp-" + std::to_string(::getpid()))).string();
+  tsynth::OutputFile file(pngPath);
   vtkNew<vtkPNGWriter> writer;
   writer->SetInputConnection(grab->GetOutputPort());
-  writer->SetFileName(tmp.c_str());
+  writer->SetFileName(file.temporaryPath().c_str());
   writer->Write();
-  std::error_code ec;
-  if (writer->GetErrorCode() != 0 || !std::filesystem::exists(tmp, ec))
+  if (writer->GetErrorCode() != 0)
   {
-    std::filesystem::remove(tmp, ec);
     throw Error("Cannot write " + pngPath + ".");
   }
-  std::filesystem::rename(tmp, pngPath, ec);
-  if (ec)
-  {
-    std::filesystem::remove(tmp, ec);
-    throw Error("Cannot write " + pngPath + ": " + ec.message() + ".");
-  }
+  file.commit();
 }
 
 } // namespace tsynth

@@ -8,7 +8,14 @@
 #include "Analysis/ReliefImage.h"
 #include "Core/Error.h"
 #include "Core/HeightfieldIO.h"
+#include "FeatureGraphConversion.h"
+#include "Features/Ppa.h"
+#include "Features/Sketch.h"
 
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -34,6 +41,7 @@ Commands:
   info DEM               size, cell size, height range, CRS and units of a DEM
   render DEM -o PNG      hillshade picture with a colour ramp; --3d for an oblique 3D view
   convert DEM -o OUT     write a DEM as GeoTIFF float32 (.tif), 16-bit PNG + sidecar (.png) or .vti
+  features DEM -o F.vtp  ridge (or valley) lines as a feature tree (PPA); --sketch for sketches
 
 Run "tsynth COMMAND --help" for a command's options.
 )";
@@ -64,6 +72,29 @@ without one tsynth re-runs itself under xvfb-run).
   --altitude DEG         sun elevation for the map (default 45)
   --azimuth DEG          single light from this direction, clockwise from north
   --size WxH             3D picture size in pixels (default 1600x1000)
+)";
+
+const char* const kFeaturesHelp =
+  R"(Usage: tsynth features DEM -o FEATURES.vtp [--valleys | --both] [options]
+       tsynth features SKETCH --sketch -o FEATURES.vtp [options]
+
+Extracts ridge lines (or valleys, or both) as a feature tree with PPA and writes it
+as VTK poly-lines in metres (open it in ParaView over the DEM; colour by NodeKind).
+With --sketch the input is a sketch: a grey sketch map or an RGB stroke map (red
+ridges, blue valleys), or a .vtp of poly-lines with a FeatureType cell array.
+
+  -o, --output F.vtp         the feature tree
+  --valleys | --both         valleys instead of ridges, or both
+  --control-points CP.vtp    also write the control points
+  --profile-length N         PPA half profile length in cells (default 3)
+  --relative-dip F           dip as a fraction of the local relief (default 0.1)
+  --min-dip M                minimum dip in metres (default 0)
+  --smooth SIGMA             Gaussian pre-smoothing in cells (default 0)
+  --end-reductions N         end-cell removal passes (default 3)
+  --min-branch N             shortest dangling branch kept, cells (default 15)
+  --min-tree N               smallest tree kept, cells (default 30)
+  --patch P                  patch size in cells (default 80): control radius P/2,
+                             and sketches must be at least one patch
 )";
 
 const char* const kConvertHelp = R"(Usage: tsynth convert DEM -o OUT [read options]
@@ -286,14 +317,14 @@ void ensureDisplay(int argc, char** argv)
   throw tsynth::Error("--3d needs an X display: set DISPLAY or install xvfb (xvfb-run).");
 }
 
-bool hasPngExtension(const std::string& path)
+bool hasExtension(const std::string& path, const char* wanted)
 {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext)
   {
     c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   }
-  return ext == ".png";
+  return ext == wanted;
 }
 
 int runRender(std::vector<std::string> args, int argc, char** argv)
@@ -316,7 +347,7 @@ int runRender(std::vector<std::string> args, int argc, char** argv)
   {
     throw UsageError("tsynth render needs an output picture: -o OUT.png.");
   }
-  if (!hasPngExtension(*output))
+  if (!hasExtension(*output, ".png"))
   {
     throw UsageError("The picture must be a .png file, not " + *output + ".");
   }
@@ -392,6 +423,169 @@ int runConvert(std::vector<std::string> args)
   return 0;
 }
 
+std::optional<int> takeCount(CommandLine& cl, const std::string& name, int lo, int hi)
+{
+  const std::optional<double> v = cl.takeNumber(name);
+  if (!v)
+  {
+    return std::nullopt;
+  }
+  if (*v != std::floor(*v) || *v < lo || *v > hi)
+  {
+    throw UsageError(name + " expects a whole number from " + std::to_string(lo) + " to " +
+      std::to_string(hi) + ".");
+  }
+  return static_cast<int>(*v);
+}
+
+int runFeatures(std::vector<std::string> args)
+{
+  if (wantsHelp(args))
+  {
+    std::cout << kFeaturesHelp << kReadOptionsHelp;
+    return 0;
+  }
+  CommandLine cl(std::move(args));
+  const std::optional<std::string> output = cl.take("--output", "-o");
+  const std::optional<std::string> controlOutput = cl.take("--control-points");
+  const bool valleys = cl.takeFlag("--valleys");
+  const bool both = cl.takeFlag("--both");
+  const bool sketch = cl.takeFlag("--sketch");
+  tsynth::PpaOptions ppa;
+  const int patch = takeCount(cl, "--patch", 8, 4096).value_or(80);
+  ppa.controlRadius = 0.5 * patch;
+  ppa.halfProfileLength = takeCount(cl, "--profile-length", 1, 100).value_or(ppa.halfProfileLength);
+  ppa.endReductions = takeCount(cl, "--end-reductions", 0, 1000).value_or(ppa.endReductions);
+  ppa.minBranchLength = takeCount(cl, "--min-branch", 0, 100000).value_or(ppa.minBranchLength);
+  ppa.minTreeSize = takeCount(cl, "--min-tree", 0, 100000000).value_or(ppa.minTreeSize);
+  if (auto v = cl.takeNumber("--relative-dip"))
+  {
+    if (*v < 0.0 || *v > 1.0)
+    {
+      throw UsageError("--relative-dip expects a fraction from 0 to 1.");
+    }
+    ppa.relativeDip = *v;
+  }
+  if (auto v = cl.takeNumber("--min-dip"))
+  {
+    if (*v < 0.0)
+    {
+      throw UsageError("--min-dip must not be negative.");
+    }
+    ppa.minDip = *v;
+  }
+  if (auto v = cl.takeNumber("--smooth"))
+  {
+    if (*v < 0.0)
+    {
+      throw UsageError("--smooth must not be negative.");
+    }
+    ppa.presmoothSigma = *v;
+  }
+  const tsynth::ReadOptions options = takeReadOptions(cl);
+  const std::string path = oneInput(cl, "features");
+  if (!output)
+  {
+    throw UsageError("tsynth features needs an output file: -o FEATURES.vtp.");
+  }
+  if (!hasExtension(*output, ".vtp") || (controlOutput && !hasExtension(*controlOutput, ".vtp")))
+  {
+    throw UsageError("Feature trees are written as .vtp files.");
+  }
+  if (valleys && both)
+  {
+    throw UsageError("Give --valleys or --both, not both.");
+  }
+
+  const auto t0 = std::chrono::steady_clock::now();
+  tsynth::FeatureGraph graph;
+  std::vector<std::string> warnings;
+  if (sketch && hasExtension(path, ".vtp"))
+  {
+    const double cell = options.cellX > 0.0 ? options.cellX : 1.0;
+    vtkNew<vtkPolyData> lines;
+    tsynth::readPolyDataFile(path, lines);
+    std::string warning;
+    const auto polylines = tsynth::polyDataToPolylines(lines, cell, cell, 0.0, 0.0, &warning);
+    if (!warning.empty())
+    {
+      warnings.push_back(warning);
+    }
+    double bounds[6];
+    lines->GetBounds(bounds);
+    graph = tsynth::polylineFeatures(polylines,
+      static_cast<int>(std::ceil(bounds[1] / cell)) + 1,
+      static_cast<int>(std::ceil(bounds[3] / cell)) + 1,
+      cell,
+      cell,
+      1.0,
+      ppa.controlRadius);
+  }
+  else if (sketch)
+  {
+    tsynth::SketchOptions so;
+    so.patchSize = patch;
+    so.controlRadius = ppa.controlRadius;
+    so.cellSize = options.cellX > 0.0 ? options.cellX : 1.0;
+    tsynth::SketchFeatures s = tsynth::sketchFeatures(tsynth::readColourImage(path), so);
+    graph = std::move(s.graph);
+    warnings = s.warnings;
+  }
+  else
+  {
+    tsynth::Heightfield hf;
+    try
+    {
+      hf = readDem(path, options);
+    }
+    catch (const tsynth::Error& e)
+    {
+      const std::string message = e.what();
+      if (message.find("bands") != std::string::npos)
+      {
+        throw tsynth::Error(message + " For a sketch image add --sketch.");
+      }
+      throw;
+    }
+    graph.width = hf.width;
+    graph.height = hf.height;
+    graph.cellX = hf.cellX;
+    graph.cellY = hf.cellY;
+    for (tsynth::FeatureType type : { tsynth::FeatureType::Ridge, tsynth::FeatureType::Valley })
+    {
+      const bool wanted = both || (type == tsynth::FeatureType::Valley) == valleys;
+      if (wanted)
+      {
+        tsynth::FeatureExtraction e = tsynth::extractFeatures(hf, type, ppa);
+        tsynth::appendGraph(graph, e.graph);
+        warnings.insert(warnings.end(), e.warnings.begin(), e.warnings.end());
+      }
+    }
+  }
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (const std::string& w : warnings)
+  {
+    std::cerr << "tsynth: warning: " << w << "\n";
+  }
+  vtkNew<vtkPolyData> tree;
+  tsynth::featureGraphToPolyData(graph, tree);
+  tsynth::writePolyDataFile(*output, tree);
+  if (controlOutput)
+  {
+    vtkNew<vtkPolyData> controls;
+    tsynth::controlPointsToPolyData(graph, controls);
+    tsynth::writePolyDataFile(*controlOutput, controls);
+  }
+  std::cout << std::fixed << std::setprecision(2) << "Features: " << graph.nodes.size()
+            << " nodes (" << graph.countKind(tsynth::NodeKind::Branch) << " branch, "
+            << graph.countKind(tsynth::NodeKind::End) << " end, "
+            << graph.countKind(tsynth::NodeKind::Path) << " loop anchors), " << graph.chains.size()
+            << " chains in " << graph.componentCount << " trees; " << seconds << " s\n";
+  std::cout << "Wrote " << *output << "\n";
+  return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -417,6 +611,10 @@ int main(int argc, char** argv)
     if (command == "convert")
     {
       return runConvert(std::move(args));
+    }
+    if (command == "features")
+    {
+      return runFeatures(std::move(args));
     }
     throw UsageError("Unknown command \"" + command + "\".");
   }

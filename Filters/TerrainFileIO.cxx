@@ -1,10 +1,11 @@
 #include "TerrainFileIO.h"
 
 #include "TerrainImageConversion.h"
+#include "VtkErrorObserver.h"
 
 #include "Core/Error.h"
+#include "Core/OutputFile.h"
 
-#include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -15,38 +16,11 @@
 #include <cctype>
 #include <filesystem>
 #include <system_error>
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 
 namespace tsynth
 {
-namespace
-{
-
-// Collects VTK error events instead of letting them print.
-struct ErrorCatcher
-{
-  bool failed = false;
-  std::string message;
-  vtkNew<vtkCallbackCommand> callback;
-  ErrorCatcher()
-  {
-    callback->SetClientData(this);
-    callback->SetCallback(
-      [](vtkObject*, unsigned long, void* self, void* data)
-      {
-        auto* catcher = static_cast<ErrorCatcher*>(self);
-        catcher->failed = true;
-        if (data != nullptr && catcher->message.empty())
-        {
-          catcher->message = static_cast<const char*>(data);
-        }
-      });
-  }
-};
-
-} // namespace
 
 bool isVtiPath(const std::string& path)
 {
@@ -70,7 +44,7 @@ Heightfield readTerrainFile(const std::string& path, const ReadOptions& options,
     throw Error("No such file: " + path + ".");
   }
   vtkNew<vtkXMLImageDataReader> reader;
-  ErrorCatcher catcher;
+  VtkErrorObserver catcher;
   reader->AddObserver(vtkCommand::ErrorEvent, catcher.callback);
   reader->SetFileName(path.c_str());
   reader->Update();
@@ -124,38 +98,22 @@ void writeTerrainFile(const std::string& path, const Heightfield& hf)
     writeHeightfield(path, hf);
     return;
   }
-  const fs::path p(path);
-  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec))
-  {
-    throw Error("Cannot write " + path + ": folder " + dir.string() + " does not exist.");
-  }
-  const std::string tmp =
-    (dir / ("." + p.filename().string() + ".tmp-" + std::to_string(::getpid()))).string();
-
+  OutputFile file(path);
   vtkNew<vtkImageData> image;
   heightfieldToImage(hf, image);
   vtkNew<vtkXMLImageDataWriter> writer;
-  ErrorCatcher catcher;
+  VtkErrorObserver catcher;
   writer->AddObserver(vtkCommand::ErrorEvent, catcher.callback);
   writer->SetInputData(image);
-  writer->SetFileName(tmp.c_str());
+  writer->SetFileName(file.temporaryPath().c_str());
   // Inline binary: ParaView 5.11 with Debian 12's expat cannot read appended data.
   writer->SetDataModeToBinary();
   writer->SetCompressorTypeToZLib();
-  const int ok = writer->Write();
-  if (ok == 0 || catcher.failed)
+  if (writer->Write() == 0 || catcher.failed)
   {
-    fs::remove(tmp, ec);
     throw Error("Cannot write " + path + ".");
   }
-  fs::rename(tmp, path, ec);
-  if (ec)
-  {
-    fs::remove(tmp, ec);
-    throw Error("Cannot write " + path + ": " + ec.message() + ".");
-  }
+  file.commit();
 }
 
 } // namespace tsynth

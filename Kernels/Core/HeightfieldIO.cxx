@@ -2,6 +2,7 @@
 
 #include "Error.h"
 #include "Geodesy.h"
+#include "OutputFile.h"
 
 #include <cpl_conv.h>
 #include <cpl_error.h>
@@ -319,58 +320,6 @@ RasterInfo describe(GDALDataset& ds, const std::string& path, const ReadOptions&
   return info;
 }
 
-std::string temporaryPathFor(const std::string& path)
-{
-  const fs::path p(path);
-  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  return (dir / ("." + p.filename().string() + ".tmp-" + std::to_string(::getpid()))).string();
-}
-
-// Removes a half-written file unless released.
-class TemporaryFile
-{
-public:
-  explicit TemporaryFile(std::string path)
-    : path_(std::move(path))
-  {
-  }
-  ~TemporaryFile()
-  {
-    if (!path_.empty())
-    {
-      std::error_code ec;
-      fs::remove(path_, ec);
-    }
-  }
-  TemporaryFile(const TemporaryFile&) = delete;
-  TemporaryFile& operator=(const TemporaryFile&) = delete;
-  const std::string& path() const { return path_; }
-  void commitTo(const std::string& target)
-  {
-    std::error_code ec;
-    fs::rename(path_, target, ec);
-    if (ec)
-    {
-      throw Error("Cannot write " + target + ": " + ec.message() + ".");
-    }
-    path_.clear();
-  }
-
-private:
-  std::string path_;
-};
-
-void checkWritableDirectory(const std::string& path)
-{
-  const fs::path p(path);
-  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec))
-  {
-    throw Error("Cannot write " + path + ": folder " + dir.string() + " does not exist.");
-  }
-}
-
 std::string lowerExtension(const std::string& path)
 {
   std::string ext = fs::path(path).extension().string();
@@ -532,9 +481,9 @@ void writePng16(const std::string& target, const std::string& tmp, const Heightf
   {
     sidecar.nodata = 0.0;
   }
-  TemporaryFile sidecarTmp(temporaryPathFor(sidecarPathFor(target)));
-  writeSidecar(sidecarTmp.path(), sidecar);
-  sidecarTmp.commitTo(sidecarPathFor(target));
+  OutputFile sidecarFile(sidecarPathFor(target));
+  writeSidecar(sidecarFile.temporaryPath(), sidecar);
+  sidecarFile.commit();
 }
 
 } // namespace
@@ -650,8 +599,18 @@ ColourImage readColourImage(const std::string& path)
   if (ds->GetRasterCount() == 1 && first->GetColorTable() != nullptr)
   {
     std::vector<std::uint8_t> index(n);
-    if (first->RasterIO(GF_Read, 0, 0, img.width, img.height, index.data(), img.width, img.height,
-          GDT_Byte, 0, 0, nullptr) != CE_None)
+    if (first->RasterIO(GF_Read,
+          0,
+          0,
+          img.width,
+          img.height,
+          index.data(),
+          img.width,
+          img.height,
+          GDT_Byte,
+          0,
+          0,
+          nullptr) != CE_None)
     {
       throw Error("Cannot read the pixels of " + path + QuietGdal::lastMessage() + ".");
     }
@@ -668,11 +627,21 @@ ColourImage readColourImage(const std::string& path)
   std::vector<std::uint16_t> values(n);
   for (int b = 0; b < img.channels; ++b)
   {
-    if (ds->GetRasterBand(b + 1)->RasterIO(GF_Read, 0, 0, img.width, img.height, values.data(),
-          img.width, img.height, GDT_UInt16, 0, 0, nullptr) != CE_None)
+    if (ds->GetRasterBand(b + 1)->RasterIO(GF_Read,
+          0,
+          0,
+          img.width,
+          img.height,
+          values.data(),
+          img.width,
+          img.height,
+          GDT_UInt16,
+          0,
+          0,
+          nullptr) != CE_None)
     {
-      throw Error("Cannot read the pixels of " + path +
-        "; the file may be truncated or corrupt" + QuietGdal::lastMessage() + ".");
+      throw Error("Cannot read the pixels of " + path + "; the file may be truncated or corrupt" +
+        QuietGdal::lastMessage() + ".");
     }
     const int shift = type == GDT_UInt16 ? 8 : 0;
     for (std::size_t k = 0; k < n; ++k)
@@ -703,17 +672,16 @@ void writeHeightfield(const std::string& path, const Heightfield& hf)
     throw Error(
       "Cannot write " + path + ": unknown extension \"" + ext + "\" (use .tif, .png or .vti).");
   }
-  checkWritableDirectory(path);
-  TemporaryFile tmp(temporaryPathFor(path));
+  OutputFile file(path);
   if (ext == ".png")
   {
-    writePng16(path, tmp.path(), hf);
+    writePng16(path, file.temporaryPath(), hf);
   }
   else
   {
-    writeGeoTiff(path, tmp.path(), hf);
+    writeGeoTiff(path, file.temporaryPath(), hf);
   }
-  tmp.commitTo(path);
+  file.commit();
 }
 
 void writeRgbPng(const std::string& path,
@@ -726,7 +694,7 @@ void writeRgbPng(const std::string& path,
   {
     throw Error("Cannot write " + path + ": the image is empty or inconsistent.");
   }
-  checkWritableDirectory(path);
+  OutputFile file(path);
   DatasetPtr mem = memoryDataset(width, height, 3, GDT_Byte);
   int bandMap[3] = { 1, 2, 3 };
   if (mem->RasterIO(GF_Write,
@@ -747,9 +715,8 @@ void writeRgbPng(const std::string& path,
   {
     throw Error("Cannot write " + path + ".");
   }
-  TemporaryFile tmp(temporaryPathFor(path));
-  createCopyTo("PNG", *mem, tmp.path());
-  tmp.commitTo(path);
+  createCopyTo("PNG", *mem, file.temporaryPath());
+  file.commit();
 }
 
 } // namespace tsynth

@@ -80,8 +80,10 @@ struct ColourImage
   std::vector<std::uint8_t> data;
   const std::uint8_t* pixel(int column, int rowFromTop) const
   {
-    return data.data() + (static_cast<std::size_t>(rowFromTop) * static_cast<std::size_t>(width) +
-                           static_cast<std::size_t>(column)) * static_cast<std::size_t>(channels);
+    return data.data() +
+      (static_cast<std::size_t>(rowFromTop) * static_cast<std::size_t>(width) +
+        static_cast<std::size_t>(column)) *
+      static_cast<std::size_t>(channels);
   }
 };
 

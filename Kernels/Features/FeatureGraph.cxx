@@ -39,18 +39,22 @@ double FeatureChain::length() const
 
 int FeatureGraph::countKind(NodeKind kind) const
 {
-  return static_cast<int>(
-    std::count_if(nodes.begin(), nodes.end(), [&](const FeatureNode& n) { return n.kind == kind; }));
+  return static_cast<int>(std::count_if(
+    nodes.begin(), nodes.end(), [&](const FeatureNode& n) { return n.kind == kind; }));
 }
 
 int FeatureGraph::countKind(NodeKind kind, FeatureType type) const
 {
-  return static_cast<int>(std::count_if(nodes.begin(), nodes.end(),
+  return static_cast<int>(std::count_if(nodes.begin(),
+    nodes.end(),
     [&](const FeatureNode& n) { return n.kind == kind && n.type == type; }));
 }
 
-FeatureGraph buildFeatureGraph(
-  const PixelGraph& pixels, FeatureType type, const Heightfield* heights, double cellX, double cellY)
+FeatureGraph buildFeatureGraph(const PixelGraph& pixels,
+  FeatureType type,
+  const Heightfield* heights,
+  double cellX,
+  double cellY)
 {
   FeatureGraph g;
   g.width = pixels.width();
@@ -59,7 +63,8 @@ FeatureGraph buildFeatureGraph(
   g.cellY = cellY;
 
   std::vector<int> nodeOf(pixels.size(), -1);
-  auto addNode = [&](std::size_t idx) {
+  auto addNode = [&](std::size_t idx)
+  {
     FeatureNode n;
     n.position = { static_cast<double>(pixels.column(idx)), static_cast<double>(pixels.row(idx)) };
     n.elevation = heightAt(heights, pixels.column(idx), pixels.row(idx));
@@ -80,24 +85,28 @@ FeatureGraph buildFeatureGraph(
 
   // visited[idx] bit k: the edge from idx in direction k is already in a chain.
   std::vector<std::uint8_t> visited(pixels.size(), 0);
-  auto markEdge = [&](std::size_t idx, int k) {
+  auto markEdge = [&](std::size_t idx, int k)
+  {
     visited[idx] = static_cast<std::uint8_t>(visited[idx] | (1U << k));
     const std::size_t n = pixels.neighbour(idx, k);
     visited[n] = static_cast<std::uint8_t>(visited[n] | (1U << PixelGraph::opposite(k)));
   };
-  auto walk = [&](std::size_t start, int firstDirection) {
+  auto walk = [&](std::size_t start, int firstDirection)
+  {
     FeatureChain c;
     c.type = type;
     c.from = nodeOf[start];
     std::size_t cur = start;
     int k = firstDirection;
-    c.points.push_back({ static_cast<double>(pixels.column(cur)), static_cast<double>(pixels.row(cur)) });
+    c.points.push_back(
+      { static_cast<double>(pixels.column(cur)), static_cast<double>(pixels.row(cur)) });
     c.elevation.push_back(heightAt(heights, pixels.column(cur), pixels.row(cur)));
     while (true)
     {
       markEdge(cur, k);
       cur = pixels.neighbour(cur, k);
-      c.points.push_back({ static_cast<double>(pixels.column(cur)), static_cast<double>(pixels.row(cur)) });
+      c.points.push_back(
+        { static_cast<double>(pixels.column(cur)), static_cast<double>(pixels.row(cur)) });
       c.elevation.push_back(heightAt(heights, pixels.column(cur), pixels.row(cur)));
       if (nodeOf[cur] >= 0)
       {
@@ -218,9 +227,10 @@ void computeBreadthFirstOrder(FeatureGraph& g)
   }
   std::vector<int> order(members.size());
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-    return length[static_cast<std::size_t>(a)] > length[static_cast<std::size_t>(b)];
-  });
+  std::stable_sort(order.begin(),
+    order.end(),
+    [&](int a, int b)
+    { return length[static_cast<std::size_t>(a)] > length[static_cast<std::size_t>(b)]; });
 
   g.bfsOrder.clear();
   g.componentCount = static_cast<int>(members.size());
@@ -233,8 +243,10 @@ void computeBreadthFirstOrder(FeatureGraph& g)
     {
       const FeatureNode& a = g.nodes[static_cast<std::size_t>(v)];
       const FeatureNode& b = g.nodes[static_cast<std::size_t>(root)];
-      const float ea = std::isnan(a.elevation) ? -std::numeric_limits<float>::infinity() : a.elevation;
-      const float eb = std::isnan(b.elevation) ? -std::numeric_limits<float>::infinity() : b.elevation;
+      const float ea =
+        std::isnan(a.elevation) ? -std::numeric_limits<float>::infinity() : a.elevation;
+      const float eb =
+        std::isnan(b.elevation) ? -std::numeric_limits<float>::infinity() : b.elevation;
       if (a.degree > b.degree || (a.degree == b.degree && (ea > eb || (ea == eb && v < root))))
       {
         root = v;
@@ -303,7 +315,8 @@ void computeControlPoints(FeatureGraph& g, double radius)
           const double qa = ux * ux + uy * uy;
           const double qb = 2.0 * (ux * wx + uy * wy);
           const double qc = wx * wx + wy * wy - radius * radius;
-          const double t = qa > 0.0 ? (-qb + std::sqrt(std::max(0.0, qb * qb - 4.0 * qa * qc))) / (2.0 * qa) : 1.0;
+          const double t =
+            qa > 0.0 ? (-qb + std::sqrt(std::max(0.0, qb * qb - 4.0 * qa * qc))) / (2.0 * qa) : 1.0;
           cp.position = { a.x + t * ux, a.y + t * uy };
           cp.reached = true;
           break;

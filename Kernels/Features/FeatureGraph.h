@@ -48,7 +48,7 @@ struct FeatureNode
   int degree = 0;
   int component = -1;
   FeatureType type = FeatureType::Ridge;
-  std::vector<int> chains; // incident chain ids (a loop chain appears twice)
+  std::vector<int> chains;            // incident chain ids (a loop chain appears twice)
   std::vector<ControlPoint> controls; // one per incident chain end, in the order of `chains`
 };
 
@@ -57,8 +57,8 @@ struct FeatureChain
   int from = -1;
   int to = -1;
   FeatureType type = FeatureType::Ridge;
-  std::vector<Point2> points;  // from node .. to node, inclusive
-  std::vector<float> elevation; // height at each point (NaN where unknown)
+  std::vector<Point2> points;    // from node .. to node, inclusive
+  std::vector<float> elevation;  // height at each point (NaN where unknown)
   std::vector<float> constraint; // requested height (poly-line Elevation); empty or NaN = none
 
   double length() const; // in cells
@@ -82,8 +82,11 @@ struct FeatureGraph
 
 // Turns a pixel graph into nodes and chains. Node and chain positions are cell
 // centres; elevations come from `heights` when given (else NaN).
-FeatureGraph buildFeatureGraph(
-  const PixelGraph& pixels, FeatureType type, const Heightfield* heights, double cellX, double cellY);
+FeatureGraph buildFeatureGraph(const PixelGraph& pixels,
+  FeatureType type,
+  const Heightfield* heights,
+  double cellX,
+  double cellY);
 
 // Moves chain interior points towards their neighbours' average (nodes stay),
 // `passes` times: removes the staircase of cell-centre polylines.

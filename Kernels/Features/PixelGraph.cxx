@@ -180,7 +180,8 @@ void PixelGraph::pruneShortBranches(int minLength)
         }
       }
     }
-    std::stable_sort(branches.begin(), branches.end(),
+    std::stable_sort(branches.begin(),
+      branches.end(),
       [](const Branch& a, const Branch& b) { return a.cells.size() < b.cells.size(); });
     for (const Branch& b : branches)
     {

@@ -29,8 +29,14 @@ public:
     return static_cast<std::size_t>(j) * static_cast<std::size_t>(width_) +
       static_cast<std::size_t>(i);
   }
-  int column(std::size_t idx) const { return static_cast<int>(idx % static_cast<std::size_t>(width_)); }
-  int row(std::size_t idx) const { return static_cast<int>(idx / static_cast<std::size_t>(width_)); }
+  int column(std::size_t idx) const
+  {
+    return static_cast<int>(idx % static_cast<std::size_t>(width_));
+  }
+  int row(std::size_t idx) const
+  {
+    return static_cast<int>(idx / static_cast<std::size_t>(width_));
+  }
 
   // The neighbour of cell idx in direction k, or SIZE_MAX outside the grid.
   std::size_t neighbour(std::size_t idx, int k) const;

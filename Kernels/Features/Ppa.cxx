@@ -118,8 +118,10 @@ Heightfield gaussianSmooth(const Heightfield& hf, double sigma)
   return out;
 }
 
-std::vector<std::uint8_t> profileTargets(
-  const Heightfield& hf, int halfProfileLength, double minDip, double relativeDip)
+std::vector<std::uint8_t> profileTargets(const Heightfield& hf,
+  int halfProfileLength,
+  double minDip,
+  double relativeDip)
 {
   const int w = hf.width;
   const int h = hf.height;
@@ -139,7 +141,8 @@ std::vector<std::uint8_t> profileTargets(
       // Deepest dip (centre minus lowest valid height) within len cells one way,
       // and the largest height difference seen, for the relative threshold.
       float relief = 0.0f;
-      auto dipAlong = [&](int dx, int dy) {
+      auto dipAlong = [&](int dx, int dy)
+      {
         float dip = 0.0f;
         for (int t = 1; t <= len; ++t)
         {
@@ -172,13 +175,13 @@ std::vector<std::uint8_t> profileTargets(
   return targets;
 }
 
-std::vector<CellEdge> connectTargets(const Heightfield& hf, const std::vector<std::uint8_t>& targets)
+std::vector<CellEdge> connectTargets(const Heightfield& hf,
+  const std::vector<std::uint8_t>& targets)
 {
   const int w = hf.width;
   const int h = hf.height;
-  auto isTarget = [&](int i, int j) {
-    return i >= 0 && j >= 0 && i < w && j < h && targets[hf.index(i, j)] != 0;
-  };
+  auto isTarget = [&](int i, int j)
+  { return i >= 0 && j >= 0 && i < w && j < h && targets[hf.index(i, j)] != 0; };
   auto weight = [&](std::size_t a, std::size_t b) { return hf.z[a] + hf.z[b]; };
   std::vector<std::vector<CellEdge>> perRow(static_cast<std::size_t>(h));
 #pragma omp parallel for schedule(static)
@@ -192,12 +195,14 @@ std::vector<CellEdge> connectTargets(const Heightfield& hf, const std::vector<st
       if (ta && isTarget(i + 1, j))
       {
         const std::size_t b = hf.index(i + 1, j);
-        row.push_back({ static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), weight(a, b) });
+        row.push_back(
+          { static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), weight(a, b) });
       }
       if (ta && isTarget(i, j + 1))
       {
         const std::size_t b = hf.index(i, j + 1);
-        row.push_back({ static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), weight(a, b) });
+        row.push_back(
+          { static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), weight(a, b) });
       }
       // The 2x2 block with lower-left (i, j): its two diagonals cross.
       const bool ne = ta && isTarget(i + 1, j + 1);
@@ -292,7 +297,8 @@ FeatureExtraction extractFeatures(const Heightfield& hf, FeatureType type, const
   result.timings.presmooth = secondsSince(t0);
 
   auto t = Clock::now();
-  const std::vector<std::uint8_t> targets = profileTargets(work, o.halfProfileLength, o.minDip, o.relativeDip);
+  const std::vector<std::uint8_t> targets =
+    profileTargets(work, o.halfProfileLength, o.minDip, o.relativeDip);
   result.timings.profile = secondsSince(t);
   result.statistics.targets =
     static_cast<std::size_t>(std::count(targets.begin(), targets.end(), std::uint8_t{ 1 }));
@@ -325,7 +331,8 @@ FeatureExtraction extractFeatures(const Heightfield& hf, FeatureType type, const
     const HeightRange range = computeHeightRange(hf);
     const char* what = type == FeatureType::Ridge ? "ridges" : "valleys";
     result.warnings.push_back(range.max > range.min
-        ? std::string("No ") + what + " were found with these settings; try a longer profile or smaller pruning lengths."
+        ? std::string("No ") + what +
+          " were found with these settings; try a longer profile or smaller pruning lengths."
         : std::string("No ") + what + ": the heightfield is flat.");
   }
   return result;

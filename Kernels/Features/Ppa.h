@@ -74,8 +74,10 @@ struct FeatureExtraction
 
 // Marks profile targets (1) of a height grid; invalid cells are never targets
 // and never count as lower. See PpaOptions for the thresholds.
-std::vector<std::uint8_t> profileTargets(
-  const Heightfield& hf, int halfProfileLength, double minDip, double relativeDip = 0.0);
+std::vector<std::uint8_t> profileTargets(const Heightfield& hf,
+  int halfProfileLength,
+  double minDip,
+  double relativeDip = 0.0);
 
 // An undirected edge between 8-neighbouring cells a and b, with its weight.
 struct CellEdge
@@ -87,15 +89,17 @@ struct CellEdge
 
 // Joins 8-adjacent targets; weight = sum of the two heights; of two crossing
 // diagonals only the heavier is kept (the NE one on a tie).
-std::vector<CellEdge> connectTargets(const Heightfield& hf, const std::vector<std::uint8_t>& targets);
+std::vector<CellEdge> connectTargets(const Heightfield& hf,
+  const std::vector<std::uint8_t>& targets);
 
 // Maximum-weight spanning forest (Kruskal: heaviest first, union-find), ties
 // broken by edge order so the result is deterministic.
 PixelGraph maximumSpanningForest(int width, int height, const std::vector<CellEdge>& edges);
 
 // The whole extraction on a heightfield: ridges, or valleys (run on -z).
-FeatureExtraction extractFeatures(
-  const Heightfield& hf, FeatureType type, const PpaOptions& options = {});
+FeatureExtraction extractFeatures(const Heightfield& hf,
+  FeatureType type,
+  const PpaOptions& options = {});
 
 // Gaussian smoothing of valid cells (invalid neighbours get no weight).
 Heightfield gaussianSmooth(const Heightfield& hf, double sigma);

@@ -28,8 +28,9 @@ float sampleBilinear(const Heightfield& hf, double x, double y)
   return static_cast<float>((1 - fy) * bottom + fy * top);
 }
 
-std::vector<std::vector<ChainProfile>> sampleProfiles(
-  const FeatureGraph& graph, const Heightfield& hf, const ProfileOptions& o)
+std::vector<std::vector<ChainProfile>> sampleProfiles(const FeatureGraph& graph,
+  const Heightfield& hf,
+  const ProfileOptions& o)
 {
   std::vector<std::vector<ChainProfile>> out(graph.nodes.size());
   for (std::size_t v = 0; v < graph.nodes.size(); ++v)
@@ -58,8 +59,8 @@ std::vector<std::vector<ChainProfile>> sampleProfiles(
       std::vector<double> cumulative{ 0.0 };
       for (std::size_t k = 1; k < path.size(); ++k)
       {
-        cumulative.push_back(cumulative.back() +
-          std::hypot(path[k].x - path[k - 1].x, path[k].y - path[k - 1].y));
+        cumulative.push_back(
+          cumulative.back() + std::hypot(path[k].x - path[k - 1].x, path[k].y - path[k - 1].y));
       }
       const int na = std::max(2, o.alongSamples);
       std::size_t seg = 1;

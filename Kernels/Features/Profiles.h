@@ -12,8 +12,8 @@ namespace tsynth
 
 struct ProfileOptions
 {
-  int alongSamples = 16;        // from the node (first) to the control point (last)
-  int acrossSamples = 17;       // odd: the middle sample is on the chain
+  int alongSamples = 16;          // from the node (first) to the control point (last)
+  int acrossSamples = 17;         // odd: the middle sample is on the chain
   double acrossHalfLength = 20.0; // cells each side of the chain
 };
 
@@ -25,8 +25,9 @@ struct ChainProfile
 };
 
 // One profile per control point of every node, in the order of node.controls.
-std::vector<std::vector<ChainProfile>> sampleProfiles(
-  const FeatureGraph& graph, const Heightfield& heights, const ProfileOptions& options = {});
+std::vector<std::vector<ChainProfile>> sampleProfiles(const FeatureGraph& graph,
+  const Heightfield& heights,
+  const ProfileOptions& options = {});
 
 // Bilinear height at a point in cell coordinates; NaN if any corner is invalid or outside.
 float sampleBilinear(const Heightfield& hf, double x, double y);

@@ -62,8 +62,12 @@ bool connectedWithin(const PixelGraph& g, std::size_t a, std::size_t b, int maxS
 }
 
 // Centre lines of one stroke class (mask in grid orientation, row 0 south).
-FeatureGraph strokeGraph(std::vector<std::uint8_t> mask, int w, int h, FeatureType type,
-  const SketchOptions& o, double& widthOut)
+FeatureGraph strokeGraph(std::vector<std::uint8_t> mask,
+  int w,
+  int h,
+  FeatureType type,
+  const SketchOptions& o,
+  double& widthOut)
 {
   const std::size_t area = static_cast<std::size_t>(std::count(mask.begin(), mask.end(), 1));
   // Ragged stroke outlines thin into hairy centre lines: smooth the outline first.
@@ -85,15 +89,15 @@ FeatureGraph strokeGraph(std::vector<std::uint8_t> mask, int w, int h, FeatureTy
   }
   thinMask(mask, w, h);
   const std::size_t skeleton = static_cast<std::size_t>(std::count(mask.begin(), mask.end(), 1));
-  const double width = skeleton > 0 ? static_cast<double>(area) / static_cast<double>(skeleton) : 0.0;
+  const double width =
+    skeleton > 0 ? static_cast<double>(area) / static_cast<double>(skeleton) : 0.0;
   widthOut = width;
 
   // 8-neighbour links, skipping a diagonal when an L-shaped pair of 4-links joins the same cells.
   PixelGraph g(w, h);
   std::vector<CellEdge> edges;
-  auto on = [&](int i, int j) {
-    return i >= 0 && j >= 0 && i < w && j < h && mask[g.index(i, j)] != 0;
-  };
+  auto on = [&](int i, int j)
+  { return i >= 0 && j >= 0 && i < w && j < h && mask[g.index(i, j)] != 0; };
   for (int j = 0; j < h; ++j)
   {
     for (int i = 0; i < w; ++i)
@@ -115,7 +119,8 @@ FeatureGraph strokeGraph(std::vector<std::uint8_t> mask, int w, int h, FeatureTy
           continue;
         }
         edges.push_back({ static_cast<std::uint32_t>(g.index(i, j)),
-          static_cast<std::uint32_t>(g.index(ii, jj)), 1.0f });
+          static_cast<std::uint32_t>(g.index(ii, jj)),
+          1.0f });
       }
     }
   }
@@ -166,9 +171,11 @@ SketchFeatures strokeFeatures(const ColourImage& image, const SketchOptions& o)
   {
     for (int i = 0; i < w; ++i)
     {
-      const std::size_t k = static_cast<std::size_t>(r) * static_cast<std::size_t>(w) +
-        static_cast<std::size_t>(i);
-      const std::uint8_t rgb[3] = { channel(image, k, 0), channel(image, k, 1), channel(image, k, 2) };
+      const std::size_t k =
+        static_cast<std::size_t>(r) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
+      const std::uint8_t rgb[3] = {
+        channel(image, k, 0), channel(image, k, 1), channel(image, k, 2)
+      };
       const std::size_t g = static_cast<std::size_t>(h - 1 - r) * static_cast<std::size_t>(w) +
         static_cast<std::size_t>(i);
       if (isRidgeColour(rgb))
@@ -231,15 +238,15 @@ SketchFeatures greyFeatures(const ColourImage& image, const SketchOptions& o)
   {
     for (int i = 0; i < w; ++i)
     {
-      const std::size_t k = static_cast<std::size_t>(r) * static_cast<std::size_t>(w) +
-        static_cast<std::size_t>(i);
+      const std::size_t k =
+        static_cast<std::size_t>(r) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
       const std::uint8_t v = channel(image, k, 0);
       hf.at(i, h - 1 - r) = v;
       ++histogram[v];
     }
   }
-  const int background = static_cast<int>(
-    std::max_element(histogram.begin(), histogram.end()) - histogram.begin());
+  const int background =
+    static_cast<int>(std::max_element(histogram.begin(), histogram.end()) - histogram.begin());
   float contrast = 0.0f;
   for (float v : hf.z)
   {
@@ -261,7 +268,8 @@ SketchFeatures greyFeatures(const ColourImage& image, const SketchOptions& o)
   }
   const double area = static_cast<double>(std::count(mask.begin(), mask.end(), 1));
   thinMask(mask, w, h);
-  const double centre = std::max<double>(1.0, static_cast<double>(std::count(mask.begin(), mask.end(), 1)));
+  const double centre =
+    std::max<double>(1.0, static_cast<double>(std::count(mask.begin(), mask.end(), 1)));
   out.strokeWidth = area / centre;
 
   // Flat-topped strokes become rounded ridges once smoothed by half their width.
@@ -346,8 +354,13 @@ void thinMask(std::vector<std::uint8_t>& m, int w, int h)
 {
   // Zhang and Suen (1984): two sub-iterations peel boundary cells that are
   // neither end points nor needed for connectivity.
-  auto at = [&](int i, int j) -> int {
-    return (i >= 0 && j >= 0 && i < w && j < h && m[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)] != 0) ? 1 : 0;
+  auto at = [&](int i, int j) -> int
+  {
+    return (i >= 0 && j >= 0 && i < w && j < h &&
+             m[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
+               static_cast<std::size_t>(i)] != 0)
+      ? 1
+      : 0;
   };
   std::vector<std::size_t> remove;
   for (bool changed = true; changed;)
@@ -365,8 +378,14 @@ void thinMask(std::vector<std::uint8_t>& m, int w, int h)
             continue;
           }
           // P2..P9 clockwise from north (y grows north here; the rule is symmetric).
-          const int p[8] = { at(i, j + 1), at(i + 1, j + 1), at(i + 1, j), at(i + 1, j - 1),
-            at(i, j - 1), at(i - 1, j - 1), at(i - 1, j), at(i - 1, j + 1) };
+          const int p[8] = { at(i, j + 1),
+            at(i + 1, j + 1),
+            at(i + 1, j),
+            at(i + 1, j - 1),
+            at(i, j - 1),
+            at(i - 1, j - 1),
+            at(i - 1, j),
+            at(i - 1, j + 1) };
           int neighbours = 0;
           int transitions = 0;
           for (int k = 0; k < 8; ++k)
@@ -382,7 +401,8 @@ void thinMask(std::vector<std::uint8_t>& m, int w, int h)
                                        : (p[0] * p[2] * p[6] == 0 && p[0] * p[4] * p[6] == 0);
           if (first)
           {
-            remove.push_back(static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i));
+            remove.push_back(static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
+              static_cast<std::size_t>(i));
           }
         }
       }
@@ -395,8 +415,13 @@ void thinMask(std::vector<std::uint8_t>& m, int w, int h)
   }
 }
 
-FeatureGraph polylineFeatures(const std::vector<Polyline>& lines, int width, int height,
-  double cellX, double cellY, double snapTolerance, double controlRadius)
+FeatureGraph polylineFeatures(const std::vector<Polyline>& lines,
+  int width,
+  int height,
+  double cellX,
+  double cellY,
+  double snapTolerance,
+  double controlRadius)
 {
   struct Vertex
   {
@@ -407,7 +432,8 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& lines, int width, int
   std::vector<Vertex> vertices;
   const double tol = std::max(snapTolerance, 1e-9);
   std::map<std::pair<long, long>, std::vector<int>> buckets;
-  auto vertexFor = [&](const Point2& p, float constraint) {
+  auto vertexFor = [&](const Point2& p, float constraint)
+  {
     const long bx = static_cast<long>(std::floor(p.x / tol));
     const long by = static_cast<long>(std::floor(p.y / tol));
     for (long dx = -1; dx <= 1; ++dx)
@@ -438,7 +464,8 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& lines, int width, int
     buckets[{ bx, by }].push_back(id);
     return id;
   };
-  auto addSegment = [&](int a, int b, FeatureType type) {
+  auto addSegment = [&](int a, int b, FeatureType type)
+  {
     if (a == b)
     {
       return;
@@ -456,7 +483,8 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& lines, int width, int
     int prev = -1;
     for (std::size_t k = 0; k < line.points.size(); ++k)
     {
-      const float c = k < line.elevation.size() ? line.elevation[k] : std::numeric_limits<float>::quiet_NaN();
+      const float c =
+        k < line.elevation.size() ? line.elevation[k] : std::numeric_limits<float>::quiet_NaN();
       const int v = vertexFor(line.points[k], c);
       if (prev >= 0)
       {
@@ -472,7 +500,8 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& lines, int width, int
   g.cellX = cellX;
   g.cellY = cellY;
   std::vector<int> nodeOf(vertices.size(), -1);
-  auto addNode = [&](int v) {
+  auto addNode = [&](int v)
+  {
     const Vertex& vx = vertices[static_cast<std::size_t>(v)];
     FeatureNode n;
     n.position = vx.p;
@@ -492,13 +521,15 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& lines, int width, int
     }
   }
   std::map<std::pair<int, int>, bool> used;
-  auto walk = [&](int start, int first) {
+  auto walk = [&](int start, int first)
+  {
     FeatureChain c;
     c.from = nodeOf[static_cast<std::size_t>(start)];
     c.type = FeatureType::Ridge;
     int prev = start;
     int cur = first;
-    auto push = [&](int v) {
+    auto push = [&](int v)
+    {
       c.points.push_back(vertices[static_cast<std::size_t>(v)].p);
       c.elevation.push_back(vertices[static_cast<std::size_t>(v)].constraint);
       c.constraint.push_back(vertices[static_cast<std::size_t>(v)].constraint);
@@ -541,7 +572,8 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& lines, int width, int
     g.nodes[static_cast<std::size_t>(c.to)].chains.push_back(id);
     g.chains.push_back(std::move(c));
   };
-  auto walkAll = [&](int v) {
+  auto walkAll = [&](int v)
+  {
     for (const auto& e : vertices[static_cast<std::size_t>(v)].adjacent)
     {
       if (!used.count({ std::min(v, e.first), std::max(v, e.first) }))
@@ -562,9 +594,13 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& lines, int width, int
   for (std::size_t v = 0; v < vertices.size(); ++v)
   {
     const auto& adj = vertices[v].adjacent;
-    const bool unused = std::any_of(adj.begin(), adj.end(), [&](const auto& e) {
-      return !used.count({ std::min(static_cast<int>(v), e.first), std::max(static_cast<int>(v), e.first) });
-    });
+    const bool unused = std::any_of(adj.begin(),
+      adj.end(),
+      [&](const auto& e)
+      {
+        return !used.count(
+          { std::min(static_cast<int>(v), e.first), std::max(static_cast<int>(v), e.first) });
+      });
     if (nodeOf[v] < 0 && unused)
     {
       addNode(static_cast<int>(v));

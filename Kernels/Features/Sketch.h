@@ -21,10 +21,10 @@ enum class SketchKind
 
 struct SketchOptions
 {
-  int patchSize = 80;         // a sketch smaller than one patch is refused
+  int patchSize = 80;          // a sketch smaller than one patch is refused
   double controlRadius = 40.0; // cells (half the patch)
   int smoothingPasses = 2;
-  double cellSize = 1.0;      // metres per sketch pixel, for the graph's coordinates
+  double cellSize = 1.0; // metres per sketch pixel, for the graph's coordinates
 };
 
 struct SketchFeatures
@@ -61,7 +61,12 @@ struct Polyline
 // Builds a graph from poly-lines as drawn: end points and shared vertices within
 // `snapTolerance` cells are merged; vertices where three or more pieces meet
 // become branch nodes; a closed poly-line becomes a loop.
-FeatureGraph polylineFeatures(const std::vector<Polyline>& lines, int width, int height,
-  double cellX, double cellY, double snapTolerance = 1.0, double controlRadius = 40.0);
+FeatureGraph polylineFeatures(const std::vector<Polyline>& lines,
+  int width,
+  int height,
+  double cellX,
+  double cellY,
+  double snapTolerance = 1.0,
+  double controlRadius = 40.0);
 
 } // namespace tsynth

@@ -52,7 +52,8 @@ struct KnownRidges
     std::vector<Point2> ring;
     for (int k = 0; k <= 72; ++k)
     {
-      ring.push_back({ 55 + 32 * std::cos(2 * kPi * k / 72), 62 + 32 * std::sin(2 * kPi * k / 72) });
+      ring.push_back(
+        { 55 + 32 * std::cos(2 * kPi * k / 72), 62 + 32 * std::sin(2 * kPi * k / 72) });
     }
     lines.push_back(ring);
   }
@@ -113,7 +114,8 @@ void checkKnownRidges(FeatureType type, double sign)
   {
     if (r.pixels.links(idx) != 0)
     {
-      found.push_back({ static_cast<double>(r.pixels.column(idx)), static_cast<double>(r.pixels.row(idx)) });
+      found.push_back(
+        { static_cast<double>(r.pixels.column(idx)), static_cast<double>(r.pixels.row(idx)) });
     }
   }
   ASSERT_GT(found.size(), 500u);
@@ -181,12 +183,14 @@ TEST(Ppa, ControlPointsSitOnTheCircleAlongEachArm)
   const FeatureNode& root = r.graph.nodes[static_cast<std::size_t>(r.graph.bfsOrder.front())];
   ASSERT_EQ(root.kind, NodeKind::Branch);
   ASSERT_EQ(root.controls.size(), 3u);
-  std::vector<double> expected = { -90.0, std::atan2(102.0, -78.0) * 180 / kPi,
-    std::atan2(102.0, 82.0) * 180 / kPi };
+  std::vector<double> expected = {
+    -90.0, std::atan2(102.0, -78.0) * 180 / kPi, std::atan2(102.0, 82.0) * 180 / kPi
+  };
   for (const ControlPoint& cp : root.controls)
   {
     EXPECT_TRUE(cp.reached);
-    EXPECT_NEAR(std::hypot(cp.position.x - root.position.x, cp.position.y - root.position.y), 40.0, 1e-6);
+    EXPECT_NEAR(
+      std::hypot(cp.position.x - root.position.x, cp.position.y - root.position.y), 40.0, 1e-6);
     double best = 360.0;
     for (double e : expected)
     {
@@ -244,7 +248,10 @@ TEST(Ppa, KruskalMatchesBoostGraph)
       }
     }
   }
-  using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, boost::no_property,
+  using Graph = boost::adjacency_list<boost::vecS,
+    boost::vecS,
+    boost::undirectedS,
+    boost::no_property,
     boost::property<boost::edge_weight_t, double>>;
   Graph g(hf.size());
   for (const CellEdge& e : edges)
@@ -345,7 +352,8 @@ TEST(Ppa, NodataIsNeverATarget)
 
 TEST(Sketch, LambdaGivesItsBranchPointAndTheRing)
 {
-  const ColourImage img = readColourImage((test::bundledData() / "sketches" / "lambda_circle_grey.png").string());
+  const ColourImage img =
+    readColourImage((test::bundledData() / "sketches" / "lambda_circle_grey.png").string());
   const SketchFeatures s = sketchFeatures(img);
   EXPECT_EQ(s.kind, SketchKind::Grey);
   EXPECT_NEAR(s.strokeWidth, 10.0, 3.0);

@@ -1,6 +1,8 @@
+#include "FeatureGraphConversion.h"
 #include "TerrainFileIO.h"
 #include "TerrainImageConversion.h"
 #include "TestData.h"
+#include "vtkTerrainFeatureExtractor.h"
 #include "vtkTerrainHillshade.h"
 #include "vtkTerrainReader.h"
 
@@ -8,12 +10,15 @@
 #include "Core/Error.h"
 
 #include <vtkCallbackCommand.h>
+#include <vtkCellData.h>
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
+#include <vtkIdList.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
+#include <vtkPolyData.h>
 #include <vtkStringArray.h>
 
 #include <gtest/gtest.h>
@@ -204,4 +209,73 @@ TEST(Filters, VtiErrors)
   const std::string junk = (tsynth::test::scratchDir() / "junk.vti").string();
   std::ofstream(junk) << "<VTKFile> not really";
   EXPECT_THROW(tsynth::readTerrainFile(junk), tsynth::Error);
+}
+
+TEST(Filters, FeatureGraphBecomesPolyDataWithSharedNodePoints)
+{
+  // A Y of poly-lines: one branch node shared by three chains.
+  std::vector<tsynth::Polyline> lines(3);
+  lines[0].points = { { 10, 0 }, { 10, 10 } };
+  lines[1].points = { { 10, 10 }, { 0, 20 } };
+  lines[2].points = { { 10, 10 }, { 20, 20 } };
+  const tsynth::FeatureGraph g = tsynth::polylineFeatures(lines, 30, 30, 90.0, 30.0, 0.5, 5.0);
+  vtkNew<vtkPolyData> pd;
+  tsynth::featureGraphToPolyData(g, pd, 1000.0, 2000.0);
+  ASSERT_EQ(pd->GetNumberOfLines(), 3);
+  ASSERT_EQ(pd->GetNumberOfPoints(), 4); // 1 branch + 3 ends, no interior points
+  vtkDataArray* kind = pd->GetPointData()->GetArray("NodeKind");
+  vtkDataArray* degree = pd->GetPointData()->GetArray("Degree");
+  ASSERT_NE(kind, nullptr);
+  ASSERT_NE(degree, nullptr);
+  int branch = -1;
+  for (vtkIdType p = 0; p < 4; ++p)
+  {
+    if (kind->GetComponent(p, 0) == 2)
+    {
+      branch = static_cast<int>(p);
+      EXPECT_EQ(degree->GetComponent(p, 0), 3);
+    }
+  }
+  ASSERT_GE(branch, 0);
+  double x[3];
+  pd->GetPoint(branch, x);
+  EXPECT_DOUBLE_EQ(x[0], 1000.0 + 10 * 90.0); // metres, offset by the origin
+  EXPECT_DOUBLE_EQ(x[1], 2000.0 + 10 * 30.0);
+  // Every line starts or ends at the shared branch point.
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < 3; ++c)
+  {
+    pd->GetCellPoints(c, ids);
+    EXPECT_TRUE(ids->GetId(0) == branch || ids->GetId(ids->GetNumberOfIds() - 1) == branch);
+  }
+  EXPECT_EQ(pd->GetCellData()->GetArray("FeatureType")->GetComponent(0, 0), 1);
+  EXPECT_EQ(pd->GetFieldData()->GetArray("BFSOrder")->GetComponent(0, 0), branch);
+
+  // Back to poly-lines and to a graph again: the same nodes.
+  const auto again = tsynth::polyDataToPolylines(pd, 90.0, 30.0, 1000.0, 2000.0);
+  const tsynth::FeatureGraph g2 = tsynth::polylineFeatures(again, 30, 30, 90.0, 30.0, 0.5, 5.0);
+  EXPECT_EQ(g2.countKind(tsynth::NodeKind::Branch), 1);
+  EXPECT_EQ(g2.countKind(tsynth::NodeKind::End), 3);
+}
+
+TEST(Filters, FeatureExtractorOffsetsPointsByTheImageOrigin)
+{
+  vtkNew<vtkTerrainReader> reader;
+  reader->SetFileName((tsynth::test::bundledData() / "dems" / "colorado.png").string().c_str());
+  reader->Update();
+  vtkNew<vtkImageData> shifted;
+  shifted->ShallowCopy(reader->GetOutput());
+  shifted->SetOrigin(5000.0, -3000.0, 0.0);
+  vtkNew<vtkTerrainFeatureExtractor> features;
+  features->SetInputData(shifted);
+  features->Update();
+  vtkPolyData* tree = features->GetOutput(0);
+  ASSERT_GT(tree->GetNumberOfPoints(), 100);
+  double bounds[6];
+  tree->GetBounds(bounds);
+  EXPECT_GE(bounds[0], 5000.0);
+  EXPECT_LE(bounds[1], 5000.0 + 647 * 90.0);
+  EXPECT_GE(bounds[2], -3000.0);
+  EXPECT_LE(bounds[3], -3000.0 + 647 * 90.0);
+  EXPECT_GT(features->GetOutput(1)->GetNumberOfPoints(), 100); // control points
 }

@@ -1,5 +1,6 @@
 """Tests of the tsynth command line: values, pictures, round trips and error handling."""
 import json
+import re
 import os
 import shutil
 import struct
@@ -7,6 +8,7 @@ import subprocess
 import sys
 import tempfile
 import unittest
+import zlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import harness  # noqa: E402
@@ -23,6 +25,31 @@ def png_size(path):
     if head[:8] != b"\x89PNG\r\n\x1a\n":
         raise AssertionError("%s is not a PNG" % path)
     return struct.unpack(">II", head[16:24])
+
+
+def write_png(path, width, height, pixel):
+    """A plain 8-bit RGB PNG; pixel(x, y) gives (r, g, b), y = 0 at the top."""
+    rows = b"".join(b"\x00" + bytes(c for x in range(width) for c in pixel(x, y)) for y in range(height))
+
+    def chunk(kind, data):
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
+
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n")
+        f.write(chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)))
+        f.write(chunk(b"IDAT", zlib.compress(rows)))
+        f.write(chunk(b"IEND", b""))
+
+
+def vtp_counts(path):
+    """Number of points and lines in a .vtp written by tsynth (from its XML header)."""
+    with open(path, "rb") as f:
+        head = f.read(4096).decode("latin-1")
+    match = re.search(r'<Piece NumberOfPoints="(\d+)"[^>]*NumberOfLines="(\d+)"', head)
+    if not match:
+        raise AssertionError("no Piece header in %s" % path)
+    return int(match.group(1)), int(match.group(2))
 
 
 def info(path, *extra):
@@ -124,6 +151,75 @@ class CliTest(unittest.TestCase):
         self.assertTrue(os.path.exists(self.path("jackson.json")))
         self.assertTrue(info(self.path("jackson.tif"))["geographic"])
 
+    # Features -----------------------------------------------------------------------------
+
+    def test_features_of_a_dem(self):
+        out = self.path("ridges.vtp")
+        controls = self.path("controls.vtp")
+        dem = os.path.join(PATHS.bundled_data, "dems", "colorado.png")
+        result = tsynth("features", dem, "-o", out, "--control-points", controls)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        match = re.search(r"Features: (\d+) nodes \((\d+) branch, (\d+) end", result.stdout)
+        self.assertIsNotNone(match, result.stdout)
+        nodes, branches, ends = (int(g) for g in match.groups())
+        self.assertGreater(branches, 20)
+        self.assertGreater(ends, 20)
+        points, lines = vtp_counts(out)
+        self.assertGreater(points, nodes)
+        self.assertGreater(lines, 50)
+        self.assertGreater(vtp_counts(controls)[0], nodes)  # one control point per chain end
+        valleys = tsynth("features", dem, "-o", self.path("valleys.vtp"), "--valleys")
+        self.assertEqual(valleys.returncode, 0, valleys.stderr)
+
+    def test_features_of_sketches(self):
+        sketches = os.path.join(PATHS.bundled_data, "sketches")
+        y = tsynth("features", os.path.join(sketches, "strokes_y_ridges.png"), "--sketch",
+                   "-o", self.path("y.vtp"))
+        self.assertEqual(y.returncode, 0, y.stderr)
+        self.assertIn("8 nodes (1 branch, 7 end, 0 loop anchors), 5 chains in 3 trees", y.stdout)
+        grey = tsynth("features", os.path.join(sketches, "lambda_circle_grey.png"), "--sketch",
+                      "-o", self.path("lambda.vtp"))
+        self.assertEqual(grey.returncode, 0, grey.stderr)
+        self.assertIn("(1 branch, 5 end", grey.stdout)
+        hint = tsynth("features", os.path.join(sketches, "lambda_circle_grey.png"),
+                      "-o", self.path("dem.vtp"))
+        self.assert_clean_failure(hint, 1, "--sketch", self.path("dem.vtp"))
+
+    def test_features_bad_input(self):
+        flat = self.path("flat.asc")
+        with open(flat, "w") as f:
+            f.write("ncols 100\nnrows 100\nxllcorner 0\nyllcorner 0\ncellsize 30\n")
+            f.write(("500 " * 100 + "\n") * 100)
+        out = self.path("flat.vtp")
+        result = tsynth("features", flat, "-o", out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("flat", result.stderr)
+        self.assertEqual(vtp_counts(out), (0, 0))  # an empty tree, honestly
+
+        blank = self.path("blank.png")
+        write_png(blank, 128, 128, lambda x, y: (255, 255, 255))
+        result = tsynth("features", blank, "--sketch", "-o", self.path("blank.vtp"))
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("no features", result.stderr)
+        self.assertEqual(vtp_counts(self.path("blank.vtp")), (0, 0))
+
+        small = self.path("small.png")
+        write_png(small, 40, 40, lambda x, y: (230, 20, 20) if x == y else (255, 255, 255))
+        self.assert_clean_failure(tsynth("features", small, "--sketch", "-o", self.path("s.vtp")),
+                                  1, "smaller than one patch", self.path("s.vtp"))
+
+        photo = self.path("photo.png")
+        write_png(photo, 128, 128, lambda x, y: (x * 2, 200, 255 - y))
+        self.assert_clean_failure(tsynth("features", photo, "--sketch", "-o", self.path("p.vtp")),
+                                  1, "not a stroke map", self.path("p.vtp"))
+
+        dem = os.path.join(PATHS.bundled_data, "dems", "colorado.png")
+        self.assert_clean_failure(tsynth("features", dem, "-o", self.path("x.txt")), 2, ".vtp")
+        self.assert_clean_failure(tsynth("features", dem, "-o", self.path("v.vtp"), "--valleys", "--both"),
+                                  2, "--both")
+        self.assert_clean_failure(tsynth("features", dem, "-o", self.path("v.vtp"), "--min-branch", "2.5"),
+                                  2, "whole number")
+
     # Bad input ----------------------------------------------------------------------------
 
     def test_missing_file(self):
@@ -188,7 +284,7 @@ class CliTest(unittest.TestCase):
         self.assert_clean_failure(tsynth("info", "a.tif", "--z-unit", "yd"), 2, "--z-unit")
 
     def test_help(self):
-        for command in ("info", "render", "convert"):
+        for command in ("info", "render", "convert", "features"):
             result = tsynth(command, "--help")
             self.assertEqual(result.returncode, 0)
             self.assertIn("Usage: tsynth " + command, result.stdout)

@@ -114,6 +114,115 @@ class PluginTest(unittest.TestCase):
             self.assertEqual(int(valid.sum()), 5)
             self.assertEqual(data.GetSpacing()[0], 10.0)
 
+    # Feature trees ------------------------------------------------------------------------
+
+    def check_tree_arrays(self, data):
+        """The DESIGN.md arrays exist and agree with each other."""
+        kind = point_array(data, "NodeKind")
+        degree = point_array(data, "Degree")
+        for name in ("Elevation", "BFSRank", "ComponentId"):
+            point_array(data, name)
+        feature_type = vtk_to_numpy(data.GetCellData().GetArray("FeatureType"))
+        self.assertTrue(set(np.unique(feature_type)) <= {-1, 1})
+        self.assertIsNotNone(data.GetCellData().GetArray("ChainId"))
+        order = vtk_to_numpy(data.GetFieldData().GetArray("BFSOrder"))
+        nodes = np.flatnonzero(kind != 0)
+        # Every end or branch node is in the breadth-first order exactly once.
+        self.assertTrue(set(nodes.tolist()) <= set(order.tolist()))
+        self.assertEqual(len(order), len(set(order.tolist())))
+        np.testing.assert_array_equal(degree[kind == 1], 1)
+        self.assertTrue(np.all(degree[kind == 2] >= 3))
+        return kind, degree, feature_type
+
+    def test_feature_extractor_on_a_real_dem(self):
+        reader = simple.TerrainReader(FileName=self.alps)
+        features = simple.TerrainFeatureExtractor(Input=reader, Features=2)
+        features.UpdatePipeline()
+        tree = sm.Fetch(features, arg1=None, arg2=None, idx=0)
+        kind, degree, feature_type = self.check_tree_arrays(tree)
+        self.assertGreater(int((kind == 2).sum()), 20)  # a mountain massif branches
+        self.assertGreater(int((feature_type == 1).sum()), 50)
+        self.assertGreater(int((feature_type == -1).sum()), 50)
+        # Coordinates are metres inside the DEM (647 cells of 92.74 m).
+        bounds = tree.GetBounds()
+        self.assertGreaterEqual(bounds[0], 0.0)
+        self.assertLessEqual(bounds[1], 646 * 92.74 + 1e-6)
+        # Ridge nodes stand higher than valley nodes on average.
+        elevation = point_array(tree, "Elevation")
+        self.assertGreater(float(elevation.max()), 3000.0)
+        controls = sm.Fetch(features, arg1=None, arg2=None, idx=1)
+        self.assertGreater(controls.GetNumberOfPoints(), 100)
+
+    def test_sketch_features_from_a_stroke_map(self):
+        png = simple.PNGSeriesReader(FileNames=[os.path.join(PATHS.bundled_data, "sketches", "strokes_y_ridges.png")])
+        features = simple.TerrainSketchFeatures(Input=png)
+        features.UpdatePipeline()
+        tree = sm.Fetch(features, arg1=None, arg2=None, idx=0)
+        kind, degree, feature_type = self.check_tree_arrays(tree)
+        self.assertEqual(int((kind == 2).sum()), 1)  # the Y's fork
+        self.assertEqual(int((kind == 1).sum()), 7)  # 3 ridge ends, 4 valley ends
+        self.assertEqual(sorted(np.unique(feature_type).tolist()), [-1, 1])
+
+    def test_sketch_features_from_polylines_with_elevation(self):
+        from vtkmodules.vtkCommonCore import vtkFloatArray, vtkIntArray, vtkPoints
+        from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+        from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+
+        points = vtkPoints()
+        for x, y in [(0, 0), (0, 900), (-600, 1800), (600, 1800), (2000, 0), (2000, 1800)]:
+            points.InsertNextPoint(x + 3000.0, y + 100.0, 0.0)
+        lines = vtkCellArray()
+        for ids in ([0, 1], [1, 2], [1, 3], [4, 5]):
+            lines.InsertNextCell(len(ids))
+            for i in ids:
+                lines.InsertCellPoint(i)
+        poly = vtkPolyData()
+        poly.SetPoints(points)
+        poly.SetLines(lines)
+        kinds = vtkIntArray()
+        kinds.SetName("FeatureType")
+        for v in (1, 1, 1, -1):
+            kinds.InsertNextValue(v)
+        poly.GetCellData().AddArray(kinds)
+        heights = vtkFloatArray()
+        heights.SetName("Elevation")
+        for v in (1500, 2500, 1800, 1800, 900, 600):
+            heights.InsertNextValue(v)
+        poly.GetPointData().AddArray(heights)
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "lines.vtp")
+            writer = vtkXMLPolyDataWriter()
+            writer.SetInputData(poly)
+            writer.SetFileName(path)
+            writer.SetDataModeToBinary()
+            writer.Write()
+            drawn = simple.OpenDataFile(path)
+            features = simple.TerrainSketchFeatures(Input=drawn, CellSize=90.0)
+            features.UpdatePipeline()
+            tree = sm.Fetch(features, arg1=None, arg2=None, idx=0)
+        kind, degree, feature_type = self.check_tree_arrays(tree)
+        self.assertEqual(int((kind == 2).sum()), 1)
+        self.assertEqual(int((kind == 1).sum()), 5)
+        constraint = point_array(tree, "ElevationConstraint")
+        branch = int(np.flatnonzero(kind == 2)[0])
+        self.assertEqual(float(constraint[branch]), 2500.0)
+        x, y, _ = tree.GetPoint(branch)
+        self.assertAlmostEqual(x, 3000.0, places=6)
+        self.assertAlmostEqual(y, 1000.0, places=6)
+
+    def test_features_vtp_written_by_tsynth_opens_in_paraview(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "ridges.vtp")
+            dem = os.path.join(PATHS.bundled_data, "dems", "colorado.png")
+            subprocess.run([PATHS.tsynth, "features", dem, "-o", out], check=True,
+                           stdout=subprocess.DEVNULL)
+            opened = simple.OpenDataFile(out)
+            opened.UpdatePipeline()
+            tree = sm.Fetch(opened)
+            kind, degree, feature_type = self.check_tree_arrays(tree)
+            np.testing.assert_array_equal(feature_type, 1)
+            self.assertGreater(tree.GetNumberOfCells(), 100)
+
     def test_missing_file_gives_an_empty_output_not_a_crash(self):
         reader = simple.TerrainReader(FileName="/nonexistent/dem.tif")
         reader.UpdatePipeline()

@@ -1,0 +1,259 @@
+#include "FeatureGraphConversion.h"
+
+#include "Core/Error.h"
+#include "Core/OutputFile.h"
+#include "VtkErrorObserver.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCommand.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkFloatArray.h>
+#include <vtkIdList.h>
+#include <vtkIdTypeArray.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace tsynth
+{
+namespace
+{
+
+vtkNew<vtkIntArray> intArray(const char* name)
+{
+  vtkNew<vtkIntArray> a;
+  a->SetName(name);
+  return a;
+}
+
+} // namespace
+
+void featureGraphToPolyData(const FeatureGraph& g, vtkPolyData* out, double ox, double oy)
+{
+  out->Initialize();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  auto kind = intArray("NodeKind");
+  auto degree = intArray("Degree");
+  auto rank = intArray("BFSRank");
+  auto component = intArray("ComponentId");
+  vtkNew<vtkFloatArray> elevation;
+  elevation->SetName("Elevation");
+  vtkNew<vtkFloatArray> constraint;
+  constraint->SetName("ElevationConstraint");
+  bool anyConstraint = false;
+  for (const FeatureChain& c : g.chains)
+  {
+    anyConstraint = anyConstraint || !c.constraint.empty();
+  }
+
+  std::vector<int> rankOf(g.nodes.size(), -1);
+  for (std::size_t r = 0; r < g.bfsOrder.size(); ++r)
+  {
+    rankOf[static_cast<std::size_t>(g.bfsOrder[r])] = static_cast<int>(r);
+  }
+  auto addPoint = [&](const Point2& p, int k, int d, int r, int comp, float z, float zc)
+  {
+    points->InsertNextPoint(ox + p.x * g.cellX, oy + p.y * g.cellY, 0.0);
+    kind->InsertNextValue(k);
+    degree->InsertNextValue(d);
+    rank->InsertNextValue(r);
+    component->InsertNextValue(comp);
+    elevation->InsertNextValue(z);
+    constraint->InsertNextValue(zc);
+  };
+  const float nan = std::nanf("");
+  for (std::size_t n = 0; n < g.nodes.size(); ++n)
+  {
+    const FeatureNode& node = g.nodes[n];
+    addPoint(node.position,
+      static_cast<int>(node.kind),
+      node.degree,
+      rankOf[n],
+      node.component,
+      node.elevation,
+      nan);
+  }
+  vtkNew<vtkCellArray> lines;
+  auto type = intArray("FeatureType");
+  auto chainId = intArray("ChainId");
+  for (std::size_t c = 0; c < g.chains.size(); ++c)
+  {
+    const FeatureChain& ch = g.chains[c];
+    const int comp = g.nodes[static_cast<std::size_t>(ch.from)].component;
+    vtkNew<vtkIdList> ids;
+    ids->InsertNextId(ch.from);
+    for (std::size_t k = 1; k + 1 < ch.points.size(); ++k)
+    {
+      const float zc = k < ch.constraint.size() ? ch.constraint[k] : nan;
+      addPoint(ch.points[k],
+        static_cast<int>(NodeKind::Path),
+        2,
+        -1,
+        comp,
+        k < ch.elevation.size() ? ch.elevation[k] : nan,
+        zc);
+      ids->InsertNextId(points->GetNumberOfPoints() - 1);
+    }
+    ids->InsertNextId(ch.to);
+    lines->InsertNextCell(ids);
+    type->InsertNextValue(static_cast<int>(ch.type));
+    chainId->InsertNextValue(static_cast<int>(c));
+    // Node constraints come from their chains' end values.
+    if (!ch.constraint.empty())
+    {
+      constraint->SetValue(ch.from, ch.constraint.front());
+      constraint->SetValue(ch.to, ch.constraint.back());
+    }
+  }
+  out->SetPoints(points);
+  out->SetLines(lines);
+  out->GetPointData()->AddArray(kind);
+  out->GetPointData()->AddArray(degree);
+  out->GetPointData()->AddArray(elevation);
+  out->GetPointData()->AddArray(rank);
+  out->GetPointData()->AddArray(component);
+  if (anyConstraint)
+  {
+    out->GetPointData()->AddArray(constraint);
+  }
+  out->GetPointData()->SetActiveScalars("NodeKind");
+  out->GetCellData()->AddArray(type);
+  out->GetCellData()->AddArray(chainId);
+  vtkNew<vtkIdTypeArray> order;
+  order->SetName("BFSOrder");
+  for (int v : g.bfsOrder)
+  {
+    order->InsertNextValue(v);
+  }
+  out->GetFieldData()->AddArray(order);
+  vtkNew<vtkDoubleArray> cell;
+  cell->SetName("CellSize");
+  cell->InsertNextValue(g.cellX);
+  cell->InsertNextValue(g.cellY);
+  out->GetFieldData()->AddArray(cell);
+}
+
+void controlPointsToPolyData(const FeatureGraph& g, vtkPolyData* out, double ox, double oy)
+{
+  out->Initialize();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> verts;
+  auto node = intArray("NodeId");
+  auto chain = intArray("ChainId");
+  auto reached = intArray("Reached");
+  vtkNew<vtkFloatArray> angle;
+  angle->SetName("AngleDeg");
+  for (std::size_t n = 0; n < g.nodes.size(); ++n)
+  {
+    for (const ControlPoint& cp : g.nodes[n].controls)
+    {
+      const vtkIdType id =
+        points->InsertNextPoint(ox + cp.position.x * g.cellX, oy + cp.position.y * g.cellY, 0.0);
+      verts->InsertNextCell(1, &id);
+      node->InsertNextValue(static_cast<int>(n));
+      chain->InsertNextValue(cp.chain);
+      reached->InsertNextValue(cp.reached ? 1 : 0);
+      angle->InsertNextValue(static_cast<float>(cp.angle * 180.0 / 3.14159265358979323846));
+    }
+  }
+  out->SetPoints(points);
+  out->SetVerts(verts);
+  out->GetPointData()->AddArray(node);
+  out->GetPointData()->AddArray(chain);
+  out->GetPointData()->AddArray(reached);
+  out->GetPointData()->AddArray(angle);
+}
+
+std::vector<Polyline> polyDataToPolylines(const vtkPolyData* constInput,
+  double cellX,
+  double cellY,
+  double ox,
+  double oy,
+  std::string* warning)
+{
+  auto* input = const_cast<vtkPolyData*>(constInput);
+  std::vector<Polyline> out;
+  vtkCellArray* lines = input->GetLines();
+  if (lines == nullptr || lines->GetNumberOfCells() == 0)
+  {
+    return out;
+  }
+  vtkDataArray* type = input->GetCellData()->GetArray("FeatureType");
+  vtkDataArray* elevation = input->GetPointData()->GetArray("Elevation");
+  if (type == nullptr && warning != nullptr)
+  {
+    *warning = "The poly-lines have no FeatureType cell array; they are taken as ridges.";
+  }
+  // Cell ids of lines follow verts in vtkPolyData's numbering.
+  const vtkIdType firstLine = input->GetNumberOfVerts();
+  vtkIdType lineIndex = 0;
+  vtkNew<vtkIdList> ids;
+  for (lines->InitTraversal(); lines->GetNextCell(ids); ++lineIndex)
+  {
+    Polyline p;
+    if (type != nullptr)
+    {
+      p.type =
+        type->GetComponent(firstLine + lineIndex, 0) < 0 ? FeatureType::Valley : FeatureType::Ridge;
+    }
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+    {
+      double x[3];
+      input->GetPoint(ids->GetId(k), x);
+      p.points.push_back({ (x[0] - ox) / cellX, (x[1] - oy) / cellY });
+      if (elevation != nullptr)
+      {
+        p.elevation.push_back(static_cast<float>(elevation->GetComponent(ids->GetId(k), 0)));
+      }
+    }
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+void readPolyDataFile(const std::string& path, vtkPolyData* out)
+{
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+  {
+    throw Error("No such file: " + path + ".");
+  }
+  vtkNew<vtkXMLPolyDataReader> reader;
+  VtkErrorObserver observer;
+  reader->AddObserver(vtkCommand::ErrorEvent, observer.callback);
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  if (observer.failed || reader->GetOutput() == nullptr)
+  {
+    throw Error(path + " is not a VTK poly-data file that can be read.");
+  }
+  out->ShallowCopy(reader->GetOutput());
+}
+
+void writePolyDataFile(const std::string& path, vtkPolyData* data)
+{
+  OutputFile file(path);
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetInputData(data);
+  writer->SetFileName(file.temporaryPath().c_str());
+  writer->SetDataModeToBinary(); // inline: see DESIGN.md on Debian's expat and appended data
+  writer->SetCompressorTypeToZLib();
+  if (writer->Write() == 0)
+  {
+    throw Error("Cannot write " + path + ".");
+  }
+  file.commit();
+}
+
+} // namespace tsynth

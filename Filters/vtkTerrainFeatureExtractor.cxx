@@ -1,0 +1,113 @@
+#include "vtkTerrainFeatureExtractor.h"
+
+#include "FeatureGraphConversion.h"
+#include "TerrainImageConversion.h"
+
+#include "Core/Error.h"
+#include "Features/Ppa.h"
+
+#include <vtkDataObject.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkPolyData.h>
+
+vtkStandardNewMacro(vtkTerrainFeatureExtractor);
+
+vtkTerrainFeatureExtractor::vtkTerrainFeatureExtractor()
+{
+  this->SetNumberOfOutputPorts(2);
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
+}
+
+int vtkTerrainFeatureExtractor::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkTerrainFeatureExtractor::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
+  vtkPolyData* tree = vtkPolyData::GetData(outputVector, 0);
+  vtkPolyData* controls = vtkPolyData::GetData(outputVector, 1);
+  try
+  {
+    const tsynth::Heightfield hf =
+      tsynth::imageToHeightfield(input, this->GetInputArrayToProcess(0, inputVector));
+    tsynth::PpaOptions o;
+    o.halfProfileLength = this->HalfProfileLength;
+    o.minDip = this->MinimumDip;
+    o.relativeDip = this->RelativeDip;
+    o.presmoothSigma = this->PresmoothSigma;
+    o.endReductions = this->EndReductions;
+    o.minBranchLength = this->MinimumBranchLength;
+    o.minTreeSize = this->MinimumTreeSize;
+    o.smoothingPasses = this->SmoothingPasses;
+    o.controlRadius = this->ControlRadius;
+
+    tsynth::FeatureGraph graph;
+    graph.width = hf.width;
+    graph.height = hf.height;
+    graph.cellX = hf.cellX;
+    graph.cellY = hf.cellY;
+    const bool ridges = this->Features != VALLEYS;
+    const bool valleys = this->Features != RIDGES;
+    if (ridges)
+    {
+      const auto r = tsynth::extractFeatures(hf, tsynth::FeatureType::Ridge, o);
+      for (const auto& w : r.warnings)
+      {
+        vtkWarningMacro(<< w);
+      }
+      tsynth::appendGraph(graph, r.graph);
+    }
+    this->UpdateProgress(0.5);
+    if (valleys)
+    {
+      const auto v = tsynth::extractFeatures(hf, tsynth::FeatureType::Valley, o);
+      for (const auto& w : v.warnings)
+      {
+        vtkWarningMacro(<< w);
+      }
+      tsynth::appendGraph(graph, v.graph);
+    }
+    this->UpdateProgress(0.9);
+    // Points sit on the input's grid: its origin plus the extent's offset.
+    double origin[3];
+    double spacing[3];
+    int extent[6];
+    input->GetOrigin(origin);
+    input->GetSpacing(spacing);
+    input->GetExtent(extent);
+    const double ox = origin[0] + extent[0] * spacing[0];
+    const double oy = origin[1] + extent[2] * spacing[1];
+    tsynth::featureGraphToPolyData(graph, tree, ox, oy);
+    tsynth::controlPointsToPolyData(graph, controls, ox, oy);
+  }
+  catch (const tsynth::Error& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  return 1;
+}
+
+void vtkTerrainFeatureExtractor::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Features: " << this->Features << "\n";
+  os << indent << "HalfProfileLength: " << this->HalfProfileLength << "\n";
+  os << indent << "MinimumDip: " << this->MinimumDip << "\n";
+  os << indent << "RelativeDip: " << this->RelativeDip << "\n";
+  os << indent << "PresmoothSigma: " << this->PresmoothSigma << "\n";
+  os << indent << "EndReductions: " << this->EndReductions << "\n";
+  os << indent << "MinimumBranchLength: " << this->MinimumBranchLength << "\n";
+  os << indent << "MinimumTreeSize: " << this->MinimumTreeSize << "\n";
+  os << indent << "SmoothingPasses: " << this->SmoothingPasses << "\n";
+  os << indent << "ControlRadius: " << this->ControlRadius << "\n";
+}

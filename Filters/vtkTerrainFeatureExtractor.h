@@ -1,0 +1,115 @@
+/**
+ * @class vtkTerrainFeatureExtractor
+ * @brief Ridge and valley lines of a heightfield (PPA) as a feature tree.
+ *
+ * Input: a 2D heightfield image ("Elevation" by default). Output port 0: the
+ * feature forest as poly-lines in metres with point data NodeKind (0 path,
+ * 1 end, 2 branch), Degree, Elevation, BFSRank, ComponentId, cell data
+ * FeatureType (+1 ridge, -1 valley) and ChainId, field data BFSOrder. Output
+ * port 1: the control points (where chains cross the circle of ControlRadius).
+ * The algorithm is Chang's profile-recognition and target-connection (PPA)
+ * with Kruskal's maximum spanning forest replacing polygon breaking (Zhou et
+ * al. 2007; Tasse's thesis, algorithm 3.2).
+ */
+#pragma once
+
+#include "TerrainSynthesisFiltersModule.h"
+
+#include <vtkPolyDataAlgorithm.h>
+
+class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainFeatureExtractor : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkTerrainFeatureExtractor* New();
+  vtkTypeMacro(vtkTerrainFeatureExtractor, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum FeatureKinds
+  {
+    RIDGES = 0,
+    VALLEYS = 1,
+    RIDGES_AND_VALLEYS = 2
+  };
+
+  ///@{
+  /// Which lines to extract (default ridges).
+  vtkSetClampMacro(Features, int, RIDGES, RIDGES_AND_VALLEYS);
+  vtkGetMacro(Features, int);
+  ///@}
+
+  ///@{
+  /// Profile half-length in cells (default 3).
+  vtkSetClampMacro(HalfProfileLength, int, 1, 100);
+  vtkGetMacro(HalfProfileLength, int);
+  ///@}
+
+  ///@{
+  /// Minimum dip on both sides, in height units (default 0).
+  vtkSetClampMacro(MinimumDip, double, 0.0, 1.0e6);
+  vtkGetMacro(MinimumDip, double);
+  ///@}
+
+  ///@{
+  /// Minimum dip as a fraction of the local relief (default 0.1).
+  vtkSetClampMacro(RelativeDip, double, 0.0, 1.0);
+  vtkGetMacro(RelativeDip, double);
+  ///@}
+
+  ///@{
+  /// Gaussian pre-smoothing in cells (default 0: none).
+  vtkSetClampMacro(PresmoothSigma, double, 0.0, 100.0);
+  vtkGetMacro(PresmoothSigma, double);
+  ///@}
+
+  ///@{
+  /// End-segment removals (default 3).
+  vtkSetClampMacro(EndReductions, int, 0, 1000);
+  vtkGetMacro(EndReductions, int);
+  ///@}
+
+  ///@{
+  /// Dangling branches shorter than this many cells are removed (default 15).
+  vtkSetClampMacro(MinimumBranchLength, int, 0, 100000);
+  vtkGetMacro(MinimumBranchLength, int);
+  ///@}
+
+  ///@{
+  /// Trees with fewer cells are removed (default 30).
+  vtkSetClampMacro(MinimumTreeSize, int, 0, 100000000);
+  vtkGetMacro(MinimumTreeSize, int);
+  ///@}
+
+  ///@{
+  /// Chain smoothing passes (default 2).
+  vtkSetClampMacro(SmoothingPasses, int, 0, 100);
+  vtkGetMacro(SmoothingPasses, int);
+  ///@}
+
+  ///@{
+  /// Control-point circle radius in cells: half the patch size (default 40).
+  vtkSetClampMacro(ControlRadius, double, 1.0, 10000.0);
+  vtkGetMacro(ControlRadius, double);
+  ///@}
+
+protected:
+  vtkTerrainFeatureExtractor();
+  ~vtkTerrainFeatureExtractor() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int Features = RIDGES;
+  int HalfProfileLength = 3;
+  double MinimumDip = 0.0;
+  double RelativeDip = 0.1;
+  double PresmoothSigma = 0.0;
+  int EndReductions = 3;
+  int MinimumBranchLength = 15;
+  int MinimumTreeSize = 30;
+  int SmoothingPasses = 2;
+  double ControlRadius = 40.0;
+
+private:
+  vtkTerrainFeatureExtractor(const vtkTerrainFeatureExtractor&) = delete;
+  void operator=(const vtkTerrainFeatureExtractor&) = delete;
+};

@@ -1,0 +1,195 @@
+#include "vtkTerrainSketchFeatures.h"
+
+#include "FeatureGraphConversion.h"
+
+#include "Core/Error.h"
+#include "Features/Sketch.h"
+
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+
+#include <algorithm>
+#include <cmath>
+
+vtkStandardNewMacro(vtkTerrainSketchFeatures);
+
+namespace
+{
+
+// VTK images keep row 0 at the bottom; sketches are read top row first.
+tsynth::ColourImage toColourImage(vtkImageData* image)
+{
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (scalars == nullptr)
+  {
+    scalars = image->GetPointData()->GetArray(0);
+  }
+  int dims[3];
+  image->GetDimensions(dims);
+  if (scalars == nullptr || dims[2] != 1)
+  {
+    throw tsynth::Error("The sketch must be a 2D image with pixel values.");
+  }
+  tsynth::ColourImage out;
+  out.width = dims[0];
+  out.height = dims[1];
+  const bool bytes = scalars->GetDataType() == VTK_UNSIGNED_CHAR;
+  out.channels = bytes ? std::min(4, scalars->GetNumberOfComponents()) : 1;
+  out.data.resize(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) *
+    static_cast<std::size_t>(out.channels));
+  double range[2] = { 0.0, 255.0 };
+  if (!bytes)
+  {
+    scalars->GetRange(range, 0); // other types: one channel scaled onto 0..255
+  }
+  const double scale = range[1] > range[0] ? 255.0 / (range[1] - range[0]) : 0.0;
+  for (int j = 0; j < out.height; ++j)
+  {
+    for (int i = 0; i < out.width; ++i)
+    {
+      const vtkIdType src = static_cast<vtkIdType>(j) * out.width + i;
+      const std::size_t dst =
+        (static_cast<std::size_t>(out.height - 1 - j) * static_cast<std::size_t>(out.width) +
+          static_cast<std::size_t>(i)) *
+        static_cast<std::size_t>(out.channels);
+      for (int c = 0; c < out.channels; ++c)
+      {
+        const double v = scalars->GetComponent(src, c);
+        out.data[dst + static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(
+          bytes ? v : std::clamp(std::lround((v - range[0]) * scale), 0L, 255L));
+      }
+    }
+  }
+  return out;
+}
+
+} // namespace
+
+vtkTerrainSketchFeatures::vtkTerrainSketchFeatures()
+{
+  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfOutputPorts(2);
+}
+
+int vtkTerrainSketchFeatures::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 0)
+  {
+    info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+    info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+    info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+    return 1;
+  }
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+int vtkTerrainSketchFeatures::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  vtkImageData* reference = inputVector[1]->GetNumberOfInformationObjects() > 0
+    ? vtkImageData::GetData(inputVector[1], 0)
+    : nullptr;
+  vtkPolyData* tree = vtkPolyData::GetData(outputVector, 0);
+  vtkPolyData* controls = vtkPolyData::GetData(outputVector, 1);
+  const double radius = this->ControlRadius > 0.0 ? this->ControlRadius : 0.5 * this->PatchSize;
+  try
+  {
+    tsynth::FeatureGraph graph;
+    double ox = 0.0;
+    double oy = 0.0;
+    if (auto* image = vtkImageData::SafeDownCast(input))
+    {
+      double spacing[3];
+      double origin[3];
+      int extent[6];
+      image->GetSpacing(spacing);
+      image->GetOrigin(origin);
+      image->GetExtent(extent);
+      tsynth::SketchOptions o;
+      o.patchSize = this->PatchSize;
+      o.controlRadius = radius;
+      o.smoothingPasses = this->SmoothingPasses;
+      o.cellSize = this->CellSize > 0.0 ? this->CellSize : spacing[0];
+      tsynth::SketchFeatures s = tsynth::sketchFeatures(toColourImage(image), o);
+      for (const auto& w : s.warnings)
+      {
+        vtkWarningMacro(<< w);
+      }
+      graph = std::move(s.graph);
+      ox = origin[0] + extent[0] * spacing[0];
+      oy = origin[1] + extent[2] * spacing[1];
+    }
+    else if (auto* lines = vtkPolyData::SafeDownCast(input))
+    {
+      double cx = this->CellSize > 0.0 ? this->CellSize : 1.0;
+      double cy = cx;
+      int width = 0;
+      int height = 0;
+      if (reference != nullptr)
+      {
+        double spacing[3];
+        double origin[3];
+        int extent[6];
+        reference->GetSpacing(spacing);
+        reference->GetOrigin(origin);
+        reference->GetExtent(extent);
+        cx = spacing[0];
+        cy = spacing[1];
+        ox = origin[0] + extent[0] * spacing[0];
+        oy = origin[1] + extent[2] * spacing[1];
+        width = extent[1] - extent[0] + 1;
+        height = extent[3] - extent[2] + 1;
+      }
+      else
+      {
+        double bounds[6];
+        lines->GetBounds(bounds);
+        width = static_cast<int>(std::ceil(std::max(0.0, bounds[1]) / cx)) + 1;
+        height = static_cast<int>(std::ceil(std::max(0.0, bounds[3]) / cy)) + 1;
+      }
+      std::string warning;
+      const auto polylines = tsynth::polyDataToPolylines(lines, cx, cy, ox, oy, &warning);
+      if (!warning.empty())
+      {
+        vtkWarningMacro(<< warning);
+      }
+      if (polylines.empty())
+      {
+        vtkWarningMacro("The input has no poly-lines: the feature tree is empty.");
+      }
+      graph =
+        tsynth::polylineFeatures(polylines, width, height, cx, cy, this->SnapTolerance, radius);
+    }
+    else
+    {
+      throw tsynth::Error("The sketch must be an image or poly-lines.");
+    }
+    tsynth::featureGraphToPolyData(graph, tree, ox, oy);
+    tsynth::controlPointsToPolyData(graph, controls, ox, oy);
+  }
+  catch (const tsynth::Error& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  return 1;
+}
+
+void vtkTerrainSketchFeatures::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "PatchSize: " << this->PatchSize << "\n";
+  os << indent << "ControlRadius: " << this->ControlRadius << "\n";
+  os << indent << "CellSize: " << this->CellSize << "\n";
+  os << indent << "SnapTolerance: " << this->SnapTolerance << "\n";
+  os << indent << "SmoothingPasses: " << this->SmoothingPasses << "\n";
+}

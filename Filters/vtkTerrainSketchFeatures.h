@@ -1,0 +1,80 @@
+/**
+ * @class vtkTerrainSketchFeatures
+ * @brief A user's sketch turned into a feature tree like vtkTerrainFeatureExtractor's.
+ *
+ * Input port 0 takes either
+ * - an image: a grey sketch map (one channel, or R = G = B; brighter is higher)
+ *   goes through PPA with settings derived from its stroke width; a stroke map
+ *   (RGB: red R>=200 G<=80 B<=80 ridges, blue B>=200 R<=80 G<=80 valleys) is
+ *   thinned to centre lines and turned into a graph directly, loops kept; or
+ * - poly-lines (vtkPolyData lines, e.g. drawn with ParaView's poly-line source),
+ *   with cell data FeatureType (+1 ridge, -1 valley; ridges if absent) and
+ *   optional point data Elevation kept as ElevationConstraint.
+ * Optional input port 1: a reference image whose grid (origin, spacing, extent)
+ * the poly-lines are laid on. Outputs as vtkTerrainFeatureExtractor: the tree
+ * (port 0) and its control points (port 1).
+ */
+#pragma once
+
+#include "TerrainSynthesisFiltersModule.h"
+
+#include <vtkPolyDataAlgorithm.h>
+
+class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainSketchFeatures : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkTerrainSketchFeatures* New();
+  vtkTypeMacro(vtkTerrainSketchFeatures, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Patch size in cells (default 80): a sketch image smaller than one patch is refused.
+  vtkSetClampMacro(PatchSize, int, 8, 4096);
+  vtkGetMacro(PatchSize, int);
+  ///@}
+
+  ///@{
+  /// Control-point radius in cells; 0 (default) means half the patch size.
+  vtkSetClampMacro(ControlRadius, double, 0.0, 10000.0);
+  vtkGetMacro(ControlRadius, double);
+  ///@}
+
+  ///@{
+  /// Metres per sketch pixel (images) or per cell (poly-lines without a
+  /// reference image); 0 (default) takes the image spacing, or 1 for poly-lines.
+  vtkSetClampMacro(CellSize, double, 0.0, 1.0e6);
+  vtkGetMacro(CellSize, double);
+  ///@}
+
+  ///@{
+  /// Poly-line vertices closer than this many cells are merged (default 1).
+  vtkSetClampMacro(SnapTolerance, double, 0.0, 1000.0);
+  vtkGetMacro(SnapTolerance, double);
+  ///@}
+
+  ///@{
+  /// Chain smoothing passes for sketch images (default 2).
+  vtkSetClampMacro(SmoothingPasses, int, 0, 100);
+  vtkGetMacro(SmoothingPasses, int);
+  ///@}
+
+  /// Sets the optional reference image (port 1) for poly-line input.
+  void SetReferenceConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
+
+protected:
+  vtkTerrainSketchFeatures();
+  ~vtkTerrainSketchFeatures() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int PatchSize = 80;
+  double ControlRadius = 0.0;
+  double CellSize = 0.0;
+  double SnapTolerance = 1.0;
+  int SmoothingPasses = 2;
+
+private:
+  vtkTerrainSketchFeatures(const vtkTerrainSketchFeatures&) = delete;
+  void operator=(const vtkTerrainSketchFeatures&) = delete;
+};
