@@ -83,9 +83,19 @@ void featureGraphToPolyData(const FeatureGraph& g, vtkPolyData* out, double ox, 
       node.elevation,
       nan);
   }
-  vtkNew<vtkCellArray> lines;
+  // End and branch nodes are also vertex cells, so ParaView can draw them as dots
+  // (Threshold on NodeKind keeps them); vertex cells come before lines in cell order.
+  vtkNew<vtkCellArray> verts;
   auto type = intArray("FeatureType");
   auto chainId = intArray("ChainId");
+  for (std::size_t n = 0; n < g.nodes.size(); ++n)
+  {
+    const vtkIdType id = static_cast<vtkIdType>(n);
+    verts->InsertNextCell(1, &id);
+    type->InsertNextValue(static_cast<int>(g.nodes[n].type));
+    chainId->InsertNextValue(-1);
+  }
+  vtkNew<vtkCellArray> lines;
   for (std::size_t c = 0; c < g.chains.size(); ++c)
   {
     const FeatureChain& ch = g.chains[c];
@@ -116,6 +126,7 @@ void featureGraphToPolyData(const FeatureGraph& g, vtkPolyData* out, double ox, 
     }
   }
   out->SetPoints(points);
+  out->SetVerts(verts);
   out->SetLines(lines);
   out->GetPointData()->AddArray(kind);
   out->GetPointData()->AddArray(degree);

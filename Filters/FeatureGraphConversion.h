@@ -13,7 +13,8 @@ namespace tsynth
 {
 
 // Lines in metres (x = origin + column * cellX), one poly-line cell per chain,
-// nodes first so a node is one shared point. Point data: NodeKind (0 path,
+// nodes first so a node is one shared point, and one vertex cell per node
+// (before the lines; ChainId -1). Point data: NodeKind (0 path,
 // 1 end, 2 branch), Degree, Elevation, BFSRank (-1 off nodes), ComponentId, and
 // ElevationConstraint when any chain has one; cell data: FeatureType (+1 ridge,
 // -1 valley), ChainId; field data: BFSOrder (node point ids), CellSize.
