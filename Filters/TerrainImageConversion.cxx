@@ -138,6 +138,18 @@ Heightfield imageToHeightfield(vtkImageData* image, vtkDataArray* heights)
   return hf;
 }
 
+void gridOrigin(vtkImageData* image, double& x, double& y)
+{
+  double origin[3];
+  double spacing[3];
+  int extent[6];
+  image->GetOrigin(origin);
+  image->GetSpacing(spacing);
+  image->GetExtent(extent);
+  x = origin[0] + extent[0] * spacing[0];
+  y = origin[1] + extent[2] * spacing[1];
+}
+
 void addPointArray(vtkImageData* image, const char* name, const float* values)
 {
   vtkNew<vtkFloatArray> array;

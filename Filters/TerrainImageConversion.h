@@ -23,6 +23,10 @@ void heightfieldToImage(const Heightfield& hf, vtkImageData* image);
 // image is not 2D in x-y or has no usable height array.
 Heightfield imageToHeightfield(vtkImageData* image, vtkDataArray* heights = nullptr);
 
+// World position of the image's first point (origin plus the extent's offset):
+// where cell (0, 0) of a heightfield taken from it lies.
+void gridOrigin(vtkImageData* image, double& x, double& y);
+
 // Adds a float point array (NaN where invalid) of the image's size.
 void addPointArray(vtkImageData* image, const char* name, const float* values);
 

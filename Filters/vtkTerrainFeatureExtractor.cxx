@@ -78,14 +78,9 @@ int vtkTerrainFeatureExtractor::RequestData(vtkInformation*,
     }
     this->UpdateProgress(0.9);
     // Points sit on the input's grid: its origin plus the extent's offset.
-    double origin[3];
-    double spacing[3];
-    int extent[6];
-    input->GetOrigin(origin);
-    input->GetSpacing(spacing);
-    input->GetExtent(extent);
-    const double ox = origin[0] + extent[0] * spacing[0];
-    const double oy = origin[1] + extent[2] * spacing[1];
+    double ox = 0.0;
+    double oy = 0.0;
+    tsynth::gridOrigin(input, ox, oy);
     tsynth::featureGraphToPolyData(graph, tree, ox, oy);
     tsynth::controlPointsToPolyData(graph, controls, ox, oy);
   }

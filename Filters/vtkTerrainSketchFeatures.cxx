@@ -1,6 +1,7 @@
 #include "vtkTerrainSketchFeatures.h"
 
 #include "FeatureGraphConversion.h"
+#include "TerrainImageConversion.h"
 
 #include "Core/Error.h"
 #include "Features/Sketch.h"
@@ -109,11 +110,7 @@ int vtkTerrainSketchFeatures::RequestData(vtkInformation*,
     if (auto* image = vtkImageData::SafeDownCast(input))
     {
       double spacing[3];
-      double origin[3];
-      int extent[6];
       image->GetSpacing(spacing);
-      image->GetOrigin(origin);
-      image->GetExtent(extent);
       tsynth::SketchOptions o;
       o.patchSize = this->PatchSize;
       o.controlRadius = radius;
@@ -125,8 +122,7 @@ int vtkTerrainSketchFeatures::RequestData(vtkInformation*,
         vtkWarningMacro(<< w);
       }
       graph = std::move(s.graph);
-      ox = origin[0] + extent[0] * spacing[0];
-      oy = origin[1] + extent[2] * spacing[1];
+      tsynth::gridOrigin(image, ox, oy);
     }
     else if (auto* lines = vtkPolyData::SafeDownCast(input))
     {
@@ -137,17 +133,14 @@ int vtkTerrainSketchFeatures::RequestData(vtkInformation*,
       if (reference != nullptr)
       {
         double spacing[3];
-        double origin[3];
-        int extent[6];
+        int dims[3];
         reference->GetSpacing(spacing);
-        reference->GetOrigin(origin);
-        reference->GetExtent(extent);
+        reference->GetDimensions(dims);
         cx = spacing[0];
         cy = spacing[1];
-        ox = origin[0] + extent[0] * spacing[0];
-        oy = origin[1] + extent[2] * spacing[1];
-        width = extent[1] - extent[0] + 1;
-        height = extent[3] - extent[2] + 1;
+        tsynth::gridOrigin(reference, ox, oy);
+        width = dims[0];
+        height = dims[1];
       }
       else
       {
