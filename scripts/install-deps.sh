@@ -15,6 +15,7 @@ packages=(
   mpi-default-dev libx11-dev libxt-dev
   # the project's own dependencies
   libgdal-dev gdal-bin libeigen3-dev libboost-graph-dev libfftw3-dev nlohmann-json3-dev
+  libmaxflow-dev
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   # headless rendering
   xvfb xauth
