@@ -1,0 +1,525 @@
+#include "CandidatePool.h"
+
+#include "../Core/Error.h"
+#include "../Features/Ppa.h"
+#include "../Features/Profiles.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace tsynth
+{
+namespace
+{
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Point at arc length s along a polyline, and the index of the segment it is on.
+Point2 pointAt(const std::vector<Point2>& pts, const std::vector<double>& arc, double s)
+{
+  const auto it = std::lower_bound(arc.begin(), arc.end(), s);
+  const std::size_t k =
+    std::clamp<std::size_t>(static_cast<std::size_t>(it - arc.begin()), 1, pts.size() - 1);
+  const double len = arc[k] - arc[k - 1];
+  const double t = len > 0.0 ? std::clamp((s - arc[k - 1]) / len, 0.0, 1.0) : 0.0;
+  return { pts[k - 1].x + t * (pts[k].x - pts[k - 1].x),
+    pts[k - 1].y + t * (pts[k].y - pts[k - 1].y) };
+}
+
+// Where a polyline, walked from arc length s in direction dir (+1/-1), first
+// lies `radius` away from its point at s (or its end).
+ControlPoint armAlong(const std::vector<Point2>& pts,
+  const std::vector<double>& arc,
+  double s,
+  int dir,
+  double radius,
+  int chain)
+{
+  const Point2 o = pointAt(pts, arc, s);
+  ControlPoint cp;
+  cp.chain = chain;
+  cp.position = dir > 0 ? pts.back() : pts.front();
+  const double step = 0.25;
+  for (double t = s + dir * step; t >= 0.0 && t <= arc.back(); t += dir * step)
+  {
+    const Point2 q = pointAt(pts, arc, t);
+    if (std::hypot(q.x - o.x, q.y - o.y) >= radius)
+    {
+      cp.position = q;
+      cp.reached = true;
+      break;
+    }
+  }
+  cp.angle = std::atan2(cp.position.y - o.y, cp.position.x - o.x);
+  return cp;
+}
+
+struct SiteProfiles
+{
+  std::vector<float> angle; // exemplar frame
+  std::vector<std::array<float, kAlongSamples>> along;
+  std::vector<std::array<float, kAcrossSamples>> across;
+};
+
+// Straight-line profiles from the centre to each arm's end and across it there,
+// relative to the centre height; NaN where the field is invalid or outside.
+SiteProfiles sampleSite(const FeatureSite& site, const Heightfield& hf, int patchSize)
+{
+  SiteProfiles p;
+  const float base = sampleBilinear(hf, site.centre.x, site.centre.y);
+  const double half = 0.25 * patchSize;
+  const std::size_t n = std::min<std::size_t>(site.arms.size(), kMaxArms);
+  for (std::size_t a = 0; a < n; ++a)
+  {
+    const ControlPoint& cp = site.arms[a];
+    p.angle.push_back(static_cast<float>(cp.angle));
+    std::array<float, kAlongSamples> al{};
+    for (int k = 0; k < kAlongSamples; ++k)
+    {
+      const double t = static_cast<double>(k) / (kAlongSamples - 1);
+      al[static_cast<std::size_t>(k)] = sampleBilinear(hf,
+                                          site.centre.x + t * (cp.position.x - site.centre.x),
+                                          site.centre.y + t * (cp.position.y - site.centre.y)) -
+        base;
+    }
+    std::array<float, kAcrossSamples> ac{};
+    const double nx = -std::sin(cp.angle);
+    const double ny = std::cos(cp.angle);
+    for (int k = 0; k < kAcrossSamples; ++k)
+    {
+      const double d = half * (1.0 - 2.0 * k / (kAcrossSamples - 1));
+      ac[static_cast<std::size_t>(k)] =
+        sampleBilinear(hf, cp.position.x + d * nx, cp.position.y + d * ny) - base;
+    }
+    p.along.push_back(al);
+    p.across.push_back(ac);
+  }
+  return p;
+}
+
+// 1 where a square of half-side r around (x, y) lies inside and on valid cells.
+class FootprintCheck
+{
+public:
+  explicit FootprintCheck(const Heightfield& hf)
+    : w_(hf.width)
+    , h_(hf.height)
+    , sat_(static_cast<std::size_t>(hf.width + 1) * static_cast<std::size_t>(hf.height + 1), 0)
+  {
+    for (int j = 0; j < h_; ++j)
+    {
+      long row = 0;
+      for (int i = 0; i < w_; ++i)
+      {
+        row += hf.isValid(i, j) ? 0 : 1;
+        sat_[at(i + 1, j + 1)] = sat_[at(i + 1, j)] + row;
+      }
+    }
+  }
+  bool clear(double x, double y, int r) const
+  {
+    const int i0 = static_cast<int>(std::floor(x)) - r;
+    const int j0 = static_cast<int>(std::floor(y)) - r;
+    const int i1 = static_cast<int>(std::ceil(x)) + r + 1;
+    const int j1 = static_cast<int>(std::ceil(y)) + r + 1;
+    if (i0 < 0 || j0 < 0 || i1 > w_ || j1 > h_)
+    {
+      return false;
+    }
+    return sat_[at(i1, j1)] - sat_[at(i0, j1)] - sat_[at(i1, j0)] + sat_[at(i0, j0)] == 0;
+  }
+
+private:
+  std::size_t at(int i, int j) const
+  {
+    return static_cast<std::size_t>(j) * static_cast<std::size_t>(w_ + 1) +
+      static_cast<std::size_t>(i);
+  }
+  int w_;
+  int h_;
+  std::vector<long> sat_;
+};
+
+// First cell of the patch window around a centre: windows of side `size`
+// start at round(c) - size / 2, for the pool and the queries alike.
+int windowStart(double centre, int size)
+{
+  return static_cast<int>(std::lround(centre)) - size / 2;
+}
+
+// Means of valid cells over axis-aligned blocks, from summed-area tables.
+class BlockMeans
+{
+public:
+  explicit BlockMeans(const Heightfield& hf)
+    : w_(hf.width)
+    , h_(hf.height)
+    , sum_(static_cast<std::size_t>(hf.width + 1) * static_cast<std::size_t>(hf.height + 1), 0.0)
+    , count_(sum_.size(), 0.0)
+  {
+    for (int j = 0; j < h_; ++j)
+    {
+      double rs = 0.0;
+      double rc = 0.0;
+      for (int i = 0; i < w_; ++i)
+      {
+        if (hf.isValid(i, j))
+        {
+          rs += hf.at(i, j);
+          rc += 1.0;
+        }
+        sum_[at(i + 1, j + 1)] = sum_[at(i + 1, j)] + rs;
+        count_[at(i + 1, j + 1)] = count_[at(i + 1, j)] + rc;
+      }
+    }
+  }
+  // kDescriptorSide^2 block means of the window of side `size` around (cx, cy).
+  void summary(double cx, double cy, int size, float* out) const
+  {
+    const int x0 = windowStart(cx, size);
+    const int y0 = windowStart(cy, size);
+    for (int b = 0; b < kDescriptorSide; ++b)
+    {
+      for (int a = 0; a < kDescriptorSide; ++a)
+      {
+        const int i0 = std::clamp(x0 + a * size / kDescriptorSide, 0, w_);
+        const int i1 = std::clamp(x0 + (a + 1) * size / kDescriptorSide, 0, w_);
+        const int j0 = std::clamp(y0 + b * size / kDescriptorSide, 0, h_);
+        const int j1 = std::clamp(y0 + (b + 1) * size / kDescriptorSide, 0, h_);
+        const double n = rect(count_, i0, j0, i1, j1);
+        out[b * kDescriptorSide + a] =
+          n > 0 ? static_cast<float>(rect(sum_, i0, j0, i1, j1) / n) : std::nanf("");
+      }
+    }
+  }
+
+private:
+  std::size_t at(int i, int j) const
+  {
+    return static_cast<std::size_t>(j) * static_cast<std::size_t>(w_ + 1) +
+      static_cast<std::size_t>(i);
+  }
+  double rect(const std::vector<double>& t, int i0, int j0, int i1, int j1) const
+  {
+    return t[at(i1, j1)] - t[at(i0, j1)] - t[at(i1, j0)] + t[at(i0, j0)];
+  }
+  int w_;
+  int h_;
+  std::vector<double> sum_;
+  std::vector<double> count_;
+};
+
+} // namespace
+
+std::vector<FeatureSite> featureSites(const FeatureGraph& graph, int patchSize)
+{
+  const double radius = 0.5 * patchSize;
+  FeatureGraph g = graph;
+  computeControlPoints(g, radius);
+  std::vector<FeatureSite> sites;
+  for (std::size_t n = 0; n < g.nodes.size(); ++n)
+  {
+    const FeatureNode& node = g.nodes[n];
+    if (node.kind == NodeKind::Path)
+    {
+      continue; // loop anchors are covered by the path points
+    }
+    FeatureSite s;
+    s.centre = node.position;
+    s.type = node.type;
+    s.kind = node.kind;
+    s.node = static_cast<int>(n);
+    s.arms = node.controls;
+    sites.push_back(std::move(s));
+  }
+  const double spacing = 0.5 * radius; // a quarter patch: denser than placement needs
+  for (std::size_t c = 0; c < g.chains.size(); ++c)
+  {
+    const FeatureChain& ch = g.chains[c];
+    std::vector<double> arc{ 0.0 };
+    for (std::size_t k = 1; k < ch.points.size(); ++k)
+    {
+      arc.push_back(arc.back() +
+        std::hypot(ch.points[k].x - ch.points[k - 1].x, ch.points[k].y - ch.points[k - 1].y));
+    }
+    const double length = arc.back();
+    for (double s = 0.5 * radius; s <= length - 0.5 * radius + 1e-9; s += spacing)
+    {
+      FeatureSite site;
+      site.centre = pointAt(ch.points, arc, s);
+      site.type = ch.type;
+      site.kind = NodeKind::Path;
+      site.chain = static_cast<int>(c);
+      site.arms.push_back(armAlong(ch.points, arc, s, +1, radius, static_cast<int>(c)));
+      site.arms.push_back(armAlong(ch.points, arc, s, -1, radius, static_cast<int>(c)));
+      sites.push_back(std::move(site));
+    }
+  }
+  return sites;
+}
+
+CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplars,
+  const std::vector<const FeatureGraph*>& graphs,
+  const PoolOptions& options,
+  const std::vector<std::string>& names)
+{
+  if (exemplars.size() != graphs.size())
+  {
+    throw Error("Each exemplar needs its feature graph.");
+  }
+  const int P = options.patchSize;
+  CandidatePool pool;
+  pool.patchSize = P;
+  double sum = 0.0;
+  double square = 0.0;
+  double count = 0.0;
+  for (const Heightfield* ex : exemplars)
+  {
+    for (std::size_t k = 0; k < ex->size(); ++k)
+    {
+      if (ex->isValid(k))
+      {
+        sum += ex->z[k];
+        square += static_cast<double>(ex->z[k]) * ex->z[k];
+        count += 1.0;
+      }
+    }
+  }
+  const double mean = count > 0 ? sum / count : 0.0;
+  pool.heightScale =
+    std::max(1e-6, std::sqrt(std::max(0.0, square / std::max(1.0, count) - mean * mean)));
+
+  // A square of this half-side contains the patch in every rotation.
+  const int footprint = static_cast<int>(std::ceil(0.5 * P * std::sqrt(2.0))) + 1;
+  for (std::size_t e = 0; e < exemplars.size(); ++e)
+  {
+    const Heightfield& ex = *exemplars[e];
+    ExemplarInfo info;
+    info.name = e < names.size() ? names[e] : "exemplar " + std::to_string(e);
+    info.width = ex.width;
+    info.height = ex.height;
+    info.firstCandidate = pool.size();
+    if (ex.width < P || ex.height < P)
+    {
+      throw Error(info.name + " is " + std::to_string(ex.width) + " x " +
+        std::to_string(ex.height) + " cells, smaller than one patch (" + std::to_string(P) + " x " +
+        std::to_string(P) + ").");
+    }
+    const FootprintCheck check(ex);
+    const NoiseVariance noise(ex);
+    std::vector<FeatureSite> sites = featureSites(*graphs[e], P);
+    std::size_t rejected = 0;
+    for (FeatureSite& site : sites)
+    {
+      if (site.arms.empty() || !check.clear(site.centre.x, site.centre.y, footprint))
+      {
+        ++rejected;
+        continue;
+      }
+      const SiteProfiles prof = sampleSite(site, ex, P);
+      const auto nv = noise.window(site.centre.x, site.centre.y, P);
+      const int siteIndex = static_cast<int>(pool.sites.size());
+      pool.sites.push_back(site);
+      const int arms = static_cast<int>(prof.angle.size());
+      for (int k = 0; k < kVariantCount; ++k)
+      {
+        if (!options.variants[static_cast<std::size_t>(k)])
+        {
+          continue;
+        }
+        const Variant v = variant(k);
+        pool.exemplar.push_back(static_cast<int>(e));
+        pool.site.push_back(siteIndex);
+        pool.variant.push_back(k);
+        pool.kind.push_back(static_cast<int>(site.kind));
+        pool.type.push_back(static_cast<int>(site.type));
+        pool.arms.push_back(arms);
+        pool.centreX.push_back(static_cast<float>(site.centre.x));
+        pool.centreY.push_back(static_cast<float>(site.centre.y));
+        // Arms in counter-clockwise order of their placed angles.
+        std::vector<int> order(static_cast<std::size_t>(arms));
+        std::iota(order.begin(), order.end(), 0);
+        std::vector<double> placed(static_cast<std::size_t>(arms));
+        for (int a = 0; a < arms; ++a)
+        {
+          placed[static_cast<std::size_t>(a)] =
+            v.placedAngle(prof.angle[static_cast<std::size_t>(a)]);
+        }
+        std::sort(order.begin(),
+          order.end(),
+          [&](int x, int y)
+          { return placed[static_cast<std::size_t>(x)] < placed[static_cast<std::size_t>(y)]; });
+        for (int slot = 0; slot < kMaxArms; ++slot)
+        {
+          const bool used = slot < arms;
+          const std::size_t a =
+            used ? static_cast<std::size_t>(order[static_cast<std::size_t>(slot)]) : 0;
+          pool.angles.push_back(used ? static_cast<float>(placed[a]) : 0.0f);
+          for (int s = 0; s < kAlongSamples; ++s)
+          {
+            pool.along.push_back(used ? prof.along[a][static_cast<std::size_t>(s)] : 0.0f);
+          }
+          for (int s = 0; s < kAcrossSamples; ++s)
+          {
+            // A mirror swaps the two sides of an arm.
+            const int src = v.mirrored ? kAcrossSamples - 1 - s : s;
+            pool.across.push_back(used ? prof.across[a][static_cast<std::size_t>(src)] : 0.0f);
+          }
+        }
+        pool.noise.insert(pool.noise.end(), nv.begin(), nv.end());
+      }
+    }
+    // Summaries: block means of the exemplar as seen through each variant, one
+    // oriented copy at a time (summed-area table: four reads a block).
+    pool.descriptor.resize(pool.size() * kDescriptorSize);
+    for (int k = 0; k < kVariantCount; ++k)
+    {
+      if (!options.variants[static_cast<std::size_t>(k)])
+      {
+        continue;
+      }
+      const Variant v = variant(k);
+      double cu = 0.0;
+      double cv = 0.0;
+      const BlockMeans means(orientExemplar(ex, v, &cu, &cv));
+      for (std::size_t c = info.firstCandidate; c < pool.size(); ++c)
+      {
+        if (pool.variant[c] != k)
+        {
+          continue;
+        }
+        // The site's centre in the oriented copy: m^-1 (centre - exemplar centre).
+        const double dx = pool.centreX[c] - 0.5 * (ex.width - 1);
+        const double dy = pool.centreY[c] - 0.5 * (ex.height - 1);
+        const double det = v.m[0] * v.m[3] - v.m[1] * v.m[2];
+        const double px = cu + (v.m[3] * dx - v.m[1] * dy) / det;
+        const double py = cv + (-v.m[2] * dx + v.m[0] * dy) / det;
+        means.summary(px, py, P, pool.descriptor.data() + c * kDescriptorSize);
+      }
+    }
+    info.candidateCount = pool.size() - info.firstCandidate;
+    if (info.candidateCount == 0)
+    {
+      pool.warnings.push_back(info.name +
+        " has no feature sites at least half a patch from its edges and nodata; only non-feature "
+        "matching can use it.");
+    }
+    else if (rejected > 0)
+    {
+      pool.warnings.push_back(info.name + ": " + std::to_string(rejected) + " of " +
+        std::to_string(sites.size()) +
+        " feature sites are too close to an edge or nodata and were left out.");
+    }
+    pool.exemplars.push_back(info);
+  }
+  return pool;
+}
+
+void mergePools(CandidatePool& a, const CandidatePool& b)
+{
+  const int exemplarOffset = static_cast<int>(a.exemplars.size());
+  const int siteOffset = static_cast<int>(a.sites.size());
+  const std::size_t candidateOffset = a.size();
+  const double na = static_cast<double>(a.size());
+  const double nb = static_cast<double>(b.size());
+  a.heightScale = na + nb > 0
+    ? std::sqrt(
+        (na * a.heightScale * a.heightScale + nb * b.heightScale * b.heightScale) / (na + nb))
+    : a.heightScale;
+  for (ExemplarInfo info : b.exemplars)
+  {
+    info.firstCandidate += candidateOffset;
+    a.exemplars.push_back(info);
+  }
+  for (int e : b.exemplar)
+  {
+    a.exemplar.push_back(e + exemplarOffset);
+  }
+  for (int s : b.site)
+  {
+    a.site.push_back(s + siteOffset);
+  }
+  auto append = [](auto& x, const auto& y) { x.insert(x.end(), y.begin(), y.end()); };
+  append(a.variant, b.variant);
+  append(a.kind, b.kind);
+  append(a.type, b.type);
+  append(a.arms, b.arms);
+  append(a.centreX, b.centreX);
+  append(a.centreY, b.centreY);
+  append(a.angles, b.angles);
+  append(a.along, b.along);
+  append(a.across, b.across);
+  append(a.noise, b.noise);
+  append(a.descriptor, b.descriptor);
+  append(a.sites, b.sites);
+  append(a.warnings, b.warnings);
+}
+
+FeatureQuery makeFeatureQuery(const FeatureSite& site,
+  const Heightfield& target,
+  const NoiseVariance& targetNoise,
+  const Heightfield* output,
+  const std::vector<std::uint8_t>* known,
+  int patchSize)
+{
+  FeatureQuery q;
+  q.type = static_cast<int>(site.type);
+  q.kind = static_cast<int>(site.kind);
+  const SiteProfiles prof = sampleSite(site, target, patchSize);
+  q.arms = static_cast<int>(prof.angle.size());
+  std::vector<int> order(static_cast<std::size_t>(q.arms));
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(),
+    order.end(),
+    [&](int x, int y)
+    { return prof.angle[static_cast<std::size_t>(x)] < prof.angle[static_cast<std::size_t>(y)]; });
+  for (int slot = 0; slot < q.arms; ++slot)
+  {
+    const std::size_t a = static_cast<std::size_t>(order[static_cast<std::size_t>(slot)]);
+    q.angles[static_cast<std::size_t>(slot)] = prof.angle[a];
+    std::copy(prof.along[a].begin(), prof.along[a].end(), q.along.begin() + slot * kAlongSamples);
+    std::copy(
+      prof.across[a].begin(), prof.across[a].end(), q.across.begin() + slot * kAcrossSamples);
+  }
+  q.noise = targetNoise.window(site.centre.x, site.centre.y, patchSize);
+
+  if (output != nullptr && known != nullptr)
+  {
+    const int x0 = windowStart(site.centre.x, patchSize);
+    const int y0 = windowStart(site.centre.y, patchSize);
+    for (int b = 0; b < kDescriptorSide; ++b)
+    {
+      for (int a = 0; a < kDescriptorSide; ++a)
+      {
+        double s = 0.0;
+        double n = 0.0;
+        double total = 0.0;
+        const int i0 = x0 + a * patchSize / kDescriptorSide;
+        const int i1 = x0 + (a + 1) * patchSize / kDescriptorSide;
+        const int j0 = y0 + b * patchSize / kDescriptorSide;
+        const int j1 = y0 + (b + 1) * patchSize / kDescriptorSide;
+        for (int j = j0; j < j1; ++j)
+        {
+          for (int i = i0; i < i1; ++i)
+          {
+            total += 1.0;
+            if (i >= 0 && j >= 0 && i < output->width && j < output->height &&
+              (*known)[output->index(i, j)] != 0 && output->isValid(i, j))
+            {
+              s += output->at(i, j);
+              n += 1.0;
+            }
+          }
+        }
+        const std::size_t k = static_cast<std::size_t>(b * kDescriptorSide + a);
+        q.weight[k] = total > 0 ? static_cast<float>(n / total) : 0.0f;
+        q.descriptor[k] = n > 0 ? static_cast<float>(s / n) : 0.0f;
+      }
+    }
+  }
+  return q;
+}
+
+} // namespace tsynth

@@ -1,0 +1,156 @@
+#include "FeatureCost.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace tsynth
+{
+namespace
+{
+
+constexpr float kPi = 3.14159265358979f;
+
+// One candidate's cost; the OpenCL kernel (OpenCL/FeatureCost.cl) follows this
+// function line by line so both backends give the same numbers.
+float candidateCost(const CandidatePool& pool,
+  std::size_t c,
+  const FeatureQuery& q,
+  const MatchWeights& w,
+  float invScale2)
+{
+  // Overlap: weighted SSD of the summaries, optionally up to a vertical offset.
+  const float* d = pool.descriptor.data() + c * kDescriptorSize;
+  float sw = 0.0f;
+  float swd = 0.0f;
+  float swd2 = 0.0f;
+  for (int k = 0; k < kDescriptorSize; ++k)
+  {
+    const float diff = q.descriptor[static_cast<std::size_t>(k)] - d[k];
+    const float wk = q.weight[static_cast<std::size_t>(k)];
+    sw += wk;
+    swd += wk * diff;
+    swd2 += wk * diff * diff;
+  }
+  float overlap = 0.0f;
+  if (sw > 0.0f)
+  {
+    overlap = w.verticalOffset ? (swd2 - swd * swd / sw) / sw : swd2 / sw;
+    overlap *= invScale2;
+  }
+  const float costOverlap = static_cast<float>(w.overlap) * overlap;
+  if (pool.type[c] != q.type || pool.kind[c] != q.kind || pool.arms[c] != q.arms)
+  {
+    return kMismatchPenalty + costOverlap;
+  }
+
+  // Arms: the cyclic alignment with the lowest a_f c_f + a_a c_a.
+  const int arms = q.arms;
+  float best = 3.4e38f;
+  for (int s = 0; s < std::max(1, arms); ++s)
+  {
+    float profile = 0.0f;
+    float samples = 0.0f;
+    float angle = 0.0f;
+    for (int a = 0; a < arms; ++a)
+    {
+      const int b = (a + s) % arms;
+      float da = q.angles[static_cast<std::size_t>(a)] -
+        pool.angles[c * kMaxArms + static_cast<std::size_t>(b)];
+      da = std::remainder(da, 2.0f * kPi) / kPi;
+      angle += da * da;
+      const float* ca =
+        pool.along.data() + (c * kMaxArms + static_cast<std::size_t>(b)) * kAlongSamples;
+      for (int k = 0; k < kAlongSamples; ++k)
+      {
+        const float t = q.along[static_cast<std::size_t>(a * kAlongSamples + k)];
+        if (!std::isnan(t))
+        {
+          profile += (t - ca[k]) * (t - ca[k]);
+          samples += 1.0f;
+        }
+      }
+      const float* cx =
+        pool.across.data() + (c * kMaxArms + static_cast<std::size_t>(b)) * kAcrossSamples;
+      for (int k = 0; k < kAcrossSamples; ++k)
+      {
+        const float t = q.across[static_cast<std::size_t>(a * kAcrossSamples + k)];
+        if (!std::isnan(t))
+        {
+          profile += (t - cx[k]) * (t - cx[k]);
+          samples += 1.0f;
+        }
+      }
+    }
+    const float cf = samples > 0.0f ? profile / samples * invScale2 : 0.0f;
+    const float ca = arms > 0 ? angle / static_cast<float>(arms) : 0.0f;
+    best = std::min(best, static_cast<float>(w.feature) * cf + static_cast<float>(w.angle) * ca);
+  }
+  float cn = 0.0f;
+  for (int l = 0; l < kNoiseLevels; ++l)
+  {
+    const float dn = (q.noise[static_cast<std::size_t>(l)] -
+                       pool.noise[c * kNoiseLevels + static_cast<std::size_t>(l)]) *
+      invScale2;
+    cn += dn * dn;
+  }
+  return best + static_cast<float>(w.noise) * cn + costOverlap;
+}
+
+} // namespace
+
+std::vector<float> scoreFeatureCandidates(const CandidatePool& pool,
+  const FeatureQuery& query,
+  const MatchWeights& weights)
+{
+  std::vector<float> costs(pool.size());
+  const float invScale2 = static_cast<float>(1.0 / (pool.heightScale * pool.heightScale));
+  const long n = static_cast<long>(pool.size());
+#pragma omp parallel for schedule(static)
+  for (long c = 0; c < n; ++c)
+  {
+    costs[static_cast<std::size_t>(c)] =
+      candidateCost(pool, static_cast<std::size_t>(c), query, weights, invScale2);
+  }
+  return costs;
+}
+
+std::vector<RankedCandidate> topK(const std::vector<float>& costs, std::size_t k)
+{
+  std::vector<std::size_t> idx(costs.size());
+  std::iota(idx.begin(), idx.end(), 0);
+  k = std::min(k, idx.size());
+  auto less = [&](std::size_t a, std::size_t b)
+  { return costs[a] < costs[b] || (costs[a] == costs[b] && a < b); };
+  std::partial_sort(idx.begin(), idx.begin() + static_cast<long>(k), idx.end(), less);
+  std::vector<RankedCandidate> out;
+  for (std::size_t r = 0; r < k; ++r)
+  {
+    out.push_back({ idx[r], costs[idx[r]] });
+  }
+  return out;
+}
+
+std::vector<RankedCandidate> topKPerExemplar(const CandidatePool& pool,
+  const std::vector<float>& costs,
+  std::size_t k)
+{
+  std::vector<RankedCandidate> merged;
+  for (const ExemplarInfo& e : pool.exemplars)
+  {
+    std::vector<float> part(costs.begin() + static_cast<long>(e.firstCandidate),
+      costs.begin() + static_cast<long>(e.firstCandidate + e.candidateCount));
+    for (RankedCandidate r : topK(part, k))
+    {
+      r.index += e.firstCandidate;
+      merged.push_back(r);
+    }
+  }
+  std::stable_sort(merged.begin(),
+    merged.end(),
+    [](const RankedCandidate& a, const RankedCandidate& b)
+    { return a.cost < b.cost || (a.cost == b.cost && a.index < b.index); });
+  return merged;
+}
+
+} // namespace tsynth

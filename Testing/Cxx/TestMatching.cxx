@@ -1,0 +1,397 @@
+#include "Core/Error.h"
+#include "Core/HeightfieldIO.h"
+#include "Features/Ppa.h"
+#include "Matching/CandidatePool.h"
+#include "Matching/DenseSearch.h"
+#include "Matching/FeatureCost.h"
+#include "TestData.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace tsynth;
+
+namespace
+{
+
+constexpr double kPi = 3.14159265358979323846;
+
+Heightfield crop(const Heightfield& hf, int x0, int y0, int w, int h)
+{
+  Heightfield out(w, h);
+  out.cellX = hf.cellX;
+  out.cellY = hf.cellY;
+  for (int j = 0; j < h; ++j)
+  {
+    for (int i = 0; i < w; ++i)
+    {
+      out.at(i, j) = hf.at(x0 + i, y0 + j);
+    }
+  }
+  return out;
+}
+
+const Heightfield& colorado()
+{
+  static const Heightfield hf =
+    readHeightfield((test::bundledData() / "dems" / "colorado.png").string());
+  return hf;
+}
+
+// A one-candidate pool filled by hand, to check the cost formula term by term.
+CandidatePool handPool()
+{
+  CandidatePool p;
+  p.patchSize = 80;
+  p.heightScale = 10.0;
+  p.exemplars.push_back({ "hand", 100, 100, 0, 1 });
+  p.exemplar = { 0 };
+  p.site = { 0 };
+  p.variant = { 0 };
+  p.kind = { static_cast<int>(NodeKind::Path) };
+  p.type = { 1 };
+  p.arms = { 2 };
+  p.centreX = { 50 };
+  p.centreY = { 50 };
+  p.angles = { 0.0f, static_cast<float>(kPi), 0.0f, 0.0f };
+  p.along.assign(kMaxArms * kAlongSamples, 0.0f);
+  p.across.assign(kMaxArms * kAcrossSamples, 0.0f);
+  p.noise = { 100.0f, 0.0f, 0.0f };
+  p.descriptor.assign(kDescriptorSize, 1000.0f);
+  return p;
+}
+
+FeatureQuery handQuery()
+{
+  FeatureQuery q;
+  q.type = 1;
+  q.kind = static_cast<int>(NodeKind::Path);
+  q.arms = 2;
+  q.angles = { 0.1f, static_cast<float>(kPi) + 0.1f, 0.0f, 0.0f };
+  q.along.fill(0.0f);
+  q.across.fill(0.0f);
+  for (int k = 0; k < 2 * kAlongSamples; ++k)
+  {
+    q.along[static_cast<std::size_t>(k)] = 2.0f;
+  }
+  for (int k = 0; k < 2 * kAcrossSamples; ++k)
+  {
+    q.across[static_cast<std::size_t>(k)] = 2.0f;
+  }
+  q.noise = { 0.0f, 0.0f, 0.0f };
+  q.descriptor.fill(1005.0f);
+  q.weight.fill(1.0f);
+  return q;
+}
+
+} // namespace
+
+TEST(Orientation, QuarterTurnsAndMirrorsAreExactCopies)
+{
+  Heightfield ex(5, 3);
+  for (int j = 0; j < 3; ++j)
+  {
+    for (int i = 0; i < 5; ++i)
+    {
+      ex.at(i, j) = static_cast<float>(10 * j + i);
+    }
+  }
+  for (int k : { 0, 2, 4, 6, 8, 9 })
+  {
+    double cu = 0.0;
+    double cv = 0.0;
+    const Heightfield out = orientExemplar(ex, variant(k), &cu, &cv);
+    EXPECT_FALSE(out.hasMask()) << "variant " << k;
+    // Exemplar offset (a, b) from its centre appears rotated by k * 45 degrees
+    // (or mirrored) around the centre of the placed image.
+    for (int j = 0; j < 3; ++j)
+    {
+      for (int i = 0; i < 5; ++i)
+      {
+        const double a = i - 2.0;
+        const double b = j - 1.0;
+        double pu = a;
+        double pv = b;
+        if (k < 8)
+        {
+          const double t = k * kPi / 4;
+          pu = std::round(std::cos(t) * a - std::sin(t) * b);
+          pv = std::round(std::sin(t) * a + std::cos(t) * b);
+        }
+        else if (k == 8)
+        {
+          pu = -a;
+        }
+        else
+        {
+          pv = -b;
+        }
+        ASSERT_EQ(out.at(static_cast<int>(cu + pu), static_cast<int>(cv + pv)), ex.at(i, j))
+          << "variant " << k << " cell " << i << "," << j;
+      }
+    }
+  }
+  EXPECT_EQ(orientExemplar(ex, variant(2)).width, 3);
+  EXPECT_EQ(orientExemplar(ex, variant(2)).height, 5);
+  const Heightfield diagonal = orientExemplar(ex, variant(1));
+  EXPECT_TRUE(diagonal.hasMask()); // corners outside the rotated exemplar
+}
+
+TEST(Orientation, FeatureAnglesFollowTheVariant)
+{
+  EXPECT_NEAR(variant(2).placedAngle(0.0), kPi / 2, 1e-12);
+  EXPECT_NEAR(variant(1).placedAngle(0.0), kPi / 4, 1e-12);
+  EXPECT_NEAR(std::abs(variant(8).placedAngle(0.0)), kPi, 1e-12);
+  EXPECT_NEAR(variant(9).placedAngle(kPi / 2), -kPi / 2, 1e-12);
+}
+
+TEST(FeatureCost, HandMadeCandidateHasTheExpectedCost)
+{
+  const CandidatePool pool = handPool();
+  const FeatureQuery q = handQuery();
+  const MatchWeights w;
+  // c_f: profiles differ by 2 m, scale 10 m -> 0.04; c_a: both arms off by 0.1 rad
+  // -> (0.1 / pi)^2; c_n: 100 m^2 vs 0, scale^2 100 -> 1; c_o: 5 m -> 0.25.
+  const double expected = 5.0 * 0.04 + 2.0 * std::pow(0.1 / kPi, 2) + 0.001 * 1.0 + 1.0 * 0.25;
+  const std::vector<float> costs = scoreFeatureCandidates(pool, q, w);
+  ASSERT_EQ(costs.size(), 1u);
+  EXPECT_NEAR(costs[0], expected, 1e-5);
+
+  MatchWeights offset = w;
+  offset.verticalOffset = true; // a constant 5 m difference is no mismatch
+  EXPECT_NEAR(scoreFeatureCandidates(pool, q, offset)[0], expected - 0.25, 1e-5);
+
+  FeatureQuery branch = q;
+  branch.kind = static_cast<int>(NodeKind::Branch);
+  EXPECT_GE(scoreFeatureCandidates(pool, branch, w)[0], kMismatchPenalty);
+  FeatureQuery valley = q;
+  valley.type = -1;
+  EXPECT_NEAR(scoreFeatureCandidates(pool, valley, w)[0], kMismatchPenalty + 0.25, 1.0);
+
+  // Arms given in the other order align cyclically at no extra cost.
+  FeatureQuery swapped = q;
+  std::swap(swapped.angles[0], swapped.angles[1]);
+  EXPECT_NEAR(scoreFeatureCandidates(pool, swapped, w)[0], expected, 1e-5);
+}
+
+TEST(FeatureCost, UnitsDoNotChangeTheRanking)
+{
+  // The same terrain in metres and scaled to feet gives the same costs.
+  const Heightfield metres = crop(colorado(), 100, 100, 300, 300);
+  Heightfield feet = metres;
+  for (float& v : feet.z)
+  {
+    v = static_cast<float>(v / 0.3048);
+  }
+  const FeatureExtraction fm = extractFeatures(metres, FeatureType::Ridge, {});
+  PoolOptions o;
+  o.patchSize = 48;
+  const CandidatePool pm = buildCandidatePool({ &metres }, { &fm.graph }, o);
+  const CandidatePool pf = buildCandidatePool({ &feet }, { &fm.graph }, o);
+  ASSERT_EQ(pm.size(), pf.size());
+  ASSERT_GT(pm.size(), 100u);
+  const NoiseVariance nm(metres);
+  const NoiseVariance nf(feet);
+  const std::size_t probe = pm.sites.size() / 2;
+  const FeatureQuery qm = makeFeatureQuery(pm.sites[probe], metres, nm, &metres, nullptr, 48);
+  const FeatureQuery qf = makeFeatureQuery(pf.sites[probe], feet, nf, &feet, nullptr, 48);
+  const auto cm = scoreFeatureCandidates(pm, qm, {});
+  const auto cf = scoreFeatureCandidates(pf, qf, {});
+  for (std::size_t c = 0; c < cm.size(); ++c)
+  {
+    ASSERT_NEAR(cm[c], cf[c], 1e-3 * std::max(1.0f, std::abs(cm[c])));
+  }
+}
+
+TEST(CandidatePool, ASiteMatchesItselfFirst)
+{
+  const Heightfield ex = crop(colorado(), 50, 50, 400, 400);
+  const FeatureExtraction f = extractFeatures(ex, FeatureType::Ridge, {});
+  PoolOptions o;
+  o.patchSize = 64;
+  const CandidatePool pool = buildCandidatePool({ &ex }, { &f.graph }, o);
+  ASSERT_EQ(pool.size() % kVariantCount, 0u);
+  EXPECT_EQ(pool.size(), pool.sites.size() * kVariantCount);
+  const NoiseVariance noise(ex);
+  std::vector<std::uint8_t> known(ex.size(), 1);
+  int hits = 0;
+  int trials = 0;
+  for (std::size_t s = 0; s < pool.sites.size();
+       s += std::max<std::size_t>(1, pool.sites.size() / 25))
+  {
+    const FeatureQuery q = makeFeatureQuery(pool.sites[s], ex, noise, &ex, &known, 64);
+    const auto best = topK(scoreFeatureCandidates(pool, q, {}), 1);
+    ASSERT_EQ(best.size(), 1u);
+    ++trials;
+    hits +=
+      pool.site[best[0].index] == static_cast<int>(s) && pool.variant[best[0].index] == 0 ? 1 : 0;
+    EXPECT_LT(best[0].cost, 1e-3f);
+  }
+  EXPECT_GE(hits, trials - 1) << hits << " of " << trials;
+}
+
+TEST(CandidatePool, TwoExemplarsMergeAndKeepTheirOwnTopK)
+{
+  const Heightfield a = crop(colorado(), 0, 0, 300, 300);
+  const Heightfield b = crop(colorado(), 320, 320, 300, 300);
+  const FeatureExtraction fa = extractFeatures(a, FeatureType::Ridge, {});
+  const FeatureExtraction fb = extractFeatures(b, FeatureType::Ridge, {});
+  PoolOptions o;
+  o.patchSize = 48;
+  const CandidatePool pa = buildCandidatePool({ &a }, { &fa.graph }, o, { "a" });
+  const CandidatePool pb = buildCandidatePool({ &b }, { &fb.graph }, o, { "b" });
+  const CandidatePool both =
+    buildCandidatePool({ &a, &b }, { &fa.graph, &fb.graph }, o, { "a", "b" });
+  CandidatePool merged = pa;
+  mergePools(merged, pb);
+  ASSERT_EQ(both.size(), pa.size() + pb.size());
+  ASSERT_EQ(merged.size(), both.size());
+  EXPECT_EQ(merged.descriptor, both.descriptor);
+  EXPECT_EQ(merged.exemplar, both.exemplar);
+  ASSERT_EQ(both.exemplars.size(), 2u);
+  EXPECT_EQ(both.exemplars[1].firstCandidate, pa.size());
+
+  const NoiseVariance noise(a);
+  const FeatureQuery q = makeFeatureQuery(pa.sites[0], a, noise, nullptr, nullptr, 48);
+  const auto costs = scoreFeatureCandidates(both, q, {});
+  const auto perExemplar = topKPerExemplar(both, costs, 3);
+  ASSERT_EQ(perExemplar.size(), 6u);
+  int fromB = 0;
+  for (const auto& r : perExemplar)
+  {
+    fromB += both.exemplar[r.index] == 1 ? 1 : 0;
+  }
+  EXPECT_EQ(fromB, 3);
+  EXPECT_TRUE(std::is_sorted(perExemplar.begin(),
+    perExemplar.end(),
+    [](const RankedCandidate& x, const RankedCandidate& y) { return x.cost < y.cost; }));
+}
+
+TEST(CandidatePool, DeterministicAndNodataExcluded)
+{
+  Heightfield ex = crop(colorado(), 100, 100, 300, 300);
+  ex.valid.assign(ex.size(), 1);
+  for (int j = 140; j < 160; ++j)
+  {
+    for (int i = 140; i < 160; ++i)
+    {
+      ex.valid[ex.index(i, j)] = 0;
+    }
+  }
+  normaliseMask(ex);
+  const FeatureExtraction f = extractFeatures(ex, FeatureType::Ridge, {});
+  PoolOptions o;
+  o.patchSize = 40;
+  const CandidatePool p1 = buildCandidatePool({ &ex }, { &f.graph }, o);
+  const CandidatePool p2 = buildCandidatePool({ &ex }, { &f.graph }, o);
+  EXPECT_EQ(p1.descriptor, p2.descriptor);
+  EXPECT_EQ(p1.along, p2.along);
+  const double reach = std::ceil(20.0 * std::sqrt(2.0)) + 1;
+  for (std::size_t c = 0; c < p1.size(); ++c)
+  {
+    const bool clearX = p1.centreX[c] + reach < 140 || p1.centreX[c] - reach >= 160;
+    const bool clearY = p1.centreY[c] + reach < 140 || p1.centreY[c] - reach >= 160;
+    ASSERT_TRUE(clearX || clearY) << "candidate " << c << " overlaps the nodata hole";
+    ASSERT_FALSE(std::isnan(p1.descriptor[c * kDescriptorSize]));
+  }
+}
+
+TEST(CandidatePool, BadInput)
+{
+  const Heightfield small = crop(colorado(), 0, 0, 50, 50);
+  const FeatureGraph none;
+  PoolOptions o;
+  o.patchSize = 80;
+  EXPECT_THROW(buildCandidatePool({ &small }, { &none }, o), Error);
+  // An exemplar with no features of the type: an empty pool and a warning.
+  Heightfield flat(200, 200, 10.0f);
+  const CandidatePool p = buildCandidatePool({ &flat }, { &none }, o);
+  EXPECT_EQ(p.size(), 0u);
+  ASSERT_EQ(p.warnings.size(), 1u);
+  EXPECT_NE(p.warnings[0].find("non-feature"), std::string::npos);
+}
+
+TEST(DenseSearch, FindsAWindowCutFromTheExemplar)
+{
+  const Heightfield ex = crop(colorado(), 200, 200, 200, 200);
+  DenseOptions o;
+  o.patchSize = 32;
+  const DenseMatcher matcher({ &ex }, o);
+  // The window at (57, 83), half known (an L-shaped overlap, as during filling).
+  DenseQuery q;
+  q.heights.resize(32 * 32);
+  q.known.resize(32 * 32);
+  for (int j = 0; j < 32; ++j)
+  {
+    for (int i = 0; i < 32; ++i)
+    {
+      q.heights[static_cast<std::size_t>(j * 32 + i)] = ex.at(57 + i, 83 + j);
+      q.known[static_cast<std::size_t>(j * 32 + i)] = (i < 10 || j < 10) ? 1 : 0;
+    }
+  }
+  const auto best = matcher.search(q, 3);
+  ASSERT_FALSE(best.empty());
+  EXPECT_EQ(best[0].variant, 0);
+  EXPECT_EQ(best[0].x, 57);
+  EXPECT_EQ(best[0].y, 83);
+  EXPECT_NEAR(best[0].overlap, 0.0f, 1e-9f);
+  EXPECT_NEAR(best[0].centreX, 57 + 15.5, 1e-9);
+  EXPECT_NEAR(best[0].centreY, 83 + 15.5, 1e-9);
+}
+
+TEST(DenseSearch, CoarseToFineFindsTheExhaustiveWinner)
+{
+  // Queries from another part of the DEM, with random known masks: the fast
+  // search must return the brute-force best on at least 95% of them.
+  const Heightfield ex = crop(colorado(), 0, 0, 180, 180);
+  const Heightfield source = crop(colorado(), 300, 300, 300, 300);
+  DenseOptions o;
+  o.patchSize = 32;
+  const DenseMatcher matcher({ &ex }, o);
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> pos(0, 300 - 32);
+  std::uniform_int_distribution<int> band(6, 20);
+  int same = 0;
+  const int queries = 40;
+  for (int n = 0; n < queries; ++n)
+  {
+    const int x0 = pos(rng);
+    const int y0 = pos(rng);
+    const int b = band(rng);
+    DenseQuery q;
+    q.heights.resize(32 * 32);
+    q.known.resize(32 * 32);
+    for (int j = 0; j < 32; ++j)
+    {
+      for (int i = 0; i < 32; ++i)
+      {
+        q.heights[static_cast<std::size_t>(j * 32 + i)] = source.at(x0 + i, y0 + j);
+        q.known[static_cast<std::size_t>(j * 32 + i)] =
+          (n % 2 == 0 ? (i < b || j < b) : (j >= 32 - b)) ? 1 : 0;
+      }
+    }
+    const auto fast = matcher.search(q, 1);
+    const auto exact = matcher.bruteForce(q, 1);
+    ASSERT_EQ(fast.size(), 1u);
+    ASSERT_EQ(exact.size(), 1u);
+    EXPECT_GE(fast[0].cost, exact[0].cost * (1 - 1e-5f)); // never better than exhaustive
+    same +=
+      (fast[0].variant == exact[0].variant && fast[0].x == exact[0].x && fast[0].y == exact[0].y)
+      ? 1
+      : 0;
+  }
+  EXPECT_GE(same, (queries * 95 + 99) / 100) << same << " of " << queries;
+}
+
+TEST(DenseSearch, BadInput)
+{
+  const Heightfield small = crop(colorado(), 0, 0, 40, 40);
+  DenseOptions o;
+  o.patchSize = 64;
+  EXPECT_THROW(DenseMatcher({ &small }, o), Error);
+  o.patchSize = 30; // not a multiple of the coarse factor 4
+  const Heightfield ex = crop(colorado(), 0, 0, 100, 100);
+  EXPECT_THROW(DenseMatcher({ &ex }, o), Error);
+}
