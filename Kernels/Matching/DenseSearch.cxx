@@ -159,6 +159,21 @@ DenseMatcher::DenseMatcher(const std::vector<const Heightfield*>& exemplars, con
       r.coarseValid = windowValidity(r.coarseWidth, r.coarseHeight, P / f, blockValid);
       r.offsetsX = std::max(0, r.coarseWidth - P / f + 1);
       r.offsetsY = std::max(0, r.coarseHeight - P / f + 1);
+      const int groups = (r.offsetsX + 15) / 16;
+      r.groupValid.assign(
+        static_cast<std::size_t>(groups) * static_cast<std::size_t>(r.offsetsY), 0);
+      for (int y = 0; y < r.offsetsY; ++y)
+      {
+        for (int x = 0; x < r.offsetsX; ++x)
+        {
+          if (r.coarseValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(r.offsetsX) +
+                static_cast<std::size_t>(x)] != 0)
+          {
+            r.groupValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(groups) +
+              static_cast<std::size_t>(x / 16)] = 1;
+          }
+        }
+      }
       oriented_.push_back(std::move(r));
     }
   }
@@ -196,6 +211,13 @@ CoarseQuery DenseMatcher::coarseQuery(const DenseQuery& q) const
       const std::size_t k = static_cast<std::size_t>(b * c.side + a);
       c.heights[k] = n > 0 ? static_cast<float>(s / n) : 0.0f;
       c.weights[k] = static_cast<float>(n / (f * f));
+      if (n > 0)
+      {
+        c.row.push_back(b);
+        c.column.push_back(a);
+        c.listHeights.push_back(c.heights[k]);
+        c.listWeights.push_back(c.weights[k]);
+      }
     }
   }
   return c;
@@ -204,68 +226,89 @@ CoarseQuery DenseMatcher::coarseQuery(const DenseQuery& q) const
 std::vector<std::vector<float>> DenseMatcher::coarseCosts(const CoarseQuery& q) const
 {
   std::vector<std::vector<float>> out(oriented_.size());
-  const int side = q.side;
+  // One task per row of offsets of every oriented exemplar, in a single parallel
+  // region (a region per variant stalls when a core is busy elsewhere).
+  std::vector<std::pair<std::size_t, int>> tasks;
   for (std::size_t o = 0; o < oriented_.size(); ++o)
   {
     const Oriented& r = oriented_[o];
-    std::vector<float>& costs = out[o];
-    costs.assign(static_cast<std::size_t>(r.offsetsX) * static_cast<std::size_t>(r.offsetsY), kInf);
-    // Sixteen neighbouring offsets at a time, like the OpenCL kernel (DenseSsd.cl).
-#pragma omp parallel for schedule(static)
+    out[o].assign(
+      static_cast<std::size_t>(r.offsetsX) * static_cast<std::size_t>(r.offsetsY), kInf);
     for (int y = 0; y < r.offsetsY; ++y)
     {
-      for (int x0 = 0; x0 < r.offsetsX; x0 += 16)
+      tasks.push_back({ o, y });
+    }
+  }
+  const std::size_t terms = q.row.size();
+  const long taskCount = static_cast<long>(tasks.size());
+#pragma omp parallel for schedule(dynamic, 16)
+  for (long t = 0; t < taskCount; ++t)
+  {
+    const auto [o, y] = tasks[static_cast<std::size_t>(t)];
+    const Oriented& r = oriented_[o];
+    std::vector<float>& costs = out[o];
+    // Sixteen neighbouring offsets at a time, like the OpenCL kernel (DenseSsd.cl),
+    // over the known blocks only, skipping runs of offsets that are all invalid.
+    const int groups = (r.offsetsX + 15) / 16;
+    for (int g = 0; g < groups; ++g)
+    {
+      if (r.groupValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(groups) +
+            static_cast<std::size_t>(g)] == 0)
       {
-        float acc[16] = {};
-        for (int v = 0; v < side; ++v)
+        continue;
+      }
+      const int x0 = 16 * g;
+      float acc[16] = {};
+      for (std::size_t e = 0; e < terms; ++e)
+      {
+        const float* cells = r.coarse.data() +
+          static_cast<std::size_t>(y + q.row[e]) * static_cast<std::size_t>(r.coarseStride) +
+          static_cast<std::size_t>(x0 + q.column[e]);
+        const float h = q.listHeights[e];
+        const float m = q.listWeights[e];
+        for (int l = 0; l < 16; ++l)
         {
-          const float* row = r.coarse.data() +
-            static_cast<std::size_t>(y + v) * static_cast<std::size_t>(r.coarseStride) +
-            static_cast<std::size_t>(x0);
-          for (int u = 0; u < side; ++u)
-          {
-            const float t = q.heights[static_cast<std::size_t>(v * side + u)];
-            const float m = q.weights[static_cast<std::size_t>(v * side + u)];
-            for (int l = 0; l < 16; ++l)
-            {
-              const float d = t - row[u + l];
-              acc[l] += m * d * d;
-            }
-          }
+          const float d = h - cells[l];
+          acc[l] += m * d * d;
         }
-        for (int l = 0; l < 16 && x0 + l < r.offsetsX; ++l)
-        {
-          const std::size_t k = static_cast<std::size_t>(y) * static_cast<std::size_t>(r.offsetsX) +
-            static_cast<std::size_t>(x0 + l);
-          costs[k] = r.coarseValid[k] != 0 ? acc[l] : kInf;
-        }
+      }
+      for (int l = 0; l < 16 && x0 + l < r.offsetsX; ++l)
+      {
+        const std::size_t k = static_cast<std::size_t>(y) * static_cast<std::size_t>(r.offsetsX) +
+          static_cast<std::size_t>(x0 + l);
+        costs[k] = r.coarseValid[k] != 0 ? acc[l] : kInf;
       }
     }
   }
   return out;
 }
 
-DenseMatch DenseMatcher::evaluate(const DenseQuery& q, std::size_t o, int x, int y) const
+float DenseMatcher::overlapAt(const std::vector<int>& cells,
+  const std::vector<float>& heights,
+  std::size_t o,
+  int x,
+  int y) const
+{
+  const Oriented& r = oriented_[o];
+  const float* base = r.full.z.data() + r.full.index(x, y);
+  float s = 0.0f;
+  for (std::size_t e = 0; e < cells.size(); ++e)
+  {
+    const float d = heights[e] - base[cells[e]];
+    s += d * d;
+  }
+  return cells.empty() ? 0.0f
+                       : static_cast<float>(s / cells.size() / (heightScale_ * heightScale_));
+}
+
+DenseMatch DenseMatcher::describe(const DenseQuery& q,
+  std::size_t o,
+  int x,
+  int y,
+  float overlap) const
 {
   const Oriented& r = oriented_[o];
   const int P = options_.patchSize;
-  double s = 0.0;
-  double n = 0.0;
-  for (int j = 0; j < P; ++j)
-  {
-    const float* row = r.full.z.data() + r.full.index(x, y + j);
-    const float* t = q.heights.data() + static_cast<std::size_t>(j * P);
-    const std::uint8_t* m = q.known.data() + static_cast<std::size_t>(j * P);
-    for (int i = 0; i < P; ++i)
-    {
-      if (m[i] != 0)
-      {
-        const double d = static_cast<double>(t[i]) - row[i];
-        s += d * d;
-        n += 1.0;
-      }
-    }
-  }
   DenseMatch match;
   match.exemplar = r.exemplar;
   match.variant = r.variant;
@@ -277,12 +320,10 @@ DenseMatch DenseMatcher::evaluate(const DenseQuery& q, std::size_t o, int x, int
   double sv = 0.0;
   v.toSource(x + 0.5 * (P - 1) - r.centreX, y + 0.5 * (P - 1) - r.centreY, su, sv);
   const auto& size = exemplarSize_[static_cast<std::size_t>(r.exemplar)];
-  const double ecx = 0.5 * (size[0] - 1);
-  const double ecy = 0.5 * (size[1] - 1);
-  match.centreX = ecx + su;
-  match.centreY = ecy + sv;
+  match.centreX = 0.5 * (size[0] - 1) + su;
+  match.centreY = 0.5 * (size[1] - 1) + sv;
+  match.overlap = overlap;
   const double scale2 = heightScale_ * heightScale_;
-  match.overlap = static_cast<float>(n > 0 ? s / n / scale2 : 0.0);
   const auto nv =
     noise_[static_cast<std::size_t>(r.exemplar)].window(match.centreX, match.centreY, P);
   double cn = 0.0;
@@ -292,10 +333,37 @@ DenseMatch DenseMatcher::evaluate(const DenseQuery& q, std::size_t o, int x, int
       (q.noise[static_cast<std::size_t>(l)] - nv[static_cast<std::size_t>(l)]) / scale2;
     cn += d * d;
   }
-  match.cost =
-    static_cast<float>(options_.overlapWeight * match.overlap + options_.noiseWeight * cn);
+  match.cost = static_cast<float>(options_.overlapWeight * overlap + options_.noiseWeight * cn);
   return match;
 }
+
+namespace
+{
+
+// Known cells of a query as offsets into an image of the given row length.
+void knownCells(const DenseQuery& q,
+  int patch,
+  int stride,
+  std::vector<int>& cells,
+  std::vector<float>& heights)
+{
+  cells.clear();
+  heights.clear();
+  for (int j = 0; j < patch; ++j)
+  {
+    for (int i = 0; i < patch; ++i)
+    {
+      const std::size_t k = static_cast<std::size_t>(j * patch + i);
+      if (q.known[k] != 0)
+      {
+        cells.push_back(j * stride + i);
+        heights.push_back(q.heights[k]);
+      }
+    }
+  }
+}
+
+} // namespace
 
 std::vector<DenseMatch> DenseMatcher::refine(const DenseQuery& q,
   const std::vector<std::vector<float>>& coarse,
@@ -311,10 +379,16 @@ std::vector<DenseMatch> DenseMatcher::refine(const DenseQuery& q,
     // The best coarse offsets, at least two blocks apart.
     std::vector<std::size_t> order(costs.size());
     std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(),
+    // Only the head of the ranking is needed: a partial sort of a few times
+    // more offsets than will be refined (neighbours get suppressed).
+    const std::size_t head =
+      std::min(order.size(), static_cast<std::size_t>(16 * std::max(1, options_.refinePerVariant)));
+    std::partial_sort(order.begin(),
+      order.begin() + static_cast<long>(head),
       order.end(),
       [&](std::size_t a, std::size_t b)
       { return costs[a] < costs[b] || (costs[a] == costs[b] && a < b); });
+    order.resize(head);
     std::vector<std::pair<int, int>> chosen;
     for (std::size_t idx : order)
     {
@@ -334,13 +408,22 @@ std::vector<DenseMatch> DenseMatcher::refine(const DenseQuery& q,
     }
     const int nx = r.full.width - P + 1;
     const int ny = r.full.height - P + 1;
-    for (const auto& [cx, cy] : chosen)
+    std::vector<int> cells;
+    std::vector<float> heights;
+    knownCells(q, P, r.full.width, cells, heights);
+    // The full-resolution optimum lies within half a block of a coarse offset.
+    const int reach = f / 2 + 1;
+    // A few milliseconds in all: serial, no thread start-up per variant.
+    std::vector<DenseMatch> found(chosen.size());
+    for (std::size_t c = 0; c < chosen.size(); ++c)
     {
-      DenseMatch best;
-      best.cost = kInf;
-      for (int y = cy * f - f; y <= cy * f + f; ++y)
+      const auto [cx, cy] = chosen[c];
+      float best = kInf;
+      int bx = -1;
+      int by = -1;
+      for (int y = cy * f - reach; y <= cy * f + reach; ++y)
       {
-        for (int x = cx * f - f; x <= cx * f + f; ++x)
+        for (int x = cx * f - reach; x <= cx * f + reach; ++x)
         {
           if (x < 0 || y < 0 || x >= nx || y >= ny ||
             r.fullValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) +
@@ -348,16 +431,23 @@ std::vector<DenseMatch> DenseMatcher::refine(const DenseQuery& q,
           {
             continue;
           }
-          const DenseMatch m = evaluate(q, o, x, y);
-          if (better(m, best))
+          const float v = overlapAt(cells, heights, o, x, y);
+          if (v < best)
           {
-            best = m;
+            best = v;
+            bx = x;
+            by = y;
           }
         }
       }
-      if (best.cost < kInf)
+      found[c] =
+        bx >= 0 ? describe(q, o, bx, by, best) : DenseMatch{ 0, 0, 0, 0, 0.0, 0.0, kInf, kInf };
+    }
+    for (const DenseMatch& m : found)
+    {
+      if (m.cost < kInf)
       {
-        all.push_back(best);
+        all.push_back(m);
       }
     }
   }
@@ -391,6 +481,9 @@ std::vector<DenseMatch> DenseMatcher::bruteForce(const DenseQuery& q, std::size_
     const int ny = r.full.height - P + 1;
     std::vector<DenseMatch> rows(static_cast<std::size_t>(std::max(0, ny)));
     std::vector<char> found(rows.size(), 0);
+    std::vector<int> cells;
+    std::vector<float> heights;
+    knownCells(q, P, r.full.width, cells, heights);
 #pragma omp parallel for schedule(dynamic)
     for (int y = 0; y < ny; ++y)
     {
@@ -403,7 +496,7 @@ std::vector<DenseMatch> DenseMatcher::bruteForce(const DenseQuery& q, std::size_
         {
           continue;
         }
-        const DenseMatch m = evaluate(q, o, x, y);
+        const DenseMatch m = describe(q, o, x, y, overlapAt(cells, heights, o, x, y));
         if (better(m, best))
         {
           best = m;

@@ -57,6 +57,9 @@ struct CoarseQuery
   int side = 0;
   std::vector<float> heights;
   std::vector<float> weights;
+  // The blocks with a known part, row by row: only they enter the sums.
+  std::vector<int> row, column;
+  std::vector<float> listHeights, listWeights;
 };
 
 class DenseMatcher
@@ -75,6 +78,7 @@ public:
     int coarseStride = 0;      // row length, padded so 16 offsets can be read at once
     std::vector<float> coarse; // coarseHeight x coarseStride block means (0 where invalid)
     std::vector<std::uint8_t> coarseValid; // per coarse offset: whole window valid
+    std::vector<std::uint8_t> groupValid;  // per run of 16 coarse offsets: any of them valid
     std::vector<std::uint8_t> fullValid;   // per full offset: whole window valid
     int offsetsX = 0, offsetsY = 0;        // coarse offsets per row / column
   };
@@ -98,7 +102,13 @@ public:
   std::vector<DenseMatch> bruteForce(const DenseQuery& query, std::size_t k) const;
 
 private:
-  DenseMatch evaluate(const DenseQuery& query, std::size_t o, int x, int y) const;
+  // Mean squared difference over the known cells (listed as cell index and height).
+  float overlapAt(const std::vector<int>& cells,
+    const std::vector<float>& heights,
+    std::size_t o,
+    int x,
+    int y) const;
+  DenseMatch describe(const DenseQuery& query, std::size_t o, int x, int y, float overlap) const;
 
   DenseOptions options_;
   double heightScale_ = 1.0;

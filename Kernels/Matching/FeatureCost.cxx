@@ -20,17 +20,31 @@ float candidateCost(const CandidatePool& pool,
   float invScale2)
 {
   // Overlap: weighted SSD of the summaries, optionally up to a vertical offset.
+  // Sixteen lanes accumulate blocks k, k + 16, ... and are added in order, as in
+  // the OpenCL kernel, so both backends round alike.
   const float* d = pool.descriptor.data() + c * kDescriptorSize;
+  float lw[16] = {};
+  float lwd[16] = {};
+  float lwd2[16] = {};
+  for (int k = 0; k < kDescriptorSize; k += 16)
+  {
+    for (int l = 0; l < 16; ++l)
+    {
+      const float diff = q.descriptor[static_cast<std::size_t>(k + l)] - d[k + l];
+      const float wk = q.weight[static_cast<std::size_t>(k + l)];
+      lw[l] += wk;
+      lwd[l] += wk * diff;
+      lwd2[l] += wk * diff * diff;
+    }
+  }
   float sw = 0.0f;
   float swd = 0.0f;
   float swd2 = 0.0f;
-  for (int k = 0; k < kDescriptorSize; ++k)
+  for (int l = 0; l < 16; ++l)
   {
-    const float diff = q.descriptor[static_cast<std::size_t>(k)] - d[k];
-    const float wk = q.weight[static_cast<std::size_t>(k)];
-    sw += wk;
-    swd += wk * diff;
-    swd2 += wk * diff * diff;
+    sw += lw[l];
+    swd += lwd[l];
+    swd2 += lwd2[l];
   }
   float overlap = 0.0f;
   if (sw > 0.0f)

@@ -1,0 +1,80 @@
+// The matcher's two heavy loops on an OpenCL device (PoCL on this machine's CPU,
+// or any GPU): feature-cost scoring of a whole pool, and the coarse pass of the
+// dense search. Kernels live in Kernels/Matching/OpenCL/*.cl, embedded at build
+// time; results equal the CPU reference (FeatureCost.cxx, DenseSearch.cxx).
+#pragma once
+
+#include "CandidatePool.h"
+#include "DenseSearch.h"
+#include "FeatureCost.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace tsynth
+{
+
+enum class Backend
+{
+  Auto, // OpenCL if a device works, else the CPU (with one line of warning)
+  OpenCL,
+  Cpu
+};
+
+// Parses "auto", "opencl" or "cpu"; throws tsynth::Error otherwise.
+Backend parseBackend(const std::string& text);
+
+class OpenClRuntime;
+
+// Shared device, context, queue and built programs. create() throws
+// tsynth::Error naming the reason (no platform, no device, or the compiler's
+// build log) so callers can fall back to the CPU.
+class OpenClDevice
+{
+public:
+  static std::shared_ptr<OpenClDevice> create();
+  ~OpenClDevice();
+  OpenClDevice(const OpenClDevice&) = delete;
+  OpenClDevice& operator=(const OpenClDevice&) = delete;
+  std::string name() const;
+  OpenClRuntime& runtime() { return *runtime_; }
+
+private:
+  OpenClDevice();
+  std::unique_ptr<OpenClRuntime> runtime_;
+};
+
+// Uploads a pool once; scores queries on the device.
+class OpenClFeatureScorer
+{
+public:
+  OpenClFeatureScorer(std::shared_ptr<OpenClDevice> device, const CandidatePool& pool);
+  ~OpenClFeatureScorer();
+  std::vector<float> score(const FeatureQuery& query, const MatchWeights& weights);
+
+private:
+  struct Buffers;
+  std::shared_ptr<OpenClDevice> device_;
+  std::unique_ptr<Buffers> buffers_;
+  std::size_t size_ = 0;
+  float invScale2_ = 1.0f;
+};
+
+// Uploads a dense matcher's coarse images once; computes coarse costs on the device.
+class OpenClDenseScorer
+{
+public:
+  OpenClDenseScorer(std::shared_ptr<OpenClDevice> device, const DenseMatcher& matcher);
+  ~OpenClDenseScorer();
+  // Same layout and values as DenseMatcher::coarseCosts.
+  std::vector<std::vector<float>> coarseCosts(const CoarseQuery& query);
+
+private:
+  struct Buffers;
+  std::shared_ptr<OpenClDevice> device_;
+  const DenseMatcher& matcher_;
+  std::unique_ptr<Buffers> buffers_;
+};
+
+} // namespace tsynth
