@@ -144,7 +144,7 @@ std::string OpenClDevice::name() const
   return runtime_->deviceName;
 }
 
-std::shared_ptr<OpenClDevice> OpenClDevice::create()
+std::shared_ptr<OpenClDevice> OpenClDevice::create(const std::string& extraSource)
 {
   std::shared_ptr<OpenClDevice> d(new OpenClDevice());
   OpenClRuntime& r = *d->runtime_;
@@ -185,8 +185,11 @@ std::shared_ptr<OpenClDevice> OpenClDevice::create()
   check(status, "create a context");
   r.queue = clCreateCommandQueue(r.context, r.device, 0, &status);
   check(status, "create a command queue");
-  const char* sources[2] = { opencl::kFeatureCostSource, opencl::kDenseSsdSource };
-  r.program = clCreateProgramWithSource(r.context, 2, sources, nullptr, &status);
+  const char* sources[3] = {
+    opencl::kFeatureCostSource, opencl::kDenseSsdSource, extraSource.c_str()
+  };
+  r.program =
+    clCreateProgramWithSource(r.context, extraSource.empty() ? 2 : 3, sources, nullptr, &status);
   check(status, "load the kernels");
   if (clBuildProgram(r.program, 1, &r.device, "-cl-std=CL1.2", nullptr, nullptr) != CL_SUCCESS)
   {

@@ -33,7 +33,9 @@ class OpenClRuntime;
 class OpenClDevice
 {
 public:
-  static std::shared_ptr<OpenClDevice> create();
+  // `extraSource` is compiled with the kernels (tests use it to check that a
+  // build error is reported with the compiler's log).
+  static std::shared_ptr<OpenClDevice> create(const std::string& extraSource = {});
   ~OpenClDevice();
   OpenClDevice(const OpenClDevice&) = delete;
   OpenClDevice& operator=(const OpenClDevice&) = delete;

@@ -4,6 +4,7 @@ set(TSYNTH_MATCHING_SOURCES
   Matching/FeatureCost.cxx
   Matching/NoiseVariance.cxx
   Matching/OpenClMatcher.cxx
+  Matching/PatchMatcher.cxx
   Matching/Orientation.cxx)
 
 # The OpenCL kernels are embedded in the library as strings.

@@ -5,6 +5,7 @@
 #include "Matching/DenseSearch.h"
 #include "Matching/FeatureCost.h"
 #include "Matching/OpenClMatcher.h"
+#include "Matching/PatchMatcher.h"
 #include "TestData.h"
 
 #include <gtest/gtest.h>
@@ -496,4 +497,92 @@ TEST(OpenCL, BackendNames)
   EXPECT_EQ(parseBackend("opencl"), Backend::OpenCL);
   EXPECT_EQ(parseBackend("cpu"), Backend::Cpu);
   EXPECT_THROW(parseBackend("cuda"), Error);
+}
+
+TEST(OpenCL, ABuildErrorIsReportedWithTheCompilerLog)
+{
+  try
+  {
+    OpenClDevice::create("__kernel void broken(__global float* x) { x[0] = undefined_name; }");
+    FAIL() << "a broken kernel built";
+  }
+  catch (const Error& e)
+  {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("did not build"), std::string::npos) << message;
+    EXPECT_NE(message.find("undefined_name"), std::string::npos) << message; // the log names it
+  }
+}
+
+TEST(PatchMatcher, BackendsAgreeAndAutoPicksOpenCL)
+{
+  const Heightfield ex = crop(colorado(), 60, 60, 400, 400);
+  const FeatureExtraction f = extractFeatures(ex, FeatureType::Ridge, {});
+  MatcherOptions o;
+  o.patchSize = 64;
+  o.backend = Backend::Auto;
+  PatchMatcher automatic({ &ex }, { &f.graph }, o);
+  EXPECT_EQ(automatic.backend(), Backend::OpenCL);
+  o.backend = Backend::Cpu;
+  PatchMatcher cpu({ &ex }, { &f.graph }, o);
+  EXPECT_EQ(cpu.backend(), Backend::Cpu);
+  const NoiseVariance noise(ex);
+  const FeatureQuery q = makeFeatureQuery(cpu.pool().sites[3], ex, noise, nullptr, nullptr, 64);
+  const auto a = automatic.matchFeature(q);
+  const auto b = cpu.matchFeature(q);
+  ASSERT_EQ(a.size(), 8u);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t r = 0; r < a.size(); ++r)
+  {
+    EXPECT_EQ(a[r].poolIndex, b[r].poolIndex);
+    EXPECT_NEAR(a[r].cost, b[r].cost, 1e-4 * std::max(1.0f, b[r].cost));
+  }
+}
+
+TEST(PatchMatcher, MissingFeatureTypeFallsBackToDenseWithAWarning)
+{
+  const Heightfield ex = crop(colorado(), 60, 60, 300, 300);
+  const FeatureExtraction ridges = extractFeatures(ex, FeatureType::Ridge, {});
+  MatcherOptions o;
+  o.patchSize = 48;
+  o.backend = Backend::Cpu;
+  PatchMatcher matcher({ &ex }, { &ridges.graph }, o); // ridges only
+  FeatureQuery valley;
+  valley.type = -1;
+  valley.kind = static_cast<int>(NodeKind::End);
+  valley.arms = 1;
+  DenseQuery window;
+  window.heights.assign(48 * 48, 0.0f);
+  window.known.assign(48 * 48, 0);
+  for (int j = 0; j < 48; ++j)
+  {
+    for (int i = 0; i < 12; ++i)
+    {
+      window.heights[static_cast<std::size_t>(j * 48 + i)] = ex.at(100 + i, 120 + j);
+      window.known[static_cast<std::size_t>(j * 48 + i)] = 1;
+    }
+  }
+  const auto found = matcher.matchFeature(valley, &window);
+  ASSERT_FALSE(found.empty());
+  EXPECT_FALSE(found[0].feature);
+  EXPECT_NEAR(found[0].centreX, 100 + 23.5, 1e-9); // the window cut from the exemplar
+  EXPECT_NEAR(found[0].centreY, 120 + 23.5, 1e-9);
+  ASSERT_FALSE(matcher.warnings().empty());
+  EXPECT_NE(matcher.warnings().back().find("non-feature"), std::string::npos);
+}
+
+TEST(PatchMatcher, NoOpenClPlatformFallsBackToTheCpu)
+{
+  // A real failure: the ICD loader is pointed at an empty vendor folder.
+  setenv("OCL_ICD_VENDORS", "/nonexistent-tsynth-test", 1);
+  const Heightfield ex = crop(colorado(), 0, 0, 200, 200);
+  const FeatureExtraction f = extractFeatures(ex, FeatureType::Ridge, {});
+  MatcherOptions o;
+  o.patchSize = 48;
+  PatchMatcher matcher({ &ex }, { &f.graph }, o);
+  EXPECT_EQ(matcher.backend(), Backend::Cpu);
+  ASSERT_FALSE(matcher.warnings().empty());
+  EXPECT_NE(matcher.warnings().back().find("OpenCL is not usable"), std::string::npos);
+  o.backend = Backend::OpenCL;
+  EXPECT_THROW(PatchMatcher({ &ex }, { &f.graph }, o), Error);
 }

@@ -1,0 +1,119 @@
+#include "PatchMatcher.h"
+
+#include "../Core/Error.h"
+
+#include <algorithm>
+
+namespace tsynth
+{
+
+PatchMatcher::PatchMatcher(const std::vector<const Heightfield*>& exemplars,
+  const std::vector<const FeatureGraph*>& graphs,
+  const MatcherOptions& options,
+  const std::vector<std::string>& names)
+  : options_(options)
+{
+  PoolOptions po;
+  po.patchSize = options.patchSize;
+  po.variants = options.variants;
+  pool_ = buildCandidatePool(exemplars, graphs, po, names);
+  warnings_ = pool_.warnings;
+  DenseOptions dopt;
+  dopt.patchSize = options.patchSize;
+  dopt.coarseFactor = options.patchSize % options.coarseFactor == 0 ? options.coarseFactor : 1;
+  dopt.variants = options.variants;
+  dense_ = std::make_unique<DenseMatcher>(exemplars, dopt);
+
+  if (options.backend == Backend::Cpu)
+  {
+    backend_ = Backend::Cpu;
+    return;
+  }
+  try
+  {
+    device_ = OpenClDevice::create();
+    featureScorer_ = std::make_unique<OpenClFeatureScorer>(device_, pool_);
+    denseScorer_ = std::make_unique<OpenClDenseScorer>(device_, *dense_);
+    backend_ = Backend::OpenCL;
+  }
+  catch (const Error& e)
+  {
+    if (options.backend == Backend::OpenCL)
+    {
+      throw;
+    }
+    featureScorer_.reset();
+    denseScorer_.reset();
+    device_.reset();
+    backend_ = Backend::Cpu;
+    warnings_.push_back(std::string("OpenCL is not usable, matching on the CPU: ") + e.what());
+  }
+}
+
+PatchMatcher::~PatchMatcher() = default;
+
+std::string PatchMatcher::backendName() const
+{
+  return backend_ == Backend::OpenCL ? "opencl (" + device_->name() + ")" : "cpu";
+}
+
+std::vector<float> PatchMatcher::featureCosts(const FeatureQuery& query)
+{
+  return featureScorer_ ? featureScorer_->score(query, options_.weights)
+                        : scoreFeatureCandidates(pool_, query, options_.weights);
+}
+
+std::vector<PatchCandidate> PatchMatcher::matchFeature(const FeatureQuery& query,
+  const DenseQuery* window)
+{
+  const std::vector<float> costs = featureCosts(query);
+  std::vector<PatchCandidate> out;
+  for (const RankedCandidate& r : topKPerExemplar(pool_, costs, options_.k))
+  {
+    if (r.cost >= kMismatchPenalty)
+    {
+      continue; // nothing of this type and kind: handled below
+    }
+    PatchCandidate c;
+    c.exemplar = pool_.exemplar[r.index];
+    c.variant = pool_.variant[r.index];
+    c.centreX = pool_.centreX[r.index];
+    c.centreY = pool_.centreY[r.index];
+    c.cost = r.cost;
+    c.poolIndex = r.index;
+    out.push_back(c);
+  }
+  if (out.empty() && window != nullptr)
+  {
+    const char* what = query.type > 0 ? "ridge" : "valley";
+    const std::string warning = std::string("No exemplar has a ") + what +
+      " feature of this kind: using non-feature candidates instead.";
+    if (std::find(warnings_.begin(), warnings_.end(), warning) == warnings_.end())
+    {
+      warnings_.push_back(warning);
+    }
+    return matchDense(*window);
+  }
+  return out;
+}
+
+std::vector<PatchCandidate> PatchMatcher::matchDense(const DenseQuery& window)
+{
+  const CoarseQuery coarse = dense_->coarseQuery(window);
+  const auto costs = denseScorer_ ? denseScorer_->coarseCosts(coarse) : dense_->coarseCosts(coarse);
+  std::vector<PatchCandidate> out;
+  for (const DenseMatch& m : dense_->refine(window, costs, options_.k))
+  {
+    PatchCandidate c;
+    c.exemplar = m.exemplar;
+    c.variant = m.variant;
+    c.centreX = m.centreX;
+    c.centreY = m.centreY;
+    c.cost = m.cost;
+    c.feature = false;
+    out.push_back(c);
+  }
+  return out;
+}
+
+} // namespace tsynth

@@ -1,0 +1,79 @@
+// The matcher as the synthesis uses it: one object holding the candidate pool
+// and the dense-search tables of a set of exemplars, on the chosen backend.
+#pragma once
+
+#include "CandidatePool.h"
+#include "DenseSearch.h"
+#include "FeatureCost.h"
+#include "OpenClMatcher.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace tsynth
+{
+
+struct MatcherOptions
+{
+  int patchSize = 80;
+  Backend backend = Backend::Auto;
+  MatchWeights weights;
+  std::size_t k = 8; // candidates kept per exemplar (feature) or in all (dense)
+  int coarseFactor = 4;
+  std::array<bool, kVariantCount>
+    variants{ true, true, true, true, true, true, true, true, true, true };
+};
+
+// A feature match, or a dense one when the pool has nothing of the site's type.
+struct PatchCandidate
+{
+  int exemplar = 0;
+  int variant = 0;
+  double centreX = 0.0; // patch centre in the exemplar's cells
+  double centreY = 0.0;
+  float cost = 0.0f;
+  bool feature = true;       // false: from the dense (non-feature) search
+  std::size_t poolIndex = 0; // feature matches only
+};
+
+class PatchMatcher
+{
+public:
+  // Builds the pool and the dense tables; picks the backend (Auto: OpenCL if a
+  // device builds the kernels, else the CPU with a warning naming the reason).
+  // Throws tsynth::Error for unusable input (an exemplar smaller than a patch),
+  // or when Backend::OpenCL is requested and does not work.
+  PatchMatcher(const std::vector<const Heightfield*>& exemplars,
+    const std::vector<const FeatureGraph*>& graphs,
+    const MatcherOptions& options,
+    const std::vector<std::string>& names = {});
+  ~PatchMatcher();
+
+  Backend backend() const { return backend_; }
+  std::string backendName() const;
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  const CandidatePool& pool() const { return pool_; }
+  const DenseMatcher& dense() const { return *dense_; }
+
+  // Costs of every pool candidate for a query (for cost maps and tables).
+  std::vector<float> featureCosts(const FeatureQuery& query);
+  // The k best of each exemplar, merged by cost. If no candidate has the
+  // query's type and kind, falls back to the dense search of `window` (when
+  // given) and adds a warning.
+  std::vector<PatchCandidate> matchFeature(const FeatureQuery& query,
+    const DenseQuery* window = nullptr);
+  std::vector<PatchCandidate> matchDense(const DenseQuery& window);
+
+private:
+  MatcherOptions options_;
+  Backend backend_ = Backend::Cpu;
+  std::vector<std::string> warnings_;
+  CandidatePool pool_;
+  std::unique_ptr<DenseMatcher> dense_;
+  std::shared_ptr<OpenClDevice> device_;
+  std::unique_ptr<OpenClFeatureScorer> featureScorer_;
+  std::unique_ptr<OpenClDenseScorer> denseScorer_;
+};
+
+} // namespace tsynth
