@@ -310,13 +310,11 @@ CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplar
     const FootprintCheck check(ex);
     const NoiseVariance noise(ex);
     std::vector<FeatureSite> sites = featureSites(*graphs[e], P);
-    std::size_t rejected = 0;
     for (FeatureSite& site : sites)
     {
       if (site.arms.empty() || !check.clear(site.centre.x, site.centre.y, footprint))
       {
-        ++rejected;
-        continue;
+        continue; // too close to an edge or nodata for some rotation
       }
       const SiteProfiles prof = sampleSite(site, ex, P);
       const auto nv = noise.window(site.centre.x, site.centre.y, P);
@@ -405,12 +403,6 @@ CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplar
       pool.warnings.push_back(info.name +
         " has no feature sites at least half a patch from its edges and nodata; only non-feature "
         "matching can use it.");
-    }
-    else if (rejected > 0)
-    {
-      pool.warnings.push_back(info.name + ": " + std::to_string(rejected) + " of " +
-        std::to_string(sites.size()) +
-        " feature sites are too close to an edge or nodata and were left out.");
     }
     pool.exemplars.push_back(info);
   }

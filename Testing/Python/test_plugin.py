@@ -223,6 +223,69 @@ class PluginTest(unittest.TestCase):
             np.testing.assert_array_equal(feature_type, 1)
             self.assertGreater(tree.GetNumberOfCells(), 100)
 
+    # Matching --------------------------------------------------------------------------------
+
+    def test_candidate_builder_table(self):
+        reader = simple.TerrainReader(FileName=self.alps)
+        builder = simple.TerrainCandidateBuilder(Input=[reader], PatchSize=64)
+        builder.UpdatePipeline()
+        table = sm.Fetch(builder)
+        rows = table.GetNumberOfRows()
+        self.assertGreater(rows, 1000)
+        self.assertEqual(rows % 10, 0)  # every site in 10 variants
+        variant = vtk_to_numpy(table.GetColumnByName("Variant"))
+        self.assertEqual(sorted(np.unique(variant).tolist()), list(range(10)))
+        x = vtk_to_numpy(table.GetColumnByName("X"))
+        y = vtk_to_numpy(table.GetColumnByName("Y"))
+        # Sites keep half a rotated patch (46 cells) away from the edges.
+        self.assertGreaterEqual(float(x.min()), 45 * 92.74)
+        self.assertLessEqual(float(x.max()), (646 - 45) * 92.74)
+        self.assertGreaterEqual(float(y.min()), 45 * 92.74)
+        kinds = set(np.unique(vtk_to_numpy(table.GetColumnByName("Kind"))).tolist())
+        self.assertEqual(kinds, {0, 1, 2})
+
+    def test_patch_matcher_finds_the_target_in_its_own_exemplar(self):
+        reader = simple.TerrainReader(FileName=self.alps)
+        site = [300 * 92.74, 320 * 92.74]
+        for mode in (0, 1):
+            matcher = simple.TerrainPatchMatcher(Input=reader, Exemplars=[reader], Mode=mode,
+                                                 Site=site, PatchSize=64, K=4)
+            matcher.UpdatePipeline()
+            table = sm.Fetch(matcher, arg1=None, arg2=None, idx=0)
+            self.assertGreaterEqual(table.GetNumberOfRows(), 1)
+            variant = int(table.GetColumnByName("Variant").GetValue(0))
+            cost = float(table.GetColumnByName("Cost").GetValue(0))
+            x = float(table.GetColumnByName("X").GetValue(0))
+            y = float(table.GetColumnByName("Y").GetValue(0))
+            # The target is the exemplar: the best match is the place itself, unrotated.
+            self.assertEqual(variant, 0, "mode %d" % mode)
+            self.assertLess(cost, 1e-3, "mode %d" % mode)
+            if mode == 1:
+                # An even-sized window around a cell centres half a cell before it.
+                self.assertAlmostEqual(x, site[0] - 0.5 * 92.74, delta=1.0)
+                self.assertAlmostEqual(y, site[1] - 0.5 * 92.74, delta=1.0)
+            else:
+                self.assertLess(abs(x - site[0]), 32 * 92.74)  # the nearest feature site
+            costmap = sm.Fetch(matcher, arg1=None, arg2=None, idx=1)
+            self.assertEqual(costmap.GetDimensions(), (647, 647, 1))
+            values = point_array(costmap, "MatchCost")
+            self.assertGreater(int(np.isfinite(values).sum()), 100)
+            self.assertAlmostEqual(float(np.nanmin(values)), cost, delta=max(1e-6, 1e-3 * abs(cost)) + 1e-3)
+
+    def test_patch_matcher_with_two_exemplars_and_the_cpu_backend(self):
+        alps = simple.TerrainReader(FileName=self.alps)
+        colorado = simple.TerrainReader(FileName=os.path.join(PATHS.bundled_data, "dems", "colorado.png"))
+        matcher = simple.TerrainPatchMatcher(Input=alps, Exemplars=[colorado, alps], Mode=0,
+                                             Site=[300 * 92.74, 320 * 92.74], PatchSize=64, K=3,
+                                             Backend=2)
+        matcher.UpdatePipeline()
+        table = sm.Fetch(matcher, arg1=None, arg2=None, idx=0)
+        exemplars = vtk_to_numpy(table.GetColumnByName("Exemplar"))
+        self.assertEqual(sorted(exemplars.tolist()), [0, 0, 0, 1, 1, 1])  # K per exemplar
+        costs = vtk_to_numpy(table.GetColumnByName("Cost"))
+        self.assertTrue(np.all(np.diff(costs) >= 0))
+        self.assertEqual(int(exemplars[0]), 1)  # the alps match themselves best
+
     def test_missing_file_gives_an_empty_output_not_a_crash(self):
         reader = simple.TerrainReader(FileName="/nonexistent/dem.tif")
         reader.UpdatePipeline()

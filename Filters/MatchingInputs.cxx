@@ -1,0 +1,79 @@
+#include "MatchingInputs.h"
+
+#include "FeatureGraphConversion.h"
+#include "TerrainImageConversion.h"
+
+#include "Core/Error.h"
+#include "Features/Ppa.h"
+#include "Features/Sketch.h"
+
+#include <vtkImageData.h>
+#include <vtkInformationVector.h>
+#include <vtkPolyData.h>
+
+namespace tsynth
+{
+
+std::vector<const Heightfield*> ExemplarInputs::heightPointers() const
+{
+  std::vector<const Heightfield*> out;
+  for (const Heightfield& h : heights)
+  {
+    out.push_back(&h);
+  }
+  return out;
+}
+
+std::vector<const FeatureGraph*> ExemplarInputs::graphPointers() const
+{
+  std::vector<const FeatureGraph*> out;
+  for (const FeatureGraph& g : graphs)
+  {
+    out.push_back(&g);
+  }
+  return out;
+}
+
+ExemplarInputs gatherExemplars(vtkInformationVector* images, vtkInformationVector* trees)
+{
+  ExemplarInputs in;
+  const int n = images != nullptr ? images->GetNumberOfInformationObjects() : 0;
+  if (n == 0)
+  {
+    throw Error("No exemplar: connect at least one heightfield.");
+  }
+  const int t = trees != nullptr ? trees->GetNumberOfInformationObjects() : 0;
+  if (t != 0 && t != n)
+  {
+    throw Error("Give one feature tree per exemplar (" + std::to_string(n) + " exemplars, " +
+      std::to_string(t) + " trees), or none to extract them.");
+  }
+  for (int e = 0; e < n; ++e)
+  {
+    vtkImageData* image = vtkImageData::GetData(images, e);
+    Heightfield hf = imageToHeightfield(image);
+    double ox = 0.0;
+    double oy = 0.0;
+    gridOrigin(image, ox, oy);
+    FeatureGraph graph;
+    if (t > 0)
+    {
+      // The tree's poly-lines, snapped back onto the exemplar's grid.
+      const auto lines =
+        polyDataToPolylines(vtkPolyData::GetData(trees, e), hf.cellX, hf.cellY, ox, oy);
+      graph = polylineFeatures(lines, hf.width, hf.height, hf.cellX, hf.cellY, 0.5);
+    }
+    else
+    {
+      graph = extractFeatures(hf, FeatureType::Ridge, {}).graph;
+      appendGraph(graph, extractFeatures(hf, FeatureType::Valley, {}).graph);
+    }
+    in.heights.push_back(std::move(hf));
+    in.graphs.push_back(std::move(graph));
+    in.originX.push_back(ox);
+    in.originY.push_back(oy);
+  }
+  return in;
+}
+
+} // namespace tsynth

@@ -1,0 +1,52 @@
+/**
+ * @class vtkTerrainCandidateBuilder
+ * @brief The matcher's pool of feature candidates, as a table a user can inspect.
+ *
+ * Input port 0: one or more exemplar heightfields (images with "Elevation").
+ * Input port 1 (optional): their feature trees (vtkTerrainFeatureExtractor
+ * output), in the same order; without them ridges and valleys are extracted
+ * with the default settings. Output: a vtkTable with one row per candidate
+ * variant (each feature site in 8 rotations by 45 degrees and 2 mirrors):
+ * Exemplar, Site, Variant, Kind (1 end, 2 branch, 0 path point), FeatureType,
+ * Arms, X and Y (metres in the exemplar), Angle0..3 (placed arm directions,
+ * degrees), Noise0..2 (band-pass variances, m^2). Field data: PatchSize,
+ * HeightScale. Tasse's thesis, 3.4 (candidates, rotations, mirrors, noise).
+ */
+#pragma once
+
+#include "TerrainSynthesisFiltersModule.h"
+
+#include <vtkTableAlgorithm.h>
+
+class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainCandidateBuilder : public vtkTableAlgorithm
+{
+public:
+  static vtkTerrainCandidateBuilder* New();
+  vtkTypeMacro(vtkTerrainCandidateBuilder, vtkTableAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Patch size in cells (default 80, for 90 m data).
+  vtkSetClampMacro(PatchSize, int, 8, 1024);
+  vtkGetMacro(PatchSize, int);
+  ///@}
+
+  /// Adds a feature tree for port 1 (one per exemplar, same order).
+  void AddFeatureTreeConnection(vtkAlgorithmOutput* output) { this->AddInputConnection(1, output); }
+  /// Per-port clearing, for ParaView's multiple-input properties.
+  void RemoveAllExemplars() { this->RemoveAllInputConnections(0); }
+  void RemoveAllFeatureTrees() { this->RemoveAllInputConnections(1); }
+
+protected:
+  vtkTerrainCandidateBuilder();
+  ~vtkTerrainCandidateBuilder() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int PatchSize = 80;
+
+private:
+  vtkTerrainCandidateBuilder(const vtkTerrainCandidateBuilder&) = delete;
+  void operator=(const vtkTerrainCandidateBuilder&) = delete;
+};

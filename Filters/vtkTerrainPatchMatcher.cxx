@@ -1,0 +1,322 @@
+#include "vtkTerrainPatchMatcher.h"
+
+#include "MatchingInputs.h"
+#include "TerrainImageConversion.h"
+
+#include "Core/Error.h"
+#include "Features/Ppa.h"
+#include "Matching/PatchMatcher.h"
+
+#include <vtkDataObject.h>
+#include <vtkDoubleArray.h>
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkTable.h>
+
+#include <cmath>
+#include <limits>
+
+vtkStandardNewMacro(vtkTerrainPatchMatcher);
+
+namespace
+{
+
+// The patch-sized window of the target around (cx, cy) cells, with its known mask.
+tsynth::DenseQuery windowAround(const tsynth::Heightfield& target,
+  const std::vector<std::uint8_t>& known,
+  double cx,
+  double cy,
+  int size)
+{
+  tsynth::DenseQuery q;
+  q.heights.assign(static_cast<std::size_t>(size * size), 0.0f);
+  q.known.assign(static_cast<std::size_t>(size * size), 0);
+  const int x0 = static_cast<int>(std::lround(cx)) - size / 2;
+  const int y0 = static_cast<int>(std::lround(cy)) - size / 2;
+  for (int j = 0; j < size; ++j)
+  {
+    for (int i = 0; i < size; ++i)
+    {
+      const int x = x0 + i;
+      const int y = y0 + j;
+      if (x < 0 || y < 0 || x >= target.width || y >= target.height || !target.isValid(x, y))
+      {
+        continue;
+      }
+      const std::size_t k = static_cast<std::size_t>(j * size + i);
+      q.heights[k] = target.at(x, y);
+      q.known[k] = known[target.index(x, y)];
+    }
+  }
+  return q;
+}
+
+} // namespace
+
+vtkTerrainPatchMatcher::vtkTerrainPatchMatcher()
+{
+  this->SetNumberOfInputPorts(3);
+  this->SetNumberOfOutputPorts(2);
+}
+
+int vtkTerrainPatchMatcher::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 0)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+    return 1;
+  }
+  info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), port == 1 ? "vtkImageData" : "vtkPolyData");
+  if (port == 2)
+  {
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  }
+  return 1;
+}
+
+int vtkTerrainPatchMatcher::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkTable" : "vtkImageData");
+  return 1;
+}
+
+vtkTable* vtkTerrainPatchMatcher::GetMatches()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(0));
+}
+
+vtkImageData* vtkTerrainPatchMatcher::GetCostMap()
+{
+  return vtkImageData::SafeDownCast(this->GetOutputDataObject(1));
+}
+
+vtkTypeBool vtkTerrainPatchMatcher::ProcessRequest(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()))
+  {
+    // The cost map lies on the first exemplar's grid.
+    vtkInformation* exemplar = inputVector[1]->GetInformationObject(0);
+    vtkInformation* map = outputVector->GetInformationObject(1);
+    if (exemplar != nullptr && exemplar->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    {
+      map->CopyEntry(exemplar, vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+      map->CopyEntry(exemplar, vtkDataObject::SPACING());
+      map->CopyEntry(exemplar, vtkDataObject::ORIGIN());
+    }
+    return 1;
+  }
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
+  {
+    return this->RequestData(request, inputVector, outputVector);
+  }
+  return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+}
+
+int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkImageData* targetImage = vtkImageData::GetData(inputVector[0], 0);
+  vtkTable* table = vtkTable::GetData(outputVector, 0);
+  vtkImageData* map = vtkImageData::GetData(outputVector, 1);
+  try
+  {
+    const tsynth::Heightfield target = tsynth::imageToHeightfield(targetImage);
+    std::vector<std::uint8_t> known(target.size(), 1);
+    if (vtkDataArray* k = targetImage->GetPointData()->GetArray("Known"))
+    {
+      for (std::size_t c = 0; c < known.size(); ++c)
+      {
+        known[c] = k->GetComponent(static_cast<vtkIdType>(c), 0) != 0.0 ? 1 : 0;
+      }
+    }
+    const tsynth::ExemplarInputs in = tsynth::gatherExemplars(inputVector[1], inputVector[2]);
+    this->UpdateProgress(0.2);
+    tsynth::MatcherOptions o;
+    o.patchSize = this->PatchSize;
+    o.k = static_cast<std::size_t>(this->K);
+    o.backend = this->Backend == OPENCL
+      ? tsynth::Backend::OpenCL
+      : (this->Backend == CPU ? tsynth::Backend::Cpu : tsynth::Backend::Auto);
+    o.weights.feature = this->FeatureWeight;
+    o.weights.angle = this->AngleWeight;
+    o.weights.noise = this->NoiseWeight;
+    o.weights.overlap = this->OverlapWeight;
+    o.weights.verticalOffset = this->VerticalOffset;
+    tsynth::PatchMatcher matcher(in.heightPointers(), in.graphPointers(), o);
+    this->BackendUsed = matcher.backendName();
+    this->UpdateProgress(0.6);
+
+    double tx = 0.0;
+    double ty = 0.0;
+    tsynth::gridOrigin(targetImage, tx, ty);
+    double cx = (this->Site[0] - tx) / target.cellX;
+    double cy = (this->Site[1] - ty) / target.cellY;
+    std::vector<tsynth::PatchCandidate> found;
+    std::vector<float> featureCosts;
+    if (this->Mode == FEATURE)
+    {
+      tsynth::FeatureGraph graph =
+        tsynth::extractFeatures(target, tsynth::FeatureType::Ridge, {}).graph;
+      tsynth::appendGraph(
+        graph, tsynth::extractFeatures(target, tsynth::FeatureType::Valley, {}).graph);
+      const auto sites = tsynth::featureSites(graph, this->PatchSize);
+      const tsynth::FeatureSite* nearest = nullptr;
+      double best = 0.5 * this->PatchSize;
+      for (const auto& s : sites)
+      {
+        const double d = std::hypot(s.centre.x - cx, s.centre.y - cy);
+        if (d <= best)
+        {
+          best = d;
+          nearest = &s;
+        }
+      }
+      if (nearest == nullptr)
+      {
+        vtkWarningMacro(
+          "No target feature within half a patch of the site: matching without features.");
+      }
+      else
+      {
+        cx = nearest->centre.x;
+        cy = nearest->centre.y;
+        const tsynth::NoiseVariance noise(target);
+        const tsynth::FeatureQuery q =
+          tsynth::makeFeatureQuery(*nearest, target, noise, &target, &known, this->PatchSize);
+        const tsynth::DenseQuery window = windowAround(target, known, cx, cy, this->PatchSize);
+        featureCosts = matcher.featureCosts(q);
+        found = matcher.matchFeature(q, &window);
+      }
+    }
+    if (found.empty())
+    {
+      found = matcher.matchDense(windowAround(target, known, cx, cy, this->PatchSize));
+    }
+    for (const auto& w : matcher.warnings())
+    {
+      vtkWarningMacro(<< w);
+    }
+
+    // Table of matches.
+    vtkNew<vtkIntArray> rank, exemplar, variantColumn, feature;
+    vtkNew<vtkDoubleArray> x, y;
+    vtkNew<vtkFloatArray> cost;
+    rank->SetName("Rank");
+    exemplar->SetName("Exemplar");
+    variantColumn->SetName("Variant");
+    feature->SetName("Feature");
+    x->SetName("X");
+    y->SetName("Y");
+    cost->SetName("Cost");
+    for (std::size_t r = 0; r < found.size(); ++r)
+    {
+      const auto e = static_cast<std::size_t>(found[r].exemplar);
+      rank->InsertNextValue(static_cast<int>(r));
+      exemplar->InsertNextValue(found[r].exemplar);
+      variantColumn->InsertNextValue(found[r].variant);
+      feature->InsertNextValue(found[r].feature ? 1 : 0);
+      x->InsertNextValue(in.originX[e] + found[r].centreX * in.heights[e].cellX);
+      y->InsertNextValue(in.originY[e] + found[r].centreY * in.heights[e].cellY);
+      cost->InsertNextValue(found[r].cost);
+    }
+    table->AddColumn(rank);
+    table->AddColumn(exemplar);
+    table->AddColumn(variantColumn);
+    table->AddColumn(x);
+    table->AddColumn(y);
+    table->AddColumn(cost);
+    table->AddColumn(feature);
+
+    // Cost map over the first exemplar: lowest cost of a candidate centred on each cell.
+    const tsynth::Heightfield& first = in.heights.front();
+    map->SetExtent(0, first.width - 1, 0, first.height - 1, 0, 0);
+    map->SetSpacing(first.cellX, first.cellY, 1.0);
+    map->SetOrigin(in.originX.front(), in.originY.front(), 0.0);
+    vtkNew<vtkFloatArray> costMap;
+    costMap->SetName("MatchCost");
+    costMap->SetNumberOfTuples(static_cast<vtkIdType>(first.size()));
+    costMap->Fill(std::numeric_limits<float>::quiet_NaN());
+    float* m = costMap->GetPointer(0);
+    const tsynth::CandidatePool& pool = matcher.pool();
+    if (!featureCosts.empty())
+    {
+      for (std::size_t c = 0; c < featureCosts.size(); ++c)
+      {
+        if (pool.exemplar[c] != 0)
+        {
+          continue;
+        }
+        const int i = static_cast<int>(std::lround(pool.centreX[c]));
+        const int j = static_cast<int>(std::lround(pool.centreY[c]));
+        float& v = m[first.index(i, j)];
+        v = std::isnan(v) ? featureCosts[c] : std::min(v, featureCosts[c]);
+      }
+    }
+    else
+    {
+      // Non-feature: the coarse cost of the unrotated exemplar, block by block.
+      const tsynth::DenseMatcher& dense = matcher.dense();
+      const auto coarse =
+        dense.coarseCosts(dense.coarseQuery(windowAround(target, known, cx, cy, this->PatchSize)));
+      const int f = std::max(1, dense.options().coarseFactor);
+      const auto& oriented = dense.oriented();
+      for (std::size_t r = 0; r < oriented.size(); ++r)
+      {
+        if (oriented[r].exemplar != 0 || oriented[r].variant != 0)
+        {
+          continue;
+        }
+        for (int by = 0; by < oriented[r].offsetsY; ++by)
+        {
+          for (int bx = 0; bx < oriented[r].offsetsX; ++bx)
+          {
+            const float v = coarse[r][static_cast<std::size_t>(by * oriented[r].offsetsX + bx)];
+            for (int j = 0; j < f; ++j)
+            {
+              for (int i = 0; i < f; ++i)
+              {
+                const int ci = bx * f + i + this->PatchSize / 2;
+                const int cj = by * f + j + this->PatchSize / 2;
+                if (ci < first.width && cj < first.height && std::isfinite(v))
+                {
+                  m[first.index(ci, cj)] = v;
+                }
+              }
+            }
+          }
+        }
+      }
+    }
+    map->GetPointData()->SetScalars(costMap);
+  }
+  catch (const tsynth::Error& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  return 1;
+}
+
+void vtkTerrainPatchMatcher::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Mode: " << this->Mode << "\n";
+  os << indent << "Backend: " << this->Backend << "\n";
+  os << indent << "PatchSize: " << this->PatchSize << "\n";
+  os << indent << "K: " << this->K << "\n";
+  os << indent << "Site: " << this->Site[0] << ", " << this->Site[1] << "\n";
+  os << indent << "Weights: " << this->FeatureWeight << ", " << this->AngleWeight << ", "
+     << this->NoiseWeight << ", " << this->OverlapWeight << "\n";
+  os << indent << "VerticalOffset: " << this->VerticalOffset << "\n";
+}

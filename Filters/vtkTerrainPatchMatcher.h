@@ -1,0 +1,113 @@
+/**
+ * @class vtkTerrainPatchMatcher
+ * @brief The best exemplar patches for one place of a target, with a cost map.
+ *
+ * Input port 0: the target heightfield ("Elevation"; an optional uint8 point
+ * array "Known" marks cells already synthesised, whose heights the overlap
+ * term compares; without it every cell counts as known). Input port 1: one or
+ * more exemplar heightfields; port 2 (optional): their feature trees.
+ * Feature mode takes the target's feature site (PPA ridges and valleys, end and
+ * branch nodes and path points) nearest to (SiteX, SiteY) and scores every
+ * candidate variant with c = a_f c_f + a_a c_a + a_n c_n + a_o c_o (Tasse's
+ * thesis, 3.4.1); non-feature mode searches every offset of every exemplar in
+ * every variant by masked SSD (coarse-to-fine). Both run on OpenCL (any device,
+ * PoCL on a CPU) or on the CPU reference; Auto falls back to the CPU with a
+ * warning. Output 0: a table of the K best per exemplar (Rank, Exemplar,
+ * Variant, X, Y in the exemplar's metres, Cost, Feature). Output 1: a cost map
+ * over the first exemplar (MatchCost: the lowest cost of any variant centred on
+ * each cell; NaN where there is no candidate), to see where good matches lie.
+ */
+#pragma once
+
+#include "TerrainSynthesisFiltersModule.h"
+
+#include <vtkAlgorithm.h>
+
+class vtkImageData;
+class vtkTable;
+
+class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainPatchMatcher : public vtkAlgorithm
+{
+public:
+  static vtkTerrainPatchMatcher* New();
+  vtkTypeMacro(vtkTerrainPatchMatcher, vtkAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum Modes
+  {
+    FEATURE = 0,
+    NON_FEATURE = 1
+  };
+  enum Backends
+  {
+    AUTO = 0,
+    OPENCL = 1,
+    CPU = 2
+  };
+
+  vtkSetClampMacro(Mode, int, FEATURE, NON_FEATURE);
+  vtkGetMacro(Mode, int);
+  vtkSetClampMacro(Backend, int, AUTO, CPU);
+  vtkGetMacro(Backend, int);
+  /// Patch size in cells (default 80; a multiple of 4 for the dense search).
+  vtkSetClampMacro(PatchSize, int, 8, 1024);
+  vtkGetMacro(PatchSize, int);
+  /// Candidates kept per exemplar (default 8).
+  vtkSetClampMacro(K, int, 1, 1000);
+  vtkGetMacro(K, int);
+  /// Where in the target to match, metres in the target's frame.
+  vtkSetVector2Macro(Site, double);
+  vtkGetVector2Macro(Site, double);
+  ///@{
+  /// Cost weights a_f, a_a, a_n, a_o (defaults 5, 2, 0.001, 1).
+  vtkSetMacro(FeatureWeight, double);
+  vtkGetMacro(FeatureWeight, double);
+  vtkSetMacro(AngleWeight, double);
+  vtkGetMacro(AngleWeight, double);
+  vtkSetMacro(NoiseWeight, double);
+  vtkGetMacro(NoiseWeight, double);
+  vtkSetMacro(OverlapWeight, double);
+  vtkGetMacro(OverlapWeight, double);
+  ///@}
+  /// Compare overlaps up to a vertical offset (default off).
+  vtkSetMacro(VerticalOffset, bool);
+  vtkGetMacro(VerticalOffset, bool);
+  vtkBooleanMacro(VerticalOffset, bool);
+
+  /// The backend actually used by the last update ("opencl (device)" or "cpu").
+  const char* GetBackendUsed() { return this->BackendUsed.c_str(); }
+
+  /// Per-port clearing, for ParaView's multiple-input properties.
+  void RemoveAllExemplars() { this->RemoveAllInputConnections(1); }
+  void RemoveAllFeatureTrees() { this->RemoveAllInputConnections(2); }
+
+  vtkTable* GetMatches();
+  vtkImageData* GetCostMap();
+  vtkTypeBool ProcessRequest(vtkInformation*,
+    vtkInformationVector**,
+    vtkInformationVector*) override;
+
+protected:
+  vtkTerrainPatchMatcher();
+  ~vtkTerrainPatchMatcher() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
+
+  int Mode = FEATURE;
+  int Backend = AUTO;
+  int PatchSize = 80;
+  int K = 8;
+  double Site[2] = { 0.0, 0.0 };
+  double FeatureWeight = 5.0;
+  double AngleWeight = 2.0;
+  double NoiseWeight = 0.001;
+  double OverlapWeight = 1.0;
+  bool VerticalOffset = false;
+  std::string BackendUsed;
+
+private:
+  vtkTerrainPatchMatcher(const vtkTerrainPatchMatcher&) = delete;
+  void operator=(const vtkTerrainPatchMatcher&) = delete;
+};
