@@ -1,0 +1,477 @@
+#include "PatchMerger.h"
+
+#include "../Core/Error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace tsynth
+{
+
+MergeMode parseMergeMode(const std::string& name)
+{
+  if (name == "cut")
+    return MergeMode::Cut;
+  if (name == "poisson")
+    return MergeMode::Poisson;
+  if (name == "shepard")
+    return MergeMode::Shepard;
+  if (name == "new")
+    return MergeMode::New;
+  throw Error("Unknown merge mode '" + name + "': use new, poisson, shepard or cut.");
+}
+
+const char* mergeModeName(MergeMode mode)
+{
+  switch (mode)
+  {
+    case MergeMode::Cut:
+      return "cut";
+    case MergeMode::Poisson:
+      return "poisson";
+    case MergeMode::Shepard:
+      return "shepard";
+    case MergeMode::New:
+      break;
+  }
+  return "new";
+}
+
+namespace
+{
+
+constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
+constexpr int Di[4] = { 1, -1, 0, 0 };
+constexpr int Dj[4] = { 0, 0, 1, -1 };
+
+// Per-cell differences of a and b along an axis (metres per cell), with the
+// same stencil for both so identical surfaces give identical values: central
+// where both have both neighbours, one-sided at the edge of their data, else 0.
+std::pair<double, double> gradientPair(const std::vector<float>& a,
+  const std::vector<float>& b,
+  int w,
+  int h,
+  int i,
+  int j,
+  int axis)
+{
+  const std::size_t k = static_cast<std::size_t>(j) * w + i;
+  const std::ptrdiff_t step = axis == 0 ? 1 : w;
+  const bool hasPlus = axis == 0 ? i + 1 < w : j + 1 < h;
+  const bool hasMinus = axis == 0 ? i > 0 : j > 0;
+  const bool plus = hasPlus && std::isfinite(a[k + step]) && std::isfinite(b[k + step]);
+  const bool minus = hasMinus && std::isfinite(a[k - step]) && std::isfinite(b[k - step]);
+  auto diff = [&](const std::vector<float>& f)
+  {
+    if (plus && minus)
+      return 0.5 * (static_cast<double>(f[k + step]) - f[k - step]);
+    if (plus)
+      return static_cast<double>(f[k + step]) - f[k];
+    if (minus)
+      return static_cast<double>(f[k]) - f[k - step];
+    return 0.0;
+  };
+  return { diff(a), diff(b) };
+}
+
+} // namespace
+
+MergeResult PatchMerger::prepare(const Heightfield& terrain,
+  const std::vector<std::uint8_t>& filled,
+  const Heightfield& patch,
+  int x0,
+  int y0,
+  const std::vector<std::uint8_t>* core,
+  const SeamCutOptions& options)
+{
+  if (filled.size() != terrain.size())
+  {
+    throw Error("The filled mask must have one entry per terrain cell.");
+  }
+  if (core && core->size() != patch.size())
+  {
+    throw Error("The protected-core mask must have one entry per patch cell.");
+  }
+  if (patch.width <= 0 || patch.height <= 0)
+  {
+    throw Error("The patch is empty.");
+  }
+  if (terrain.cellSizeKnown && patch.cellSizeKnown &&
+    (std::abs(patch.cellX - terrain.cellX) > 1e-3 * terrain.cellX ||
+      std::abs(patch.cellY - terrain.cellY) > 1e-3 * terrain.cellY))
+  {
+    throw Error("The patch and the terrain have different cell sizes; resample the patch first.");
+  }
+  const int wx0 = std::max(x0, 0);
+  const int wy0 = std::max(y0, 0);
+  const int wx1 = std::min(x0 + patch.width, terrain.width);
+  const int wy1 = std::min(y0 + patch.height, terrain.height);
+  if (wx1 <= wx0 || wy1 <= wy0)
+  {
+    throw Error("The patch placed at (" + std::to_string(x0) + ", " + std::to_string(y0) +
+      ") lies entirely outside the terrain.");
+  }
+  cellX_ = terrain.cellX;
+  cellY_ = terrain.cellY;
+  fx0_ = std::max(wx0 - 1, 0);
+  fy0_ = std::max(wy0 - 1, 0);
+  fw_ = std::min(wx1 + 1, terrain.width) - fx0_;
+  fh_ = std::min(wy1 + 1, terrain.height) - fy0_;
+  const std::size_t n = static_cast<std::size_t>(fw_) * fh_;
+  const float fnan = std::numeric_limits<float>::quiet_NaN();
+  old_.assign(n, fnan);
+  new_.assign(n, fnan);
+  oldMask_.assign(n, 0);
+  newMask_.assign(n, 0);
+  coreMask_.assign(n, 0);
+  for (int j = 0; j < fh_; ++j)
+  {
+    for (int i = 0; i < fw_; ++i)
+    {
+      const std::size_t k = static_cast<std::size_t>(j) * fw_ + i;
+      const int ti = fx0_ + i;
+      const int tj = fy0_ + j;
+      const std::size_t tk = terrain.index(ti, tj);
+      if (filled[tk] && terrain.isValid(tk) && std::isfinite(terrain.z[tk]))
+      {
+        old_[k] = terrain.z[tk];
+        oldMask_[k] = 1;
+      }
+      const int pi = ti - x0;
+      const int pj = tj - y0;
+      if (pi >= 0 && pj >= 0 && pi < patch.width && pj < patch.height)
+      {
+        const std::size_t pk = patch.index(pi, pj);
+        if (patch.isValid(pk) && std::isfinite(patch.z[pk]))
+        {
+          new_[k] = patch.z[pk];
+          newMask_[k] = 1;
+          coreMask_[k] = core && (*core)[pk];
+        }
+      }
+    }
+  }
+  const std::vector<SeamConstraint> constraints = buildSeamConstraints(
+    fw_, fh_, oldMask_.data(), newMask_.data(), core ? coreMask_.data() : nullptr);
+  const SeamCutResult& cut =
+    cut_.cut(fw_, fh_, old_.data(), new_.data(), constraints.data(), cellX_, cellY_, options);
+
+  side_.assign(n, 0);
+  MergeResult result;
+  result.x0 = wx0;
+  result.y0 = wy0;
+  result.width = wx1 - wx0;
+  result.height = wy1 - wy0;
+  result.takeNew.assign(static_cast<std::size_t>(result.width) * result.height, 0);
+  result.seam.assign(result.takeNew.size(), 0);
+  result.cutCost = cut.cost;
+  result.cutEdges = cut.cutEdges;
+  result.normalisedCost = cut.normalisedCost();
+  for (int j = 0; j < fh_; ++j)
+  {
+    for (int i = 0; i < fw_; ++i)
+    {
+      const std::size_t k = static_cast<std::size_t>(j) * fw_ + i;
+      const bool isNew = newMask_[k] && (!oldMask_[k] || cut.takeNew[k]);
+      side_[k] = isNew ? 2 : (oldMask_[k] ? 1 : 0);
+      const int ri = fx0_ + i - wx0;
+      const int rj = fy0_ + j - wy0;
+      if (ri >= 0 && rj >= 0 && ri < result.width && rj < result.height)
+      {
+        const std::size_t rk = static_cast<std::size_t>(rj) * result.width + ri;
+        result.takeNew[rk] = isNew;
+        result.seam[rk] = cut.seam[k];
+        result.overlapCells += oldMask_[k] && newMask_[k];
+        result.newCells += isNew;
+      }
+    }
+  }
+  return result;
+}
+
+MergeResult PatchMerger::seamCost(const Heightfield& terrain,
+  const std::vector<std::uint8_t>& filled,
+  const Heightfield& patch,
+  int x0,
+  int y0,
+  const std::vector<std::uint8_t>* core,
+  const SeamCutOptions& options)
+{
+  return prepare(terrain, filled, patch, x0, y0, core, options);
+}
+
+// Shepard interpolation (Shepard 1968, as in Tasse 3.5) of the seam values to
+// every new cell, times a C1 fall-off that reaches 0 at the radius: the
+// normalised weights alone sum to 1 up to the radius and 0 beyond, a step.
+void PatchMerger::shepard(int valuesPerPoint, double radius, double power, std::vector<double>& out)
+{
+  const std::size_t n = static_cast<std::size_t>(fw_) * fh_;
+  out.assign(n * valuesPerPoint, 0.0);
+  const std::size_t points = seamX_.size();
+  if (points == 0)
+    return;
+  const float r = static_cast<float>(radius);
+  const float r2 = r * r;
+  std::vector<std::int32_t> pointAt(n, -1);
+  for (std::size_t s = 0; s < points; ++s)
+  {
+    pointAt[static_cast<std::size_t>(seamY_[s]) * fw_ + static_cast<std::size_t>(seamX_[s])] =
+      static_cast<std::int32_t>(s);
+  }
+  std::vector<float> weight(points);
+  for (int j = 0; j < fh_; ++j)
+  {
+    for (int i = 0; i < fw_; ++i)
+    {
+      const std::size_t k = static_cast<std::size_t>(j) * fw_ + i;
+      if (side_[k] != 2)
+        continue;
+      if (pointAt[k] >= 0)
+      {
+        for (int v = 0; v < valuesPerPoint; ++v)
+          out[k * valuesPerPoint + v] = seamValue_[pointAt[k] * valuesPerPoint + v];
+        continue;
+      }
+      // Branch-free so the compiler vectorises it; d > 0 here.
+      float dmin2 = std::numeric_limits<float>::max();
+      const float fi = static_cast<float>(i);
+      const float fj = static_cast<float>(j);
+      for (std::size_t s = 0; s < points; ++s)
+      {
+        const float dx = fi - seamX_[s];
+        const float dy = fj - seamY_[s];
+        const float d2 = dx * dx + dy * dy;
+        dmin2 = std::min(dmin2, d2);
+        const float d = std::sqrt(d2);
+        const float base = std::max(r - d, 0.0f) / (r * d);
+        weight[s] = base * base;
+      }
+      if (!(dmin2 < r2))
+        continue;
+      if (power != 2.0)
+      {
+        for (std::size_t s = 0; s < points; ++s)
+          weight[s] = static_cast<float>(std::pow(std::sqrt(weight[s]), power));
+      }
+      double sumW = 0.0;
+      double sum[2] = { 0.0, 0.0 };
+      for (std::size_t s = 0; s < points; ++s)
+      {
+        sumW += weight[s];
+        for (int v = 0; v < valuesPerPoint; ++v)
+          sum[v] += weight[s] * seamValue_[s * valuesPerPoint + v];
+      }
+      const double t = 1.0 - std::sqrt(static_cast<double>(dmin2)) / radius;
+      const double falloff = t * t * (3.0 - 2.0 * t);
+      for (int v = 0; v < valuesPerPoint; ++v)
+        out[k * valuesPerPoint + v] = falloff * sum[v] / sumW;
+    }
+  }
+}
+
+void PatchMerger::blendShepard(const MergeOptions& options)
+{
+  // Seam points: new cells with an old 4-neighbour. The mismatch is A - B at
+  // the point where both exist, else the mean over its old neighbours.
+  seamX_.clear();
+  seamY_.clear();
+  seamValue_.clear();
+  for (int j = 0; j < fh_; ++j)
+  {
+    for (int i = 0; i < fw_; ++i)
+    {
+      const std::size_t k = static_cast<std::size_t>(j) * fw_ + i;
+      if (side_[k] != 2)
+        continue;
+      double sum = 0.0;
+      int count = 0;
+      for (int d = 0; d < 4; ++d)
+      {
+        const int ni = i + Di[d];
+        const int nj = j + Dj[d];
+        if (ni < 0 || nj < 0 || ni >= fw_ || nj >= fh_)
+          continue;
+        const std::size_t m = static_cast<std::size_t>(nj) * fw_ + ni;
+        if (side_[m] != 1)
+          continue;
+        const double b = newMask_[m] ? new_[m] : new_[k];
+        sum += old_[m] - b;
+        ++count;
+      }
+      if (count == 0)
+        continue;
+      seamX_.push_back(static_cast<float>(i));
+      seamY_.push_back(static_cast<float>(j));
+      seamValue_.push_back(oldMask_[k] ? static_cast<double>(old_[k]) - new_[k] : sum / count);
+    }
+  }
+  shepard(1, options.shepardRadius, options.shepardPower, shepardOut_);
+  for (std::size_t k = 0; k < out_.size(); ++k)
+  {
+    if (side_[k] == 2)
+      out_[k] = new_[k] + shepardOut_[k];
+  }
+}
+
+void PatchMerger::blendPoisson(const MergeOptions& options,
+  bool gradientShepard,
+  MergeResult& result)
+{
+  const std::size_t n = static_cast<std::size_t>(fw_) * fh_;
+  // Tasse: the gradient mismatch G_A - G_B at seam points (new cells with an
+  // old neighbour where the old terrain exists too), spread over the new side.
+  if (gradientShepard)
+  {
+    seamX_.clear();
+    seamY_.clear();
+    seamValue_.clear();
+    for (int j = 0; j < fh_; ++j)
+    {
+      for (int i = 0; i < fw_; ++i)
+      {
+        const std::size_t k = static_cast<std::size_t>(j) * fw_ + i;
+        if (side_[k] != 2 || !oldMask_[k])
+          continue;
+        bool touchesOld = false;
+        for (int d = 0; d < 4; ++d)
+        {
+          const int ni = i + Di[d];
+          const int nj = j + Dj[d];
+          touchesOld = touchesOld ||
+            (ni >= 0 && nj >= 0 && ni < fw_ && nj < fh_ &&
+              side_[static_cast<std::size_t>(nj) * fw_ + ni] == 1);
+        }
+        if (!touchesOld)
+          continue;
+        seamX_.push_back(static_cast<float>(i));
+        seamY_.push_back(static_cast<float>(j));
+        for (int axis = 0; axis < 2; ++axis)
+        {
+          const auto g = gradientPair(old_, new_, fw_, fh_, i, j, axis);
+          seamValue_.push_back(g.first - g.second);
+        }
+      }
+    }
+    shepard(2, options.shepardRadius, options.shepardPower, shepardOut_);
+  }
+  // Guidance differences per edge.
+  gx_.assign(n, NaN);
+  gy_.assign(n, NaN);
+  for (int j = 0; j < fh_; ++j)
+  {
+    for (int i = 0; i < fw_; ++i)
+    {
+      const std::size_t p = static_cast<std::size_t>(j) * fw_ + i;
+      for (int axis = 0; axis < 2; ++axis)
+      {
+        if (axis == 0 ? i + 1 >= fw_ : j + 1 >= fh_)
+          continue;
+        const std::size_t q = axis == 0 ? p + 1 : p + fw_;
+        if (side_[p] == 0 || side_[q] == 0 || (side_[p] != 2 && side_[q] != 2))
+          continue;
+        const bool oldBoth = oldMask_[p] && oldMask_[q];
+        const bool newBoth = newMask_[p] && newMask_[q];
+        const double dOld = oldBoth ? static_cast<double>(old_[q]) - old_[p] : 0.0;
+        double dNew = newBoth ? static_cast<double>(new_[q]) - new_[p] : 0.0;
+        double g = 0.0;
+        if (gradientShepard && newBoth)
+        {
+          // Corrected B gradient: mean of the correction at the new ends.
+          double c = 0.0;
+          int ends = 0;
+          for (std::size_t e : { p, q })
+          {
+            if (side_[e] == 2)
+            {
+              c += shepardOut_[e * 2 + axis];
+              ++ends;
+            }
+          }
+          dNew += c / ends;
+        }
+        if (side_[p] == side_[q])
+        {
+          g = dNew; // both new
+        }
+        else if (gradientShepard)
+        {
+          // Across the seam, the old terrain's own step (it exists on both
+          // ends in the overlap); else the corrected patch step.
+          g = oldBoth ? dOld : (newBoth ? dNew : 0.0);
+        }
+        else
+        {
+          // Zhou zeroes the composite's gradient here. We take the mean step
+          // of the sources that exist on both ends (0 if none): the jump is
+          // still left out, and a perfect match is not flattened.
+          const int sources = (oldBoth ? 1 : 0) + (newBoth ? 1 : 0);
+          g = sources > 0 ? (dOld + dNew) / sources : 0.0;
+        }
+        (axis == 0 ? gx_ : gy_)[p] = g;
+      }
+    }
+  }
+  std::vector<std::uint8_t>& unknown = coreMask_; // reused as scratch
+  unknown.assign(n, 0);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    unknown[k] = side_[k] == 2;
+    out_[k] = side_[k] == 2 ? new_[k] : (side_[k] == 1 ? old_[k] : NaN);
+  }
+  result.poisson = poisson_.solveGuided(
+    fw_, fh_, cellX_, cellY_, unknown.data(), gx_.data(), gy_.data(), out_.data(), options.poisson);
+}
+
+MergeResult PatchMerger::merge(Heightfield& terrain,
+  std::vector<std::uint8_t>& filled,
+  const Heightfield& patch,
+  int x0,
+  int y0,
+  const std::vector<std::uint8_t>* core,
+  const MergeOptions& options)
+{
+  if (!(options.shepardRadius > 0.0) || !(options.shepardPower > 0.0))
+  {
+    throw Error("The Shepard radius and power must be positive.");
+  }
+  MergeResult result = prepare(terrain, filled, patch, x0, y0, core, options.cut);
+  const std::size_t n = static_cast<std::size_t>(fw_) * fh_;
+  out_.assign(n, NaN);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    if (side_[k] == 2)
+      out_[k] = new_[k];
+  }
+  switch (options.mode)
+  {
+    case MergeMode::Cut:
+      break;
+    case MergeMode::Shepard:
+      blendShepard(options);
+      break;
+    case MergeMode::Poisson:
+      blendPoisson(options, false, result);
+      break;
+    case MergeMode::New:
+      blendPoisson(options, true, result);
+      break;
+  }
+  for (int j = 0; j < fh_; ++j)
+  {
+    for (int i = 0; i < fw_; ++i)
+    {
+      const std::size_t k = static_cast<std::size_t>(j) * fw_ + i;
+      if (side_[k] != 2)
+        continue;
+      const std::size_t tk = terrain.index(fx0_ + i, fy0_ + j);
+      terrain.z[tk] = static_cast<float>(out_[k]);
+      filled[tk] = 1;
+      if (terrain.hasMask())
+        terrain.valid[tk] = 1;
+    }
+  }
+  return result;
+}
+
+} // namespace tsynth

@@ -1,0 +1,122 @@
+// Merging a placed patch into the terrain being synthesised: graph-cut seam,
+// then one of the seam-removal methods of Zhou et al. 2007 and Tasse's thesis.
+#pragma once
+
+#include "../Core/Heightfield.h"
+#include "Poisson.h"
+#include "SeamCut.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tsynth
+{
+
+enum class MergeMode
+{
+  Cut,     // labels only: new cells take the patch heights as they are
+  Poisson, // Zhou: gradients across the seam removed, Poisson solve
+  Shepard, // height mismatch on the seam spread by Shepard interpolation
+  New      // Tasse: gradient mismatch spread by Shepard, then Poisson (default)
+};
+
+// "cut", "poisson", "shepard", "new"; throws tsynth::Error otherwise.
+MergeMode parseMergeMode(const std::string& name);
+const char* mergeModeName(MergeMode mode);
+
+struct MergeOptions
+{
+  MergeMode mode = MergeMode::New;
+  SeamCutOptions cut;
+  // Shepard radius of influence d_phi (cells; Tasse's Fig. 3.8 uses 20) and
+  // exponent alpha of w = ((d_phi - d) / (d_phi d))^alpha.
+  double shepardRadius = 20.0;
+  double shepardPower = 2.0;
+  PoissonOptions poisson;
+};
+
+struct MergeResult
+{
+  // The patch window clipped to the terrain, in terrain cells.
+  int x0 = 0;
+  int y0 = 0;
+  int width = 0;
+  int height = 0;
+  // Per window cell: 1 where the terrain now holds heights from the patch.
+  std::vector<std::uint8_t> takeNew;
+  // Per window cell: 1 on overlap cells with a cut edge.
+  std::vector<std::uint8_t> seam;
+  double cutCost = 0.0; // c_g
+  int cutEdges = 0;
+  double normalisedCost = 0.0; // c_g per cut edge (0 without a seam)
+  std::size_t overlapCells = 0;
+  std::size_t newCells = 0;
+  PoissonStatistics poisson; // Poisson and New modes
+};
+
+// Reusable workspace (one per thread): merge() and seamCost() keep their
+// buffers, the graph-cut storage and the multigrid hierarchy between calls.
+//
+// Conventions:
+// - filled has terrain.size() entries; a terrain cell is "old" where filled,
+//   valid and finite. Invalid or NaN cells never enter a cost, sum or average.
+// - The patch (same cell size as the terrain) is placed with its cell (0, 0)
+//   on terrain cell (x0, y0) and clipped to the terrain. core, if not null, has
+//   patch.size() entries (1 = must come from the patch).
+// - A patch entirely outside the terrain throws tsynth::Error. A patch with no
+//   overlap (e.g. the first one) is a defined case: its valid cells are copied
+//   into unfilled cells, blended against any old cells they touch, cost 0.
+// - Only cells that take the patch are written; old terrain is the Dirichlet
+//   boundary of every solve and is never changed. Patch borders next to
+//   unfilled cells are left free (Neumann), so a height offset between the
+//   patch and the terrain is carried away from the seam instead of squeezed.
+class PatchMerger
+{
+public:
+  MergeResult merge(Heightfield& terrain,
+    std::vector<std::uint8_t>& filled,
+    const Heightfield& patch,
+    int x0,
+    int y0,
+    const std::vector<std::uint8_t>* core,
+    const MergeOptions& options = {});
+
+  // Dry run for ranking candidates: the cut only; the terrain is not touched.
+  MergeResult seamCost(const Heightfield& terrain,
+    const std::vector<std::uint8_t>& filled,
+    const Heightfield& patch,
+    int x0,
+    int y0,
+    const std::vector<std::uint8_t>* core,
+    const SeamCutOptions& options = {});
+
+private:
+  MergeResult prepare(const Heightfield& terrain,
+    const std::vector<std::uint8_t>& filled,
+    const Heightfield& patch,
+    int x0,
+    int y0,
+    const std::vector<std::uint8_t>* core,
+    const SeamCutOptions& options);
+  void shepard(int valuesPerPoint, double radius, double power, std::vector<double>& out);
+  void blendShepard(const MergeOptions& options);
+  void blendPoisson(const MergeOptions& options, bool gradientShepard, MergeResult& result);
+
+  SeamCut cut_;
+  MaskedPoissonSolver poisson_;
+  // Framed window (patch window clipped, plus one cell around where the
+  // terrain has it): origin, size, heights of both sides and the outcome.
+  int fx0_ = 0, fy0_ = 0, fw_ = 0, fh_ = 0;
+  double cellX_ = 1.0, cellY_ = 1.0;
+  std::vector<float> old_, new_;
+  std::vector<std::uint8_t> oldMask_, newMask_, coreMask_, side_; // side: 0 none, 1 old, 2 new
+  std::vector<double> out_;
+  std::vector<double> gx_, gy_;
+  // Shepard seam points: position and values (1 or 2 per point).
+  std::vector<float> seamX_, seamY_;
+  std::vector<double> seamValue_;
+  std::vector<double> shepardOut_;
+};
+
+} // namespace tsynth

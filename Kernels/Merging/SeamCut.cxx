@@ -1,0 +1,275 @@
+#include "SeamCut.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace tsynth
+{
+
+std::vector<SeamConstraint> buildSeamConstraints(int width,
+  int height,
+  const std::uint8_t* oldMask,
+  const std::uint8_t* newMask,
+  const std::uint8_t* core)
+{
+  const std::size_t n =
+    static_cast<std::size_t>(std::max(width, 0)) * static_cast<std::size_t>(std::max(height, 0));
+  std::vector<SeamConstraint> out(n, SeamConstraint::Outside);
+  auto oldOnly = [&](std::size_t k) { return oldMask[k] && !newMask[k]; };
+  auto newOnly = [&](std::size_t k) { return newMask[k] && !oldMask[k]; };
+  for (int j = 0; j < height; ++j)
+  {
+    for (int i = 0; i < width; ++i)
+    {
+      const std::size_t k = static_cast<std::size_t>(j) * width + i;
+      if (!oldMask[k] || !newMask[k])
+      {
+        continue;
+      }
+      bool nextToOld = false;
+      bool nextToNew = false;
+      const int di[4] = { 1, -1, 0, 0 };
+      const int dj[4] = { 0, 0, 1, -1 };
+      for (int d = 0; d < 4; ++d)
+      {
+        const int ni = i + di[d];
+        const int nj = j + dj[d];
+        if (ni < 0 || nj < 0 || ni >= width || nj >= height)
+        {
+          continue;
+        }
+        const std::size_t m = static_cast<std::size_t>(nj) * width + ni;
+        nextToOld = nextToOld || oldOnly(m);
+        nextToNew = nextToNew || newOnly(m);
+      }
+      if (core && core[k])
+      {
+        out[k] = SeamConstraint::ForceNew;
+      }
+      else if (nextToOld)
+      {
+        out[k] = SeamConstraint::ForceOld;
+      }
+      else if (nextToNew)
+      {
+        out[k] = SeamConstraint::ForceNew;
+      }
+      else
+      {
+        out[k] = SeamConstraint::Free;
+      }
+    }
+  }
+  return out;
+}
+
+namespace
+{
+
+// Gradient of f along one axis at k: central where both neighbours are finite,
+// one-sided at the edge of the data, 0 where the pixel is isolated.
+inline double axisGradient(const float* f,
+  std::size_t k,
+  std::ptrdiff_t step,
+  bool hasMinus,
+  bool hasPlus,
+  double inv)
+{
+  const bool plus = hasPlus && std::isfinite(f[k + step]);
+  const bool minus = hasMinus && std::isfinite(f[k - step]);
+  if (plus && minus)
+  {
+    return 0.5 * inv * (static_cast<double>(f[k + step]) - f[k - step]);
+  }
+  if (plus)
+  {
+    return inv * (static_cast<double>(f[k + step]) - f[k]);
+  }
+  if (minus)
+  {
+    return inv * (static_cast<double>(f[k]) - f[k - step]);
+  }
+  return 0.0;
+}
+
+} // namespace
+
+void SeamCut::computeWeights(int width,
+  int height,
+  const float* oldZ,
+  const float* newZ,
+  const std::vector<SeamConstraint>& constraints,
+  double cellX,
+  double cellY,
+  const SeamCutOptions& options,
+  SeamWeights& out)
+{
+  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  out.wx.assign(n, nan);
+  out.wy.assign(n, nan);
+  const double invX = 1.0 / cellX;
+  const double invY = 1.0 / cellY;
+  auto inOverlap = [&](std::size_t k) { return constraints[k] != SeamConstraint::Outside; };
+  // First pass: numerators into wx/wy, denominators kept aside for eps.
+  std::vector<double> denX(n, 0.0), denY(n, 0.0);
+  double denSum = 0.0;
+  std::size_t edges = 0;
+  for (int j = 0; j < height; ++j)
+  {
+    for (int i = 0; i < width; ++i)
+    {
+      const std::size_t s = static_cast<std::size_t>(j) * width + i;
+      if (!inOverlap(s))
+      {
+        continue;
+      }
+      const double ds = std::abs(static_cast<double>(oldZ[s]) - newZ[s]);
+      for (int axis = 0; axis < 2; ++axis)
+      {
+        const bool inside = axis == 0 ? i + 1 < width : j + 1 < height;
+        const std::size_t t = axis == 0 ? s + 1 : s + width;
+        if (!inside || !inOverlap(t))
+        {
+          continue;
+        }
+        const double dt = std::abs(static_cast<double>(oldZ[t]) - newZ[t]);
+        double den = 0.0;
+        if (axis == 0)
+        {
+          den = std::abs(axisGradient(oldZ, s, 1, i > 0, true, invX)) +
+            std::abs(axisGradient(oldZ, t, 1, true, i + 2 < width, invX)) +
+            std::abs(axisGradient(newZ, s, 1, i > 0, true, invX)) +
+            std::abs(axisGradient(newZ, t, 1, true, i + 2 < width, invX));
+          out.wx[s] = ds + dt;
+          denX[s] = den;
+        }
+        else
+        {
+          den = std::abs(axisGradient(oldZ, s, width, j > 0, true, invY)) +
+            std::abs(axisGradient(oldZ, t, width, true, j + 2 < height, invY)) +
+            std::abs(axisGradient(newZ, s, width, j > 0, true, invY)) +
+            std::abs(axisGradient(newZ, t, width, true, j + 2 < height, invY));
+          out.wy[s] = ds + dt;
+          denY[s] = den;
+        }
+        denSum += den;
+        ++edges;
+      }
+    }
+  }
+  out.epsilon = std::max(options.absoluteEpsilon,
+    edges > 0 ? options.relativeEpsilon * denSum / static_cast<double>(edges) : 0.0);
+  if (!options.gradientTerm)
+  {
+    return;
+  }
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    if (!std::isnan(out.wx[k]))
+    {
+      out.wx[k] /= denX[k] + out.epsilon;
+    }
+    if (!std::isnan(out.wy[k]))
+    {
+      out.wy[k] /= denY[k] + out.epsilon;
+    }
+  }
+}
+
+const SeamCutResult& SeamCut::cut(int width,
+  int height,
+  const float* oldZ,
+  const float* newZ,
+  const SeamConstraint* constraints,
+  double cellX,
+  double cellY,
+  const SeamCutOptions& options)
+{
+  width = std::max(width, 0);
+  height = std::max(height, 0);
+  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  constraints_.resize(n);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const bool bothValid = std::isfinite(oldZ[k]) && std::isfinite(newZ[k]);
+    const SeamConstraint c = constraints ? constraints[k] : SeamConstraint::Free;
+    constraints_[k] = bothValid ? c : SeamConstraint::Outside;
+  }
+  computeWeights(width, height, oldZ, newZ, constraints_, cellX, cellY, options, weights_);
+
+  // Forced pixels are not graph nodes: an edge from a free pixel to a forced
+  // one becomes a terminal capacity of the free pixel, an edge between two
+  // forced pixels of different sides a constant. Same min cut, no infinities.
+  flow_.reset(width, height);
+  double constant = 0.0;
+  for (int j = 0; j < height; ++j)
+  {
+    for (int i = 0; i < width; ++i)
+    {
+      const std::size_t s = static_cast<std::size_t>(j) * width + i;
+      for (int axis = 0; axis < 2; ++axis)
+      {
+        const double w = axis == 0 ? weights_.wx[s] : weights_.wy[s];
+        if (std::isnan(w))
+        {
+          continue;
+        }
+        const std::size_t t = axis == 0 ? s + 1 : s + width;
+        const SeamConstraint cs = constraints_[s];
+        const SeamConstraint ct = constraints_[t];
+        const bool freeS = cs == SeamConstraint::Free;
+        const bool freeT = ct == SeamConstraint::Free;
+        if (freeS && freeT)
+        {
+          flow_.setEdge(
+            static_cast<int>(s), axis == 0 ? GridMaxFlow::PlusX : GridMaxFlow::PlusY, w, w);
+        }
+        else if (freeS || freeT)
+        {
+          const std::size_t f = freeS ? s : t;
+          const bool forcedNew = (freeS ? ct : cs) == SeamConstraint::ForceNew;
+          flow_.addTerminal(static_cast<int>(f), forcedNew ? w : 0.0, forcedNew ? 0.0 : w);
+        }
+        else if (cs != ct)
+        {
+          constant += w;
+        }
+      }
+    }
+  }
+  result_.flow = flow_.solve() + constant;
+
+  result_.width = width;
+  result_.height = height;
+  result_.takeNew.assign(n, 0);
+  result_.seam.assign(n, 0);
+  result_.cost = 0.0;
+  result_.cutEdges = 0;
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const SeamConstraint c = constraints_[k];
+    result_.takeNew[k] = c == SeamConstraint::ForceNew ||
+      (c == SeamConstraint::Free && flow_.sourceSide(static_cast<int>(k)));
+  }
+  for (std::size_t s = 0; s < n; ++s)
+  {
+    for (int axis = 0; axis < 2; ++axis)
+    {
+      const double w = axis == 0 ? weights_.wx[s] : weights_.wy[s];
+      const std::size_t t = axis == 0 ? s + 1 : s + width;
+      if (std::isnan(w) || result_.takeNew[s] == result_.takeNew[t])
+      {
+        continue;
+      }
+      result_.cost += w;
+      ++result_.cutEdges;
+      result_.seam[s] = 1;
+      result_.seam[t] = 1;
+    }
+  }
+  return result_;
+}
+
+} // namespace tsynth
