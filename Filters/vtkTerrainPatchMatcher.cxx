@@ -115,6 +115,24 @@ vtkTypeBool vtkTerrainPatchMatcher::ProcessRequest(vtkInformation* request,
     }
     return 1;
   }
+  if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
+  {
+    // Target and exemplars are needed whole, whatever their sizes.
+    for (int port = 0; port < this->GetNumberOfInputPorts(); ++port)
+    {
+      for (int c = 0; c < inputVector[port]->GetNumberOfInformationObjects(); ++c)
+      {
+        vtkInformation* in = inputVector[port]->GetInformationObject(c);
+        if (in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+        {
+          int extent[6];
+          in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+          in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
+        }
+      }
+    }
+    return 1;
+  }
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
   {
     return this->RequestData(request, inputVector, outputVector);

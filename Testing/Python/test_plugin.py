@@ -32,6 +32,40 @@ def horn_slope_degrees(z, cx, cy):
     return np.degrees(np.arctan(np.hypot(p, q)))
 
 
+def image_from(z, spacing, origin=(0.0, 0.0), arrays=None):
+    """A 2D vtkImageData with point arrays from numpy (rows = y)."""
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+
+    ny, nx = z.shape
+    image = vtkImageData()
+    image.SetDimensions(nx, ny, 1)
+    image.SetSpacing(spacing[0], spacing[1], 1.0)
+    image.SetOrigin(origin[0], origin[1], 0.0)
+    elevation = numpy_to_vtk(np.ascontiguousarray(z.ravel(), dtype=np.float32), deep=1)
+    elevation.SetName("Elevation")
+    image.GetPointData().SetScalars(elevation)
+    for name, values in (arrays or {}).items():
+        a = numpy_to_vtk(np.ascontiguousarray(values.ravel()), deep=1)
+        a.SetName(name)
+        image.GetPointData().AddArray(a)
+    return image
+
+
+def producer(image):
+    source = simple.PVTrivialProducer()
+    source.GetClientSideObject().SetOutput(image)
+    source.UpdatePipeline()
+    return source
+
+
+def dem_array(path):
+    reader = simple.TerrainReader(FileName=path)
+    data = sm.Fetch(reader)
+    nx, ny, _ = data.GetDimensions()
+    return point_array(data, "Elevation").reshape(ny, nx).astype(np.float64), data.GetSpacing()
+
+
 class PluginTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -285,6 +319,75 @@ class PluginTest(unittest.TestCase):
         costs = vtk_to_numpy(table.GetColumnByName("Cost"))
         self.assertTrue(np.all(np.diff(costs) >= 0))
         self.assertEqual(int(exemplars[0]), 1)  # the alps match themselves best
+
+    # Merging ---------------------------------------------------------------------------------
+
+    def test_patch_placed_back_leaves_the_terrain_unchanged(self):
+        z, spacing = dem_array(self.alps)
+        filled = np.zeros(z.shape, dtype=np.uint8)
+        filled[:, :300] = 1
+        terrain = producer(image_from(z, spacing, arrays={"Filled": filled}))
+        patch_z = z[250:346, 250:346]
+        patch = producer(image_from(patch_z, spacing, origin=(250 * spacing[0], 250 * spacing[1])))
+        for mode in (0, 1, 2, 3):
+            merged = simple.TerrainGraphCutMerger(Input=terrain, Patch=patch, Mode=mode)
+            merged.UpdatePipeline()
+            data = sm.Fetch(merged)
+            out = point_array(data, "Elevation").reshape(z.shape)
+            now = point_array(data, "Filled").reshape(z.shape)
+            self.assertTrue(np.all(now[250:346, 250:346] == 1), "mode %d" % mode)
+            np.testing.assert_allclose(out[now == 1], z[now == 1], rtol=0, atol=1e-3,
+                                       err_msg="mode %d" % mode)
+
+    def test_new_mode_hides_the_seam_that_cut_leaves(self):
+        terrain_z, spacing = dem_array(os.path.join(PATHS.bundled_data, "dems", "colorado.png"))
+        alps_z, _ = dem_array(self.alps)
+        filled = np.zeros(terrain_z.shape, dtype=np.uint8)
+        filled[:, :300] = 1
+        terrain = producer(image_from(terrain_z, spacing, arrays={"Filled": filled}))
+        patch = producer(image_from(alps_z[200:296, 200:296], spacing,
+                                    origin=(260 * spacing[0], 200 * spacing[1])))
+        steps = {}
+        for mode in (0, 3):
+            merged = simple.TerrainGraphCutMerger(Input=terrain, Patch=patch, Mode=mode, PatchIdValue=7)
+            merged.UpdatePipeline()
+            data = sm.Fetch(merged)
+            out = point_array(data, "Elevation").reshape(terrain_z.shape)
+            seam = point_array(data, "SeamMask").reshape(terrain_z.shape)
+            ids = point_array(data, "PatchId").reshape(terrain_z.shape)
+            self.assertGreater(int(seam.sum()), 50)
+            self.assertGreater(int((ids == 7).sum()), 96 * 50)
+            self.assertGreater(float(data.GetFieldData().GetArray("CutCost").GetValue(0)), 0.0)
+            # Height steps between horizontal neighbours on the seam.
+            rows, cols = np.nonzero(seam[:, :-1])
+            steps[mode] = np.percentile(np.abs(out[rows, cols + 1] - out[rows, cols]), 95)
+        own = np.percentile(np.abs(np.diff(terrain_z, axis=1)), 99)
+        self.assertGreater(steps[0], 3 * own)  # the cut alone leaves a cliff
+        self.assertLess(steps[3], own)         # the gradient-domain merge removes it
+
+    def test_poisson_solver_clones_one_dem_into_another(self):
+        dst_z, spacing = dem_array(os.path.join(PATHS.bundled_data, "dems", "colorado.png"))
+        src_z, _ = dem_array(self.alps)
+        dst_z = dst_z[100:300, 100:300]
+        src_z = src_z[300:500, 300:500] + 2000.0
+        yy, xx = np.mgrid[0:200, 0:200]
+        mask = ((xx - 100) ** 2 + (yy - 100) ** 2 < 60 ** 2).astype(np.uint8)
+        destination = producer(image_from(dst_z, spacing))
+        source = producer(image_from(src_z, spacing, arrays={"Mask": mask}))
+        solver = simple.TerrainPoissonSolver(Input=destination, Source=source, Mode=0)
+        solver.UpdatePipeline()
+        data = sm.Fetch(solver)
+        out = point_array(data, "Elevation").reshape(200, 200).astype(np.float64)
+        np.testing.assert_array_equal(out[mask == 0], dst_z[mask == 0].astype(np.float32))
+
+        def laplacian(a):
+            return a[1:-1, 2:] + a[1:-1, :-2] + a[2:, 1:-1] + a[:-2, 1:-1] - 4 * a[1:-1, 1:-1]
+        inside = mask[1:-1, 1:-1] == 1
+        scale = np.abs(laplacian(src_z)[inside]).max()
+        self.assertLess(np.abs(laplacian(out) - laplacian(src_z))[inside].max(), 1e-3 * scale)
+        # No step at the edge: the 2000 m offset is gone next to the boundary.
+        ring = (mask == 1) & ((xx - 100) ** 2 + (yy - 100) ** 2 > 58 ** 2)
+        self.assertLess(abs(float(np.mean(out[ring] - dst_z[ring]))), 100.0)
 
     def test_missing_file_gives_an_empty_output_not_a_crash(self):
         reader = simple.TerrainReader(FileName="/nonexistent/dem.tif")

@@ -1,0 +1,212 @@
+#include "vtkTerrainGraphCutMerger.h"
+
+#include "TerrainImageConversion.h"
+
+#include "Core/Error.h"
+#include "Merging/PatchMerger.h"
+
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <cmath>
+
+vtkStandardNewMacro(vtkTerrainGraphCutMerger);
+
+namespace
+{
+
+std::vector<std::uint8_t> byteArray(vtkImageData* image,
+  const char* name,
+  std::size_t n,
+  std::uint8_t fallback)
+{
+  std::vector<std::uint8_t> out(n, fallback);
+  if (vtkDataArray* a = image->GetPointData()->GetArray(name))
+  {
+    if (static_cast<std::size_t>(a->GetNumberOfTuples()) == n)
+    {
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        out[k] = a->GetComponent(static_cast<vtkIdType>(k), 0) != 0.0 ? 1 : 0;
+      }
+    }
+  }
+  return out;
+}
+
+} // namespace
+
+vtkTerrainGraphCutMerger::vtkTerrainGraphCutMerger()
+{
+  this->SetNumberOfInputPorts(2);
+}
+
+int vtkTerrainGraphCutMerger::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkTerrainGraphCutMerger::RequestInformation(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  // The output lies on the first input's grid, whatever the second input's size.
+  vtkInformation* in = inputVector[0]->GetInformationObject(0);
+  vtkInformation* out = outputVector->GetInformationObject(0);
+  out->CopyEntry(in, vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+  out->CopyEntry(in, vtkDataObject::SPACING());
+  out->CopyEntry(in, vtkDataObject::ORIGIN());
+  return 1;
+}
+
+int vtkTerrainGraphCutMerger::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
+{
+  // Every input is needed whole.
+  for (int port = 0; port < 2; ++port)
+  {
+    for (int c = 0; c < inputVector[port]->GetNumberOfInformationObjects(); ++c)
+    {
+      vtkInformation* in = inputVector[port]->GetInformationObject(c);
+      int extent[6];
+      in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+      in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
+    }
+  }
+  return 1;
+}
+
+int vtkTerrainGraphCutMerger::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkImageData* terrainImage = vtkImageData::GetData(inputVector[0], 0);
+  vtkImageData* patchImage = vtkImageData::GetData(inputVector[1], 0);
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  if (patchImage == nullptr)
+  {
+    vtkErrorMacro("No patch: connect the patch image to the second input.");
+    return 0;
+  }
+  try
+  {
+    tsynth::Heightfield terrain = tsynth::imageToHeightfield(terrainImage);
+    const tsynth::Heightfield patch = tsynth::imageToHeightfield(patchImage);
+    std::vector<std::uint8_t> filled = byteArray(terrainImage, "Filled", terrain.size(), 1);
+    for (std::size_t k = 0; k < filled.size(); ++k)
+    {
+      filled[k] = filled[k] != 0 && terrain.isValid(k) ? 1 : 0;
+    }
+    const std::vector<std::uint8_t> core = byteArray(patchImage, "Core", patch.size(), 0);
+    int x0 = this->PatchCell[0];
+    int y0 = this->PatchCell[1];
+    if (this->UsePatchOrigin)
+    {
+      double tx = 0.0;
+      double ty = 0.0;
+      double px = 0.0;
+      double py = 0.0;
+      tsynth::gridOrigin(terrainImage, tx, ty);
+      tsynth::gridOrigin(patchImage, px, py);
+      x0 = static_cast<int>(std::lround((px - tx) / terrain.cellX));
+      y0 = static_cast<int>(std::lround((py - ty) / terrain.cellY));
+    }
+    tsynth::MergeOptions options;
+    options.mode = this->Mode == CUT ? tsynth::MergeMode::Cut
+      : this->Mode == POISSON        ? tsynth::MergeMode::Poisson
+      : this->Mode == SHEPARD        ? tsynth::MergeMode::Shepard
+                                     : tsynth::MergeMode::New;
+    options.shepardRadius = this->ShepardRadius;
+    this->UpdateProgress(0.2);
+    tsynth::PatchMerger merger;
+    const tsynth::MergeResult r = merger.merge(terrain, filled, patch, x0, y0, &core, options);
+    this->UpdateProgress(0.9);
+
+    output->CopyStructure(terrainImage);
+    output->GetFieldData()->PassData(terrainImage->GetFieldData());
+    vtkNew<vtkImageData> converted;
+    tsynth::heightfieldToImage(terrain, converted);
+    output->GetPointData()->AddArray(converted->GetPointData()->GetArray(tsynth::kElevationArray));
+    output->GetPointData()->SetActiveScalars(tsynth::kElevationArray);
+    if (vtkDataArray* valid = converted->GetPointData()->GetArray(tsynth::kValidArray))
+    {
+      output->GetPointData()->AddArray(valid);
+    }
+    const vtkIdType n = static_cast<vtkIdType>(terrain.size());
+    vtkNew<vtkUnsignedCharArray> filledArray;
+    filledArray->SetName("Filled");
+    filledArray->SetNumberOfTuples(n);
+    std::copy(filled.begin(), filled.end(), filledArray->GetPointer(0));
+    output->GetPointData()->AddArray(filledArray);
+    vtkNew<vtkUnsignedCharArray> seam;
+    seam->SetName("SeamMask");
+    seam->SetNumberOfTuples(n);
+    seam->Fill(0);
+    vtkNew<vtkIntArray> patchId;
+    patchId->SetName("PatchId");
+    patchId->SetNumberOfTuples(n);
+    patchId->Fill(0);
+    if (vtkDataArray* previous = terrainImage->GetPointData()->GetArray("PatchId"))
+    {
+      for (vtkIdType k = 0; k < n && k < previous->GetNumberOfTuples(); ++k)
+      {
+        patchId->SetValue(k, static_cast<int>(previous->GetComponent(k, 0)));
+      }
+    }
+    for (int j = 0; j < r.height; ++j)
+    {
+      for (int i = 0; i < r.width; ++i)
+      {
+        const std::size_t w = static_cast<std::size_t>(j * r.width + i);
+        const vtkIdType k = static_cast<vtkIdType>(terrain.index(r.x0 + i, r.y0 + j));
+        if (r.seam[w] != 0)
+        {
+          seam->SetValue(k, 1);
+        }
+        if (r.takeNew[w] != 0)
+        {
+          patchId->SetValue(k, this->PatchIdValue);
+        }
+      }
+    }
+    output->GetPointData()->AddArray(seam);
+    output->GetPointData()->AddArray(patchId);
+    auto fieldValue = [&](const char* name, double v)
+    {
+      vtkNew<vtkDoubleArray> a;
+      a->SetName(name);
+      a->InsertNextValue(v);
+      output->GetFieldData()->AddArray(a);
+    };
+    fieldValue("CutCost", r.cutCost);
+    fieldValue("CutEdges", r.cutEdges);
+    fieldValue("NormalisedCutCost", r.normalisedCost);
+  }
+  catch (const tsynth::Error& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  return 1;
+}
+
+void vtkTerrainGraphCutMerger::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Mode: " << this->Mode << "\n";
+  os << indent << "UsePatchOrigin: " << this->UsePatchOrigin << "\n";
+  os << indent << "PatchCell: " << this->PatchCell[0] << ", " << this->PatchCell[1] << "\n";
+  os << indent << "ShepardRadius: " << this->ShepardRadius << "\n";
+  os << indent << "PatchIdValue: " << this->PatchIdValue << "\n";
+}

@@ -1,0 +1,60 @@
+/**
+ * @class vtkTerrainPoissonSolver
+ * @brief Gradient-domain editing of heightfields: solves for heights whose
+ * differences follow a guidance field inside a mask, with the surrounding
+ * terrain as the boundary (Perez et al. 2003; Zhou et al. 2007).
+ *
+ * SeamlessClone (default): input port 1 is a source heightfield on the same
+ * grid as the destination (port 0); inside the source's uint8 "Mask" array
+ * (or, without one, wherever the source is valid) the result takes the
+ * source's slopes while meeting the destination at the mask's edge: one DEM
+ * cloned into another without a step. GuidanceField: the destination's own
+ * two-component point array "Gradient" (dz/dx, dz/dy in m/m) is followed
+ * inside its "Mask". The solver is conjugate gradients preconditioned by a
+ * multigrid V-cycle, on any mask shape; nodata cells are left out. Output: the
+ * destination with the solved "Elevation" and field data Iterations,
+ * RelativeResidual.
+ */
+#pragma once
+
+#include "TerrainSynthesisFiltersModule.h"
+
+#include <vtkImageAlgorithm.h>
+
+class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainPoissonSolver : public vtkImageAlgorithm
+{
+public:
+  static vtkTerrainPoissonSolver* New();
+  vtkTypeMacro(vtkTerrainPoissonSolver, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum Modes
+  {
+    SEAMLESS_CLONE = 0,
+    GUIDANCE_FIELD = 1
+  };
+  vtkSetClampMacro(Mode, int, SEAMLESS_CLONE, GUIDANCE_FIELD);
+  vtkGetMacro(Mode, int);
+  /// Relative residual at which the solver stops (default 1e-8).
+  vtkSetClampMacro(Tolerance, double, 1e-14, 1e-1);
+  vtkGetMacro(Tolerance, double);
+
+  /// Sets the source heightfield (port 1) for SeamlessClone.
+  void SetSourceConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
+
+protected:
+  vtkTerrainPoissonSolver();
+  ~vtkTerrainPoissonSolver() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int Mode = SEAMLESS_CLONE;
+  double Tolerance = 1e-8;
+
+private:
+  vtkTerrainPoissonSolver(const vtkTerrainPoissonSolver&) = delete;
+  void operator=(const vtkTerrainPoissonSolver&) = delete;
+};
