@@ -204,6 +204,12 @@ MergeResult PatchMerger::seamCost(const Heightfield& terrain,
 // Shepard interpolation (Shepard 1968, as in Tasse 3.5) of the seam values to
 // every new cell, times a C1 fall-off that reaches 0 at the radius: the
 // normalised weights alone sum to 1 up to the radius and 0 beyond, a step.
+//
+// A point at distance d >= radius has weight exactly 0, and d >= |dx|, |dy|, so
+// only points with |dx| < radius and |dy| < radius are visited: the seam points
+// come in row order, so those with |dy| < radius are one index range per row,
+// gathered once per row; cells farther than the radius from every point of the
+// range in x are skipped without a loop.
 void PatchMerger::shepard(int valuesPerPoint, double radius, double power, std::vector<double>& out)
 {
   const std::size_t n = static_cast<std::size_t>(fw_) * fh_;
@@ -213,59 +219,107 @@ void PatchMerger::shepard(int valuesPerPoint, double radius, double power, std::
     return;
   const float r = static_cast<float>(radius);
   const float r2 = r * r;
-  std::vector<std::int32_t> pointAt(n, -1);
+  pointAt_.assign(n, -1);
   for (std::size_t s = 0; s < points; ++s)
   {
-    pointAt[static_cast<std::size_t>(seamY_[s]) * fw_ + static_cast<std::size_t>(seamX_[s])] =
+    pointAt_[static_cast<std::size_t>(seamY_[s]) * fw_ + static_cast<std::size_t>(seamX_[s])] =
       static_cast<std::int32_t>(s);
   }
-  std::vector<float> weight(points);
+  bandX_.resize(points);
+  bandDy2_.resize(points);
+  bandValue_.resize(points * valuesPerPoint);
+  weight_.resize(points);
+  std::size_t lo = 0, hi = 0;
   for (int j = 0; j < fh_; ++j)
   {
-    for (int i = 0; i < fw_; ++i)
+    const float fj = static_cast<float>(j);
+    // Points with |seamY - j| < r: [lo, hi) in the row-ordered list.
+    while (lo < points && !(fj - seamY_[lo] < r))
+      ++lo;
+    hi = std::max(hi, lo);
+    while (hi < points && seamY_[hi] - fj < r)
+      ++hi;
+    const std::size_t m = hi - lo;
+    if (m == 0)
+      continue;
+    float minX = std::numeric_limits<float>::max();
+    float maxX = std::numeric_limits<float>::lowest();
+    for (std::size_t s = 0; s < m; ++s)
+    {
+      const float dy = fj - seamY_[lo + s];
+      bandX_[s] = seamX_[lo + s];
+      bandDy2_[s] = dy * dy;
+      minX = std::min(minX, bandX_[s]);
+      maxX = std::max(maxX, bandX_[s]);
+      for (int v = 0; v < valuesPerPoint; ++v)
+        bandValue_[s * valuesPerPoint + v] = seamValue_[(lo + s) * valuesPerPoint + v];
+    }
+    const int iBegin = std::max(0, static_cast<int>(std::floor(minX - r)) + 1);
+    const int iEnd = std::min(fw_, static_cast<int>(std::ceil(maxX + r)));
+    for (int i = iBegin; i < iEnd; ++i)
     {
       const std::size_t k = static_cast<std::size_t>(j) * fw_ + i;
       if (side_[k] != 2)
         continue;
-      if (pointAt[k] >= 0)
+      if (pointAt_[k] >= 0)
       {
         for (int v = 0; v < valuesPerPoint; ++v)
-          out[k * valuesPerPoint + v] = seamValue_[pointAt[k] * valuesPerPoint + v];
+          out[k * valuesPerPoint + v] = seamValue_[pointAt_[k] * valuesPerPoint + v];
         continue;
       }
-      // Branch-free so the compiler vectorises it; d > 0 here.
+      // Branch-free so the compiler vectorises it (sqrt needs -fno-math-errno,
+      // see Sources.cmake); d > 0 here.
       float dmin2 = std::numeric_limits<float>::max();
       const float fi = static_cast<float>(i);
-      const float fj = static_cast<float>(j);
-      for (std::size_t s = 0; s < points; ++s)
+      const float* __restrict bx = bandX_.data();
+      const float* __restrict by2 = bandDy2_.data();
+      float* __restrict wt = weight_.data();
+      for (std::size_t s = 0; s < m; ++s)
       {
-        const float dx = fi - seamX_[s];
-        const float dy = fj - seamY_[s];
-        const float d2 = dx * dx + dy * dy;
+        const float dx = fi - bx[s];
+        const float d2 = dx * dx + by2[s];
         dmin2 = std::min(dmin2, d2);
         const float d = std::sqrt(d2);
         const float base = std::max(r - d, 0.0f) / (r * d);
-        weight[s] = base * base;
+        wt[s] = base * base;
       }
       if (!(dmin2 < r2))
         continue;
       if (power != 2.0)
       {
-        for (std::size_t s = 0; s < points; ++s)
-          weight[s] = static_cast<float>(std::pow(std::sqrt(weight[s]), power));
+        for (std::size_t s = 0; s < m; ++s)
+          weight_[s] = static_cast<float>(std::pow(std::sqrt(weight_[s]), power));
       }
-      double sumW = 0.0;
-      double sum[2] = { 0.0, 0.0 };
-      for (std::size_t s = 0; s < points; ++s)
+      // Four partial sums (a fixed order, so results stay deterministic) to
+      // break the dependency chain of one running sum.
+      double sumW[4] = { 0.0, 0.0, 0.0, 0.0 };
+      double sum[2][4] = { { 0.0, 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0, 0.0 } };
+      std::size_t s = 0;
+      for (; s + 4 <= m; s += 4)
       {
-        sumW += weight[s];
-        for (int v = 0; v < valuesPerPoint; ++v)
-          sum[v] += weight[s] * seamValue_[s * valuesPerPoint + v];
+        for (int l = 0; l < 4; ++l)
+        {
+          const double w = weight_[s + l];
+          sumW[l] += w;
+          for (int v = 0; v < valuesPerPoint; ++v)
+            sum[v][l] += w * bandValue_[(s + l) * valuesPerPoint + v];
+        }
       }
+      for (; s < m; ++s)
+      {
+        const double w = weight_[s];
+        sumW[0] += w;
+        for (int v = 0; v < valuesPerPoint; ++v)
+          sum[v][0] += w * bandValue_[s * valuesPerPoint + v];
+      }
+      const double totalW = (sumW[0] + sumW[1]) + (sumW[2] + sumW[3]);
       const double t = 1.0 - std::sqrt(static_cast<double>(dmin2)) / radius;
       const double falloff = t * t * (3.0 - 2.0 * t);
       for (int v = 0; v < valuesPerPoint; ++v)
-        out[k * valuesPerPoint + v] = falloff * sum[v] / sumW;
+      {
+        const double total = (sum[v][0] + sum[v][1]) + (sum[v][2] + sum[v][3]);
+        out[k * valuesPerPoint + v] = falloff * total / totalW;
+      }
     }
   }
 }

@@ -117,6 +117,10 @@ private:
   std::vector<float> seamX_, seamY_;
   std::vector<double> seamValue_;
   std::vector<double> shepardOut_;
+  // Shepard scratch: seam point per cell, the points of the current row band.
+  std::vector<std::int32_t> pointAt_;
+  std::vector<float> bandX_, bandDy2_, weight_;
+  std::vector<double> bandValue_;
 };
 
 } // namespace tsynth
