@@ -150,6 +150,12 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
   try
   {
     const tsynth::Heightfield target = tsynth::imageToHeightfield(targetImage);
+    if (target.width < this->PatchSize || target.height < this->PatchSize)
+    {
+      throw tsynth::Error("The target is " + std::to_string(target.width) + " x " +
+        std::to_string(target.height) + " cells, smaller than one patch (" +
+        std::to_string(this->PatchSize) + "); use a smaller PatchSize.");
+    }
     std::vector<std::uint8_t> known(target.size(), 1);
     if (vtkDataArray* k = targetImage->GetPointData()->GetArray("Known"))
     {

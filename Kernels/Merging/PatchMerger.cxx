@@ -242,12 +242,12 @@ void PatchMerger::shepard(int valuesPerPoint, double radius, double power, std::
     const std::size_t m = hi - lo;
     if (m == 0)
       continue;
-    float minX = std::numeric_limits<float>::max();
-    float maxX = std::numeric_limits<float>::lowest();
+    std::int32_t minX = std::numeric_limits<std::int32_t>::max();
+    std::int32_t maxX = std::numeric_limits<std::int32_t>::lowest();
     for (std::size_t s = 0; s < m; ++s)
     {
-      const float dy = fj - seamY_[lo + s];
-      bandX_[s] = seamX_[lo + s];
+      const std::int32_t dy = j - static_cast<std::int32_t>(seamY_[lo + s]);
+      bandX_[s] = static_cast<std::int32_t>(seamX_[lo + s]);
       bandDy2_[s] = dy * dy;
       minX = std::min(minX, bandX_[s]);
       maxX = std::max(maxX, bandX_[s]);
@@ -255,7 +255,7 @@ void PatchMerger::shepard(int valuesPerPoint, double radius, double power, std::
         bandValue_[s * valuesPerPoint + v] = seamValue_[(lo + s) * valuesPerPoint + v];
     }
     const int iBegin = std::max(0, static_cast<int>(std::floor(minX - r)) + 1);
-    const int iEnd = std::min(fw_, static_cast<int>(std::ceil(maxX + r)));
+    const int iEnd = std::min(fw_, static_cast<int>(std::ceil(static_cast<float>(maxX) + r)));
     for (int i = iBegin; i < iEnd; ++i)
     {
       const std::size_t k = static_cast<std::size_t>(j) * fw_ + i;
@@ -269,21 +269,22 @@ void PatchMerger::shepard(int valuesPerPoint, double radius, double power, std::
       }
       // Branch-free so the compiler vectorises it (sqrt needs -fno-math-errno,
       // see Sources.cmake); d > 0 here.
-      float dmin2 = std::numeric_limits<float>::max();
-      const float fi = static_cast<float>(i);
-      const float* __restrict bx = bandX_.data();
-      const float* __restrict by2 = bandDy2_.data();
+      // Squared distances are integers (exact in float); their minimum is
+      // taken in integers, which vectorises where a float minimum does not.
+      std::int32_t dmin2 = std::numeric_limits<std::int32_t>::max();
+      const std::int32_t* __restrict bx = bandX_.data();
+      const std::int32_t* __restrict by2 = bandDy2_.data();
       float* __restrict wt = weight_.data();
       for (std::size_t s = 0; s < m; ++s)
       {
-        const float dx = fi - bx[s];
-        const float d2 = dx * dx + by2[s];
+        const std::int32_t dx = i - bx[s];
+        const std::int32_t d2 = dx * dx + by2[s];
         dmin2 = std::min(dmin2, d2);
-        const float d = std::sqrt(d2);
+        const float d = std::sqrt(static_cast<float>(d2));
         const float base = std::max(r - d, 0.0f) / (r * d);
         wt[s] = base * base;
       }
-      if (!(dmin2 < r2))
+      if (!(static_cast<float>(dmin2) < r2))
         continue;
       if (power != 2.0)
       {

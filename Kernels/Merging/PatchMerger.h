@@ -119,7 +119,8 @@ private:
   std::vector<double> shepardOut_;
   // Shepard scratch: seam point per cell, the points of the current row band.
   std::vector<std::int32_t> pointAt_;
-  std::vector<float> bandX_, bandDy2_, weight_;
+  std::vector<std::int32_t> bandX_, bandDy2_;
+  std::vector<float> weight_;
   std::vector<double> bandValue_;
 };
 

@@ -389,6 +389,14 @@ class PluginTest(unittest.TestCase):
         ring = (mask == 1) & ((xx - 100) ** 2 + (yy - 100) ** 2 > 58 ** 2)
         self.assertLess(abs(float(np.mean(out[ring] - dst_z[ring]))), 100.0)
 
+    def test_patch_matcher_refuses_a_target_smaller_than_a_patch(self):
+        z, spacing = dem_array(self.alps)
+        small = producer(image_from(z[:40, :40], spacing))
+        exemplar = simple.TerrainReader(FileName=self.alps)
+        matcher = simple.TerrainPatchMatcher(Input=small, Exemplars=[exemplar], PatchSize=64)
+        matcher.UpdatePipeline()
+        self.assertEqual(sm.Fetch(matcher, arg1=None, arg2=None, idx=0).GetNumberOfRows(), 0)
+
     def test_missing_file_gives_an_empty_output_not_a_crash(self):
         reader = simple.TerrainReader(FileName="/nonexistent/dem.tif")
         reader.UpdatePipeline()
