@@ -474,8 +474,24 @@ void PatchMerger::blendPoisson(const MergeOptions& options,
     unknown[k] = side_[k] == 2;
     out_[k] = side_[k] == 2 ? new_[k] : (side_[k] == 1 ? old_[k] : NaN);
   }
+  PoissonOptions poisson = options.poisson;
+  if (!(poisson.errorTolerance > 0.0) && options.relativeHeightTolerance > 0.0)
+  {
+    float lo = std::numeric_limits<float>::max();
+    float hi = std::numeric_limits<float>::lowest();
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      if (side_[k] == 0)
+        continue;
+      const float z = side_[k] == 2 ? new_[k] : old_[k];
+      lo = std::min(lo, z);
+      hi = std::max(hi, z);
+    }
+    if (hi > lo)
+      poisson.errorTolerance = options.relativeHeightTolerance * (static_cast<double>(hi) - lo);
+  }
   result.poisson = poisson_.solveGuided(
-    fw_, fh_, cellX_, cellY_, unknown.data(), gx_.data(), gy_.data(), out_.data(), options.poisson);
+    fw_, fh_, cellX_, cellY_, unknown.data(), gx_.data(), gy_.data(), out_.data(), poisson);
 }
 
 MergeResult PatchMerger::merge(Heightfield& terrain,

@@ -34,6 +34,11 @@ struct MergeOptions
   double shepardRadius = 20.0;
   double shepardPower = 2.0;
   PoissonOptions poisson;
+  // Poisson and New modes stop the solve once its estimated height error is at
+  // most this fraction of the window's height range (1e-4: 0.1 m on 1000 m of
+  // relief, far below DEM precision), unless poisson.errorTolerance is set.
+  // 0 = solve to poisson.tolerance only.
+  double relativeHeightTolerance = 1e-4;
 };
 
 struct MergeResult

@@ -185,13 +185,18 @@ struct Level
   int w = 0, h = 0; // unpadded size
   int stride = 0;
   std::vector<std::uint8_t> unknown;
-  std::vector<double> wE, wN; // coupling to the +x / +y unknown neighbour
-  std::vector<double> diag;   // includes edges to Dirichlet cells
+  std::vector<double> wE, wN;  // coupling to the +x / +y unknown neighbour
+  std::vector<double> diag;    // includes edges to Dirichlet cells
+  std::vector<double> invDiag; // 1 / diag on unknowns, 0 elsewhere
   std::vector<double> x, b, r;
+  // Per row j, the unknowns lie in columns [rowBegin[j], rowEnd[j]) (empty if
+  // equal): the loops skip the rest of the row. Vectors stay 0 outside.
+  std::vector<int> rowBegin, rowEnd;
   std::size_t count = 0;
   // Coarsest level: dense Cholesky over its unknowns.
   std::vector<int> denseIndex;
   Eigen::LLT<Eigen::MatrixXd> dense;
+  Eigen::VectorXd denseRhs;
 
   std::size_t pad(int i, int j) const
   {
@@ -212,6 +217,30 @@ struct Level
     r.assign(n, 0.0);
     count = 0;
   }
+  // After unknown and diag are final: inverse diagonal, row extents, count.
+  void finish()
+  {
+    invDiag.assign(unknown.size(), 0.0);
+    rowBegin.assign(static_cast<std::size_t>(h), 0);
+    rowEnd.assign(static_cast<std::size_t>(h), 0);
+    count = 0;
+    for (int j = 0; j < h; ++j)
+    {
+      int first = w, last = -1;
+      for (int i = 0; i < w; ++i)
+      {
+        const std::size_t k = pad(i, j);
+        if (!unknown[k])
+          continue;
+        invDiag[k] = 1.0 / diag[k];
+        first = std::min(first, i);
+        last = i;
+        ++count;
+      }
+      rowBegin[j] = last >= 0 ? first : 0;
+      rowEnd[j] = last + 1;
+    }
+  }
 };
 
 // Threads only pay off on large grids; every loop below writes disjoint cells,
@@ -225,7 +254,7 @@ void applyOperator(const Level& L, const double* v, double* y)
   for (int j = 0; j < L.h; ++j)
   {
     const std::size_t row = L.pad(0, j);
-    for (std::size_t k = row; k < row + static_cast<std::size_t>(L.w); ++k)
+    for (std::size_t k = row + L.rowBegin[j]; k < row + static_cast<std::size_t>(L.rowEnd[j]); ++k)
     {
       y[k] = L.unknown[k] ? L.diag[k] * v[k] -
           (L.wE[k] * v[k + 1] + L.wE[k - 1] * v[k - 1] + L.wN[k] * v[k + s] +
@@ -243,16 +272,14 @@ void smoothColour(Level& L, int colour)
   for (int j = 0; j < L.h; ++j)
   {
     const std::size_t row = L.pad(0, j);
-    for (int i = (j + colour) & 1; i < L.w; i += 2)
+    const int begin = L.rowBegin[j] + ((L.rowBegin[j] + j + colour) & 1);
+    for (int i = begin; i < L.rowEnd[j]; i += 2)
     {
       const std::size_t k = row + static_cast<std::size_t>(i);
-      if (!L.unknown[k])
-      {
-        continue;
-      }
+      // invDiag is 0 off the unknowns, where x stays 0.
       L.x[k] = (L.b[k] + L.wE[k] * L.x[k + 1] + L.wE[k - 1] * L.x[k - 1] + L.wN[k] * L.x[k + s] +
-                 L.wN[k - s] * L.x[k - s]) /
-        L.diag[k];
+                 L.wN[k - s] * L.x[k - s]) *
+        L.invDiag[k];
     }
   }
 }
@@ -315,8 +342,8 @@ struct MaskedPoissonSolver::Impl
       coarse.wE[c] *= 0.5;
       coarse.wN[c] *= 0.5;
       coarse.diag[c] *= 0.5;
-      coarse.count += coarse.unknown[c];
     }
+    coarse.finish();
   }
 
   void buildDense(Level& L)
@@ -359,14 +386,15 @@ struct MaskedPoissonSolver::Impl
     std::fill(L.x.begin(), L.x.end(), 0.0);
     if (l + 1 == levels.size())
     {
-      Eigen::VectorXd rhs(static_cast<Eigen::Index>(L.count));
+      Eigen::VectorXd& rhs = L.denseRhs;
+      rhs.resize(static_cast<Eigen::Index>(L.count));
       for (std::size_t k = 0; k < L.unknown.size(); ++k)
         if (L.denseIndex[k] >= 0)
           rhs[L.denseIndex[k]] = L.b[k];
-      const Eigen::VectorXd sol = L.dense.solve(rhs);
+      L.dense.solveInPlace(rhs);
       for (std::size_t k = 0; k < L.unknown.size(); ++k)
         if (L.denseIndex[k] >= 0)
-          L.x[k] = sol[L.denseIndex[k]];
+          L.x[k] = rhs[L.denseIndex[k]];
       return;
     }
     for (int s = 0; s < sweeps; ++s)
@@ -383,7 +411,7 @@ struct MaskedPoissonSolver::Impl
     {
       for (int j = 2 * cj; j < std::min(2 * cj + 2, L.h); ++j)
       {
-        for (int i = 0; i < L.w; ++i)
+        for (int i = L.rowBegin[j]; i < L.rowEnd[j]; ++i)
         {
           const std::size_t k = L.pad(i, j);
           if (L.unknown[k])
@@ -397,7 +425,7 @@ struct MaskedPoissonSolver::Impl
 #pragma omp parallel for schedule(static) if (static_cast <long>(L.w) * L.h > ParallelCells)
     for (int j = 0; j < L.h; ++j)
     {
-      for (int i = 0; i < L.w; ++i)
+      for (int i = L.rowBegin[j]; i < L.rowEnd[j]; ++i)
       {
         const std::size_t k = L.pad(i, j);
         if (L.unknown[k])
@@ -516,14 +544,13 @@ struct MaskedPoissonSolver::Impl
         }
       }
     }
-    for (std::size_t k = 0; k < F.unknown.size(); ++k)
-      F.count += F.unknown[k];
+    F.finish();
     stats.unknowns = F.count;
   }
 
   void buildHierarchy()
   {
-    constexpr std::size_t denseLimit = 200;
+    constexpr std::size_t denseLimit = 64;
     while (levels.back().count > denseLimit && (levels.back().w > 1 || levels.back().h > 1))
     {
       Level coarse;
@@ -534,6 +561,7 @@ struct MaskedPoissonSolver::Impl
   }
 
   // Solves A delta = res (res holds the initial residual on the padded grid).
+  // Vectors are 0 off the unknowns, so whole-array loops give the same sums.
   void pcg(const PoissonOptions& options, PoissonStatistics& stats)
   {
     Level& F = levels[0];
@@ -549,25 +577,46 @@ struct MaskedPoissonSolver::Impl
     {
       return;
     }
+    // z = V-cycle(res): the V-cycle reads its right-hand side from F.b and
+    // leaves its result in F.x; swapping buffers avoids two copies.
     auto precondition = [&]()
     {
-      F.b = res;
+      F.b.swap(res);
       vcycle(0, options.smoothingSweeps);
-      z = F.x;
+      F.b.swap(res);
+      z.swap(F.x);
+    };
+    // rz = res . z, and whether the estimated error max |z| is small enough.
+    auto examine = [&](double& rz)
+    {
+      double s = 0.0, e = 0.0;
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        s += res[k] * z[k];
+        e = std::max(e, std::abs(z[k]));
+      }
+      rz = s;
+      return options.errorTolerance > 0.0 && e <= options.errorTolerance;
     };
     precondition();
+    double rz = 0.0;
+    if (examine(rz))
+    {
+      return;
+    }
     dir = z;
-    double rz = dot(res, z);
     for (int it = 1; it <= options.maxIterations; ++it)
     {
       applyOperator(F, dir.data(), q.data());
       const double alpha = rz / dot(dir, q);
+      double rr = 0.0;
       for (std::size_t k = 0; k < n; ++k)
       {
         delta[k] += alpha * dir[k];
         res[k] -= alpha * q[k];
+        rr += res[k] * res[k];
       }
-      const double rn = std::sqrt(dot(res, res));
+      const double rn = std::sqrt(rr);
       stats.iterations = it;
       stats.finalResidual = rn;
       if (rn <= options.tolerance * r0)
@@ -575,7 +624,11 @@ struct MaskedPoissonSolver::Impl
         break;
       }
       precondition();
-      const double rzNew = dot(res, z);
+      double rzNew = 0.0;
+      if (examine(rzNew))
+      {
+        break;
+      }
       const double beta = rzNew / rz;
       rz = rzNew;
       for (std::size_t k = 0; k < n; ++k)

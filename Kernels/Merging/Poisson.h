@@ -46,6 +46,12 @@ struct PoissonOptions
   double tolerance = 1e-10; // stop when |residual| <= tolerance * |initial residual|
   int maxIterations = 100;  // preconditioned CG iterations
   int smoothingSweeps = 2;  // red-black Gauss-Seidel sweeps before and after each coarse solve
+  // Also stop when the estimated error of u, in the units of u, is at most this
+  // (0 = off). The estimate is the largest entry of the multigrid-preconditioned
+  // residual, which approximates the error itself (one V-cycle approximates the
+  // inverse). For blending, a fraction of the height range far below DEM
+  // precision; it makes the solve independent of how large the start's misfit is.
+  double errorTolerance = 0.0;
 };
 
 struct PoissonStatistics

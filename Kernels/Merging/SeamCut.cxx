@@ -202,7 +202,31 @@ const SeamCutResult& SeamCut::cut(int width,
   // Forced pixels are not graph nodes: an edge from a free pixel to a forced
   // one becomes a terminal capacity of the free pixel, an edge between two
   // forced pixels of different sides a constant. Same min cut, no infinities.
-  flow_.reset(width, height);
+  // The flow runs on the bounding box of the free pixels only (the overlap is
+  // often a small part of the window).
+  int bx0 = width, by0 = height, bx1 = 0, by1 = 0;
+  for (int j = 0; j < height; ++j)
+  {
+    for (int i = 0; i < width; ++i)
+    {
+      if (constraints_[static_cast<std::size_t>(j) * width + i] == SeamConstraint::Free)
+      {
+        bx0 = std::min(bx0, i);
+        by0 = std::min(by0, j);
+        bx1 = std::max(bx1, i + 1);
+        by1 = std::max(by1, j + 1);
+      }
+    }
+  }
+  const int bw = std::max(bx1 - bx0, 0);
+  const int bh = std::max(by1 - by0, 0);
+  auto node = [&](std::size_t k)
+  {
+    const int i = static_cast<int>(k % static_cast<std::size_t>(width));
+    const int j = static_cast<int>(k / static_cast<std::size_t>(width));
+    return (j - by0) * bw + (i - bx0);
+  };
+  flow_.reset(bw, bh);
   double constant = 0.0;
   for (int j = 0; j < height; ++j)
   {
@@ -223,14 +247,13 @@ const SeamCutResult& SeamCut::cut(int width,
         const bool freeT = ct == SeamConstraint::Free;
         if (freeS && freeT)
         {
-          flow_.setEdge(
-            static_cast<int>(s), axis == 0 ? GridMaxFlow::PlusX : GridMaxFlow::PlusY, w, w);
+          flow_.setEdge(node(s), axis == 0 ? GridMaxFlow::PlusX : GridMaxFlow::PlusY, w, w);
         }
         else if (freeS || freeT)
         {
           const std::size_t f = freeS ? s : t;
           const bool forcedNew = (freeS ? ct : cs) == SeamConstraint::ForceNew;
-          flow_.addTerminal(static_cast<int>(f), forcedNew ? w : 0.0, forcedNew ? 0.0 : w);
+          flow_.addTerminal(node(f), forcedNew ? w : 0.0, forcedNew ? 0.0 : w);
         }
         else if (cs != ct)
         {
@@ -250,8 +273,8 @@ const SeamCutResult& SeamCut::cut(int width,
   for (std::size_t k = 0; k < n; ++k)
   {
     const SeamConstraint c = constraints_[k];
-    result_.takeNew[k] = c == SeamConstraint::ForceNew ||
-      (c == SeamConstraint::Free && flow_.sourceSide(static_cast<int>(k)));
+    result_.takeNew[k] =
+      c == SeamConstraint::ForceNew || (c == SeamConstraint::Free && flow_.sourceSide(node(k)));
   }
   for (std::size_t s = 0; s < n; ++s)
   {
