@@ -213,7 +213,7 @@ private:
 
 } // namespace
 
-std::vector<FeatureSite> featureSites(const FeatureGraph& graph, int patchSize)
+std::vector<FeatureSite> featureSites(const FeatureGraph& graph, int patchSize, double spacing)
 {
   const double radius = 0.5 * patchSize;
   FeatureGraph g = graph;
@@ -234,7 +234,7 @@ std::vector<FeatureSite> featureSites(const FeatureGraph& graph, int patchSize)
     s.arms = node.controls;
     sites.push_back(std::move(s));
   }
-  const double spacing = 0.5 * radius; // a quarter patch: denser than placement needs
+  const double step = spacing > 0.0 ? spacing : 0.5 * radius;
   for (std::size_t c = 0; c < g.chains.size(); ++c)
   {
     const FeatureChain& ch = g.chains[c];
@@ -245,7 +245,7 @@ std::vector<FeatureSite> featureSites(const FeatureGraph& graph, int patchSize)
         std::hypot(ch.points[k].x - ch.points[k - 1].x, ch.points[k].y - ch.points[k - 1].y));
     }
     const double length = arc.back();
-    for (double s = 0.5 * radius; s <= length - 0.5 * radius + 1e-9; s += spacing)
+    for (double s = 0.5 * radius; s <= length - 0.5 * radius + 1e-9; s += step)
     {
       FeatureSite site;
       site.centre = pointAt(ch.points, arc, s);

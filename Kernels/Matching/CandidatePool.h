@@ -35,10 +35,11 @@ struct FeatureSite
   std::vector<ControlPoint> arms;
 };
 
-// End and branch nodes of a graph plus path points every half patch along its
-// chains (not closer than a quarter patch to a chain's ends), each with arms
-// where its chains cross the circle of half a patch.
-std::vector<FeatureSite> featureSites(const FeatureGraph& graph, int patchSize);
+// End and branch nodes of a graph plus path points along its chains every
+// `spacing` cells (0: a quarter patch, dense enough for candidates; placement
+// uses half a patch), not closer than a quarter patch to a chain's ends, each
+// with arms where its chains cross the circle of half a patch.
+std::vector<FeatureSite> featureSites(const FeatureGraph& graph, int patchSize, double spacing = 0.0);
 
 struct PoolOptions
 {

@@ -1,0 +1,2 @@
+set(TSYNTH_METRICS_SOURCES
+  Metrics/TerrainMetrics.cxx)

@@ -1,0 +1,3 @@
+set(TSYNTH_SYNTHESIS_SOURCES
+  Synthesis/Synthesizer.cxx
+  Synthesis/Target.cxx)

@@ -1,0 +1,592 @@
+#include "Synthesizer.h"
+
+#include "../Core/Error.h"
+#include "../Features/Ppa.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <queue>
+
+namespace tsynth
+{
+namespace
+{
+
+using Clock = std::chrono::steady_clock;
+
+constexpr float kLineHalfWidth = 3.0f; // cells each side of a sketched line
+
+double secondsSince(Clock::time_point t0)
+{
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Everything the placement loop shares.
+class SynthesisState
+{
+public:
+  SynthesisState(const SynthesisTarget& target, PatchMatcher& matcher, const SynthesisOptions& o)
+    : target_(target)
+    , matcher_(matcher)
+    , o_(o)
+    , P_(o.patchSize)
+    , out_(target.field.width, target.field.height, std::numeric_limits<float>::quiet_NaN())
+    , filled_(out_.size(), 0)
+    , noise_(target.field)
+  {
+    out_.cellX = target.field.cellX;
+    out_.cellY = target.field.cellY;
+    out_.cellSizeKnown = true;
+    out_.georef = target.field.georef;
+    result_.patchId.assign(out_.size(), -1);
+    result_.seam.assign(out_.size(), 0);
+    result_.matchCost.assign(out_.size(), std::numeric_limits<float>::quiet_NaN());
+    // Cells within a few cells of the sketched lines: feature patches own them,
+    // fill patches may not take them once they are filled.
+    const std::vector<float> d = distanceTransform(
+      rasteriseChains(target.graph, out_.width, out_.height), out_.width, out_.height);
+    line_.assign(out_.size(), 0);
+    for (std::size_t c = 0; c < d.size(); ++c)
+    {
+      line_[c] = d[c] <= kLineHalfWidth ? 1 : 0;
+    }
+  }
+
+  // The patch-sized window of the output at (x0, y0): known cells, else the target.
+  DenseQuery window(int x0, int y0) const
+  {
+    DenseQuery q;
+    q.heights.assign(static_cast<std::size_t>(P_ * P_), 0.0f);
+    q.known.assign(static_cast<std::size_t>(P_ * P_), 0);
+    std::size_t known = 0;
+    for (int j = 0; j < P_; ++j)
+    {
+      for (int i = 0; i < P_; ++i)
+      {
+        const int x = x0 + i;
+        const int y = y0 + j;
+        if (x < 0 || y < 0 || x >= out_.width || y >= out_.height)
+        {
+          continue;
+        }
+        const std::size_t c = out_.index(x, y);
+        const std::size_t k = static_cast<std::size_t>(j * P_ + i);
+        if (filled_[c] != 0)
+        {
+          q.heights[k] = out_.z[c];
+          q.known[k] = 1;
+          ++known;
+        }
+      }
+    }
+    if (known == 0)
+    {
+      // Nothing synthesised here yet: match the target's shape instead.
+      for (int j = 0; j < P_; ++j)
+      {
+        for (int i = 0; i < P_; ++i)
+        {
+          const int x = x0 + i;
+          const int y = y0 + j;
+          if (x >= 0 && y >= 0 && x < out_.width && y < out_.height && target_.field.isValid(x, y))
+          {
+            const std::size_t k = static_cast<std::size_t>(j * P_ + i);
+            q.heights[k] = target_.field.at(x, y);
+            q.known[k] = 1;
+          }
+        }
+      }
+    }
+    q.noise = noise_.window(x0 + 0.5 * P_, y0 + 0.5 * P_, P_);
+    return q;
+  }
+
+  // The candidate's patch, read from the exemplar seen through its variant.
+  Heightfield extract(const PatchCandidate& c) const
+  {
+    for (const DenseMatcher::Oriented& r : matcher_.dense().oriented())
+    {
+      if (r.exemplar != c.exemplar || r.variant != c.variant)
+      {
+        continue;
+      }
+      const Variant v = variant(c.variant);
+      const auto& ex = matcher_.pool().exemplars[static_cast<std::size_t>(c.exemplar)];
+      const double dx = c.centreX - 0.5 * (ex.width - 1);
+      const double dy = c.centreY - 0.5 * (ex.height - 1);
+      const double det = v.m[0] * v.m[3] - v.m[1] * v.m[2];
+      const double px = r.centreX + (v.m[3] * dx - v.m[1] * dy) / det;
+      const double py = r.centreY + (-v.m[2] * dx + v.m[0] * dy) / det;
+      const int x0 = static_cast<int>(std::lround(px)) - P_ / 2;
+      const int y0 = static_cast<int>(std::lround(py)) - P_ / 2;
+      Heightfield patch(P_, P_, std::numeric_limits<float>::quiet_NaN());
+      patch.cellX = out_.cellX;
+      patch.cellY = out_.cellY;
+      patch.valid.assign(patch.size(), 0);
+      for (int j = 0; j < P_; ++j)
+      {
+        for (int i = 0; i < P_; ++i)
+        {
+          const int x = x0 + i;
+          const int y = y0 + j;
+          if (x >= 0 && y >= 0 && x < r.full.width && y < r.full.height && r.full.isValid(x, y))
+          {
+            patch.at(i, j) = r.full.at(x, y);
+            patch.valid[patch.index(i, j)] = 1;
+          }
+        }
+      }
+      normaliseMask(patch);
+      return patch;
+    }
+    throw Error("Internal error: no oriented exemplar for a candidate.");
+  }
+
+  // Shift to fit what the patch overlaps (or, with no overlap, the target).
+  float fitOffset(const Heightfield& patch, int x0, int y0) const
+  {
+    double sOverlap = 0.0;
+    double nOverlap = 0.0;
+    double sTarget = 0.0;
+    double nTarget = 0.0;
+    for (int j = 0; j < P_; ++j)
+    {
+      for (int i = 0; i < P_; ++i)
+      {
+        const int x = x0 + i;
+        const int y = y0 + j;
+        if (!patch.isValid(i, j) || x < 0 || y < 0 || x >= out_.width || y >= out_.height)
+        {
+          continue;
+        }
+        const std::size_t c = out_.index(x, y);
+        if (filled_[c] != 0)
+        {
+          sOverlap += static_cast<double>(out_.z[c]) - patch.at(i, j);
+          nOverlap += 1.0;
+        }
+        if (target_.field.isValid(x, y))
+        {
+          sTarget += static_cast<double>(target_.field.at(x, y)) - patch.at(i, j);
+          nTarget += 1.0;
+        }
+      }
+    }
+    if (nOverlap >= 0.05 * P_ * P_)
+    {
+      return static_cast<float>(sOverlap / nOverlap);
+    }
+    return nTarget > 0 ? static_cast<float>(sTarget / nTarget) : 0.0f;
+  }
+
+  // Fill patches leave the sketched lines that feature patches already hold.
+  void protectLines(Heightfield& patch, int x0, int y0) const
+  {
+    bool any = false;
+    for (int j = 0; j < P_; ++j)
+    {
+      for (int i = 0; i < P_; ++i)
+      {
+        const int x = x0 + i;
+        const int y = y0 + j;
+        if (x >= 0 && y >= 0 && x < out_.width && y < out_.height)
+        {
+          const std::size_t c = out_.index(x, y);
+          if (line_[c] != 0 && filled_[c] != 0)
+          {
+            if (!any)
+            {
+              patch.valid.resize(patch.size(), 1);
+              any = true;
+            }
+            patch.valid[patch.index(i, j)] = 0;
+            patch.at(i, j) = std::numeric_limits<float>::quiet_NaN();
+          }
+        }
+      }
+    }
+  }
+
+  // Chooses among candidates by seam cost and merges the winner at (x0, y0).
+  bool place(const std::vector<PatchCandidate>& candidates, int x0, int y0, bool feature)
+  {
+    if (candidates.empty())
+    {
+      return false;
+    }
+    std::vector<std::uint8_t> core;
+    if (feature)
+    {
+      // The patch owns the sketched line near its centre (where its own feature
+      // was matched) and a small disc around the centre.
+      core.assign(static_cast<std::size_t>(P_ * P_), 0);
+      for (int j = 0; j < P_; ++j)
+      {
+        for (int i = 0; i < P_; ++i)
+        {
+          const double r = std::hypot(i - 0.5 * (P_ - 1), j - 0.5 * (P_ - 1));
+          const int x = x0 + i;
+          const int y = y0 + j;
+          const bool onLine = x >= 0 && y >= 0 && x < out_.width && y < out_.height && line_[out_.index(x, y)] != 0;
+          if (r <= P_ / 8.0 || (onLine && r <= P_ / 4.0))
+          {
+            core[static_cast<std::size_t>(j * P_ + i)] = 1;
+          }
+        }
+      }
+    }
+    Heightfield best;
+    std::size_t bestIndex = 0;
+    double bestSeam = std::numeric_limits<double>::infinity();
+    float bestOffset = 0.0f;
+    for (std::size_t c = 0; c < candidates.size(); ++c)
+    {
+      Heightfield patch = extract(candidates[c]);
+      if (!feature)
+      {
+        protectLines(patch, x0, y0);
+      }
+      const float offset = o_.verticalOffset ? fitOffset(patch, x0, y0) : 0.0f;
+      for (float& z : patch.z)
+      {
+        z += offset;
+      }
+      const MergeResult dry = merger_.seamCost(out_, filled_, patch, x0, y0, feature ? &core : nullptr);
+      const double seam = dry.overlapCells > 0 ? dry.normalisedCost : 0.0;
+      if (seam < bestSeam)
+      {
+        bestSeam = seam;
+        best = std::move(patch);
+        bestIndex = c;
+        bestOffset = offset;
+      }
+    }
+    MergeOptions mo;
+    mo.mode = o_.merge;
+    const MergeResult r = merger_.merge(out_, filled_, best, x0, y0, feature ? &core : nullptr, mo);
+    const int id = static_cast<int>(result_.placements.size());
+    const PatchCandidate& chosen = candidates[bestIndex];
+    for (int j = 0; j < r.height; ++j)
+    {
+      for (int i = 0; i < r.width; ++i)
+      {
+        const std::size_t w = static_cast<std::size_t>(j * r.width + i);
+        const std::size_t c = out_.index(r.x0 + i, r.y0 + j);
+        if (r.takeNew[w] != 0)
+        {
+          result_.patchId[c] = id;
+          result_.matchCost[c] = chosen.cost;
+          result_.seam[c] = 0;
+        }
+        if (r.seam[w] != 0)
+        {
+          result_.seam[c] = 1;
+        }
+      }
+    }
+    Placement p;
+    p.order = id;
+    p.feature = chosen.feature;
+    p.exemplar = chosen.exemplar;
+    p.variant = chosen.variant;
+    p.sourceX = chosen.centreX;
+    p.sourceY = chosen.centreY;
+    p.x0 = x0;
+    p.y0 = y0;
+    p.matchCost = chosen.cost;
+    p.seamCost = bestSeam;
+    p.offset = bestOffset;
+    result_.placements.push_back(p);
+    return true;
+  }
+
+  void placeFeatures()
+  {
+    const std::vector<FeatureSite> sites = orderedSites();
+    for (std::size_t s = 0; s < sites.size(); ++s)
+    {
+      const FeatureSite& site = sites[s];
+      const int x0 = static_cast<int>(std::lround(site.centre.x)) - P_ / 2;
+      const int y0 = static_cast<int>(std::lround(site.centre.y)) - P_ / 2;
+      const FeatureQuery q = makeFeatureQuery(site, target_.field, noise_, &out_, &filled_, P_);
+      const DenseQuery fallback = window(x0, y0);
+      place(matcher_.matchFeature(q, &fallback), x0, y0, true);
+      report(0.1 + 0.3 * static_cast<double>(s + 1) / static_cast<double>(sites.size()), "features");
+    }
+  }
+
+  void fill()
+  {
+    const int w = out_.width;
+    const int h = out_.height;
+    const int step = std::max(1, P_ / 2);
+    std::vector<int> xs;
+    std::vector<int> ys;
+    for (int x = 0; x + P_ < w; x += step)
+    {
+      xs.push_back(x);
+    }
+    xs.push_back(std::max(0, w - P_));
+    for (int y = 0; y + P_ < h; y += step)
+    {
+      ys.push_back(y);
+    }
+    ys.push_back(std::max(0, h - P_));
+    xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+    ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
+    const std::size_t sites = xs.size() * ys.size();
+
+    // Data term: mean slope of the target in each window, scaled to 0..1.
+    std::vector<double> data(sites, 0.0);
+    double maxData = 0.0;
+    for (std::size_t s = 0; s < sites; ++s)
+    {
+      const int x0 = xs[s % xs.size()];
+      const int y0 = ys[s / xs.size()];
+      double g = 0.0;
+      for (int j = y0; j < std::min(h - 1, y0 + P_); j += 4)
+      {
+        for (int i = x0; i < std::min(w - 1, x0 + P_); i += 4)
+        {
+          if (target_.field.isValid(i, j) && target_.field.isValid(i + 1, j) && target_.field.isValid(i, j + 1))
+          {
+            g += std::hypot((target_.field.at(i + 1, j) - target_.field.at(i, j)) / out_.cellX,
+              (target_.field.at(i, j + 1) - target_.field.at(i, j)) / out_.cellY);
+          }
+        }
+      }
+      data[s] = g;
+      maxData = std::max(maxData, g);
+    }
+    for (double& d : data)
+    {
+      d = maxData > 0 ? d / maxData : 0.0;
+    }
+    auto stateOf = [&](std::size_t s, double& priority) {
+      const int x0 = xs[s % xs.size()];
+      const int y0 = ys[s / xs.size()];
+      std::size_t known = 0;
+      std::size_t cells = 0;
+      for (int j = y0; j < std::min(h, y0 + P_); ++j)
+      {
+        for (int i = x0; i < std::min(w, x0 + P_); ++i)
+        {
+          known += filled_[out_.index(i, j)];
+          ++cells;
+        }
+      }
+      const double confidence = cells > 0 ? static_cast<double>(known) / static_cast<double>(cells) : 1.0;
+      priority = confidence + (o_.fill == FillOrder::BestFirst ? data[s] : 0.0);
+      return known < cells; // still has empty cells
+    };
+    // Max-heap of (priority, -site) with version stamps: only the sites a merge
+    // touched are re-scored, nothing is re-sorted.
+    using Entry = std::pair<double, long>;
+    std::priority_queue<Entry> heap;
+    std::vector<int> version(sites, 0);
+    std::vector<int> pushedVersion(sites, 0);
+    std::size_t open = 0;
+    for (std::size_t s = 0; s < sites; ++s)
+    {
+      double p = 0.0;
+      if (stateOf(s, p))
+      {
+        heap.push({ p, -static_cast<long>(s) * 1024 - 0 });
+        ++open;
+      }
+    }
+    const std::size_t initial = std::max<std::size_t>(1, open);
+    std::size_t done = 0;
+    while (!heap.empty())
+    {
+      const auto [priority, key] = heap.top();
+      heap.pop();
+      const std::size_t s = static_cast<std::size_t>((-key) / 1024);
+      const int stamp = static_cast<int>((-key) % 1024);
+      if (stamp != version[s] % 1024)
+      {
+        continue; // superseded by a newer score
+      }
+      double now = 0.0;
+      if (!stateOf(s, now))
+      {
+        continue;
+      }
+      const int x0 = xs[s % xs.size()];
+      const int y0 = ys[s / xs.size()];
+      place(matcher_.matchDense(window(x0, y0)), x0, y0, false);
+      ++done;
+      // Re-score the sites whose windows this patch touched.
+      const std::size_t cx = s % xs.size();
+      const std::size_t cy = s / xs.size();
+      for (std::size_t by = cy > 2 ? cy - 2 : 0; by <= std::min(ys.size() - 1, cy + 2); ++by)
+      {
+        for (std::size_t bx = cx > 2 ? cx - 2 : 0; bx <= std::min(xs.size() - 1, cx + 2); ++bx)
+        {
+          const std::size_t t = by * xs.size() + bx;
+          double p = 0.0;
+          if (stateOf(t, p))
+          {
+            ++version[t];
+            heap.push({ p, -static_cast<long>(t) * 1024 - (version[t] % 1024) });
+          }
+        }
+      }
+      report(0.4 + 0.6 * std::min(1.0, static_cast<double>(done) / static_cast<double>(initial)), "fill");
+    }
+    (void)pushedVersion;
+  }
+
+  SynthesisResult finish()
+  {
+    std::size_t empty = 0;
+    for (std::size_t c = 0; c < out_.size(); ++c)
+    {
+      if (filled_[c] == 0)
+      {
+        out_.z[c] = target_.field.isValid(c) ? target_.field.z[c] : std::numeric_limits<float>::quiet_NaN();
+        ++empty;
+      }
+    }
+    if (empty > 0)
+    {
+      result_.warnings.push_back(std::to_string(empty) + " cells could not be filled from the exemplars and hold the target heights.");
+    }
+    normaliseMask(out_);
+    const double sigma = o_.shapeScale < 0.0 ? 0.1 * P_ : o_.shapeScale;
+    if (sigma > 0.0)
+    {
+      // Near the sketched lines only (weight falling off over a quarter patch),
+      // so the land between them keeps the exemplars' own large-scale relief.
+      const Heightfield lowOut = gaussianSmooth(out_, sigma);
+      const Heightfield lowTarget = gaussianSmooth(target_.field, sigma);
+      const std::vector<float> d = distanceTransform(
+        rasteriseChains(target_.graph, out_.width, out_.height), out_.width, out_.height);
+      const double reach = 0.25 * P_;
+      for (std::size_t c = 0; c < out_.size(); ++c)
+      {
+        if (out_.isValid(c) && lowTarget.isValid(c))
+        {
+          const double w = target_.graph.chains.empty() ? 1.0 : std::exp(-0.5 * d[c] * d[c] / (reach * reach));
+          out_.z[c] += static_cast<float>(w * (lowTarget.z[c] - lowOut.z[c]));
+        }
+      }
+    }
+    result_.terrain = std::move(out_);
+    return std::move(result_);
+  }
+
+  void report(double fraction, const char* stage) const
+  {
+    if (o_.progress)
+    {
+      o_.progress(fraction, stage);
+    }
+  }
+
+private:
+  // Breadth-first: each node, then the path points of its not yet visited chains.
+  std::vector<FeatureSite> orderedSites() const
+  {
+    const std::vector<FeatureSite> all = featureSites(target_.graph, P_, 0.5 * P_);
+    std::vector<std::vector<std::size_t>> pathsOfChain(target_.graph.chains.size());
+    std::vector<std::size_t> siteOfNode(target_.graph.nodes.size(), std::numeric_limits<std::size_t>::max());
+    for (std::size_t s = 0; s < all.size(); ++s)
+    {
+      if (all[s].node >= 0)
+      {
+        siteOfNode[static_cast<std::size_t>(all[s].node)] = s;
+      }
+      else if (all[s].chain >= 0)
+      {
+        pathsOfChain[static_cast<std::size_t>(all[s].chain)].push_back(s);
+      }
+    }
+    std::vector<FeatureSite> ordered;
+    std::vector<char> chainDone(target_.graph.chains.size(), 0);
+    for (int v : target_.graph.bfsOrder)
+    {
+      const std::size_t node = static_cast<std::size_t>(v);
+      if (siteOfNode[node] != std::numeric_limits<std::size_t>::max())
+      {
+        ordered.push_back(all[siteOfNode[node]]);
+      }
+      for (int c : target_.graph.nodes[node].chains)
+      {
+        if (chainDone[static_cast<std::size_t>(c)] != 0)
+        {
+          continue;
+        }
+        chainDone[static_cast<std::size_t>(c)] = 1;
+        auto paths = pathsOfChain[static_cast<std::size_t>(c)];
+        if (target_.graph.chains[static_cast<std::size_t>(c)].to == v)
+        {
+          std::reverse(paths.begin(), paths.end()); // walk away from this node
+        }
+        for (std::size_t s : paths)
+        {
+          ordered.push_back(all[s]);
+        }
+      }
+    }
+    return ordered;
+  }
+
+  const SynthesisTarget& target_;
+  PatchMatcher& matcher_;
+  const SynthesisOptions& o_;
+  int P_;
+  Heightfield out_;
+  std::vector<std::uint8_t> filled_;
+  std::vector<std::uint8_t> line_;
+  NoiseVariance noise_;
+  PatchMerger merger_;
+  SynthesisResult result_;
+};
+
+} // namespace
+
+SynthesisResult synthesize(const SynthesisTarget& target, const std::vector<const Heightfield*>& exemplars,
+  const std::vector<const FeatureGraph*>& graphs, const SynthesisOptions& o)
+{
+  if (exemplars.empty())
+  {
+    throw Error("No exemplar: give at least one DEM to copy terrain from.");
+  }
+  if (target.field.width < o.patchSize || target.field.height < o.patchSize)
+  {
+    throw Error("The output (" + std::to_string(target.field.width) + " x " +
+      std::to_string(target.field.height) + " cells) is smaller than one patch (" +
+      std::to_string(o.patchSize) + ").");
+  }
+  auto t0 = Clock::now();
+  if (o.progress)
+  {
+    o.progress(0.0, "setup");
+  }
+  MatcherOptions mo;
+  mo.patchSize = o.patchSize;
+  mo.backend = o.backend;
+  mo.k = o.k;
+  mo.weights.verticalOffset = o.verticalOffset;
+  PatchMatcher matcher(exemplars, graphs, mo);
+  SynthesisState state(target, matcher, o);
+  const double setup = secondsSince(t0);
+  state.report(0.1, "setup");
+  t0 = Clock::now();
+  state.placeFeatures();
+  const double features = secondsSince(t0);
+  t0 = Clock::now();
+  state.fill();
+  const double fill = secondsSince(t0);
+  SynthesisResult r = state.finish();
+  r.timings = { setup, features, fill };
+  r.backend = matcher.backendName();
+  r.warnings.insert(r.warnings.begin(), matcher.warnings().begin(), matcher.warnings().end());
+  r.warnings.insert(r.warnings.begin(), target.warnings.begin(), target.warnings.end());
+  return r;
+}
+
+} // namespace tsynth

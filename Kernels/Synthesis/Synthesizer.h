@@ -1,0 +1,85 @@
+// Sketch-driven, patch-based terrain synthesis (Zhou et al. 2007; Tasse's
+// thesis): feature patches placed breadth-first along the target's feature
+// tree, then best-first non-feature filling, every patch chosen among the
+// matcher's top k by its graph-cut seam cost and merged in the gradient domain.
+#pragma once
+
+#include "../Core/Heightfield.h"
+#include "../Features/FeatureGraph.h"
+#include "../Matching/PatchMatcher.h"
+#include "../Merging/PatchMerger.h"
+#include "Target.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tsynth
+{
+
+enum class FillOrder
+{
+  BestFirst, // priority = confidence + data term, updated locally after each merge
+  Concentric // confidence only: layer by layer around what is filled
+};
+
+struct SynthesisOptions
+{
+  int patchSize = 80;
+  Backend backend = Backend::Auto;
+  MergeMode merge = MergeMode::New;
+  FillOrder fill = FillOrder::BestFirst;
+  std::size_t k = 8;        // candidates compared by seam cost per placement
+  bool verticalOffset = true; // shift each patch to fit what it overlaps
+  // Shape from the target near the sketched lines: there, the output's relief
+  // coarser than this Gaussian sigma (cells) is replaced by the target's and the
+  // exemplars' finer detail kept (the role of Tasse's final deformation); the
+  // correction fades out over a quarter patch from the lines. <0: a tenth of a
+  // patch; 0: off.
+  double shapeScale = -1.0;
+  // Called with the fraction done (0..1) and the stage name.
+  std::function<void(double, const std::string&)> progress;
+};
+
+struct Placement
+{
+  int order = 0;
+  bool feature = true;
+  int exemplar = 0;
+  int variant = 0;
+  double sourceX = 0.0; // patch centre in the exemplar, cells
+  double sourceY = 0.0;
+  int x0 = 0; // patch's lower-left cell in the output
+  int y0 = 0;
+  float matchCost = 0.0f;
+  double seamCost = 0.0; // graph-cut cost per seam edge
+  float offset = 0.0f;   // vertical shift applied, metres
+};
+
+struct SynthesisTimings
+{
+  double setup = 0.0;    // pools and dense tables
+  double features = 0.0; // feature placement
+  double fill = 0.0;     // non-feature filling
+  double total() const { return setup + features + fill; }
+};
+
+struct SynthesisResult
+{
+  Heightfield terrain;
+  std::vector<int> patchId;          // placement that wrote each cell (-1: none)
+  std::vector<std::uint8_t> seam;    // 1 on seam cells
+  std::vector<float> matchCost;      // match cost of the placement that wrote each cell
+  std::vector<Placement> placements;
+  SynthesisTimings timings;
+  std::vector<std::string> warnings;
+  std::string backend;
+};
+
+// Throws tsynth::Error for unusable input (no exemplar, an exemplar or output
+// smaller than a patch).
+SynthesisResult synthesize(const SynthesisTarget& target,
+  const std::vector<const Heightfield*>& exemplars, const std::vector<const FeatureGraph*>& graphs,
+  const SynthesisOptions& options);
+
+} // namespace tsynth
