@@ -2,6 +2,7 @@
 // 1 with one sentence on bad input or failure, 2 on wrong usage.
 #include "CommandLine.h"
 #include "Render3D.h"
+#include "SynthCommands.h"
 #include "TerrainFileIO.h"
 
 #include "Analysis/Hillshade.h"
@@ -42,6 +43,8 @@ Commands:
   render DEM -o PNG      hillshade picture with a colour ramp; --3d for an oblique 3D view
   convert DEM -o OUT     write a DEM as GeoTIFF float32 (.tif), 16-bit PNG + sidecar (.png) or .vti
   features DEM -o F.vtp  ridge (or valley) lines as a feature tree (PPA); --sketch for sketches
+  synth --exemplar DEM --sketch SKETCH -o OUT   synthesise a terrain that follows a sketch
+  evaluate TERRAIN --exemplar DEM [--sketch S]  quality figures, with baselines
 
 Run "tsynth COMMAND --help" for a command's options.
 )";
@@ -615,6 +618,14 @@ int main(int argc, char** argv)
     if (command == "features")
     {
       return runFeatures(std::move(args));
+    }
+    if (command == "synth")
+    {
+      return tsynth::cli::runSynth(std::move(args));
+    }
+    if (command == "evaluate")
+    {
+      return tsynth::cli::runEvaluate(std::move(args));
     }
     throw UsageError("Unknown command \"" + command + "\".");
   }

@@ -66,12 +66,14 @@ double laplacianPercentile(const Heightfield& hf, double fraction)
   {
     for (int i = 1; i + 1 < hf.width; ++i)
     {
-      if (!hf.isValid(i, j) || !hf.isValid(i - 1, j) || !hf.isValid(i + 1, j) || !hf.isValid(i, j - 1) || !hf.isValid(i, j + 1))
+      if (!hf.isValid(i, j) || !hf.isValid(i - 1, j) || !hf.isValid(i + 1, j) ||
+        !hf.isValid(i, j - 1) || !hf.isValid(i, j + 1))
       {
         continue;
       }
       const double c = hf.at(i, j);
-      const double lap = (hf.at(i + 1, j) - 2 * c + hf.at(i - 1, j)) * ix + (hf.at(i, j + 1) - 2 * c + hf.at(i, j - 1)) * iy;
+      const double lap = (hf.at(i + 1, j) - 2 * c + hf.at(i - 1, j)) * ix +
+        (hf.at(i, j + 1) - 2 * c + hf.at(i, j - 1)) * iy;
       v.push_back(static_cast<float>(std::abs(lap)));
     }
   }
@@ -79,7 +81,8 @@ double laplacianPercentile(const Heightfield& hf, double fraction)
   {
     return 0.0;
   }
-  const std::size_t k = std::min(v.size() - 1, static_cast<std::size_t>(fraction * static_cast<double>(v.size() - 1)));
+  const std::size_t k =
+    std::min(v.size() - 1, static_cast<std::size_t>(fraction * static_cast<double>(v.size() - 1)));
   std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
   return v[k];
 }
@@ -161,7 +164,8 @@ double pitDensity(const Heightfield& hf)
       {
         for (int di = -1; di <= 1; ++di)
         {
-          if ((di != 0 || dj != 0) && (!hf.isValid(i + di, j + dj) || hf.at(i + di, j + dj) <= hf.at(i, j)))
+          if ((di != 0 || dj != 0) &&
+            (!hf.isValid(i + di, j + dj) || hf.at(i + di, j + dj) <= hf.at(i, j)))
           {
             pit = false;
             break;
@@ -174,7 +178,9 @@ double pitDensity(const Heightfield& hf)
   return cells > 0 ? 1000.0 * static_cast<double>(pits) / static_cast<double>(cells) : 0.0;
 }
 
-TerrainEvaluation evaluateTerrain(const Heightfield& output, const Heightfield& exemplar, const FeatureGraph* sketch)
+TerrainEvaluation evaluateTerrain(const Heightfield& output,
+  const Heightfield& exemplar,
+  const FeatureGraph* sketch)
 {
   TerrainEvaluation e;
   if (sketch != nullptr)
@@ -204,7 +210,11 @@ Heightfield tiledBaseline(const Heightfield& ex, int width, int height)
   return out;
 }
 
-Heightfield randomPatchBaseline(const Heightfield& ex, int width, int height, int patch, unsigned seed)
+Heightfield randomPatchBaseline(const Heightfield& ex,
+  int width,
+  int height,
+  int patch,
+  unsigned seed)
 {
   Heightfield out(width, height);
   out.cellX = ex.cellX;
@@ -222,7 +232,8 @@ Heightfield randomPatchBaseline(const Heightfield& ex, int width, int height, in
       {
         for (int i = 0; i < patch && x0 + i < width; ++i)
         {
-          out.at(x0 + i, y0 + j) = ex.at(std::min(ex.width - 1, sx + i), std::min(ex.height - 1, sy + j));
+          out.at(x0 + i, y0 + j) =
+            ex.at(std::min(ex.width - 1, sx + i), std::min(ex.height - 1, sy + j));
         }
       }
     }

@@ -39,12 +39,17 @@ struct TerrainEvaluation
   double exemplarPitDensity = 0.0;
 };
 
-TerrainEvaluation evaluateTerrain(
-  const Heightfield& output, const Heightfield& exemplar, const FeatureGraph* sketch);
+TerrainEvaluation evaluateTerrain(const Heightfield& output,
+  const Heightfield& exemplar,
+  const FeatureGraph* sketch);
 
 // Baselines for scale: the exemplar repeated over the output's size (seams where
 // copies meet), and random exemplar patches pasted edge to edge with no blending.
 Heightfield tiledBaseline(const Heightfield& exemplar, int width, int height);
-Heightfield randomPatchBaseline(const Heightfield& exemplar, int width, int height, int patch, unsigned seed);
+Heightfield randomPatchBaseline(const Heightfield& exemplar,
+  int width,
+  int height,
+  int patch,
+  unsigned seed);
 
 } // namespace tsynth

@@ -17,6 +17,10 @@ namespace
 using Clock = std::chrono::steady_clock;
 
 constexpr float kLineHalfWidth = 3.0f; // cells each side of a sketched line
+constexpr int kMaxAttempts = 4;        // placements tried at one fill site
+// Default shape scale, as a fraction of the patch (6 cells for 80-cell patches):
+// finer than the 8-cell flanks the fidelity metric tests a crest against.
+constexpr double kShapeFraction = 0.075;
 
 double secondsSince(Clock::time_point t0)
 {
@@ -210,11 +214,12 @@ public:
   }
 
   // Chooses among candidates by seam cost and merges the winner at (x0, y0).
-  bool place(const std::vector<PatchCandidate>& candidates, int x0, int y0, bool feature)
+  // Returns how many empty cells the placement filled (0 if none could be).
+  std::size_t place(const std::vector<PatchCandidate>& candidates, int x0, int y0, bool feature)
   {
     if (candidates.empty())
     {
-      return false;
+      return 0;
     }
     std::vector<std::uint8_t> core;
     if (feature)
@@ -229,7 +234,8 @@ public:
           const double r = std::hypot(i - 0.5 * (P_ - 1), j - 0.5 * (P_ - 1));
           const int x = x0 + i;
           const int y = y0 + j;
-          const bool onLine = x >= 0 && y >= 0 && x < out_.width && y < out_.height && line_[out_.index(x, y)] != 0;
+          const bool onLine =
+            x >= 0 && y >= 0 && x < out_.width && y < out_.height && line_[out_.index(x, y)] != 0;
           if (r <= P_ / 8.0 || (onLine && r <= P_ / 4.0))
           {
             core[static_cast<std::size_t>(j * P_ + i)] = 1;
@@ -253,7 +259,8 @@ public:
       {
         z += offset;
       }
-      const MergeResult dry = merger_.seamCost(out_, filled_, patch, x0, y0, feature ? &core : nullptr);
+      const MergeResult dry =
+        merger_.seamCost(out_, filled_, patch, x0, y0, feature ? &core : nullptr);
       const double seam = dry.overlapCells > 0 ? dry.normalisedCost : 0.0;
       if (seam < bestSeam)
       {
@@ -299,7 +306,7 @@ public:
     p.seamCost = bestSeam;
     p.offset = bestOffset;
     result_.placements.push_back(p);
-    return true;
+    return r.newCells;
   }
 
   void placeFeatures()
@@ -313,7 +320,8 @@ public:
       const FeatureQuery q = makeFeatureQuery(site, target_.field, noise_, &out_, &filled_, P_);
       const DenseQuery fallback = window(x0, y0);
       place(matcher_.matchFeature(q, &fallback), x0, y0, true);
-      report(0.1 + 0.3 * static_cast<double>(s + 1) / static_cast<double>(sites.size()), "features");
+      report(
+        0.1 + 0.3 * static_cast<double>(s + 1) / static_cast<double>(sites.size()), "features");
     }
   }
 
@@ -350,7 +358,8 @@ public:
       {
         for (int i = x0; i < std::min(w - 1, x0 + P_); i += 4)
         {
-          if (target_.field.isValid(i, j) && target_.field.isValid(i + 1, j) && target_.field.isValid(i, j + 1))
+          if (target_.field.isValid(i, j) && target_.field.isValid(i + 1, j) &&
+            target_.field.isValid(i, j + 1))
           {
             g += std::hypot((target_.field.at(i + 1, j) - target_.field.at(i, j)) / out_.cellX,
               (target_.field.at(i, j + 1) - target_.field.at(i, j)) / out_.cellY);
@@ -364,7 +373,8 @@ public:
     {
       d = maxData > 0 ? d / maxData : 0.0;
     }
-    auto stateOf = [&](std::size_t s, double& priority) {
+    auto stateOf = [&](std::size_t s, double& priority)
+    {
       const int x0 = xs[s % xs.size()];
       const int y0 = ys[s / xs.size()];
       std::size_t known = 0;
@@ -377,7 +387,8 @@ public:
           ++cells;
         }
       }
-      const double confidence = cells > 0 ? static_cast<double>(known) / static_cast<double>(cells) : 1.0;
+      const double confidence =
+        cells > 0 ? static_cast<double>(known) / static_cast<double>(cells) : 1.0;
       priority = confidence + (o_.fill == FillOrder::BestFirst ? data[s] : 0.0);
       return known < cells; // still has empty cells
     };
@@ -386,7 +397,8 @@ public:
     using Entry = std::pair<double, long>;
     std::priority_queue<Entry> heap;
     std::vector<int> version(sites, 0);
-    std::vector<int> pushedVersion(sites, 0);
+    std::vector<int> attempts(sites, 0);
+    std::vector<std::uint8_t> retired(sites, 0);
     std::size_t open = 0;
     for (std::size_t s = 0; s < sites; ++s)
     {
@@ -410,13 +422,19 @@ public:
         continue; // superseded by a newer score
       }
       double now = 0.0;
-      if (!stateOf(s, now))
+      if (retired[s] != 0 || !stateOf(s, now))
       {
         continue;
       }
       const int x0 = xs[s % xs.size()];
       const int y0 = ys[s / xs.size()];
-      place(matcher_.matchDense(window(x0, y0)), x0, y0, false);
+      // A window whose empty cells no candidate can cover (they fall outside
+      // every rotated exemplar's valid area) is retired, never retried forever.
+      if (place(matcher_.matchDense(window(x0, y0)), x0, y0, false) == 0 ||
+        ++attempts[s] >= kMaxAttempts)
+      {
+        retired[s] = 1;
+      }
       ++done;
       // Re-score the sites whose windows this patch touched.
       const std::size_t cx = s % xs.size();
@@ -427,16 +445,16 @@ public:
         {
           const std::size_t t = by * xs.size() + bx;
           double p = 0.0;
-          if (stateOf(t, p))
+          if (retired[t] == 0 && stateOf(t, p))
           {
             ++version[t];
             heap.push({ p, -static_cast<long>(t) * 1024 - (version[t] % 1024) });
           }
         }
       }
-      report(0.4 + 0.6 * std::min(1.0, static_cast<double>(done) / static_cast<double>(initial)), "fill");
+      report(0.4 + 0.6 * std::min(1.0, static_cast<double>(done) / static_cast<double>(initial)),
+        "fill");
     }
-    (void)pushedVersion;
   }
 
   SynthesisResult finish()
@@ -446,16 +464,18 @@ public:
     {
       if (filled_[c] == 0)
       {
-        out_.z[c] = target_.field.isValid(c) ? target_.field.z[c] : std::numeric_limits<float>::quiet_NaN();
+        out_.z[c] =
+          target_.field.isValid(c) ? target_.field.z[c] : std::numeric_limits<float>::quiet_NaN();
         ++empty;
       }
     }
     if (empty > 0)
     {
-      result_.warnings.push_back(std::to_string(empty) + " cells could not be filled from the exemplars and hold the target heights.");
+      result_.warnings.push_back(std::to_string(empty) +
+        " cells could not be filled from the exemplars and hold the target heights.");
     }
     normaliseMask(out_);
-    const double sigma = o_.shapeScale < 0.0 ? 0.1 * P_ : o_.shapeScale;
+    const double sigma = o_.shapeScale < 0.0 ? kShapeFraction * P_ : o_.shapeScale;
     if (sigma > 0.0)
     {
       // Near the sketched lines only (weight falling off over a quarter patch),
@@ -469,7 +489,8 @@ public:
       {
         if (out_.isValid(c) && lowTarget.isValid(c))
         {
-          const double w = target_.graph.chains.empty() ? 1.0 : std::exp(-0.5 * d[c] * d[c] / (reach * reach));
+          const double w =
+            target_.graph.chains.empty() ? 1.0 : std::exp(-0.5 * d[c] * d[c] / (reach * reach));
           out_.z[c] += static_cast<float>(w * (lowTarget.z[c] - lowOut.z[c]));
         }
       }
@@ -492,7 +513,8 @@ private:
   {
     const std::vector<FeatureSite> all = featureSites(target_.graph, P_, 0.5 * P_);
     std::vector<std::vector<std::size_t>> pathsOfChain(target_.graph.chains.size());
-    std::vector<std::size_t> siteOfNode(target_.graph.nodes.size(), std::numeric_limits<std::size_t>::max());
+    std::vector<std::size_t> siteOfNode(
+      target_.graph.nodes.size(), std::numeric_limits<std::size_t>::max());
     for (std::size_t s = 0; s < all.size(); ++s)
     {
       if (all[s].node >= 0)
@@ -548,8 +570,10 @@ private:
 
 } // namespace
 
-SynthesisResult synthesize(const SynthesisTarget& target, const std::vector<const Heightfield*>& exemplars,
-  const std::vector<const FeatureGraph*>& graphs, const SynthesisOptions& o)
+SynthesisResult synthesize(const SynthesisTarget& target,
+  const std::vector<const Heightfield*>& exemplars,
+  const std::vector<const FeatureGraph*>& graphs,
+  const SynthesisOptions& o)
 {
   if (exemplars.empty())
   {

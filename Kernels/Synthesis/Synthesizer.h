@@ -29,13 +29,13 @@ struct SynthesisOptions
   Backend backend = Backend::Auto;
   MergeMode merge = MergeMode::New;
   FillOrder fill = FillOrder::BestFirst;
-  std::size_t k = 8;        // candidates compared by seam cost per placement
+  std::size_t k = 8;          // candidates compared by seam cost per placement
   bool verticalOffset = true; // shift each patch to fit what it overlaps
   // Shape from the target near the sketched lines: there, the output's relief
   // coarser than this Gaussian sigma (cells) is replaced by the target's and the
   // exemplars' finer detail kept (the role of Tasse's final deformation); the
-  // correction fades out over a quarter patch from the lines. <0: a tenth of a
-  // patch; 0: off.
+  // correction fades out over a quarter patch from the lines. <0: 0.075 patch
+  // (6 cells for 80-cell patches); 0: off.
   double shapeScale = -1.0;
   // Called with the fraction done (0..1) and the stage name.
   std::function<void(double, const std::string&)> progress;
@@ -67,9 +67,9 @@ struct SynthesisTimings
 struct SynthesisResult
 {
   Heightfield terrain;
-  std::vector<int> patchId;          // placement that wrote each cell (-1: none)
-  std::vector<std::uint8_t> seam;    // 1 on seam cells
-  std::vector<float> matchCost;      // match cost of the placement that wrote each cell
+  std::vector<int> patchId;       // placement that wrote each cell (-1: none)
+  std::vector<std::uint8_t> seam; // 1 on seam cells
+  std::vector<float> matchCost;   // match cost of the placement that wrote each cell
   std::vector<Placement> placements;
   SynthesisTimings timings;
   std::vector<std::string> warnings;
@@ -79,7 +79,8 @@ struct SynthesisResult
 // Throws tsynth::Error for unusable input (no exemplar, an exemplar or output
 // smaller than a patch).
 SynthesisResult synthesize(const SynthesisTarget& target,
-  const std::vector<const Heightfield*>& exemplars, const std::vector<const FeatureGraph*>& graphs,
+  const std::vector<const Heightfield*>& exemplars,
+  const std::vector<const FeatureGraph*>& graphs,
   const SynthesisOptions& options);
 
 } // namespace tsynth

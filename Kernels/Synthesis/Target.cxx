@@ -17,7 +17,8 @@ double percentile(std::vector<float> v, double p)
   {
     return 0.0;
   }
-  const std::size_t k = std::min(v.size() - 1, static_cast<std::size_t>(p * static_cast<double>(v.size() - 1)));
+  const std::size_t k =
+    std::min(v.size() - 1, static_cast<std::size_t>(p * static_cast<double>(v.size() - 1)));
   std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
   return v[k];
 }
@@ -39,7 +40,8 @@ void transform1d(const std::vector<float>& f, std::vector<float>& d, int n)
     {
       const int p = v[static_cast<std::size_t>(k)];
       const float s = ((f[static_cast<std::size_t>(q)] + static_cast<float>(q) * q) -
-                        (f[static_cast<std::size_t>(p)] + static_cast<float>(p) * p)) / (2.0f * static_cast<float>(q - p));
+                        (f[static_cast<std::size_t>(p)] + static_cast<float>(p) * p)) /
+        (2.0f * static_cast<float>(q - p));
       if (s <= z[static_cast<std::size_t>(k)])
       {
         --k;
@@ -51,10 +53,12 @@ void transform1d(const std::vector<float>& f, std::vector<float>& d, int n)
     }
     ++k;
     v[static_cast<std::size_t>(k)] = q;
-    z[static_cast<std::size_t>(k)] = k == 0 ? -inf
+    z[static_cast<std::size_t>(k)] = k == 0
+      ? -inf
       : ((f[static_cast<std::size_t>(q)] + static_cast<float>(q) * q) -
           (f[static_cast<std::size_t>(v[static_cast<std::size_t>(k - 1)])] +
-            static_cast<float>(v[static_cast<std::size_t>(k - 1)]) * v[static_cast<std::size_t>(k - 1)])) /
+            static_cast<float>(v[static_cast<std::size_t>(k - 1)]) *
+              v[static_cast<std::size_t>(k - 1)])) /
         (2.0f * static_cast<float>(q - v[static_cast<std::size_t>(k - 1)]));
     z[static_cast<std::size_t>(k + 1)] = inf;
   }
@@ -71,7 +75,8 @@ void transform1d(const std::vector<float>& f, std::vector<float>& d, int n)
       ++j;
     }
     const int p = v[static_cast<std::size_t>(j)];
-    d[static_cast<std::size_t>(q)] = static_cast<float>(q - p) * (q - p) + f[static_cast<std::size_t>(p)];
+    d[static_cast<std::size_t>(q)] =
+      static_cast<float>(q - p) * (q - p) + f[static_cast<std::size_t>(p)];
   }
 }
 
@@ -89,7 +94,8 @@ std::vector<std::uint8_t> rasterise(const FeatureGraph& g, const FeatureType* ty
     {
       const Point2& a = c.points[k - 1];
       const Point2& b = c.points[k];
-      const int steps = std::max(1, static_cast<int>(std::ceil(2.0 * std::hypot(b.x - a.x, b.y - a.y))));
+      const int steps =
+        std::max(1, static_cast<int>(std::ceil(2.0 * std::hypot(b.x - a.x, b.y - a.y))));
       for (int s = 0; s <= steps; ++s)
       {
         const double t = static_cast<double>(s) / steps;
@@ -97,7 +103,8 @@ std::vector<std::uint8_t> rasterise(const FeatureGraph& g, const FeatureType* ty
         const int j = static_cast<int>(std::lround(a.y + t * (b.y - a.y)));
         if (i >= 0 && j >= 0 && i < w && j < h)
         {
-          seeds[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)] = 1;
+          seeds[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
+            static_cast<std::size_t>(i)] = 1;
         }
       }
     }
@@ -122,31 +129,38 @@ std::vector<float> distanceTransform(const std::vector<std::uint8_t>& seeds, int
   {
     for (int j = 0; j < h; ++j)
     {
-      f[static_cast<std::size_t>(j)] = seeds[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)] != 0 ? 0.0f : inf;
+      f[static_cast<std::size_t>(j)] =
+        seeds[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
+          static_cast<std::size_t>(i)] != 0
+        ? 0.0f
+        : inf;
     }
     transform1d(f, out, h);
     for (int j = 0; j < h; ++j)
     {
-      d[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)] = out[static_cast<std::size_t>(j)];
+      d[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)] =
+        out[static_cast<std::size_t>(j)];
     }
   }
   for (int j = 0; j < h; ++j)
   {
     for (int i = 0; i < w; ++i)
     {
-      f[static_cast<std::size_t>(i)] = d[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)];
+      f[static_cast<std::size_t>(i)] =
+        d[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)];
     }
     transform1d(f, out, w);
     for (int i = 0; i < w; ++i)
     {
-      d[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)] = std::sqrt(out[static_cast<std::size_t>(i)]);
+      d[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)] =
+        std::sqrt(out[static_cast<std::size_t>(i)]);
     }
   }
   return d;
 }
 
-ExemplarStatistics exemplarStatistics(
-  const std::vector<const Heightfield*>& exemplars, const std::vector<const FeatureGraph*>& graphs)
+ExemplarStatistics exemplarStatistics(const std::vector<const Heightfield*>& exemplars,
+  const std::vector<const FeatureGraph*>& graphs)
 {
   std::vector<float> all;
   std::vector<float> ridge;
@@ -184,13 +198,19 @@ ExemplarStatistics exemplarStatistics(
   return s;
 }
 
-FeatureGraph scaleGraph(const FeatureGraph& graph, int sketchWidth, int sketchHeight, int width,
-  int height, double cellX, double cellY)
+FeatureGraph scaleGraph(const FeatureGraph& graph,
+  int sketchWidth,
+  int sketchHeight,
+  int width,
+  int height,
+  double cellX,
+  double cellY)
 {
   FeatureGraph g = graph;
   const double sx = sketchWidth > 1 ? static_cast<double>(width - 1) / (sketchWidth - 1) : 1.0;
   const double sy = sketchHeight > 1 ? static_cast<double>(height - 1) / (sketchHeight - 1) : 1.0;
-  auto scale = [&](Point2& p) {
+  auto scale = [&](Point2& p)
+  {
     p.x *= sx;
     p.y *= sy;
   };
@@ -216,8 +236,13 @@ FeatureGraph scaleGraph(const FeatureGraph& graph, int sketchWidth, int sketchHe
   return g;
 }
 
-SynthesisTarget targetFromStrokes(const FeatureGraph& graph, int w, int h, double cellX, double cellY,
-  const ExemplarStatistics& stats, double profileWidth)
+SynthesisTarget targetFromStrokes(const FeatureGraph& graph,
+  int w,
+  int h,
+  double cellX,
+  double cellY,
+  const ExemplarStatistics& stats,
+  double profileWidth)
 {
   SynthesisTarget t;
   t.graph = graph;
@@ -234,16 +259,20 @@ SynthesisTarget targetFromStrokes(const FeatureGraph& graph, int w, int h, doubl
   {
     const double r = std::isinf(dr[k]) ? 0.0 : std::exp(-static_cast<double>(dr[k]) * dr[k] / s2);
     const double v = std::isinf(dv[k]) ? 0.0 : std::exp(-static_cast<double>(dv[k]) * dv[k] / s2);
-    t.field.z[k] = static_cast<float>(stats.median + r * (stats.ridge - stats.median) + v * (stats.valley - stats.median));
+    t.field.z[k] = static_cast<float>(
+      stats.median + r * (stats.ridge - stats.median) + v * (stats.valley - stats.median));
   }
   if (graph.chains.empty())
   {
-    t.warnings.push_back("The sketch has no features: the terrain is filled without feature placement.");
+    t.warnings.push_back(
+      "The sketch has no features: the terrain is filled without feature placement.");
   }
   return t;
 }
 
-SynthesisTarget targetFromHeights(const Heightfield& heights, const FeatureGraph& graph, const ExemplarStatistics& stats)
+SynthesisTarget targetFromHeights(const Heightfield& heights,
+  const FeatureGraph& graph,
+  const ExemplarStatistics& stats)
 {
   SynthesisTarget t;
   t.graph = graph;
@@ -254,12 +283,14 @@ SynthesisTarget targetFromHeights(const Heightfield& heights, const FeatureGraph
   {
     if (t.field.isValid(k))
     {
-      t.field.z[k] = static_cast<float>(stats.low + (t.field.z[k] - r.min) / span * (stats.high - stats.low));
+      t.field.z[k] =
+        static_cast<float>(stats.low + (t.field.z[k] - r.min) / span * (stats.high - stats.low));
     }
   }
   if (graph.chains.empty())
   {
-    t.warnings.push_back("The target has no features: the terrain is filled without feature placement.");
+    t.warnings.push_back(
+      "The target has no features: the terrain is filled without feature placement.");
   }
   return t;
 }

@@ -16,15 +16,15 @@ namespace tsynth
 // Heights the exemplars give their features and their land in general.
 struct ExemplarStatistics
 {
-  double low = 0.0;    // 5th percentile of heights
-  double high = 1.0;   // 95th percentile
+  double low = 0.0;  // 5th percentile of heights
+  double high = 1.0; // 95th percentile
   double median = 0.5;
   double ridge = 1.0;  // median height of ridge nodes
   double valley = 0.0; // median height of valley nodes
 };
 
-ExemplarStatistics exemplarStatistics(
-  const std::vector<const Heightfield*>& exemplars, const std::vector<const FeatureGraph*>& graphs);
+ExemplarStatistics exemplarStatistics(const std::vector<const Heightfield*>& exemplars,
+  const std::vector<const FeatureGraph*>& graphs);
 
 struct SynthesisTarget
 {
@@ -35,19 +35,37 @@ struct SynthesisTarget
 
 // Scales a graph drawn on a sketch of sketchWidth x sketchHeight pixels onto an
 // output grid of width x height cells of the given size.
-FeatureGraph scaleGraph(const FeatureGraph& graph, int sketchWidth, int sketchHeight, int width,
-  int height, double cellX, double cellY);
+FeatureGraph scaleGraph(const FeatureGraph& graph,
+  int sketchWidth,
+  int sketchHeight,
+  int width,
+  int height,
+  double cellX,
+  double cellY);
 
 // From strokes or poly-lines: background at the exemplars' median height, ridges
 // raised to their ridge height and valleys lowered to their valley height with
-// Gaussian profiles of standard deviation `width` cells around the centre lines.
-SynthesisTarget targetFromStrokes(const FeatureGraph& graph, int width, int height, double cellX,
-  double cellY, const ExemplarStatistics& stats, double profileWidth);
+// Gaussian profiles of standard deviation `profileWidth` cells around the
+// centre lines (defaultProfileWidth: 0.075 patch, 6 cells for 80-cell patches,
+// narrow enough that a crest stands out against its flanks 8 cells away).
+inline double defaultProfileWidth(int patchSize)
+{
+  return 0.075 * patchSize;
+}
+
+SynthesisTarget targetFromStrokes(const FeatureGraph& graph,
+  int width,
+  int height,
+  double cellX,
+  double cellY,
+  const ExemplarStatistics& stats,
+  double profileWidth);
 
 // From a grey sketch or a DEM already on the output grid: its range mapped
 // linearly onto the exemplars' 5th..95th percentile heights.
-SynthesisTarget targetFromHeights(
-  const Heightfield& heights, const FeatureGraph& graph, const ExemplarStatistics& stats);
+SynthesisTarget targetFromHeights(const Heightfield& heights,
+  const FeatureGraph& graph,
+  const ExemplarStatistics& stats);
 
 // Cells under the chains of a graph (8-connected lines between their points).
 std::vector<std::uint8_t> rasteriseChains(const FeatureGraph& graph, int width, int height);
