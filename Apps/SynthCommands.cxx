@@ -208,14 +208,7 @@ Sketch readSketch(const std::string& path, int patch)
   if (f.kind == SketchKind::Grey)
   {
     s.heights = true;
-    s.field = Heightfield(image.width, image.height);
-    for (int r = 0; r < image.height; ++r)
-    {
-      for (int i = 0; i < image.width; ++i)
-      {
-        s.field.at(i, image.height - 1 - r) = image.pixel(i, r)[0];
-      }
-    }
+    s.field = greyField(image);
     s.kind = "grey sketch";
   }
   else
@@ -223,26 +216,6 @@ Sketch readSketch(const std::string& path, int patch)
     s.kind = "stroke map";
   }
   return s;
-}
-
-// Nearest-neighbour resampling of a sketch field onto the output grid.
-Heightfield resampleField(const Heightfield& in, int w, int h, double cellX, double cellY)
-{
-  Heightfield out(w, h);
-  out.cellX = cellX;
-  out.cellY = cellY;
-  for (int j = 0; j < h; ++j)
-  {
-    for (int i = 0; i < w; ++i)
-    {
-      const int si =
-        std::min(in.width - 1, static_cast<int>(static_cast<double>(i) * in.width / w));
-      const int sj =
-        std::min(in.height - 1, static_cast<int>(static_cast<double>(j) * in.height / h));
-      out.at(i, j) = in.at(si, sj);
-    }
-  }
-  return out;
 }
 
 class ProgressBar
@@ -496,15 +469,17 @@ int runSynth(std::vector<std::string> args)
     gp.push_back(&ex.graphs[e]);
   }
   const ExemplarStatistics stats = exemplarStatistics(hp, gp);
-  FeatureGraph graph =
-    scaleGraph(sketch.graph, sketch.width, sketch.height, width, height, cellX, cellY);
-  computeControlPoints(graph, 0.5 * o.patchSize);
-  SynthesisTarget target = sketch.heights
-    ? targetFromHeights(resampleField(sketch.field, width, height, cellX, cellY), graph, stats)
-    : targetFromStrokes(
-        graph, width, height, cellX, cellY, stats, defaultProfileWidth(o.patchSize));
-  target.field.cellX = cellX;
-  target.field.cellY = cellY;
+  const SynthesisTarget target = makeTarget(sketch.graph,
+    sketch.width,
+    sketch.height,
+    sketch.heights ? &sketch.field : nullptr,
+    width,
+    height,
+    cellX,
+    cellY,
+    stats,
+    o.patchSize);
+  const FeatureGraph& graph = target.graph;
   const double prepare =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 

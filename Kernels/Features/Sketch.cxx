@@ -308,6 +308,19 @@ SketchFeatures greyFeatures(const ColourImage& image, const SketchOptions& o)
 
 } // namespace
 
+Heightfield greyField(const ColourImage& image)
+{
+  Heightfield hf(image.width, image.height);
+  for (int r = 0; r < image.height; ++r)
+  {
+    for (int i = 0; i < image.width; ++i)
+    {
+      hf.at(i, image.height - 1 - r) = image.pixel(i, r)[0];
+    }
+  }
+  return hf;
+}
+
 bool isRidgeColour(const std::uint8_t* rgb)
 {
   return rgb[0] >= 200 && rgb[1] <= 80 && rgb[2] <= 80;

@@ -47,6 +47,9 @@ SketchKind classifySketch(const ColourImage& image);
 // than one patch or a colour image with no ridge or valley strokes.
 SketchFeatures sketchFeatures(const ColourImage& image, const SketchOptions& options = {});
 
+// The first channel of an image as heights (row 0 south), cell size 1.
+Heightfield greyField(const ColourImage& image);
+
 // Zhang-Suen thinning of a binary mask (row-major, width x height), in place.
 void thinMask(std::vector<std::uint8_t>& mask, int width, int height);
 

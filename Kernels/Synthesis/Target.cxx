@@ -295,4 +295,44 @@ SynthesisTarget targetFromHeights(const Heightfield& heights,
   return t;
 }
 
+SynthesisTarget makeTarget(const FeatureGraph& sketchGraph,
+  int sketchWidth,
+  int sketchHeight,
+  const Heightfield* sketchHeights,
+  int width,
+  int height,
+  double cellX,
+  double cellY,
+  const ExemplarStatistics& stats,
+  int patchSize)
+{
+  FeatureGraph graph =
+    scaleGraph(sketchGraph, sketchWidth, sketchHeight, width, height, cellX, cellY);
+  computeControlPoints(graph, 0.5 * patchSize);
+  if (sketchHeights == nullptr)
+  {
+    return targetFromStrokes(
+      graph, width, height, cellX, cellY, stats, defaultProfileWidth(patchSize));
+  }
+  // Nearest-neighbour resampling of the sketch's heights onto the output grid.
+  Heightfield field(width, height);
+  field.cellX = cellX;
+  field.cellY = cellY;
+  field.cellSizeKnown = true;
+  const Heightfield& in = *sketchHeights;
+  for (int j = 0; j < height; ++j)
+  {
+    for (int i = 0; i < width; ++i)
+    {
+      const int si =
+        std::min(in.width - 1, static_cast<int>(static_cast<double>(i) * in.width / width));
+      const int sj =
+        std::min(in.height - 1, static_cast<int>(static_cast<double>(j) * in.height / height));
+      field.at(i, j) = in.isValid(si, sj) ? in.at(si, sj) : std::numeric_limits<float>::quiet_NaN();
+    }
+  }
+  normaliseMask(field);
+  return targetFromHeights(field, graph, stats);
+}
+
 } // namespace tsynth

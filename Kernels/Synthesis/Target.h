@@ -70,6 +70,21 @@ SynthesisTarget targetFromHeights(const Heightfield& heights,
 // Cells under the chains of a graph (8-connected lines between their points).
 std::vector<std::uint8_t> rasteriseChains(const FeatureGraph& graph, int width, int height);
 
+// The target on an output grid of width x height cells from a sketch drawn on
+// sketchWidth x sketchHeight pixels: its graph scaled onto the grid (with
+// control points at half a patch), and the field from the sketch's heights
+// (grey map or DEM, resampled) when given, else from its strokes.
+SynthesisTarget makeTarget(const FeatureGraph& sketchGraph,
+  int sketchWidth,
+  int sketchHeight,
+  const Heightfield* sketchHeights,
+  int width,
+  int height,
+  double cellX,
+  double cellY,
+  const ExemplarStatistics& stats,
+  int patchSize);
+
 // Exact Euclidean distance (in cells) from every cell to the nearest seed cell
 // (Felzenszwalb and Huttenlocher's two-pass transform); +inf without seeds.
 std::vector<float> distanceTransform(const std::vector<std::uint8_t>& seeds, int width, int height);
