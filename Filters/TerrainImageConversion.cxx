@@ -12,6 +12,7 @@
 #include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -136,6 +137,53 @@ Heightfield imageToHeightfield(vtkImageData* image, vtkDataArray* heights)
     }
   }
   return hf;
+}
+
+// VTK images keep row 0 at the bottom; sketches are read top row first.
+ColourImage imageToColourImage(vtkImageData* image)
+{
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (scalars == nullptr)
+  {
+    scalars = image->GetPointData()->GetArray(0);
+  }
+  int dims[3];
+  image->GetDimensions(dims);
+  if (scalars == nullptr || dims[2] != 1)
+  {
+    throw Error("The sketch must be a 2D image with pixel values.");
+  }
+  ColourImage out;
+  out.width = dims[0];
+  out.height = dims[1];
+  const bool bytes = scalars->GetDataType() == VTK_UNSIGNED_CHAR;
+  out.channels = bytes ? std::min(4, scalars->GetNumberOfComponents()) : 1;
+  out.data.resize(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) *
+    static_cast<std::size_t>(out.channels));
+  double range[2] = { 0.0, 255.0 };
+  if (!bytes)
+  {
+    scalars->GetRange(range, 0); // other types: one channel scaled onto 0..255
+  }
+  const double scale = range[1] > range[0] ? 255.0 / (range[1] - range[0]) : 0.0;
+  for (int j = 0; j < out.height; ++j)
+  {
+    for (int i = 0; i < out.width; ++i)
+    {
+      const vtkIdType src = static_cast<vtkIdType>(j) * out.width + i;
+      const std::size_t dst =
+        (static_cast<std::size_t>(out.height - 1 - j) * static_cast<std::size_t>(out.width) +
+          static_cast<std::size_t>(i)) *
+        static_cast<std::size_t>(out.channels);
+      for (int c = 0; c < out.channels; ++c)
+      {
+        const double v = scalars->GetComponent(src, c);
+        out.data[dst + static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(
+          bytes ? v : std::clamp(std::lround((v - range[0]) * scale), 0L, 255L));
+      }
+    }
+  }
+  return out;
 }
 
 void gridOrigin(vtkImageData* image, double& x, double& y)

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "Core/Heightfield.h"
+#include "Core/HeightfieldIO.h"
 
 class vtkDataArray;
 class vtkImageData;
@@ -22,6 +23,10 @@ void heightfieldToImage(const Heightfield& hf, vtkImageData* image);
 // scalars) and its "Valid" mask and georeference. Throws tsynth::Error if the
 // image is not 2D in x-y or has no usable height array.
 Heightfield imageToHeightfield(vtkImageData* image, vtkDataArray* heights = nullptr);
+
+// An image's pixels as a sketch image (top row first): unsigned-char scalars
+// with 1-4 components as they are, other types scaled onto 0..255 (one channel).
+ColourImage imageToColourImage(vtkImageData* image);
 
 // World position of the image's first point (origin plus the extent's offset):
 // where cell (0, 0) of a heightfield taken from it lies.

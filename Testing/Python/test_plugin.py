@@ -397,6 +397,32 @@ class PluginTest(unittest.TestCase):
         matcher.UpdatePipeline()
         self.assertEqual(sm.Fetch(matcher, arg1=None, arg2=None, idx=0).GetNumberOfRows(), 0)
 
+    # Synthesis -------------------------------------------------------------------------------
+
+    def test_synthesis_filter_follows_a_stroke_sketch(self):
+        exemplar = simple.TerrainReader(FileName=os.path.join(PATHS.bundled_data, "dems", "colorado.png"))
+        sketch = simple.PNGSeriesReader(FileNames=[os.path.join(PATHS.bundled_data, "sketches", "strokes_y_ridges.png")])
+        synth = simple.TerrainSynthesis(Exemplars=[exemplar], Sketch=sketch, OutputSize=[256, 256])
+        synth.UpdatePipeline()
+        terrain = sm.Fetch(synth, arg1=None, arg2=None, idx=0)
+        self.assertEqual(terrain.GetDimensions(), (256, 256, 1))
+        self.assertEqual(terrain.GetSpacing()[0], 90.0)
+        z = point_array(terrain, "Elevation")
+        self.assertFalse(np.isnan(z).any())
+        ids = point_array(terrain, "PatchId")
+        self.assertTrue(np.all(ids >= 0))  # every cell comes from a placement
+        self.assertGreater(int(point_array(terrain, "SeamMask").sum()), 100)
+        placements = sm.Fetch(synth, arg1=None, arg2=None, idx=1)
+        rows = placements.GetNumberOfRows()
+        self.assertEqual(rows, int(ids.max()) + 1)
+        feature = vtk_to_numpy(placements.GetColumnByName("Feature"))
+        self.assertGreater(int(feature.sum()), 5)
+        # The sketch's Y: the trunk (x = 256 of 512 sketch pixels) stands above its flanks.
+        grid = z.reshape(256, 256)
+        trunk = grid[30:100, 124:132].mean()
+        flanks = 0.5 * (grid[30:100, 100:108].mean() + grid[30:100, 148:156].mean())
+        self.assertGreater(trunk, flanks)
+
     def test_missing_file_gives_an_empty_output_not_a_crash(self):
         reader = simple.TerrainReader(FileName="/nonexistent/dem.tif")
         reader.UpdatePipeline()
