@@ -52,6 +52,8 @@ higher), poly-lines (.vtp with a FeatureType cell array) or a real DEM used as t
   --seed N               accepted for reproducible scripts; the method is deterministic
   --report FILE.json     per-stage times, counts, costs and quality figures
   --debug-dir DIR        target field, feature trees, patch ids and seams as files
+  --no-vertical-offset   place patches at their own heights (default: fitted to the overlap)
+  --repetition P         seam-cost penalty for reusing a nearby source (default 0.5; 0 = off)
   --no-progress          no progress bar on the terminal
 )";
 
@@ -341,6 +343,8 @@ int runSynth(std::vector<std::string> args)
   const auto report = cl.take("--report");
   const auto debugDir = cl.take("--debug-dir");
   const bool noProgress = cl.takeFlag("--no-progress");
+  const bool noOffset = cl.takeFlag("--no-vertical-offset");
+  const auto repetition = cl.takeNumber("--repetition");
   if (!cl.positionals().empty())
   {
     throw UsageError("Unexpected argument \"" + cl.positionals()[0] + "\".");
@@ -406,6 +410,15 @@ int runSynth(std::vector<std::string> args)
     o.fill = *fill == "concentric" ? FillOrder::Concentric : FillOrder::BestFirst;
   }
   (void)seed;
+  o.verticalOffset = !noOffset;
+  if (repetition)
+  {
+    if (*repetition < 0.0)
+    {
+      throw UsageError("--repetition must not be negative.");
+    }
+    o.repetitionPenalty = *repetition;
+  }
   if (cell && !(*cell > 0.0))
   {
     throw UsageError("--cell expects a positive number of metres.");

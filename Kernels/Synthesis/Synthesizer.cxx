@@ -214,6 +214,21 @@ public:
   }
 
   // Chooses among candidates by seam cost and merges the winner at (x0, y0).
+  // How many placements already took a source within half a patch of this one.
+  int reuses(const PatchCandidate& c) const
+  {
+    int n = 0;
+    for (const Placement& p : result_.placements)
+    {
+      if (p.exemplar == c.exemplar &&
+        std::hypot(p.sourceX - c.centreX, p.sourceY - c.centreY) < 0.5 * P_)
+      {
+        ++n;
+      }
+    }
+    return n;
+  }
+
   // Returns how many empty cells the placement filled (0 if none could be).
   std::size_t place(const std::vector<PatchCandidate>& candidates, int x0, int y0, bool feature)
   {
@@ -261,7 +276,10 @@ public:
       }
       const MergeResult dry =
         merger_.seamCost(out_, filled_, patch, x0, y0, feature ? &core : nullptr);
-      const double seam = dry.overlapCells > 0 ? dry.normalisedCost : 0.0;
+      // Anti-repetition: a source already used nearby costs more, so the same
+      // exemplar patch is not copied over and over.
+      const double seam = (dry.overlapCells > 0 ? dry.normalisedCost : 0.0) +
+        o_.repetitionPenalty * reuses(candidates[c]);
       if (seam < bestSeam)
       {
         bestSeam = seam;

@@ -31,6 +31,9 @@ struct SynthesisOptions
   FillOrder fill = FillOrder::BestFirst;
   std::size_t k = 8;          // candidates compared by seam cost per placement
   bool verticalOffset = true; // shift each patch to fit what it overlaps
+  // Added to a candidate's seam cost (per seam edge) for every earlier placement
+  // that took a source within half a patch of it: discourages visible repeats.
+  double repetitionPenalty = 0.5;
   // Shape from the target near the sketched lines: there, the output's relief
   // coarser than this Gaussian sigma (cells) is replaced by the target's and the
   // exemplars' finer detail kept (the role of Tasse's final deformation); the
