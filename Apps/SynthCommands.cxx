@@ -7,6 +7,7 @@
 #include "Core/Error.h"
 #include "Core/HeightfieldIO.h"
 #include "Core/OutputFile.h"
+#include "Core/Resample.h"
 #include "Features/Ppa.h"
 #include "Features/Sketch.h"
 #include "Metrics/TerrainMetrics.h"
@@ -22,6 +23,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <unistd.h>
 
@@ -122,7 +124,9 @@ struct Exemplars
   std::vector<std::string> paths;
 };
 
-Exemplars readExemplars(const std::vector<std::string>& paths)
+// Reads the exemplars; any whose cells differ from the output's by more than 1%
+// is resampled to the output's cell size (and says so), then its features found.
+Exemplars readExemplars(const std::vector<std::string>& paths, std::optional<double> cell)
 {
   Exemplars ex;
   for (const std::string& p : paths)
@@ -133,11 +137,23 @@ Exemplars readExemplars(const std::vector<std::string>& paths)
     {
       std::cerr << "tsynth: warning: " << w << "\n";
     }
+    ex.heights.push_back(std::move(hf));
+    ex.paths.push_back(p);
+  }
+  const double cx = cell.value_or(ex.heights.front().cellX);
+  const double cy = cell.value_or(ex.heights.front().cellY);
+  for (std::size_t e = 0; e < ex.heights.size(); ++e)
+  {
+    Heightfield& hf = ex.heights[e];
+    if (std::abs(hf.cellX - cx) > 0.01 * cx || std::abs(hf.cellY - cy) > 0.01 * cy)
+    {
+      std::cerr << "tsynth: note: " << ex.paths[e] << " has " << hf.cellX << " x " << hf.cellY
+                << " m cells; resampled to the output's " << cx << " x " << cy << " m.\n";
+      hf = resampleToCellSize(hf, cx, cy);
+    }
     FeatureGraph g = extractFeatures(hf, FeatureType::Ridge, {}).graph;
     appendGraph(g, extractFeatures(hf, FeatureType::Valley, {}).graph);
-    ex.heights.push_back(std::move(hf));
     ex.graphs.push_back(std::move(g));
-    ex.paths.push_back(p);
   }
   return ex;
 }
@@ -436,7 +452,7 @@ int runSynth(std::vector<std::string> args)
   }
 
   const auto t0 = std::chrono::steady_clock::now();
-  const Exemplars ex = readExemplars(exemplarPaths);
+  const Exemplars ex = readExemplars(exemplarPaths, cell);
   Sketch sketch = readSketch(*sketchPath, o.patchSize);
   for (const auto& w : sketch.warnings)
   {
@@ -449,15 +465,6 @@ int runSynth(std::vector<std::string> args)
   }
   const double cellX = cell.value_or(ex.heights.front().cellX);
   const double cellY = cell.value_or(ex.heights.front().cellY);
-  for (std::size_t e = 1; e < ex.heights.size(); ++e)
-  {
-    if (std::abs(ex.heights[e].cellX - cellX) > 0.01 * cellX)
-    {
-      std::cerr << "tsynth: warning: " << ex.paths[e] << " has " << ex.heights[e].cellX
-                << " m cells, the output " << cellX
-                << " m: its patches are used at the output's cell size.\n";
-    }
-  }
   // Refuse before starting what cannot fit: output, its work arrays, and each
   // exemplar's 10 oriented copies with their tables.
   double bytes = static_cast<double>(width) * height * 48.0;
