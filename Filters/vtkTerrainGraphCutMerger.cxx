@@ -1,5 +1,6 @@
 #include "vtkTerrainGraphCutMerger.h"
 
+#include "PipelineRequests.h"
 #include "TerrainImageConversion.h"
 
 #include "Core/Error.h"
@@ -61,11 +62,7 @@ int vtkTerrainGraphCutMerger::RequestInformation(vtkInformation*,
   vtkInformationVector* outputVector)
 {
   // The output lies on the first input's grid, whatever the second input's size.
-  vtkInformation* in = inputVector[0]->GetInformationObject(0);
-  vtkInformation* out = outputVector->GetInformationObject(0);
-  out->CopyEntry(in, vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
-  out->CopyEntry(in, vtkDataObject::SPACING());
-  out->CopyEntry(in, vtkDataObject::ORIGIN());
+  tsynth::copyGrid(inputVector[0]->GetInformationObject(0), outputVector->GetInformationObject(0));
   return 1;
 }
 
@@ -73,17 +70,7 @@ int vtkTerrainGraphCutMerger::RequestUpdateExtent(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector*)
 {
-  // Every input is needed whole.
-  for (int port = 0; port < 2; ++port)
-  {
-    for (int c = 0; c < inputVector[port]->GetNumberOfInformationObjects(); ++c)
-    {
-      vtkInformation* in = inputVector[port]->GetInformationObject(c);
-      int extent[6];
-      in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-      in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
-    }
-  }
+  tsynth::requestWholeExtents(inputVector, 2);
   return 1;
 }
 

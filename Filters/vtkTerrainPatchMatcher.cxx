@@ -1,6 +1,7 @@
 #include "vtkTerrainPatchMatcher.h"
 
 #include "MatchingInputs.h"
+#include "PipelineRequests.h"
 #include "TerrainImageConversion.h"
 
 #include "Core/Error.h"
@@ -105,32 +106,14 @@ vtkTypeBool vtkTerrainPatchMatcher::ProcessRequest(vtkInformation* request,
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()))
   {
     // The cost map lies on the first exemplar's grid.
-    vtkInformation* exemplar = inputVector[1]->GetInformationObject(0);
-    vtkInformation* map = outputVector->GetInformationObject(1);
-    if (exemplar != nullptr && exemplar->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-    {
-      map->CopyEntry(exemplar, vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
-      map->CopyEntry(exemplar, vtkDataObject::SPACING());
-      map->CopyEntry(exemplar, vtkDataObject::ORIGIN());
-    }
+    tsynth::copyGrid(
+      inputVector[1]->GetInformationObject(0), outputVector->GetInformationObject(1));
     return 1;
   }
   if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
   {
-    // Target and exemplars are needed whole, whatever their sizes.
-    for (int port = 0; port < this->GetNumberOfInputPorts(); ++port)
-    {
-      for (int c = 0; c < inputVector[port]->GetNumberOfInformationObjects(); ++c)
-      {
-        vtkInformation* in = inputVector[port]->GetInformationObject(c);
-        if (in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-        {
-          int extent[6];
-          in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-          in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
-        }
-      }
-    }
+    // Every input is needed whole, whatever their sizes.
+    tsynth::requestWholeExtents(inputVector, this->GetNumberOfInputPorts());
     return 1;
   }
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))

@@ -2,6 +2,7 @@
 
 #include "FeatureGraphConversion.h"
 #include "MatchingInputs.h"
+#include "PipelineRequests.h"
 #include "TerrainImageConversion.h"
 
 #include "Core/Error.h"
@@ -74,19 +75,8 @@ vtkTypeBool vtkTerrainSynthesis::ProcessRequest(vtkInformation* request,
   }
   if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
   {
-    for (int port = 0; port < 2; ++port)
-    {
-      for (int c = 0; c < inputVector[port]->GetNumberOfInformationObjects(); ++c)
-      {
-        vtkInformation* in = inputVector[port]->GetInformationObject(c);
-        if (in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-        {
-          int extent[6];
-          in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-          in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
-        }
-      }
-    }
+    // Every input is needed whole, whatever their sizes.
+    tsynth::requestWholeExtents(inputVector, 2);
     return 1;
   }
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))

@@ -4,6 +4,7 @@
 //   - dense non-feature search, 64 x 64 window over a 1024 x 1024 exemplar in all
 //     10 variants: coarse-to-fine on OpenCL and on the CPU vs exhaustive search.
 // Usage: tsynth_bench_matching [DEM]
+#include "BenchUtilities.h"
 #include "Core/HeightfieldIO.h"
 #include "Features/Ppa.h"
 #include "Matching/CandidatePool.h"
@@ -24,27 +25,6 @@ using Clock = std::chrono::steady_clock;
 
 namespace
 {
-
-Heightfield mirrorTile(const Heightfield& src, int size)
-{
-  Heightfield out(size, size);
-  out.cellX = src.cellX;
-  out.cellY = src.cellY;
-  auto reflect = [](int v, int n)
-  {
-    const int period = 2 * n - 2;
-    v %= period;
-    return v < n ? v : period - v;
-  };
-  for (int j = 0; j < size; ++j)
-  {
-    for (int i = 0; i < size; ++i)
-    {
-      out.at(i, j) = src.at(reflect(i, src.width), reflect(j, src.height));
-    }
-  }
-  return out;
-}
 
 double bestOf(int n, const std::function<void()>& f)
 {
@@ -78,7 +58,7 @@ int main(int argc, char** argv)
 
   // Feature scoring on a 2049 x 2049 exemplar.
   {
-    const Heightfield ex = mirrorTile(dem, 2049);
+    const Heightfield ex = bench::mirrorTile(dem, 2049);
     auto t0 = Clock::now();
     const FeatureExtraction f = extractFeatures(ex, FeatureType::Ridge, {});
     const double ppa = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -128,7 +108,7 @@ int main(int argc, char** argv)
 
   // Dense search on a 1024 x 1024 exemplar.
   {
-    const Heightfield ex = mirrorTile(dem, 1024);
+    const Heightfield ex = bench::mirrorTile(dem, 1024);
     DenseOptions o;
     o.patchSize = 64;
     auto t0 = Clock::now();

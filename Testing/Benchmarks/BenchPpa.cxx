@@ -4,6 +4,7 @@
 //   - our Kruskal (radix sort + Boost disjoint sets) vs Boost.Graph's
 //     kruskal_minimum_spanning_tree on the same edges.
 // Usage: tsynth_bench_ppa [DEM] [repetitions]
+#include "BenchUtilities.h"
 #include "Core/HeightfieldIO.h"
 #include "Features/Ppa.h"
 
@@ -22,27 +23,6 @@ using Clock = std::chrono::steady_clock;
 
 namespace
 {
-
-Heightfield mirrorTile(const Heightfield& src, int size)
-{
-  Heightfield out(size, size);
-  out.cellX = src.cellX;
-  out.cellY = src.cellY;
-  auto reflect = [](int v, int n)
-  {
-    const int period = 2 * n - 2;
-    v %= period;
-    return v < n ? v : period - v;
-  };
-  for (int j = 0; j < size; ++j)
-  {
-    for (int i = 0; i < size; ++i)
-    {
-      out.at(i, j) = src.at(reflect(i, src.width), reflect(j, src.height));
-    }
-  }
-  return out;
-}
 
 double seconds(Clock::time_point t0)
 {
@@ -76,7 +56,7 @@ int main(int argc, char** argv)
   const std::string path =
     argc > 1 ? argv[1] : std::string(TSYNTH_BUNDLED_DATA) + "/dems/colorado.png";
   const int repetitions = argc > 2 ? std::max(1, std::atoi(argv[2])) : 3;
-  const Heightfield hf = mirrorTile(readHeightfield(path), 2049);
+  const Heightfield hf = bench::mirrorTile(readHeightfield(path), 2049);
   std::printf("PPA benchmark: %s mirror-tiled to %d x %d, best of %d\n",
     path.c_str(),
     hf.width,
