@@ -2,6 +2,7 @@
 
 #include "../Core/Error.h"
 #include "../Features/Ppa.h"
+#include "../Merging/Poisson.h"
 
 #include <algorithm>
 #include <chrono>
@@ -513,8 +514,107 @@ public:
         }
       }
     }
+    meetConstraints();
     result_.terrain = std::move(out_);
     return std::move(result_);
+  }
+
+  // Height constraints (poly-line Elevation): the terrain is bent so the
+  // constrained lines sit exactly at their heights. The correction is harmonic
+  // between the lines and fades to zero a patch away (Tasse's final deformation).
+  void meetConstraints()
+  {
+    const int w = out_.width;
+    const int h = out_.height;
+    std::vector<double> correction(out_.size(), std::numeric_limits<double>::quiet_NaN());
+    std::vector<std::uint8_t> onLine(out_.size(), 0);
+    bool any = false;
+    for (const FeatureChain& c : target_.graph.chains)
+    {
+      if (c.constraint.size() != c.points.size())
+      {
+        continue;
+      }
+      // Heights along the chain: given values, linear in between, none past the ends.
+      std::vector<double> z(c.points.size(), std::numeric_limits<double>::quiet_NaN());
+      int last = -1;
+      for (std::size_t k = 0; k < c.points.size(); ++k)
+      {
+        if (std::isnan(c.constraint[k]))
+        {
+          continue;
+        }
+        z[k] = c.constraint[k];
+        if (last >= 0)
+        {
+          for (std::size_t m = static_cast<std::size_t>(last) + 1; m < k; ++m)
+          {
+            const double t = static_cast<double>(m - static_cast<std::size_t>(last)) /
+              static_cast<double>(k - static_cast<std::size_t>(last));
+            z[m] = (1 - t) * c.constraint[static_cast<std::size_t>(last)] + t * c.constraint[k];
+          }
+        }
+        last = static_cast<int>(k);
+      }
+      for (std::size_t k = 1; k < c.points.size(); ++k)
+      {
+        if (std::isnan(z[k - 1]) || std::isnan(z[k]))
+        {
+          continue;
+        }
+        const Point2& a = c.points[k - 1];
+        const Point2& b = c.points[k];
+        const int steps =
+          std::max(1, static_cast<int>(std::ceil(2.0 * std::hypot(b.x - a.x, b.y - a.y))));
+        for (int s = 0; s <= steps; ++s)
+        {
+          const double t = static_cast<double>(s) / steps;
+          const int i = static_cast<int>(std::lround(a.x + t * (b.x - a.x)));
+          const int j = static_cast<int>(std::lround(a.y + t * (b.y - a.y)));
+          if (i >= 0 && j >= 0 && i < w && j < h && out_.isValid(i, j))
+          {
+            const std::size_t cell = out_.index(i, j);
+            correction[cell] = (1 - t) * z[k - 1] + t * z[k] - out_.z[cell];
+            onLine[cell] = 1;
+            any = true;
+          }
+        }
+      }
+    }
+    if (!any)
+    {
+      return;
+    }
+    const std::vector<float> d = distanceTransform(onLine, w, h);
+    std::vector<std::uint8_t> unknown(out_.size(), 0);
+    for (std::size_t c = 0; c < out_.size(); ++c)
+    {
+      if (onLine[c] == 0)
+      {
+        if (d[c] < P_ && out_.isValid(c))
+        {
+          unknown[c] = 1;
+          correction[c] = 0.0;
+        }
+        else
+        {
+          correction[c] = 0.0; // Dirichlet: no change a patch away
+        }
+      }
+    }
+    std::vector<double> zero(out_.size(), 0.0);
+    MaskedPoissonSolver solver;
+    PoissonOptions po;
+    po.tolerance = 1e-6;
+    solver.solveLaplacian(
+      w, h, out_.cellX, out_.cellY, unknown.data(), zero.data(), correction.data(), po);
+    for (std::size_t c = 0; c < out_.size(); ++c)
+    {
+      if (out_.isValid(c) && std::isfinite(correction[c]))
+      {
+        out_.z[c] = static_cast<float>(out_.z[c] + correction[c]);
+      }
+    }
   }
 
   void report(double fraction, const char* stage) const

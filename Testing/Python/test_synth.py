@@ -78,6 +78,36 @@ class SynthTest(unittest.TestCase):
         self.assertLess(figures["tiled_exemplar"]["ridge_fidelity"], 0.6)
         self.assertGreater(figures["random_patches"]["seam_index"], 2.0)
 
+    def test_polyline_elevations_are_met(self):
+        # An ASCII VTK poly-data sketch: a ridge at 3500 m to 3000 m, a valley at 2000 m.
+        vtp = self.path("lines.vtp")
+        with open(vtp, "w") as f:
+            f.write("""<VTKFile type="PolyData" version="0.1" byte_order="LittleEndian">
+<PolyData><Piece NumberOfPoints="4" NumberOfVerts="0" NumberOfLines="2" NumberOfStrips="0" NumberOfPolys="0">
+<PointData><DataArray type="Float32" Name="Elevation" format="ascii">3500 3000 2000 2000</DataArray></PointData>
+<CellData><DataArray type="Int32" Name="FeatureType" format="ascii">1 -1</DataArray></CellData>
+<Points><DataArray type="Float32" NumberOfComponents="3" format="ascii">20 100 0 180 100 0 10 190 0 190 150 0</DataArray></Points>
+<Lines><DataArray type="Int64" Name="connectivity" format="ascii">0 1 2 3</DataArray>
+<DataArray type="Int64" Name="offsets" format="ascii">2 4</DataArray></Lines>
+</Piece></PolyData></VTKFile>
+""")
+        out = self.path("lines.tif")
+        report = self.synth("colorado.png", vtp, out)
+        self.assertEqual(report["sketch_kind"], "poly-lines")
+        self.assertEqual(report["size"], [191, 191])
+
+        def height(column, row_from_south):
+            line = 191 - 1 - row_from_south  # GDAL counts lines from the top
+            r = subprocess.run(["gdallocationinfo", "-valonly", out, str(column), str(line)],
+                               capture_output=True, text=True)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            return float(r.stdout.strip())
+
+        # On the constrained ridge: 3500 m at x = 20, 3000 m at x = 180, linear between.
+        for column, expected in ((20, 3500.0), (100, 3250.0), (180, 3000.0)):
+            self.assertAlmostEqual(height(column, 100), expected, delta=1.0)
+        self.assertAlmostEqual(height(100, 170), 2000.0, delta=1.0)
+
     def test_bad_input(self):
         blank = self.path("blank.png")
         write_png(blank, 200, 200, lambda x, y: (255, 255, 255))
