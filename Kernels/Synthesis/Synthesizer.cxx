@@ -449,7 +449,12 @@ public:
       const int y0 = ys[s / xs.size()];
       // A window whose empty cells no candidate can cover (they fall outside
       // every rotated exemplar's valid area) is retired, never retried forever.
-      if (place(matcher_.matchDense(window(x0, y0)), x0, y0, false) == 0 ||
+      std::vector<PatchCandidate> candidates = matcher_.matchDense(window(x0, y0));
+      if (candidates.size() > o_.fillK)
+      {
+        candidates.resize(o_.fillK);
+      }
+      if (place(candidates, x0, y0, false) == 0 ||
         ++attempts[s] >= kMaxAttempts)
       {
         retired[s] = 1;

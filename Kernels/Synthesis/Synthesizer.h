@@ -29,7 +29,8 @@ struct SynthesisOptions
   Backend backend = Backend::Auto;
   MergeMode merge = MergeMode::New;
   FillOrder fill = FillOrder::BestFirst;
-  std::size_t k = 8;          // candidates compared by seam cost per placement
+  std::size_t k = 8;          // candidates compared by seam cost per feature placement
+  std::size_t fillK = 4;      // ... per fill placement (8 measured no better, 20% slower)
   bool verticalOffset = true; // shift each patch to fit what it overlaps
   // Added to a candidate's seam cost (per seam edge) for every earlier placement
   // that took a source within half a patch of it: discourages visible repeats.
