@@ -54,6 +54,9 @@ higher), poly-lines (.vtp with a FeatureType cell array) or a real DEM used as t
   --seed N               accepted for reproducible scripts; the method is deterministic
   --report FILE.json     per-stage times, counts, costs and quality figures
   --debug-dir DIR        target field, feature trees, patch ids and seams as files
+  --regions LABELS       style regions: a single-band image of labels over the output (resized to
+                         it); label L is served by exemplar number L (counting from 0) unless
+                         --region L=E1,E2 says otherwise (repeatable)
   --no-vertical-offset   place patches at their own heights (default: fitted to the overlap)
   --repetition P         seam-cost penalty for reusing a nearby source (default 0.5; 0 = off)
   --no-progress          no progress bar on the terminal
@@ -336,6 +339,76 @@ void writeDebug(const std::string& dir,
   writeTerrainFile(dir + "/seams.tif", seams);
 }
 
+// Style regions: labels read from an image (nearest cell, resized to the
+// output), each label mapped to the exemplars that serve it.
+void setRegions(SynthesisOptions& o,
+  const std::string& path,
+  const std::vector<std::string>& maps,
+  int width,
+  int height,
+  std::size_t exemplars)
+{
+  ReadOptions plain;
+  plain.useSidecar = false;
+  const Heightfield labels = readHeightfield(path, plain);
+  o.regionLabels.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), -1);
+  int maxLabel = -1;
+  for (int j = 0; j < height; ++j)
+  {
+    for (int i = 0; i < width; ++i)
+    {
+      const int si =
+        std::min(labels.width - 1, static_cast<int>(static_cast<double>(i) * labels.width / width));
+      const int sj = std::min(
+        labels.height - 1, static_cast<int>(static_cast<double>(j) * labels.height / height));
+      const int label =
+        labels.isValid(si, sj) ? static_cast<int>(std::lround(labels.at(si, sj))) : -1;
+      o.regionLabels[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) +
+        static_cast<std::size_t>(i)] = label;
+      maxLabel = std::max(maxLabel, label);
+    }
+  }
+  o.regionExemplars.assign(static_cast<std::size_t>(std::max(0, maxLabel + 1)), {});
+  for (const std::string& m : maps)
+  {
+    const std::size_t eq = m.find('=');
+    const auto label = parseNumber(m.substr(0, eq));
+    if (eq == std::string::npos || !label || *label < 0 || *label > maxLabel)
+    {
+      throw UsageError(
+        "--region expects LABEL=E1,E2 with a label present in the region image, not \"" + m +
+        "\".");
+    }
+    std::stringstream list(m.substr(eq + 1));
+    std::string item;
+    while (std::getline(list, item, ','))
+    {
+      const auto e = parseNumber(item);
+      if (!e || *e < 0 || *e >= static_cast<double>(exemplars))
+      {
+        throw UsageError("--region " + m + ": exemplar numbers run from 0 to " +
+          std::to_string(exemplars - 1) + ".");
+      }
+      o.regionExemplars[static_cast<std::size_t>(*label)].push_back(static_cast<int>(*e));
+    }
+  }
+  for (int l = 0; l <= maxLabel; ++l)
+  {
+    auto& list = o.regionExemplars[static_cast<std::size_t>(l)];
+    const bool used =
+      std::find(o.regionLabels.begin(), o.regionLabels.end(), l) != o.regionLabels.end();
+    if (list.empty() && used)
+    {
+      if (static_cast<std::size_t>(l) >= exemplars)
+      {
+        throw Error("Region label " + std::to_string(l) + " in " + path +
+          " has no exemplar: give --region " + std::to_string(l) + "=E or more exemplars.");
+      }
+      list.push_back(l);
+    }
+  }
+}
+
 } // namespace
 
 int runSynth(std::vector<std::string> args)
@@ -346,7 +419,9 @@ int runSynth(std::vector<std::string> args)
     return 0;
   }
   std::vector<std::string> exemplarPaths = takeRepeated(args, "--exemplar");
+  const std::vector<std::string> regionMaps = takeRepeated(args, "--region");
   CommandLine cl(std::move(args));
+  const auto regionsPath = cl.take("--regions");
   const auto sketchPath = cl.take("--sketch");
   const auto output = cl.take("--output", "-o");
   const auto size = cl.take("--size");
@@ -503,6 +578,15 @@ int runSynth(std::vector<std::string> args)
   const double prepare =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
+  if (regionsPath)
+  {
+    setRegions(o, *regionsPath, regionMaps, width, height, ex.heights.size());
+  }
+  else if (!regionMaps.empty())
+  {
+    throw UsageError("--region needs --regions LABELS.");
+  }
+
   ProgressBar bar(!noProgress);
   o.progress = [&](double f, const std::string& stage) { bar(f, stage); };
   const SynthesisResult r = synthesize(target, hp, gp, o);
@@ -545,7 +629,16 @@ int runSynth(std::vector<std::string> args)
         << "},\n  \"placements\": " << r.placements.size()
         << ",\n  \"feature_placements\": " << features << ",\n  \"mean_seam_cost\": "
         << json(r.placements.empty() ? 0.0 : seamSum / static_cast<double>(r.placements.size()))
-        << ",\n  \"quality\": " << evaluationJson(quality) << "\n}\n";
+        << ",\n  \"quality\": " << evaluationJson(quality) << ",\n  \"placement_list\": [";
+    // [order, feature, exemplar, variant, x0, y0, match cost, seam cost]
+    for (std::size_t k = 0; k < r.placements.size(); ++k)
+    {
+      const Placement& p = r.placements[k];
+      out << (k == 0 ? "" : ", ") << "[" << p.order << ", " << (p.feature ? 1 : 0) << ", "
+          << p.exemplar << ", " << p.variant << ", " << p.x0 << ", " << p.y0 << ", "
+          << json(p.matchCost) << ", " << json(p.seamCost) << "]";
+    }
+    out << "]\n}\n";
     out.close();
     if (!out)
     {

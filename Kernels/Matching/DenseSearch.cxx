@@ -367,7 +367,8 @@ void knownCells(const DenseQuery& q,
 
 std::vector<DenseMatch> DenseMatcher::refine(const DenseQuery& q,
   const std::vector<std::vector<float>>& coarse,
-  std::size_t k) const
+  std::size_t k,
+  const std::vector<int>* exemplars) const
 {
   const int f = std::max(1, options_.coarseFactor);
   const int P = options_.patchSize;
@@ -375,6 +376,11 @@ std::vector<DenseMatch> DenseMatcher::refine(const DenseQuery& q,
   for (std::size_t o = 0; o < oriented_.size(); ++o)
   {
     const Oriented& r = oriented_[o];
+    if (exemplars != nullptr &&
+      std::find(exemplars->begin(), exemplars->end(), r.exemplar) == exemplars->end())
+    {
+      continue;
+    }
     const std::vector<float>& costs = coarse[o];
     // The best coarse offsets, at least two blocks apart.
     std::vector<std::size_t> order(costs.size());

@@ -94,7 +94,8 @@ public:
   // Full-resolution refinement around the best coarse offsets; the k best.
   std::vector<DenseMatch> refine(const DenseQuery& query,
     const std::vector<std::vector<float>>& coarse,
-    std::size_t k) const;
+    std::size_t k,
+    const std::vector<int>* exemplars = nullptr) const; // only these exemplars, when given
   // coarseCosts + refine on the CPU.
   std::vector<DenseMatch> search(const DenseQuery& query, std::size_t k) const;
   // Every full-resolution offset (the reference the fast search is tested

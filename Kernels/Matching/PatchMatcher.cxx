@@ -97,12 +97,13 @@ std::vector<PatchCandidate> PatchMatcher::matchFeature(const FeatureQuery& query
   return out;
 }
 
-std::vector<PatchCandidate> PatchMatcher::matchDense(const DenseQuery& window)
+std::vector<PatchCandidate> PatchMatcher::matchDense(const DenseQuery& window,
+  const std::vector<int>* exemplars)
 {
   const CoarseQuery coarse = dense_->coarseQuery(window);
   const auto costs = denseScorer_ ? denseScorer_->coarseCosts(coarse) : dense_->coarseCosts(coarse);
   std::vector<PatchCandidate> out;
-  for (const DenseMatch& m : dense_->refine(window, costs, options_.k))
+  for (const DenseMatch& m : dense_->refine(window, costs, options_.k, exemplars))
   {
     PatchCandidate c;
     c.exemplar = m.exemplar;

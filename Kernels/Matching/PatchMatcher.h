@@ -63,7 +63,9 @@ public:
   // given) and adds a warning.
   std::vector<PatchCandidate> matchFeature(const FeatureQuery& query,
     const DenseQuery* window = nullptr);
-  std::vector<PatchCandidate> matchDense(const DenseQuery& window);
+  // The k best of all exemplars, or of the listed ones only.
+  std::vector<PatchCandidate> matchDense(const DenseQuery& window,
+    const std::vector<int>* exemplars = nullptr);
 
 private:
   MatcherOptions options_;

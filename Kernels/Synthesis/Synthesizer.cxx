@@ -215,6 +215,45 @@ public:
   }
 
   // Chooses among candidates by seam cost and merges the winner at (x0, y0).
+  // The exemplars that may serve the region at the window's centre (null: all).
+  const std::vector<int>* regionExemplars(int x0, int y0) const
+  {
+    if (o_.regionLabels.empty())
+    {
+      return nullptr;
+    }
+    const int x = std::clamp(x0 + P_ / 2, 0, out_.width - 1);
+    const int y = std::clamp(y0 + P_ / 2, 0, out_.height - 1);
+    const int label = o_.regionLabels[out_.index(x, y)];
+    if (label < 0 || static_cast<std::size_t>(label) >= o_.regionExemplars.size() ||
+      o_.regionExemplars[static_cast<std::size_t>(label)].empty())
+    {
+      return nullptr;
+    }
+    return &o_.regionExemplars[static_cast<std::size_t>(label)];
+  }
+
+  // Keeps the candidates whose exemplar may serve the region at the window's centre.
+  std::vector<PatchCandidate> allowed(std::vector<PatchCandidate> candidates,
+    int x0,
+    int y0,
+    std::size_t keep) const
+  {
+    if (const std::vector<int>* ok = regionExemplars(x0, y0))
+    {
+      candidates.erase(std::remove_if(candidates.begin(),
+                         candidates.end(),
+                         [&](const PatchCandidate& c)
+                         { return std::find(ok->begin(), ok->end(), c.exemplar) == ok->end(); }),
+        candidates.end());
+    }
+    if (candidates.size() > keep)
+    {
+      candidates.resize(keep);
+    }
+    return candidates;
+  }
+
   // How many placements already took a source within half a patch of this one.
   int reuses(const PatchCandidate& c) const
   {
@@ -338,7 +377,11 @@ public:
       const int y0 = static_cast<int>(std::lround(site.centre.y)) - P_ / 2;
       const FeatureQuery q = makeFeatureQuery(site, target_.field, noise_, &out_, &filled_, P_);
       const DenseQuery fallback = window(x0, y0);
-      place(matcher_.matchFeature(q, &fallback), x0, y0, true);
+      place(allowed(
+              matcher_.matchFeature(q, &fallback), x0, y0, o_.k * matcher_.pool().exemplars.size()),
+        x0,
+        y0,
+        true);
       report(
         0.1 + 0.3 * static_cast<double>(s + 1) / static_cast<double>(sites.size()), "features");
     }
@@ -449,13 +492,9 @@ public:
       const int y0 = ys[s / xs.size()];
       // A window whose empty cells no candidate can cover (they fall outside
       // every rotated exemplar's valid area) is retired, never retried forever.
-      std::vector<PatchCandidate> candidates = matcher_.matchDense(window(x0, y0));
-      if (candidates.size() > o_.fillK)
-      {
-        candidates.resize(o_.fillK);
-      }
-      if (place(candidates, x0, y0, false) == 0 ||
-        ++attempts[s] >= kMaxAttempts)
+      const std::vector<PatchCandidate> candidates =
+        allowed(matcher_.matchDense(window(x0, y0), regionExemplars(x0, y0)), x0, y0, o_.fillK);
+      if (place(candidates, x0, y0, false) == 0 || ++attempts[s] >= kMaxAttempts)
       {
         retired[s] = 1;
       }
@@ -707,6 +746,26 @@ SynthesisResult synthesize(const SynthesisTarget& target,
     throw Error("The output (" + std::to_string(target.field.width) + " x " +
       std::to_string(target.field.height) + " cells) is smaller than one patch (" +
       std::to_string(o.patchSize) + ").");
+  }
+  if (!o.regionLabels.empty())
+  {
+    if (o.regionLabels.size() != target.field.size())
+    {
+      throw Error("The region labels must cover the output grid (" +
+        std::to_string(target.field.width) + " x " + std::to_string(target.field.height) +
+        " cells).");
+    }
+    for (std::size_t r = 0; r < o.regionExemplars.size(); ++r)
+    {
+      for (int e : o.regionExemplars[r])
+      {
+        if (e < 0 || static_cast<std::size_t>(e) >= exemplars.size())
+        {
+          throw Error("Region " + std::to_string(r) + " names exemplar " + std::to_string(e) +
+            ", but there are " + std::to_string(exemplars.size()) + " exemplars.");
+        }
+      }
+    }
   }
   auto t0 = Clock::now();
   if (o.progress)

@@ -41,6 +41,11 @@ struct SynthesisOptions
   // correction fades out over a quarter patch from the lines. <0: 0.075 patch
   // (6 cells for 80-cell patches); 0: off.
   double shapeScale = -1.0;
+  // Style regions (Zhou's Middle-earth): a label per output cell (row 0 south;
+  // empty = one region) and, per label, the exemplars that may serve it (a
+  // label missing from the map may use every exemplar).
+  std::vector<int> regionLabels;
+  std::vector<std::vector<int>> regionExemplars;
   // Called with the fraction done (0..1) and the stage name.
   std::function<void(double, const std::string&)> progress;
 };

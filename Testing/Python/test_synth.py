@@ -108,6 +108,32 @@ class SynthTest(unittest.TestCase):
             self.assertAlmostEqual(height(column, 100), expected, delta=1.0)
         self.assertAlmostEqual(height(100, 170), 2000.0, delta=1.0)
 
+    def test_style_regions_choose_the_exemplars(self):
+        labels = self.path("labels.asc")
+        with open(labels, "w") as f:
+            f.write("ncols 8\nnrows 8\nxllcorner 0\nyllcorner 0\ncellsize 1\n")
+            f.write("0 0 0 0 1 1 1 1\n" * 8)  # west: label 0, east: label 1
+        out = self.path("regions.tif")
+        result = tsynth("synth", "--exemplar", os.path.join(self.dems, "colorado.png"),
+                        "--exemplar", os.path.join(self.dems, "alps-montblanc.png"),
+                        "--sketch", os.path.join(self.sketches, "strokes_y_ridges.png"), "--size", "320x320",
+                        "--regions", labels, "--region", "0=1", "--region", "1=0",
+                        "-o", out, "--report", out + ".json", "--no-progress")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        with open(out + ".json") as f:
+            placements = json.load(f)["placement_list"]
+        west = {p[2] for p in placements if p[4] + 40 < 150}
+        east = {p[2] for p in placements if p[4] + 40 > 170}
+        self.assertEqual(west, {1})  # --region 0=1: the west is served by the alps
+        self.assertEqual(east, {0})
+        # A label with no exemplar is refused before any work.
+        bad = tsynth("synth", "--exemplar", os.path.join(self.dems, "colorado.png"),
+                     "--sketch", os.path.join(self.sketches, "strokes_y_ridges.png"),
+                     "--regions", labels, "-o", self.path("bad.tif"), "--no-progress")
+        self.assertEqual(bad.returncode, 1)
+        self.assertIn("has no exemplar", bad.stderr)
+        self.assertFalse(os.path.exists(self.path("bad.tif")))
+
     def test_bad_input(self):
         blank = self.path("blank.png")
         write_png(blank, 200, 200, lambda x, y: (255, 255, 255))
