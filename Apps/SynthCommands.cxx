@@ -11,6 +11,7 @@
 #include "Features/Ppa.h"
 #include "Features/Sketch.h"
 #include "Metrics/TerrainMetrics.h"
+#include "Synthesis/Regions.h"
 #include "Synthesis/Synthesizer.h"
 
 #include <vtkNew.h>
@@ -339,76 +340,6 @@ void writeDebug(const std::string& dir,
   writeTerrainFile(dir + "/seams.tif", seams);
 }
 
-// Style regions: labels read from an image (nearest cell, resized to the
-// output), each label mapped to the exemplars that serve it.
-void setRegions(SynthesisOptions& o,
-  const std::string& path,
-  const std::vector<std::string>& maps,
-  int width,
-  int height,
-  std::size_t exemplars)
-{
-  ReadOptions plain;
-  plain.useSidecar = false;
-  const Heightfield labels = readHeightfield(path, plain);
-  o.regionLabels.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), -1);
-  int maxLabel = -1;
-  for (int j = 0; j < height; ++j)
-  {
-    for (int i = 0; i < width; ++i)
-    {
-      const int si =
-        std::min(labels.width - 1, static_cast<int>(static_cast<double>(i) * labels.width / width));
-      const int sj = std::min(
-        labels.height - 1, static_cast<int>(static_cast<double>(j) * labels.height / height));
-      const int label =
-        labels.isValid(si, sj) ? static_cast<int>(std::lround(labels.at(si, sj))) : -1;
-      o.regionLabels[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) +
-        static_cast<std::size_t>(i)] = label;
-      maxLabel = std::max(maxLabel, label);
-    }
-  }
-  o.regionExemplars.assign(static_cast<std::size_t>(std::max(0, maxLabel + 1)), {});
-  for (const std::string& m : maps)
-  {
-    const std::size_t eq = m.find('=');
-    const auto label = parseNumber(m.substr(0, eq));
-    if (eq == std::string::npos || !label || *label < 0 || *label > maxLabel)
-    {
-      throw UsageError(
-        "--region expects LABEL=E1,E2 with a label present in the region image, not \"" + m +
-        "\".");
-    }
-    std::stringstream list(m.substr(eq + 1));
-    std::string item;
-    while (std::getline(list, item, ','))
-    {
-      const auto e = parseNumber(item);
-      if (!e || *e < 0 || *e >= static_cast<double>(exemplars))
-      {
-        throw UsageError("--region " + m + ": exemplar numbers run from 0 to " +
-          std::to_string(exemplars - 1) + ".");
-      }
-      o.regionExemplars[static_cast<std::size_t>(*label)].push_back(static_cast<int>(*e));
-    }
-  }
-  for (int l = 0; l <= maxLabel; ++l)
-  {
-    auto& list = o.regionExemplars[static_cast<std::size_t>(l)];
-    const bool used =
-      std::find(o.regionLabels.begin(), o.regionLabels.end(), l) != o.regionLabels.end();
-    if (list.empty() && used)
-    {
-      if (static_cast<std::size_t>(l) >= exemplars)
-      {
-        throw Error("Region label " + std::to_string(l) + " in " + path +
-          " has no exemplar: give --region " + std::to_string(l) + "=E or more exemplars.");
-      }
-      list.push_back(l);
-    }
-  }
-}
-
 } // namespace
 
 int runSynth(std::vector<std::string> args)
@@ -580,7 +511,10 @@ int runSynth(std::vector<std::string> args)
 
   if (regionsPath)
   {
-    setRegions(o, *regionsPath, regionMaps, width, height, ex.heights.size());
+    ReadOptions plain;
+    plain.useSidecar = false;
+    assignRegions(
+      o, readHeightfield(*regionsPath, plain), regionMaps, width, height, ex.heights.size());
   }
   else if (!regionMaps.empty())
   {

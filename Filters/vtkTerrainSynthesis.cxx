@@ -8,6 +8,7 @@
 #include "Core/Error.h"
 #include "Features/Ppa.h"
 #include "Features/Sketch.h"
+#include "Synthesis/Regions.h"
 #include "Synthesis/Synthesizer.h"
 
 #include <vtkDataObject.h>
@@ -31,7 +32,7 @@ vtkStandardNewMacro(vtkTerrainSynthesis);
 
 vtkTerrainSynthesis::vtkTerrainSynthesis()
 {
-  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfInputPorts(3);
   this->SetNumberOfOutputPorts(2);
 }
 
@@ -41,6 +42,12 @@ int vtkTerrainSynthesis::FillInputPortInformation(int port, vtkInformation* info
   {
     info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
     info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
+    return 1;
+  }
+  if (port == 2)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
     return 1;
   }
   info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
@@ -76,7 +83,7 @@ vtkTypeBool vtkTerrainSynthesis::ProcessRequest(vtkInformation* request,
   if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
   {
     // Every input is needed whole, whatever their sizes.
-    tsynth::requestWholeExtents(inputVector, 2);
+    tsynth::requestWholeExtents(inputVector, 3);
     return 1;
   }
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
@@ -214,6 +221,12 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
                                    : tsynth::MergeMode::New;
     o.fill = this->FillOrder == 1 ? tsynth::FillOrder::Concentric : tsynth::FillOrder::BestFirst;
     o.progress = [this](double f, const std::string&) { this->UpdateProgress(0.05 + 0.9 * f); };
+    if (inputVector[2]->GetNumberOfInformationObjects() > 0)
+    {
+      const tsynth::Heightfield labels =
+        tsynth::imageToHeightfield(vtkImageData::GetData(inputVector[2], 0));
+      tsynth::assignRegions(o, labels, this->RegionMaps, w, h, ex.heights.size());
+    }
     const tsynth::SynthesisResult r =
       tsynth::synthesize(target, ex.heightPointers(), ex.graphPointers(), o);
     this->BackendUsed = r.backend;

@@ -12,6 +12,8 @@
  * position, output cell, match cost, seam cost, vertical offset).
  * The stages are the other Terrain Synthesis filters' kernels: feature
  * extraction, candidate pools and matching (OpenCL or CPU), graph-cut merging.
+ * Optional input port 2: style regions, an image of integer labels resized to
+ * the output; label L is served by exemplar L unless AddRegionMap("L=E1,E2").
  */
 #pragma once
 
@@ -20,6 +22,7 @@
 #include <vtkAlgorithm.h>
 
 #include <string>
+#include <vector>
 
 class vtkImageData;
 class vtkTable;
@@ -51,6 +54,19 @@ public:
   vtkGetMacro(CellSize, double);
 
   void RemoveAllExemplars() { this->RemoveAllInputConnections(0); }
+  /// Optional style regions (port 2): an image of integer labels over the
+  /// output; label L is served by exemplar L unless a map "L=E1,E2" says otherwise.
+  void SetRegionsConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(2, output); }
+  void AddRegionMap(const char* map)
+  {
+    this->RegionMaps.emplace_back(map != nullptr ? map : "");
+    this->Modified();
+  }
+  void RemoveAllRegionMaps()
+  {
+    this->RegionMaps.clear();
+    this->Modified();
+  }
   void SetSketchConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
   const char* GetBackendUsed() { return this->BackendUsed.c_str(); }
 
@@ -76,6 +92,7 @@ protected:
   int OutputSize[2] = { 0, 0 };
   double CellSize = 0.0;
   std::string BackendUsed;
+  std::vector<std::string> RegionMaps;
 
 private:
   vtkTerrainSynthesis(const vtkTerrainSynthesis&) = delete;

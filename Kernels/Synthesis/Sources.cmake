@@ -1,3 +1,4 @@
 set(TSYNTH_SYNTHESIS_SOURCES
+  Synthesis/Regions.cxx
   Synthesis/Synthesizer.cxx
   Synthesis/Target.cxx)

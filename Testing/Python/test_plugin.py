@@ -423,6 +423,22 @@ class PluginTest(unittest.TestCase):
         flanks = 0.5 * (grid[30:100, 100:108].mean() + grid[30:100, 148:156].mean())
         self.assertGreater(trunk, flanks)
 
+    def test_synthesis_filter_with_style_regions(self):
+        colorado = simple.TerrainReader(FileName=os.path.join(PATHS.bundled_data, "dems", "colorado.png"))
+        alps = simple.TerrainReader(FileName=self.alps)
+        sketch = simple.PNGSeriesReader(FileNames=[os.path.join(PATHS.bundled_data, "sketches", "strokes_y_ridges.png")])
+        labels = np.zeros((16, 16), dtype=np.float32)
+        labels[:, 8:] = 1.0  # west label 0, east label 1
+        regions = producer(image_from(labels, (1.0, 1.0)))
+        synth = simple.TerrainSynthesis(Exemplars=[colorado, alps], Sketch=sketch, Regions=regions,
+                                        RegionMaps=["0=1", "1=0"], OutputSize=[256, 256])
+        synth.UpdatePipeline()
+        placements = sm.Fetch(synth, arg1=None, arg2=None, idx=1)
+        column = vtk_to_numpy(placements.GetColumnByName("Column"))
+        exemplar = vtk_to_numpy(placements.GetColumnByName("Exemplar"))
+        self.assertEqual(set(exemplar[column + 40 < 118].tolist()), {1})
+        self.assertEqual(set(exemplar[column + 40 > 138].tolist()), {0})
+
     def test_missing_file_gives_an_empty_output_not_a_crash(self):
         reader = simple.TerrainReader(FileName="/nonexistent/dem.tif")
         reader.UpdatePipeline()
