@@ -55,6 +55,55 @@ std::vector<std::uint8_t> windowValidity(int w,
   return valid;
 }
 
+// The oriented exemplar with kRowLanes invalid columns added on the right, so
+// that a run of neighbouring offsets can always be read in one piece.
+Heightfield padRight(const Heightfield& in, int columns)
+{
+  Heightfield out(in.width + columns, in.height, std::numeric_limits<float>::quiet_NaN());
+  out.cellX = in.cellX;
+  out.cellY = in.cellY;
+  out.cellSizeKnown = in.cellSizeKnown;
+  out.valid.assign(out.size(), 0);
+  for (int j = 0; j < in.height; ++j)
+  {
+    for (int i = 0; i < in.width; ++i)
+    {
+      if (in.isValid(i, j))
+      {
+        out.at(i, j) = in.at(i, j);
+        out.valid[out.index(i, j)] = 1;
+      }
+    }
+  }
+  return out;
+}
+
+// Indices of the `count` smallest finite costs, by (cost, index): one pass with
+// a small bounded heap instead of sorting every offset.
+std::vector<std::size_t> smallestOffsets(const std::vector<float>& costs, std::size_t count)
+{
+  auto before = [&](std::size_t a, std::size_t b)
+  { return costs[a] < costs[b] || (costs[a] == costs[b] && a < b); };
+  std::vector<std::size_t> heap; // max-heap under `before`: the worst kept on top
+  heap.reserve(count + 1);
+  for (std::size_t i = 0; i < costs.size() && count > 0; ++i)
+  {
+    if (!(costs[i] < kInf) || (heap.size() == count && !before(i, heap.front())))
+    {
+      continue;
+    }
+    heap.push_back(i);
+    std::push_heap(heap.begin(), heap.end(), before);
+    if (heap.size() > count)
+    {
+      std::pop_heap(heap.begin(), heap.end(), before);
+      heap.pop_back();
+    }
+  }
+  std::sort_heap(heap.begin(), heap.end(), before);
+  return heap;
+}
+
 bool better(const DenseMatch& a, const DenseMatch& b)
 {
   if (a.cost != b.cost)
@@ -115,7 +164,7 @@ DenseMatcher::DenseMatcher(const std::vector<const Heightfield*>& exemplars, con
       Oriented r;
       r.exemplar = static_cast<int>(e);
       r.variant = v;
-      r.full = orientExemplar(ex, variant(v), &r.centreX, &r.centreY);
+      r.full = padRight(orientExemplar(ex, variant(v), &r.centreX, &r.centreY), kRowLanes);
       std::vector<std::uint8_t> cellValid(r.full.size());
       for (std::size_t k = 0; k < cellValid.size(); ++k)
       {
@@ -156,6 +205,18 @@ DenseMatcher::DenseMatcher(const std::vector<const Heightfield*>& exemplars, con
           }
         }
       }
+      r.pairs.assign(r.coarse.size(), 0.0f);
+      for (int b = 0; b + 1 < r.coarseHeight; ++b)
+      {
+        for (int a = 0; a + 1 < r.coarseWidth; ++a)
+        {
+          const std::size_t k =
+            static_cast<std::size_t>(b) * static_cast<std::size_t>(r.coarseStride) +
+            static_cast<std::size_t>(a);
+          const std::size_t up = k + static_cast<std::size_t>(r.coarseStride);
+          r.pairs[k] = 0.25f * (r.coarse[k] + r.coarse[k + 1] + r.coarse[up] + r.coarse[up + 1]);
+        }
+      }
       r.coarseValid = windowValidity(r.coarseWidth, r.coarseHeight, P / f, blockValid);
       r.offsetsX = std::max(0, r.coarseWidth - P / f + 1);
       r.offsetsY = std::max(0, r.coarseHeight - P / f + 1);
@@ -180,6 +241,14 @@ DenseMatcher::DenseMatcher(const std::vector<const Heightfield*>& exemplars, con
   const double mean = count > 0 ? sum / count : 0.0;
   heightScale_ =
     std::max(1e-6, std::sqrt(std::max(0.0, square / std::max(1.0, count) - mean * mean)));
+}
+
+void CoarseTerms::add(int r, int c, float h, float w)
+{
+  row.push_back(r);
+  column.push_back(c);
+  heights.push_back(h);
+  weights.push_back(w);
 }
 
 CoarseQuery DenseMatcher::coarseQuery(const DenseQuery& q) const
@@ -213,17 +282,34 @@ CoarseQuery DenseMatcher::coarseQuery(const DenseQuery& q) const
       c.weights[k] = static_cast<float>(n / (f * f));
       if (n > 0)
       {
-        c.row.push_back(b);
-        c.column.push_back(a);
-        c.listHeights.push_back(c.heights[k]);
-        c.listWeights.push_back(c.weights[k]);
+        c.terms.add(b, a, c.heights[k], c.weights[k]);
+      }
+    }
+  }
+  for (int b = 0; b + 1 < c.side; b += 2)
+  {
+    for (int a = 0; a + 1 < c.side; a += 2)
+    {
+      const std::size_t k = static_cast<std::size_t>(b * c.side + a);
+      const std::size_t group[4] = {
+        k, k + 1, k + static_cast<std::size_t>(c.side), k + static_cast<std::size_t>(c.side) + 1
+      };
+      const float w = c.weights[k];
+      if (w > 0.0f &&
+        std::all_of(group, group + 4, [&](std::size_t g) { return c.weights[g] == w; }))
+      {
+        const float mean = 0.25f *
+          (c.heights[group[0]] + c.heights[group[1]] + c.heights[group[2]] + c.heights[group[3]]);
+        c.bound.add(b, a, mean, 4.0f * w);
       }
     }
   }
   return c;
 }
 
-std::vector<std::vector<float>> DenseMatcher::coarseCosts(const CoarseQuery& q) const
+std::vector<std::vector<float>> DenseMatcher::coarseSsd(const CoarseTerms& q,
+  CoarseImage image,
+  const std::vector<std::vector<std::uint8_t>>* runs) const
 {
   std::vector<std::vector<float>> out(oriented_.size());
   // One task per row of offsets of every oriented exemplar, in a single parallel
@@ -239,21 +325,23 @@ std::vector<std::vector<float>> DenseMatcher::coarseCosts(const CoarseQuery& q) 
       tasks.push_back({ o, y });
     }
   }
-  const std::size_t terms = q.row.size();
+  const std::size_t terms = q.size();
   const long taskCount = static_cast<long>(tasks.size());
 #pragma omp parallel for schedule(dynamic, 16)
   for (long t = 0; t < taskCount; ++t)
   {
     const auto [o, y] = tasks[static_cast<std::size_t>(t)];
     const Oriented& r = oriented_[o];
+    const std::vector<float>& pixels = image == CoarseImage::Blocks ? r.coarse : r.pairs;
     std::vector<float>& costs = out[o];
     // Sixteen neighbouring offsets at a time, like the OpenCL kernel (DenseSsd.cl),
-    // over the known blocks only, skipping runs of offsets that are all invalid.
+    // skipping runs of offsets that are all invalid or not asked for.
     const int groups = (r.offsetsX + 15) / 16;
     for (int g = 0; g < groups; ++g)
     {
-      if (r.groupValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(groups) +
-            static_cast<std::size_t>(g)] == 0)
+      const std::size_t run = static_cast<std::size_t>(y) * static_cast<std::size_t>(groups) +
+        static_cast<std::size_t>(g);
+      if (r.groupValid[run] == 0 || (runs != nullptr && (*runs)[o][run] == 0))
       {
         continue;
       }
@@ -261,11 +349,11 @@ std::vector<std::vector<float>> DenseMatcher::coarseCosts(const CoarseQuery& q) 
       float acc[16] = {};
       for (std::size_t e = 0; e < terms; ++e)
       {
-        const float* cells = r.coarse.data() +
+        const float* cells = pixels.data() +
           static_cast<std::size_t>(y + q.row[e]) * static_cast<std::size_t>(r.coarseStride) +
           static_cast<std::size_t>(x0 + q.column[e]);
-        const float h = q.listHeights[e];
-        const float m = q.listWeights[e];
+        const float h = q.heights[e];
+        const float m = q.weights[e];
         for (int l = 0; l < 16; ++l)
         {
           const float d = h - cells[l];
@@ -283,22 +371,107 @@ std::vector<std::vector<float>> DenseMatcher::coarseCosts(const CoarseQuery& q) 
   return out;
 }
 
-float DenseMatcher::overlapAt(const std::vector<int>& cells,
+std::vector<std::vector<float>> DenseMatcher::coarseCosts(const CoarseQuery& q) const
+{
+  return coarseSsd(q.terms, CoarseImage::Blocks);
+}
+
+float DenseMatcher::coarseCostAt(const CoarseTerms& q, std::size_t o, std::size_t offset) const
+{
+  const Oriented& r = oriented_[o];
+  const int x = static_cast<int>(offset % static_cast<std::size_t>(r.offsetsX));
+  const int y = static_cast<int>(offset / static_cast<std::size_t>(r.offsetsX));
+  float acc = 0.0f;
+  for (std::size_t e = 0; e < q.size(); ++e)
+  {
+    const float d = q.heights[e] -
+      r.coarse[static_cast<std::size_t>(y + q.row[e]) * static_cast<std::size_t>(r.coarseStride) +
+        static_cast<std::size_t>(x + q.column[e])];
+    acc += q.weights[e] * d * d;
+  }
+  return acc;
+}
+
+std::size_t DenseMatcher::headSize() const
+{
+  return static_cast<std::size_t>(16 * std::max(1, options_.refinePerVariant));
+}
+
+std::vector<std::vector<float>> DenseMatcher::prunedCoarseCosts(const CoarseQuery& q,
+  const CoarseSsdFunction& ssd) const
+{
+  if (q.bound.empty() || q.terms.empty())
+  {
+    return ssd(q.terms, CoarseImage::Blocks, nullptr);
+  }
+  const std::vector<std::vector<float>> bound = ssd(q.bound, CoarseImage::Pairs, nullptr);
+  std::vector<std::vector<std::uint8_t>> runs(oriented_.size());
+  const std::size_t head = headSize();
+  const long orientedCount = static_cast<long>(oriented_.size());
+#pragma omp parallel for schedule(dynamic)
+  for (long n = 0; n < orientedCount; ++n)
+  {
+    const std::size_t o = static_cast<std::size_t>(n);
+    const Oriented& r = oriented_[o];
+    runs[o] = r.groupValid;
+    const std::vector<std::size_t> best = smallestOffsets(bound[o], head);
+    if (best.size() < head)
+    {
+      continue; // too few valid offsets to prune any
+    }
+    // At least `head` offsets cost at most `threshold`, so the `head` best all
+    // do, and their bounds are below it. The margin covers float round-off
+    // between the bound's sums and the full ones.
+    float threshold = 0.0f;
+    for (std::size_t idx : best)
+    {
+      threshold = std::max(threshold, coarseCostAt(q.terms, o, idx));
+    }
+    threshold = threshold * (1.0f + 1e-3f) + 1e-30f;
+    const int groups = (r.offsetsX + 15) / 16;
+    std::fill(runs[o].begin(), runs[o].end(), 0);
+    for (std::size_t k = 0; k < bound[o].size(); ++k)
+    {
+      if (bound[o][k] <= threshold)
+      {
+        const std::size_t y = k / static_cast<std::size_t>(r.offsetsX);
+        const std::size_t x = k % static_cast<std::size_t>(r.offsetsX);
+        runs[o][y * static_cast<std::size_t>(groups) + x / 16] = 1;
+      }
+    }
+  }
+  return ssd(q.terms, CoarseImage::Blocks, &runs);
+}
+
+void DenseMatcher::overlapRow(const std::vector<int>& cells,
   const std::vector<float>& heights,
   std::size_t o,
   int x,
-  int y) const
+  int y,
+  float* out) const
 {
+  // kRowLanes neighbouring offsets at once: each known cell is read once per
+  // lane from one contiguous run, which vectorises; every lane sums in the
+  // same order as a single offset would.
   const Oriented& r = oriented_[o];
   const float* base = r.full.z.data() + r.full.index(x, y);
-  float s = 0.0f;
+  float s[kRowLanes] = {};
   for (std::size_t e = 0; e < cells.size(); ++e)
   {
-    const float d = heights[e] - base[cells[e]];
-    s += d * d;
+    const float* cell = base + cells[e];
+    const float h = heights[e];
+    for (int l = 0; l < kRowLanes; ++l)
+    {
+      const float d = h - cell[l];
+      s[l] += d * d;
+    }
   }
-  return cells.empty() ? 0.0f
-                       : static_cast<float>(s / cells.size() / (heightScale_ * heightScale_));
+  for (int l = 0; l < kRowLanes; ++l)
+  {
+    out[l] = cells.empty()
+      ? 0.0f
+      : static_cast<float>(s[l] / cells.size() / (heightScale_ * heightScale_));
+  }
 }
 
 DenseMatch DenseMatcher::describe(const DenseQuery& q,
@@ -365,6 +538,60 @@ void knownCells(const DenseQuery& q,
 
 } // namespace
 
+namespace
+{
+
+// A coarse offset chosen for refinement.
+struct Seed
+{
+  float cost;
+  std::size_t oriented;
+  int cx, cy;
+};
+
+bool seedBefore(const Seed& a, const Seed& b)
+{
+  if (a.cost != b.cost)
+  {
+    return a.cost < b.cost;
+  }
+  if (a.oriented != b.oriented)
+  {
+    return a.oriented < b.oriented;
+  }
+  return a.cy != b.cy ? a.cy < b.cy : a.cx < b.cx;
+}
+
+// The best `count` coarse offsets of one oriented exemplar, at least two blocks
+// apart, picked from its headSize() best.
+std::vector<Seed> bestCoarseOffsets(const std::vector<float>& costs,
+  std::size_t oriented,
+  int offsetsX,
+  int count,
+  std::size_t head)
+{
+  std::vector<Seed> chosen;
+  for (std::size_t idx : smallestOffsets(costs, head))
+  {
+    if (static_cast<int>(chosen.size()) >= count)
+    {
+      break;
+    }
+    const int cx = static_cast<int>(idx % static_cast<std::size_t>(offsetsX));
+    const int cy = static_cast<int>(idx / static_cast<std::size_t>(offsetsX));
+    const bool near = std::any_of(chosen.begin(),
+      chosen.end(),
+      [&](const Seed& c) { return std::abs(c.cx - cx) <= 1 && std::abs(c.cy - cy) <= 1; });
+    if (!near)
+    {
+      chosen.push_back({ costs[idx], oriented, cx, cy });
+    }
+  }
+  return chosen;
+}
+
+} // namespace
+
 std::vector<DenseMatch> DenseMatcher::refine(const DenseQuery& q,
   const std::vector<std::vector<float>>& coarse,
   std::size_t k,
@@ -372,89 +599,82 @@ std::vector<DenseMatch> DenseMatcher::refine(const DenseQuery& q,
 {
   const int f = std::max(1, options_.coarseFactor);
   const int P = options_.patchSize;
-  std::vector<DenseMatch> all;
-  for (std::size_t o = 0; o < oriented_.size(); ++o)
+  // The best coarse offsets of each oriented exemplar, then the best of those
+  // overall: coarse costs of all exemplars and variants compare directly, so
+  // the refinement budget goes where the good matches are.
+  std::vector<std::vector<Seed>> perOriented(oriented_.size());
+  const long orientedCount = static_cast<long>(oriented_.size());
+#pragma omp parallel for schedule(dynamic)
+  for (long o = 0; o < orientedCount; ++o)
   {
-    const Oriented& r = oriented_[o];
-    if (exemplars != nullptr &&
-      std::find(exemplars->begin(), exemplars->end(), r.exemplar) == exemplars->end())
+    const Oriented& r = oriented_[static_cast<std::size_t>(o)];
+    if (exemplars == nullptr ||
+      std::find(exemplars->begin(), exemplars->end(), r.exemplar) != exemplars->end())
     {
-      continue;
+      perOriented[static_cast<std::size_t>(o)] =
+        bestCoarseOffsets(coarse[static_cast<std::size_t>(o)],
+          static_cast<std::size_t>(o),
+          r.offsetsX,
+          options_.refinePerVariant,
+          headSize());
     }
-    const std::vector<float>& costs = coarse[o];
-    // The best coarse offsets, at least two blocks apart.
-    std::vector<std::size_t> order(costs.size());
-    std::iota(order.begin(), order.end(), 0);
-    // Only the head of the ranking is needed: a partial sort of a few times
-    // more offsets than will be refined (neighbours get suppressed).
-    const std::size_t head =
-      std::min(order.size(), static_cast<std::size_t>(16 * std::max(1, options_.refinePerVariant)));
-    std::partial_sort(order.begin(),
-      order.begin() + static_cast<long>(head),
-      order.end(),
-      [&](std::size_t a, std::size_t b)
-      { return costs[a] < costs[b] || (costs[a] == costs[b] && a < b); });
-    order.resize(head);
-    std::vector<std::pair<int, int>> chosen;
-    for (std::size_t idx : order)
-    {
-      if (!(costs[idx] < kInf) || static_cast<int>(chosen.size()) >= options_.refinePerVariant)
-      {
-        break;
-      }
-      const int cx = static_cast<int>(idx % static_cast<std::size_t>(r.offsetsX));
-      const int cy = static_cast<int>(idx / static_cast<std::size_t>(r.offsetsX));
-      const bool near = std::any_of(chosen.begin(),
-        chosen.end(),
-        [&](const auto& c) { return std::abs(c.first - cx) <= 1 && std::abs(c.second - cy) <= 1; });
-      if (!near)
-      {
-        chosen.push_back({ cx, cy });
-      }
-    }
+  }
+  std::vector<Seed> seeds;
+  for (const std::vector<Seed>& s : perOriented)
+  {
+    seeds.insert(seeds.end(), s.begin(), s.end());
+  }
+  std::sort(seeds.begin(), seeds.end(), seedBefore);
+  seeds.resize(std::min(seeds.size(), std::max(k, static_cast<std::size_t>(options_.refineTotal))));
+
+  // Each seed at full resolution: the optimum lies within half a block of it.
+  const int reach = f / 2 + 1;
+  std::vector<DenseMatch> found(seeds.size());
+  const long seedCount = static_cast<long>(seeds.size());
+#pragma omp parallel for schedule(dynamic)
+  for (long n = 0; n < seedCount; ++n)
+  {
+    const Seed& seed = seeds[static_cast<std::size_t>(n)];
+    const Oriented& r = oriented_[seed.oriented];
     const int nx = r.full.width - P + 1;
     const int ny = r.full.height - P + 1;
     std::vector<int> cells;
     std::vector<float> heights;
     knownCells(q, P, r.full.width, cells, heights);
-    // The full-resolution optimum lies within half a block of a coarse offset.
-    const int reach = f / 2 + 1;
-    // A few milliseconds in all: serial, no thread start-up per variant.
-    std::vector<DenseMatch> found(chosen.size());
-    for (std::size_t c = 0; c < chosen.size(); ++c)
+    // Runs of kRowLanes offsets must stay inside the (padded) image.
+    const int xa = std::max(0, seed.cx * f - reach);
+    const int xb = std::min(nx - kRowLanes, seed.cx * f + reach);
+    float best = kInf;
+    int bx = -1;
+    int by = -1;
+    for (int y = std::max(0, seed.cy * f - reach); y <= std::min(ny - 1, seed.cy * f + reach); ++y)
     {
-      const auto [cx, cy] = chosen[c];
-      float best = kInf;
-      int bx = -1;
-      int by = -1;
-      for (int y = cy * f - reach; y <= cy * f + reach; ++y)
+      for (int xs = xa; xs <= xb; xs += kRowLanes)
       {
-        for (int x = cx * f - reach; x <= cx * f + reach; ++x)
+        float v[kRowLanes];
+        overlapRow(cells, heights, seed.oriented, xs, y, v);
+        for (int x = xs; x < std::min(xs + kRowLanes, xb + 1); ++x)
         {
-          if (x < 0 || y < 0 || x >= nx || y >= ny ||
-            r.fullValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) +
-              static_cast<std::size_t>(x)] == 0)
+          if (r.fullValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) +
+                static_cast<std::size_t>(x)] != 0 &&
+            v[x - xs] < best)
           {
-            continue;
-          }
-          const float v = overlapAt(cells, heights, o, x, y);
-          if (v < best)
-          {
-            best = v;
+            best = v[x - xs];
             bx = x;
             by = y;
           }
         }
       }
-      found[c] =
-        bx >= 0 ? describe(q, o, bx, by, best) : DenseMatch{ 0, 0, 0, 0, 0.0, 0.0, kInf, kInf };
     }
-    for (const DenseMatch& m : found)
+    found[static_cast<std::size_t>(n)] = bx >= 0 ? describe(q, seed.oriented, bx, by, best)
+                                                 : DenseMatch{ 0, 0, 0, 0, 0.0, 0.0, kInf, kInf };
+  }
+  std::vector<DenseMatch> all;
+  for (const DenseMatch& m : found)
+  {
+    if (m.cost < kInf)
     {
-      if (m.cost < kInf)
-      {
-        all.push_back(m);
-      }
+      all.push_back(m);
     }
   }
   std::sort(all.begin(), all.end(), better);
@@ -473,7 +693,11 @@ std::vector<DenseMatch> DenseMatcher::refine(const DenseQuery& q,
 
 std::vector<DenseMatch> DenseMatcher::search(const DenseQuery& q, std::size_t k) const
 {
-  return refine(q, coarseCosts(coarseQuery(q)), k);
+  return refine(q,
+    prunedCoarseCosts(coarseQuery(q),
+      [this](const CoarseTerms& t, CoarseImage i, const std::vector<std::vector<std::uint8_t>>* r)
+      { return coarseSsd(t, i, r); }),
+    k);
 }
 
 std::vector<DenseMatch> DenseMatcher::bruteForce(const DenseQuery& q, std::size_t k) const
@@ -495,17 +719,23 @@ std::vector<DenseMatch> DenseMatcher::bruteForce(const DenseQuery& q, std::size_
     {
       DenseMatch best;
       best.cost = kInf;
-      for (int x = 0; x < nx; ++x)
+      // The last kRowLanes - 1 offsets of a row lie in the padding: never valid.
+      for (int xs = 0; xs + kRowLanes <= nx; xs += kRowLanes)
       {
-        if (r.fullValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) +
-              static_cast<std::size_t>(x)] == 0)
+        float v[kRowLanes];
+        overlapRow(cells, heights, o, xs, y, v);
+        for (int x = xs; x < xs + kRowLanes; ++x)
         {
-          continue;
-        }
-        const DenseMatch m = describe(q, o, x, y, overlapAt(cells, heights, o, x, y));
-        if (better(m, best))
-        {
-          best = m;
+          if (r.fullValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) +
+                static_cast<std::size_t>(x)] == 0)
+          {
+            continue;
+          }
+          const DenseMatch m = describe(q, o, x, y, v[x - xs]);
+          if (better(m, best))
+          {
+            best = m;
+          }
         }
       }
       rows[static_cast<std::size_t>(y)] = best;

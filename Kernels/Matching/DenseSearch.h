@@ -1,9 +1,11 @@
 // Non-feature candidates: the masked SSD of a target window (its known cells
 // only) against every offset of every exemplar in every enabled variant. A
-// coarse pass (heights averaged over f x f blocks) scores every offset, then the
-// best coarse offsets of each variant are refined cell by cell at full
-// resolution: far fewer operations than exhaustive search, with the same winner
-// on almost every query (Testing/Cxx/TestMatching.cxx measures the recall).
+// coarse pass (heights averaged over f x f blocks) scores every offset (first a
+// cheap lower bound from 2f x 2f means, then the full sum only where the bound
+// leaves an offset a chance), then the best coarse offsets overall are refined
+// cell by cell at full resolution: far fewer operations than exhaustive search,
+// with the same winner on almost every query (Testing/Cxx/TestMatching.cxx
+// measures the recall).
 #pragma once
 
 #include "../Core/Heightfield.h"
@@ -12,16 +14,21 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace tsynth
 {
 
+// Neighbouring offsets scored together at full resolution.
+constexpr int kRowLanes = 8;
+
 struct DenseOptions
 {
   int patchSize = 64;
   int coarseFactor = 4;        // block side of the coarse pass (1 = exhaustive)
-  int refinePerVariant = 4;    // coarse offsets refined per exemplar and variant
+  int refinePerVariant = 4;    // best coarse offsets kept per exemplar and variant ...
+  int refineTotal = 32;        // ... of which this many (the best overall) are refined
   double overlapWeight = 10.0; // a_o (Tasse's non-feature weights)
   double noiseWeight = 0.0001; // a_n
   std::array<bool, kVariantCount>
@@ -50,6 +57,17 @@ struct DenseQuery
   std::array<float, kNoiseLevels> noise{};
 };
 
+// Terms of a coarse weighted SSD: blocks (row, column) of the query's coarse
+// grid with their heights and weights, in the order they are summed.
+struct CoarseTerms
+{
+  std::vector<int> row, column;
+  std::vector<float> heights, weights;
+  std::size_t size() const { return row.size(); }
+  bool empty() const { return row.empty(); }
+  void add(int r, int c, float h, float w);
+};
+
 // The coarse form of a query: block means of known cells, and the fraction of
 // each block known as its weight. Side = patchSize / coarseFactor.
 struct CoarseQuery
@@ -57,9 +75,19 @@ struct CoarseQuery
   int side = 0;
   std::vector<float> heights;
   std::vector<float> weights;
-  // The blocks with a known part, row by row: only they enter the sums.
-  std::vector<int> row, column;
-  std::vector<float> listHeights, listWeights;
+  CoarseTerms terms; // the blocks with a known part, row by row: only they enter the sums
+  // Aligned 2 x 2 groups of equally weighted blocks, as one term each against
+  // the exemplar's 2 x 2 block means: by Cauchy-Schwarz, sum w d_i^2 over a
+  // group >= 4 w (mean d)^2, so this SSD is a lower bound of the one over
+  // `terms` at every offset, for a quarter of the work.
+  CoarseTerms bound;
+};
+
+// Which image of an oriented exemplar a coarse SSD reads.
+enum class CoarseImage
+{
+  Blocks, // f x f block means
+  Pairs   // means of 2 x 2 blocks
 };
 
 class DenseMatcher
@@ -72,11 +100,12 @@ public:
   {
     int exemplar = 0;
     int variant = 0;
-    Heightfield full;                    // invalid outside the rotated exemplar
+    Heightfield full; // invalid outside the rotated exemplar and in kRowLanes padding columns
     double centreX = 0.0, centreY = 0.0; // where the exemplar's centre lies in `full`
     int coarseWidth = 0, coarseHeight = 0;
     int coarseStride = 0;      // row length, padded so 16 offsets can be read at once
     std::vector<float> coarse; // coarseHeight x coarseStride block means (0 where invalid)
+    std::vector<float> pairs;  // same layout: mean of the 2 x 2 blocks from (a, b) on
     std::vector<std::uint8_t> coarseValid; // per coarse offset: whole window valid
     std::vector<std::uint8_t> groupValid;  // per run of 16 coarse offsets: any of them valid
     std::vector<std::uint8_t> fullValid;   // per full offset: whole window valid
@@ -88,9 +117,28 @@ public:
   double heightScale() const { return heightScale_; }
 
   CoarseQuery coarseQuery(const DenseQuery& query) const;
-  // Coarse weighted SSD for every offset of every oriented exemplar (CPU
-  // reference of the OpenCL kernel): costs[o][y * offsetsX + x], +inf where invalid.
+  // Coarse weighted SSD of `terms` read from `image`, per oriented exemplar:
+  // costs[o][y * offsetsX + x], +inf at invalid offsets and, when `runs` is
+  // given, in runs of 16 offsets it does not mark (runs[o][y * groups + x / 16]).
+  // The CPU reference of OpenClDenseScorer::coarseSsd.
+  std::vector<std::vector<float>> coarseSsd(const CoarseTerms& terms,
+    CoarseImage image,
+    const std::vector<std::vector<std::uint8_t>>* runs = nullptr) const;
+  // Every offset of every oriented exemplar.
   std::vector<std::vector<float>> coarseCosts(const CoarseQuery& query) const;
+  // What refine() needs, exactly, for far less work: the query.bound SSD (a
+  // quarter of the terms) everywhere; the full SSD at its best headSize()
+  // offsets of each oriented exemplar, whose worst is a threshold; then the full
+  // SSD only in runs of offsets whose bound is under that threshold. Every
+  // offset among the headSize() best of its oriented exemplar keeps its exact
+  // cost; others may be +inf. `ssd` is coarseSsd or the OpenCL one.
+  using CoarseSsdFunction = std::function<std::vector<std::vector<float>>(const CoarseTerms&,
+    CoarseImage,
+    const std::vector<std::vector<std::uint8_t>>*)>;
+  std::vector<std::vector<float>> prunedCoarseCosts(const CoarseQuery& query,
+    const CoarseSsdFunction& ssd) const;
+  // Coarse offsets per oriented exemplar that refine() looks at.
+  std::size_t headSize() const;
   // Full-resolution refinement around the best coarse offsets; the k best.
   std::vector<DenseMatch> refine(const DenseQuery& query,
     const std::vector<std::vector<float>>& coarse,
@@ -103,12 +151,16 @@ public:
   std::vector<DenseMatch> bruteForce(const DenseQuery& query, std::size_t k) const;
 
 private:
-  // Mean squared difference over the known cells (listed as cell index and height).
-  float overlapAt(const std::vector<int>& cells,
+  // Mean squared difference over the known cells (listed as cell index and
+  // height) at offsets (x .. x + kRowLanes - 1, y).
+  void overlapRow(const std::vector<int>& cells,
     const std::vector<float>& heights,
     std::size_t o,
     int x,
-    int y) const;
+    int y,
+    float* out) const;
+  // The coarse SSD at one offset, summed as coarseSsd does.
+  float coarseCostAt(const CoarseTerms& terms, std::size_t o, std::size_t offset) const;
   DenseMatch describe(const DenseQuery& query, std::size_t o, int x, int y, float overlap) const;
 
   DenseOptions options_;

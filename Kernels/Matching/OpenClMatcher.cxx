@@ -292,9 +292,13 @@ std::vector<float> OpenClFeatureScorer::score(const FeatureQuery& q, const Match
 
 struct OpenClDenseScorer::Buffers
 {
-  std::vector<DeviceBuffer> images;
-  std::vector<DeviceBuffer> groups;
-  std::vector<DeviceBuffer> outputs;
+  DeviceBuffer blocks, pairs; // every oriented exemplar's image, concatenated
+  DeviceBuffer rowOriented, rowY, imageStart, strides, offsetsX, runStart, outStart;
+  DeviceBuffer output;
+  std::vector<std::uint8_t> runs;     // groupValid of all, concatenated
+  std::vector<std::size_t> runOffset; // where each exemplar's runs start
+  std::vector<std::size_t> outOffset; // where each exemplar's costs start
+  std::size_t rowCount = 0, maxGroups = 0, outSize = 0;
 };
 
 OpenClDenseScorer::OpenClDenseScorer(std::shared_ptr<OpenClDevice> device,
@@ -304,96 +308,158 @@ OpenClDenseScorer::OpenClDenseScorer(std::shared_ptr<OpenClDevice> device,
   , buffers_(std::make_unique<Buffers>())
 {
   cl_context ctx = device_->runtime().context;
-  for (const DenseMatcher::Oriented& o : matcher.oriented())
+  Buffers& b = *buffers_;
+  std::vector<float> blocks, pairs;
+  std::vector<int> rowOriented, rowY, imageStart, strides, offsetsX, runStart, outStart;
+  for (std::size_t i = 0; i < matcher.oriented().size(); ++i)
   {
+    const DenseMatcher::Oriented& o = matcher.oriented()[i];
+    imageStart.push_back(static_cast<int>(blocks.size()));
+    blocks.insert(blocks.end(), o.coarse.begin(), o.coarse.end());
+    pairs.insert(pairs.end(), o.pairs.begin(), o.pairs.end());
     // One spare row: the last work-items read 16 offsets past the final one.
-    std::vector<float> padded = o.coarse;
-    padded.resize(padded.size() + static_cast<std::size_t>(o.coarseStride), 0.0f);
-    buffers_->images.push_back(upload(ctx, padded));
-    buffers_->groups.push_back(upload(ctx, o.groupValid));
-    buffers_->outputs.emplace_back(ctx,
-      CL_MEM_WRITE_ONLY,
-      static_cast<std::size_t>(o.offsetsX) * static_cast<std::size_t>(o.offsetsY) * sizeof(float),
-      nullptr);
+    blocks.resize(blocks.size() + static_cast<std::size_t>(o.coarseStride), 0.0f);
+    pairs.resize(pairs.size() + static_cast<std::size_t>(o.coarseStride), 0.0f);
+    strides.push_back(o.coarseStride);
+    offsetsX.push_back(o.offsetsX);
+    runStart.push_back(static_cast<int>(b.runs.size()));
+    b.runOffset.push_back(b.runs.size());
+    b.runs.insert(b.runs.end(), o.groupValid.begin(), o.groupValid.end());
+    outStart.push_back(static_cast<int>(b.outSize));
+    b.outOffset.push_back(b.outSize);
+    b.outSize += static_cast<std::size_t>(o.offsetsX) * static_cast<std::size_t>(o.offsetsY);
+    b.maxGroups = std::max(b.maxGroups, static_cast<std::size_t>((o.offsetsX + 15) / 16));
+    for (int y = 0; y < o.offsetsY; ++y)
+    {
+      rowOriented.push_back(static_cast<int>(i));
+      rowY.push_back(y);
+    }
   }
+  if (blocks.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+  {
+    throw Error("The exemplars are too large for the OpenCL dense search.");
+  }
+  b.rowCount = rowY.size();
+  b.blocks = upload(ctx, blocks);
+  b.pairs = upload(ctx, pairs);
+  b.rowOriented = upload(ctx, rowOriented);
+  b.rowY = upload(ctx, rowY);
+  b.imageStart = upload(ctx, imageStart);
+  b.strides = upload(ctx, strides);
+  b.offsetsX = upload(ctx, offsetsX);
+  b.runStart = upload(ctx, runStart);
+  b.outStart = upload(ctx, outStart);
+  b.output = DeviceBuffer(
+    ctx, CL_MEM_WRITE_ONLY, std::max<std::size_t>(1, b.outSize) * sizeof(float), nullptr);
 }
 
 OpenClDenseScorer::~OpenClDenseScorer() = default;
 
 std::vector<std::vector<float>> OpenClDenseScorer::coarseCosts(const CoarseQuery& q)
 {
+  return coarseSsd(q.terms, CoarseImage::Blocks, nullptr);
+}
+
+std::vector<std::vector<float>> OpenClDenseScorer::coarseSsd(const CoarseTerms& q,
+  CoarseImage image,
+  const std::vector<std::vector<std::uint8_t>>* runs)
+{
   OpenClRuntime& r = device_->runtime();
+  const Buffers& b = *buffers_;
   const auto& oriented = matcher_.oriented();
-  std::vector<std::vector<float>> out(oriented.size());
-  if (q.row.empty())
+  // The runs to compute: valid ones, of those asked for.
+  std::vector<std::uint8_t> asked = b.runs;
+  if (runs != nullptr)
   {
-    // Nothing known: every valid offset costs nothing.
     for (std::size_t i = 0; i < oriented.size(); ++i)
     {
-      out[i].assign(static_cast<std::size_t>(oriented[i].offsetsX) *
-          static_cast<std::size_t>(oriented[i].offsetsY),
-        0.0f);
+      const std::vector<std::uint8_t>& mine = (*runs)[i];
+      for (std::size_t g = 0; g < mine.size(); ++g)
+      {
+        asked[b.runOffset[i] + g] &= mine[g] != 0 ? 1 : 0;
+      }
     }
   }
-  else
+  std::vector<std::vector<float>> out(oriented.size());
+  for (std::size_t i = 0; i < oriented.size(); ++i)
+  {
+    out[i].resize(static_cast<std::size_t>(oriented[i].offsetsX) *
+      static_cast<std::size_t>(oriented[i].offsetsY));
+  }
+  if (q.empty())
+  {
+    // Nothing known: every valid offset costs nothing.
+    for (std::vector<float>& v : out)
+    {
+      std::fill(v.begin(), v.end(), 0.0f);
+    }
+  }
+  else if (b.rowCount > 0)
   {
     const DeviceBuffer rows = upload(r.context, q.row);
     const DeviceBuffer columns = upload(r.context, q.column);
-    const DeviceBuffer heights = upload(r.context, q.listHeights);
-    const DeviceBuffer weights = upload(r.context, q.listWeights);
+    const DeviceBuffer heights = upload(r.context, q.heights);
+    const DeviceBuffer weights = upload(r.context, q.weights);
+    const DeviceBuffer runMask = upload(r.context, asked);
     cl_kernel k = r.coarseSsd;
+    const cl_mem args[] = { (image == CoarseImage::Blocks ? b.blocks : b.pairs).get(),
+      b.rowOriented.get(),
+      b.rowY.get(),
+      b.imageStart.get(),
+      b.strides.get(),
+      b.offsetsX.get(),
+      b.runStart.get(),
+      b.outStart.get(),
+      rows.get(),
+      columns.get(),
+      heights.get(),
+      weights.get() };
+    cl_uint a = 0;
+    for (const cl_mem& m : args)
+    {
+      setArg(k, a++, m);
+    }
+    setArg(k, a++, static_cast<cl_int>(q.size()));
+    const cl_mem mask = runMask.get();
+    setArg(k, a++, mask);
+    const cl_mem output = b.output.get();
+    setArg(k, a++, output);
+    const std::size_t global[2] = { b.maxGroups, b.rowCount };
+    check(clEnqueueNDRangeKernel(r.queue, k, 2, nullptr, global, nullptr, 0, nullptr, nullptr),
+      "run coarseSsd");
     for (std::size_t i = 0; i < oriented.size(); ++i)
     {
-      const DenseMatcher::Oriented& o = oriented[i];
-      out[i].assign(
-        static_cast<std::size_t>(o.offsetsX) * static_cast<std::size_t>(o.offsetsY), 0.0f);
-      if (out[i].empty())
+      if (!out[i].empty())
       {
-        continue;
+        check(clEnqueueReadBuffer(r.queue,
+                output,
+                CL_FALSE,
+                b.outOffset[i] * sizeof(float),
+                out[i].size() * sizeof(float),
+                out[i].data(),
+                0,
+                nullptr,
+                nullptr),
+          "read the coarse costs");
       }
-      const cl_mem args[] = { buffers_->images[i].get(),
-        rows.get(),
-        columns.get(),
-        heights.get(),
-        weights.get(),
-        buffers_->groups[i].get(),
-        buffers_->outputs[i].get() };
-      setArg(k, 0, args[0]);
-      setArg(k, 1, static_cast<cl_int>(o.coarseStride));
-      setArg(k, 2, static_cast<cl_int>(o.offsetsX));
-      setArg(k, 3, static_cast<cl_int>(o.offsetsY));
-      setArg(k, 4, args[1]);
-      setArg(k, 5, args[2]);
-      setArg(k, 6, args[3]);
-      setArg(k, 7, args[4]);
-      setArg(k, 8, static_cast<cl_int>(q.row.size()));
-      setArg(k, 9, args[5]);
-      setArg(k, 10, args[6]);
-      const std::size_t global[2] = { static_cast<std::size_t>((o.offsetsX + 15) / 16),
-        static_cast<std::size_t>(o.offsetsY) };
-      check(clEnqueueNDRangeKernel(r.queue, k, 2, nullptr, global, nullptr, 0, nullptr, nullptr),
-        "run coarseSsd");
-      check(clEnqueueReadBuffer(r.queue,
-              args[6],
-              CL_FALSE,
-              0,
-              out[i].size() * sizeof(float),
-              out[i].data(),
-              0,
-              nullptr,
-              nullptr),
-        "read the coarse costs");
     }
     check(clFinish(r.queue), "finish the dense search");
   }
+  // Offsets the kernel skipped hold stale values: +inf, as on the CPU.
   const float inf = std::numeric_limits<float>::infinity();
   for (std::size_t i = 0; i < oriented.size(); ++i)
   {
-    for (std::size_t j = 0; j < out[i].size(); ++j)
+    const DenseMatcher::Oriented& o = oriented[i];
+    const std::size_t nx = static_cast<std::size_t>(o.offsetsX);
+    const std::size_t groups = (nx + 15) / 16;
+    for (std::size_t y = 0; y < static_cast<std::size_t>(o.offsetsY); ++y)
     {
-      if (oriented[i].coarseValid[j] == 0)
+      for (std::size_t x = 0; x < nx; ++x)
       {
-        out[i][j] = inf;
+        if (asked[b.runOffset[i] + y * groups + x / 16] == 0 || o.coarseValid[y * nx + x] == 0)
+        {
+          out[i][y * nx + x] = inf;
+        }
       }
     }
   }

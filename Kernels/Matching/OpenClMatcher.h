@@ -69,8 +69,11 @@ class OpenClDenseScorer
 public:
   OpenClDenseScorer(std::shared_ptr<OpenClDevice> device, const DenseMatcher& matcher);
   ~OpenClDenseScorer();
-  // Same layout and values as DenseMatcher::coarseCosts.
+  // Same layout and values as DenseMatcher::coarseCosts and coarseSsd.
   std::vector<std::vector<float>> coarseCosts(const CoarseQuery& query);
+  std::vector<std::vector<float>> coarseSsd(const CoarseTerms& terms,
+    CoarseImage image,
+    const std::vector<std::vector<std::uint8_t>>* runs);
 
 private:
   struct Buffers;

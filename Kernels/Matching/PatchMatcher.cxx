@@ -101,7 +101,9 @@ std::vector<PatchCandidate> PatchMatcher::matchDense(const DenseQuery& window,
   const std::vector<int>* exemplars)
 {
   const CoarseQuery coarse = dense_->coarseQuery(window);
-  const auto costs = denseScorer_ ? denseScorer_->coarseCosts(coarse) : dense_->coarseCosts(coarse);
+  const auto costs = dense_->prunedCoarseCosts(coarse,
+    [this](const CoarseTerms& t, CoarseImage i, const std::vector<std::vector<std::uint8_t>>* r)
+    { return denseScorer_ ? denseScorer_->coarseSsd(t, i, r) : dense_->coarseSsd(t, i, r); });
   std::vector<PatchCandidate> out;
   for (const DenseMatch& m : dense_->refine(window, costs, options_.k, exemplars))
   {

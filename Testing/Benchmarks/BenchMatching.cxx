@@ -2,7 +2,9 @@
 //   - scoring the whole feature pool of a 2049 x 2049 exemplar against one target:
 //     OpenCL (PoCL) vs the CPU reference (2 threads) vs the CPU reference on 1 thread;
 //   - dense non-feature search, 64 x 64 window over a 1024 x 1024 exemplar in all
-//     10 variants: coarse-to-fine on OpenCL and on the CPU vs exhaustive search.
+//     10 variants: coarse-to-fine on OpenCL and on the CPU vs exhaustive search;
+//   - the synthesiser's fill query (80 x 80, L-shaped known part) over five
+//     648 x 648 exemplars: the pruned coarse pass (lower bound first) vs the full one.
 // Usage: tsynth_bench_matching [DEM]
 #include "BenchUtilities.h"
 #include "Core/HeightfieldIO.h"
@@ -16,8 +18,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <string>
 
 using namespace tsynth;
@@ -171,6 +175,106 @@ int main(int argc, char** argv)
       exact[0].y,
       exact[0].cost,
       agree ? "" : "  (DISAGREE)");
+  }
+  // Fill queries over five exemplars: pruned vs full coarse pass.
+  {
+    std::vector<Heightfield> crops;
+    const Heightfield big = bench::mirrorTile(dem, 1400);
+    for (int e = 0; e < 5; ++e)
+    {
+      Heightfield c(648, 648);
+      c.cellX = dem.cellX;
+      c.cellY = dem.cellY;
+      for (int j = 0; j < 648; ++j)
+      {
+        for (int i = 0; i < 648; ++i)
+        {
+          c.at(i, j) = big.at(i + 150 * e, j + 100 * e);
+        }
+      }
+      crops.push_back(std::move(c));
+    }
+    std::vector<const Heightfield*> exemplars;
+    for (const Heightfield& c : crops)
+    {
+      exemplars.push_back(&c);
+    }
+    DenseOptions o;
+    o.patchSize = 80;
+    const DenseMatcher matcher(exemplars, o);
+    std::unique_ptr<OpenClDenseScorer> scorer;
+    if (device)
+    {
+      scorer = std::make_unique<OpenClDenseScorer>(device, matcher);
+    }
+    std::printf("\nFill queries: 80 x 80 window, L-shaped known part, over five 648 x 648 "
+                "exemplars in 10 variants (mean of 8 queries)\n");
+    double full = 0.0, pruned = 0.0, fullCl = 0.0, prunedCl = 0.0, share = 0.0;
+    int same = 0;
+    const int queries = 8;
+    for (int n = 0; n < queries; ++n)
+    {
+      DenseQuery q;
+      q.heights.resize(80 * 80);
+      q.known.resize(80 * 80);
+      const int band = 20 + 5 * n;
+      for (int j = 0; j < 80; ++j)
+      {
+        for (int i = 0; i < 80; ++i)
+        {
+          q.heights[static_cast<std::size_t>(j * 80 + i)] = big.at(700 + 37 * n + i, 900 + j);
+          q.known[static_cast<std::size_t>(j * 80 + i)] = (i < band || j < band) ? 1 : 0;
+        }
+      }
+      const CoarseQuery cq = matcher.coarseQuery(q);
+      auto cpu =
+        [&](const CoarseTerms& t, CoarseImage i, const std::vector<std::vector<std::uint8_t>>* r)
+      { return matcher.coarseSsd(t, i, r); };
+      std::vector<std::vector<float>> a, b;
+      full += bestOf(2, [&] { a = matcher.coarseCosts(cq); });
+      pruned += bestOf(2, [&] { b = matcher.prunedCoarseCosts(cq, cpu); });
+      std::size_t finite = 0, total = 0;
+      for (const auto& v : b)
+      {
+        total += v.size();
+        finite += static_cast<std::size_t>(
+          std::count_if(v.begin(), v.end(), [](float c) { return std::isfinite(c); }));
+      }
+      share += static_cast<double>(finite) / static_cast<double>(std::max<std::size_t>(1, total));
+      const auto ra = matcher.refine(q, a, 8);
+      const auto rb = matcher.refine(q, b, 8);
+      same += ra.size() == rb.size() &&
+          std::equal(ra.begin(),
+            ra.end(),
+            rb.begin(),
+            [](const DenseMatch& x, const DenseMatch& y)
+            { return x.variant == y.variant && x.x == y.x && x.y == y.y && x.cost == y.cost; })
+        ? 1
+        : 0;
+      if (scorer)
+      {
+        auto cl =
+          [&](const CoarseTerms& t, CoarseImage i, const std::vector<std::vector<std::uint8_t>>* r)
+        { return scorer->coarseSsd(t, i, r); };
+        fullCl += bestOf(2, [&] { a = scorer->coarseCosts(cq); });
+        prunedCl += bestOf(2, [&] { b = matcher.prunedCoarseCosts(cq, cl); });
+      }
+    }
+    std::printf("  CPU: full coarse pass %.1f ms, pruned %.1f ms (%.2fx faster); offsets scored "
+                "in full: %.1f%%; same top 8 after refinement on %d of %d queries\n",
+      1e3 * full / queries,
+      1e3 * pruned / queries,
+      full / pruned,
+      100.0 * share / queries,
+      same,
+      queries);
+    if (scorer)
+    {
+      std::printf("  OpenCL: full coarse pass %.1f ms, pruned %.1f ms (%.2fx faster)\n",
+        1e3 * fullCl / queries,
+        1e3 * prunedCl / queries,
+        fullCl / prunedCl);
+    }
   }
   return 0;
 }

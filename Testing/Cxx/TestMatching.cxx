@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -387,6 +388,92 @@ TEST(DenseSearch, CoarseToFineFindsTheExhaustiveWinner)
   EXPECT_GE(same, (queries * 95 + 99) / 100) << same << " of " << queries;
 }
 
+// Offsets of the `count` smallest finite costs, by (cost, index).
+std::vector<std::size_t> head(const std::vector<float>& costs, std::size_t count)
+{
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < costs.size(); ++i)
+  {
+    if (std::isfinite(costs[i]))
+    {
+      order.push_back(i);
+    }
+  }
+  std::sort(order.begin(),
+    order.end(),
+    [&](std::size_t a, std::size_t b)
+    { return costs[a] < costs[b] || (costs[a] == costs[b] && a < b); });
+  order.resize(std::min(order.size(), count));
+  return order;
+}
+
+TEST(DenseSearch, PrunedCoarsePassKeepsTheExactHeadOfEveryVariant)
+{
+  // Three exemplars, queries with L-shaped known parts and one with scattered
+  // known cells (blocks of unequal weight, which the bound must leave out).
+  const Heightfield a = crop(colorado(), 0, 0, 200, 200);
+  const Heightfield b = crop(colorado(), 220, 0, 180, 240);
+  const Heightfield c = crop(colorado(), 0, 260, 260, 180);
+  DenseOptions o;
+  o.patchSize = 32;
+  const DenseMatcher matcher({ &a, &b, &c }, o);
+  auto cpu = [&](
+               const CoarseTerms& t, CoarseImage i, const std::vector<std::vector<std::uint8_t>>* r)
+  { return matcher.coarseSsd(t, i, r); };
+  std::mt19937 rng(5);
+  std::size_t valid = 0;
+  std::size_t scored = 0;
+  for (int n = 0; n < 6; ++n)
+  {
+    DenseQuery q;
+    q.heights.resize(32 * 32);
+    q.known.resize(32 * 32);
+    for (int j = 0; j < 32; ++j)
+    {
+      for (int i = 0; i < 32; ++i)
+      {
+        const std::size_t k = static_cast<std::size_t>(j * 32 + i);
+        q.heights[k] = colorado().at(450 + 20 * n + i, 420 + j) + 15.0f;
+        q.known[k] = n == 5 ? (rng() % 3 == 0 ? 1 : 0) : ((i < 8 + 3 * n || j < 10) ? 1 : 0);
+      }
+    }
+    const CoarseQuery cq = matcher.coarseQuery(q);
+    const auto full = matcher.coarseCosts(cq);
+    const auto bound = matcher.coarseSsd(cq.bound, CoarseImage::Pairs);
+    const auto pruned = matcher.prunedCoarseCosts(cq, cpu);
+    ASSERT_EQ(full.size(), pruned.size());
+    for (std::size_t v = 0; v < full.size(); ++v)
+    {
+      for (std::size_t k = 0; k < full[v].size(); ++k)
+      {
+        if (std::isfinite(full[v][k]))
+        {
+          ++valid;
+          ASSERT_LE(bound[v][k], full[v][k] * (1 + 1e-5f) + 1e-6f) << "the bound must be a bound";
+        }
+        if (std::isfinite(pruned[v][k]))
+        {
+          ++scored;
+          ASSERT_EQ(pruned[v][k], full[v][k]) << "scored offsets keep their exact cost";
+        }
+      }
+      ASSERT_EQ(head(pruned[v], matcher.headSize()), head(full[v], matcher.headSize()))
+        << "query " << n << ", oriented exemplar " << v;
+    }
+    const auto fast = matcher.refine(q, pruned, 8);
+    const auto exact = matcher.refine(q, full, 8);
+    ASSERT_EQ(fast.size(), exact.size());
+    for (std::size_t r = 0; r < fast.size(); ++r)
+    {
+      EXPECT_EQ(fast[r].cost, exact[r].cost);
+      EXPECT_EQ(fast[r].x, exact[r].x);
+      EXPECT_EQ(fast[r].y, exact[r].y);
+    }
+  }
+  // The point of it: most offsets never get the full sum.
+  EXPECT_LT(scored, valid / 2) << scored << " of " << valid;
+}
+
 TEST(DenseSearch, BadInput)
 {
   const Heightfield small = crop(colorado(), 0, 0, 40, 40);
@@ -481,6 +568,19 @@ TEST(OpenCL, DenseCoarseCostsEqualTheCpuReference)
   }
   const auto a = matcher.refine(q, cpu, 8);
   const auto b = matcher.refine(q, gpu, 8);
+  // The pruned pass agrees too, whichever backend sums.
+  const auto c = matcher.refine(q,
+    matcher.prunedCoarseCosts(cq,
+      [&](const CoarseTerms& t, CoarseImage i, const std::vector<std::vector<std::uint8_t>>* r)
+      { return scorer.coarseSsd(t, i, r); }),
+    8);
+  ASSERT_EQ(a.size(), c.size());
+  for (std::size_t r = 0; r < a.size(); ++r)
+  {
+    EXPECT_EQ(a[r].x, c[r].x);
+    EXPECT_EQ(a[r].y, c[r].y);
+    EXPECT_EQ(a[r].cost, c[r].cost);
+  }
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t r = 0; r < a.size(); ++r)
   {
