@@ -21,14 +21,17 @@ void GridMaxFlow::reset(int width, int height)
   offset_[MinusX] = -1;
   offset_[PlusY] = stride_;
   offset_[MinusY] = -stride_;
-  // assign() reuses the capacity of earlier, larger problems.
+  // assign() reuses the capacity of earlier, larger problems. The per-node
+  // tree state is set by solve() (the frame is never visited).
   cap_.assign(4 * n, 0.0);
   tr_.assign(n, 0.0);
   parent_.assign(n, None);
-  sink_.assign(n, 0);
-  next_.assign(n, NotActive);
-  ts_.assign(n, 0);
-  dist_.assign(n, 0);
+  sink_.resize(n);
+  up_.resize(n);
+  next_.resize(n);
+  ts_.resize(n);
+  dist_.resize(n);
+  path_.resize(n);
   orphans_.clear();
   flow_ = 0.0;
 }
@@ -45,14 +48,6 @@ void GridMaxFlow::addTerminal(int k, double toSource, double toSink)
     toSink -= delta;
   flow_ += std::min(toSource, toSink);
   tr_[n] = toSource - toSink;
-}
-
-void GridMaxFlow::setEdge(int k, Direction d, double forward, double backward)
-{
-  const int n = inner(k);
-  const int m = neighbour(n, d);
-  cap_[4 * n + d] = forward;
-  cap_[4 * m + (d ^ 1)] = backward;
 }
 
 void GridMaxFlow::setActive(int k)
@@ -96,86 +91,102 @@ int GridMaxFlow::nextActive()
   return -1;
 }
 
+void GridMaxFlow::attach(int k, int d, int p, int ts, int dist)
+{
+  parent_[k] = static_cast<std::int8_t>(d);
+  up_[k] = p;
+  ts_[k] = ts;
+  dist_[k] = dist;
+}
+
 void GridMaxFlow::augment(int s, int d)
 {
+  // Raw pointers: the int8 stores below may alias anything, so the vectors'
+  // data pointers would otherwise be reloaded after each of them.
+  double* const cap = cap_.data();
+  std::int8_t* const parent = parent_.data();
+  const int* const up = up_.data();
+  int* const path = path_.data();
   const int t = neighbour(s, d);
-  // Bottleneck along source tree -> bridge -> sink tree.
-  double bottleneck = cap_[4 * s + d];
+  // One walk up each tree (a chain of up_ loads, the capacities are read off
+  // the chain) finds the bottleneck and records the path for the update.
+  double bottleneck = cap[4 * s + d];
+  int length = 0;
   int k = s;
-  while (parent_[k] != Terminal)
+  while (parent[k] != Terminal)
   {
-    const int a = parent_[k];
-    const int p = neighbour(k, a);
-    bottleneck = std::min(bottleneck, cap_[4 * p + (a ^ 1)]);
+    const int p = up[k];
+    bottleneck = std::min(bottleneck, cap[4 * p + (parent[k] ^ 1)]);
+    path[length++] = k;
     k = p;
   }
+  const int sourceRoot = k;
+  const int sourceLength = length;
   bottleneck = std::min(bottleneck, tr_[k]);
   k = t;
-  while (parent_[k] != Terminal)
+  while (parent[k] != Terminal)
   {
-    const int a = parent_[k];
-    bottleneck = std::min(bottleneck, cap_[4 * k + a]);
-    k = neighbour(k, a);
+    bottleneck = std::min(bottleneck, cap[4 * k + parent[k]]);
+    path[length++] = k;
+    k = up[k];
   }
+  const int sinkRoot = k;
   bottleneck = std::min(bottleneck, -tr_[k]);
 
-  cap_[4 * s + d] -= bottleneck;
-  cap_[4 * t + (d ^ 1)] += bottleneck;
-  k = s;
-  while (parent_[k] != Terminal)
+  cap[4 * s + d] -= bottleneck;
+  cap[4 * t + (d ^ 1)] += bottleneck;
+  // An edge whose residual reaches 0 leaves its child node an orphan.
+  for (int e = 0; e < length; ++e)
   {
-    const int a = parent_[k];
-    const int p = neighbour(k, a);
-    cap_[4 * k + a] += bottleneck;
-    cap_[4 * p + (a ^ 1)] -= bottleneck;
-    if (cap_[4 * p + (a ^ 1)] <= 0.0)
+    k = path[e];
+    const int a = parent[k];
+    const int down = 4 * up[k] + (a ^ 1); // parent -> k
+    const int toUp = 4 * k + a;           // k -> parent
+    const bool sourceSide = e < sourceLength;
+    cap[sourceSide ? toUp : down] += bottleneck;
+    const int used = sourceSide ? down : toUp;
+    cap[used] -= bottleneck;
+    if (cap[used] <= 0.0)
     {
-      parent_[k] = Orphan;
+      parent[k] = Orphan;
       orphans_.push_back(k);
     }
-    k = p;
   }
-  tr_[k] -= bottleneck;
-  if (tr_[k] <= 0.0)
+  tr_[sourceRoot] -= bottleneck;
+  if (tr_[sourceRoot] <= 0.0)
   {
-    parent_[k] = Orphan;
-    orphans_.push_back(k);
+    parent[sourceRoot] = Orphan;
+    orphans_.push_back(sourceRoot);
   }
-  k = t;
-  while (parent_[k] != Terminal)
+  tr_[sinkRoot] += bottleneck;
+  if (tr_[sinkRoot] >= 0.0)
   {
-    const int a = parent_[k];
-    const int p = neighbour(k, a);
-    cap_[4 * p + (a ^ 1)] += bottleneck;
-    cap_[4 * k + a] -= bottleneck;
-    if (cap_[4 * k + a] <= 0.0)
-    {
-      parent_[k] = Orphan;
-      orphans_.push_back(k);
-    }
-    k = p;
-  }
-  tr_[k] += bottleneck;
-  if (tr_[k] >= 0.0)
-  {
-    parent_[k] = Orphan;
-    orphans_.push_back(k);
+    parent[sinkRoot] = Orphan;
+    orphans_.push_back(sinkRoot);
   }
   flow_ += bottleneck;
 }
 
-void GridMaxFlow::processSourceOrphan(int i)
+// Both trees are handled by one body: in the sink tree every edge is used in
+// the other direction (child -> parent), which is all that differs.
+template<bool Sink>
+void GridMaxFlow::processOrphan(int i)
 {
+  const double* const cap = cap_.data();
+  // Residual capacity of the edge from the (candidate) parent j, in direction
+  // d ^ 1 from j, down to i.
+  auto residual = [&](int d, int j) { return Sink ? cap[4 * i + d] : cap[4 * j + (d ^ 1)]; };
   int bestDir = -1;
   int bestDist = InfiniteDistance;
   for (int d = 0; d < 4; ++d)
   {
-    int j = neighbour(i, d);
-    if (cap_[4 * j + (d ^ 1)] <= 0.0 || sink_[j] || parent_[j] == None)
+    const int first = neighbour(i, d);
+    if (parent_[first] == None || sink_[first] != Sink || residual(d, first) <= 0.0)
     {
       continue;
     }
-    // Is j still rooted at the source? Walk up, using the time stamps as a cache.
+    // Is it still rooted at the terminal? Walk up, using the time stamps as a cache.
+    int j = first;
     int dist = 0;
     for (;;)
     {
@@ -197,7 +208,7 @@ void GridMaxFlow::processSourceOrphan(int i)
         dist = InfiniteDistance;
         break;
       }
-      j = neighbour(j, a);
+      j = up_[j];
     }
     if (dist < InfiniteDistance)
     {
@@ -206,7 +217,7 @@ void GridMaxFlow::processSourceOrphan(int i)
         bestDir = d;
         bestDist = dist;
       }
-      for (j = neighbour(i, d); ts_[j] != time_; j = neighbour(j, parent_[j]))
+      for (j = first; ts_[j] != time_; j = up_[j])
       {
         ts_[j] = time_;
         dist_[j] = dist--;
@@ -215,25 +226,24 @@ void GridMaxFlow::processSourceOrphan(int i)
   }
   if (bestDir >= 0)
   {
-    parent_[i] = static_cast<std::int8_t>(bestDir);
-    ts_[i] = time_;
-    dist_[i] = bestDist + 1;
+    attach(i, bestDir, neighbour(i, bestDir), time_, bestDist + 1);
     return;
   }
-  // No valid parent: i becomes free, its children become orphans.
+  // No valid parent: i becomes free, its children become orphans and the
+  // neighbours that could regrow into it become active.
   for (int d = 0; d < 4; ++d)
   {
     const int j = neighbour(i, d);
     const int a = parent_[j];
-    if (sink_[j] || a == None)
+    if (a == None || sink_[j] != Sink)
     {
       continue;
     }
-    if (cap_[4 * j + (d ^ 1)] > 0.0)
+    if (residual(d, j) > 0.0)
     {
       setActive(j);
     }
-    if (a != Terminal && a != Orphan && neighbour(j, a) == i)
+    if (a != Terminal && a != Orphan && up_[j] == i)
     {
       parent_[j] = Orphan;
       orphans_.push_back(j);
@@ -242,80 +252,37 @@ void GridMaxFlow::processSourceOrphan(int i)
   parent_[i] = None;
 }
 
-void GridMaxFlow::processSinkOrphan(int i)
+// Grows the tree of active node i by one layer; returns the direction from i
+// of the first edge found into the other tree, or -1.
+template<bool Sink>
+int GridMaxFlow::grow(int i)
 {
-  int bestDir = -1;
-  int bestDist = InfiniteDistance;
-  for (int d = 0; d < 4; ++d)
-  {
-    int j = neighbour(i, d);
-    if (cap_[4 * i + d] <= 0.0 || !sink_[j] || parent_[j] == None)
-    {
-      continue;
-    }
-    int dist = 0;
-    for (;;)
-    {
-      if (ts_[j] == time_)
-      {
-        dist += dist_[j];
-        break;
-      }
-      const int a = parent_[j];
-      ++dist;
-      if (a == Terminal)
-      {
-        ts_[j] = time_;
-        dist_[j] = 1;
-        break;
-      }
-      if (a == Orphan)
-      {
-        dist = InfiniteDistance;
-        break;
-      }
-      j = neighbour(j, a);
-    }
-    if (dist < InfiniteDistance)
-    {
-      if (dist < bestDist)
-      {
-        bestDir = d;
-        bestDist = dist;
-      }
-      for (j = neighbour(i, d); ts_[j] != time_; j = neighbour(j, parent_[j]))
-      {
-        ts_[j] = time_;
-        dist_[j] = dist--;
-      }
-    }
-  }
-  if (bestDir >= 0)
-  {
-    parent_[i] = static_cast<std::int8_t>(bestDir);
-    ts_[i] = time_;
-    dist_[i] = bestDist + 1;
-    return;
-  }
+  const double* const cap = cap_.data();
   for (int d = 0; d < 4; ++d)
   {
     const int j = neighbour(i, d);
-    const int a = parent_[j];
-    if (!sink_[j] || a == None)
+    // The edge the flow would use: i -> j in the source tree, j -> i in the sink tree.
+    if ((Sink ? cap[4 * j + (d ^ 1)] : cap[4 * i + d]) <= 0.0)
     {
       continue;
     }
-    if (cap_[4 * i + d] > 0.0)
+    if (parent_[j] == None)
     {
+      sink_[j] = Sink;
+      attach(j, d ^ 1, i, ts_[i], dist_[i] + 1);
       setActive(j);
     }
-    if (a != Terminal && a != Orphan && neighbour(j, a) == i)
+    else if (sink_[j] != Sink)
     {
-      parent_[j] = Orphan;
-      orphans_.push_back(j);
+      return d;
+    }
+    else if (ts_[j] <= ts_[i] && dist_[j] > dist_[i])
+    {
+      // A shorter path to the terminal through i (Kolmogorov's heuristic).
+      attach(j, d ^ 1, i, ts_[i], dist_[i] + 1);
     }
   }
-  parent_[i] = None;
+  return -1;
 }
 
 double GridMaxFlow::solve()
@@ -330,23 +297,12 @@ double GridMaxFlow::solve()
       const int k = (j + 1) * stride_ + i + 1;
       next_[k] = NotActive;
       ts_[k] = 0;
-      if (tr_[k] > 0.0)
+      dist_[k] = 1;
+      parent_[k] = tr_[k] != 0.0 ? Terminal : None;
+      sink_[k] = tr_[k] < 0.0;
+      if (tr_[k] != 0.0)
       {
-        sink_[k] = 0;
-        parent_[k] = Terminal;
-        dist_[k] = 1;
         setActive(k);
-      }
-      else if (tr_[k] < 0.0)
-      {
-        sink_[k] = 1;
-        parent_[k] = Terminal;
-        dist_[k] = 1;
-        setActive(k);
-      }
-      else
-      {
-        parent_[k] = None;
       }
     }
   }
@@ -373,91 +329,32 @@ double GridMaxFlow::solve()
     }
 
     // Grow the tree of i; stop at the first edge that reaches the other tree.
-    int bridgeFrom = -1;
-    int bridgeDir = -1;
-    if (!sink_[i])
-    {
-      for (int d = 0; d < 4; ++d)
-      {
-        if (cap_[4 * i + d] <= 0.0)
-        {
-          continue;
-        }
-        const int j = neighbour(i, d);
-        if (parent_[j] == None)
-        {
-          sink_[j] = 0;
-          parent_[j] = static_cast<std::int8_t>(d ^ 1);
-          ts_[j] = ts_[i];
-          dist_[j] = dist_[i] + 1;
-          setActive(j);
-        }
-        else if (sink_[j])
-        {
-          bridgeFrom = i;
-          bridgeDir = d;
-          break;
-        }
-        else if (ts_[j] <= ts_[i] && dist_[j] > dist_[i])
-        {
-          parent_[j] = static_cast<std::int8_t>(d ^ 1);
-          ts_[j] = ts_[i];
-          dist_[j] = dist_[i] + 1;
-        }
-      }
-    }
-    else
-    {
-      for (int d = 0; d < 4; ++d)
-      {
-        const int j = neighbour(i, d);
-        if (cap_[4 * j + (d ^ 1)] <= 0.0)
-        {
-          continue;
-        }
-        if (parent_[j] == None)
-        {
-          sink_[j] = 1;
-          parent_[j] = static_cast<std::int8_t>(d ^ 1);
-          ts_[j] = ts_[i];
-          dist_[j] = dist_[i] + 1;
-          setActive(j);
-        }
-        else if (!sink_[j])
-        {
-          bridgeFrom = j;
-          bridgeDir = d ^ 1;
-          break;
-        }
-        else if (ts_[j] <= ts_[i] && dist_[j] > dist_[i])
-        {
-          parent_[j] = static_cast<std::int8_t>(d ^ 1);
-          ts_[j] = ts_[i];
-          dist_[j] = dist_[i] + 1;
-        }
-      }
-    }
-
+    const bool inSink = sink_[i] != 0;
+    const int bridge = inSink ? grow<true>(i) : grow<false>(i);
     ++time_;
-    if (bridgeFrom < 0)
+    if (bridge < 0)
     {
       current = -1;
       continue;
     }
     next_[i] = i; // keep i active without queueing it: it is grown again next
     current = i;
-    augment(bridgeFrom, bridgeDir);
+    // The path runs from the source tree to the sink tree.
+    if (inSink)
+      augment(neighbour(i, bridge), bridge ^ 1);
+    else
+      augment(i, bridge);
     // Adopt orphans (FIFO; the order only affects speed).
     for (std::size_t o = 0; o < orphans_.size(); ++o)
     {
       const int k = orphans_[o];
       if (sink_[k])
       {
-        processSinkOrphan(k);
+        processOrphan<true>(k);
       }
       else
       {
-        processSourceOrphan(k);
+        processOrphan<false>(k);
       }
     }
     orphans_.clear();

@@ -30,7 +30,13 @@ public:
   void addTerminal(int k, double toSource, double toSink);
   // Sets the capacities of the edge between k and its neighbour in direction
   // PlusX or PlusY: forward is k -> neighbour, backward is neighbour -> k.
-  void setEdge(int k, Direction d, double forward, double backward);
+  // Inline: SeamCut calls it for every overlap edge.
+  void setEdge(int k, Direction d, double forward, double backward)
+  {
+    const int n = inner(k);
+    cap_[4 * n + d] = forward;
+    cap_[4 * neighbour(n, d) + (d ^ 1)] = backward;
+  }
 
   // Runs the flow and returns the max-flow value (= min-cut capacity).
   double solve();
@@ -59,9 +65,12 @@ private:
   int neighbour(int k, int d) const { return k + offset_[d]; }
   void setActive(int k);
   int nextActive();
+  void attach(int k, int d, int p, int ts, int dist);
+  template<bool Sink>
+  int grow(int i);
   void augment(int s, int d);
-  void processSourceOrphan(int k);
-  void processSinkOrphan(int k);
+  template<bool Sink>
+  void processOrphan(int i);
 
   int width_ = 0;
   int height_ = 0;
@@ -71,11 +80,15 @@ private:
   std::vector<double> cap_;         // 4 residual capacities per node
   std::vector<double> tr_;          // > 0: residual from source, < 0: to sink
   std::vector<std::int8_t> parent_; // direction to the parent, Terminal, Orphan or None
-  std::vector<std::uint8_t> sink_;  // tree membership when parent_ != None
-  std::vector<int> next_;           // active FIFO links (NotActive = not queued)
+  // The parent node when parent_ is a direction: walks up a tree are a chain
+  // of these loads alone (the direction costs a second, dependent lookup).
+  std::vector<int> up_;
+  std::vector<std::uint8_t> sink_; // tree membership when parent_ != None
+  std::vector<int> next_;          // active FIFO links (NotActive = not queued)
   std::vector<int> ts_;
   std::vector<int> dist_;
   std::vector<int> orphans_;
+  std::vector<int> path_; // augment(): the nodes of the current path
   int queueFirst_ = -1;
   int queueLast_ = -1;
   int time_ = 0;

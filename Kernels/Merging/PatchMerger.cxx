@@ -210,10 +210,11 @@ MergeResult PatchMerger::seamCost(const Heightfield& terrain,
 // come in row order, so those with |dy| < radius are one index range per row,
 // gathered once per row; cells farther than the radius from every point of the
 // range in x are skipped without a loop.
-void PatchMerger::shepard(int valuesPerPoint, double radius, double power, std::vector<double>& out)
+template<int V>
+void PatchMerger::shepard(double radius, double power, std::vector<double>& out)
 {
   const std::size_t n = static_cast<std::size_t>(fw_) * fh_;
-  out.assign(n * valuesPerPoint, 0.0);
+  out.assign(n * V, 0.0);
   const std::size_t points = seamX_.size();
   if (points == 0)
     return;
@@ -227,7 +228,9 @@ void PatchMerger::shepard(int valuesPerPoint, double radius, double power, std::
   }
   bandX_.resize(points);
   bandDy2_.resize(points);
-  bandValue_.resize(points * valuesPerPoint);
+  // One array per value (bandValue_[v * points + s]), so that the weighted
+  // sums below read consecutive points and vectorise.
+  bandValue_.resize(points * V);
   weight_.resize(points);
   std::size_t lo = 0, hi = 0;
   for (int j = 0; j < fh_; ++j)
@@ -251,8 +254,8 @@ void PatchMerger::shepard(int valuesPerPoint, double radius, double power, std::
       bandDy2_[s] = dy * dy;
       minX = std::min(minX, bandX_[s]);
       maxX = std::max(maxX, bandX_[s]);
-      for (int v = 0; v < valuesPerPoint; ++v)
-        bandValue_[s * valuesPerPoint + v] = seamValue_[(lo + s) * valuesPerPoint + v];
+      for (int v = 0; v < V; ++v)
+        bandValue_[v * points + s] = seamValue_[(lo + s) * V + v];
     }
     const int iBegin = std::max(0, static_cast<int>(std::floor(minX - r)) + 1);
     const int iEnd = std::min(fw_, static_cast<int>(std::ceil(static_cast<float>(maxX) + r)));
@@ -263,8 +266,8 @@ void PatchMerger::shepard(int valuesPerPoint, double radius, double power, std::
         continue;
       if (pointAt_[k] >= 0)
       {
-        for (int v = 0; v < valuesPerPoint; ++v)
-          out[k * valuesPerPoint + v] = seamValue_[pointAt_[k] * valuesPerPoint + v];
+        for (int v = 0; v < V; ++v)
+          out[k * V + v] = seamValue_[pointAt_[k] * V + v];
         continue;
       }
       // Branch-free so the compiler vectorises it (sqrt needs -fno-math-errno,
@@ -291,35 +294,36 @@ void PatchMerger::shepard(int valuesPerPoint, double radius, double power, std::
         for (std::size_t s = 0; s < m; ++s)
           weight_[s] = static_cast<float>(std::pow(std::sqrt(weight_[s]), power));
       }
-      // Four partial sums (a fixed order, so results stay deterministic) to
-      // break the dependency chain of one running sum.
+      // Four partial sums per value (a fixed order, so results stay
+      // deterministic) to break the dependency chain of one running sum.
       double sumW[4] = { 0.0, 0.0, 0.0, 0.0 };
-      double sum[2][4] = { { 0.0, 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0, 0.0 } };
+      double sum[V][4] = {};
+      const double* __restrict value = bandValue_.data();
       std::size_t s = 0;
       for (; s + 4 <= m; s += 4)
       {
         for (int l = 0; l < 4; ++l)
         {
-          const double w = weight_[s + l];
+          const double w = wt[s + l];
           sumW[l] += w;
-          for (int v = 0; v < valuesPerPoint; ++v)
-            sum[v][l] += w * bandValue_[(s + l) * valuesPerPoint + v];
+          for (int v = 0; v < V; ++v)
+            sum[v][l] += w * value[v * points + s + l];
         }
       }
       for (; s < m; ++s)
       {
-        const double w = weight_[s];
+        const double w = wt[s];
         sumW[0] += w;
-        for (int v = 0; v < valuesPerPoint; ++v)
-          sum[v][0] += w * bandValue_[s * valuesPerPoint + v];
+        for (int v = 0; v < V; ++v)
+          sum[v][0] += w * value[v * points + s];
       }
       const double totalW = (sumW[0] + sumW[1]) + (sumW[2] + sumW[3]);
       const double t = 1.0 - std::sqrt(static_cast<double>(dmin2)) / radius;
       const double falloff = t * t * (3.0 - 2.0 * t);
-      for (int v = 0; v < valuesPerPoint; ++v)
+      for (int v = 0; v < V; ++v)
       {
         const double total = (sum[v][0] + sum[v][1]) + (sum[v][2] + sum[v][3]);
-        out[k * valuesPerPoint + v] = falloff * total / totalW;
+        out[k * V + v] = falloff * total / totalW;
       }
     }
   }
@@ -361,7 +365,7 @@ void PatchMerger::blendShepard(const MergeOptions& options)
       seamValue_.push_back(oldMask_[k] ? static_cast<double>(old_[k]) - new_[k] : sum / count);
     }
   }
-  shepard(1, options.shepardRadius, options.shepardPower, shepardOut_);
+  shepard<1>(options.shepardRadius, options.shepardPower, shepardOut_);
   for (std::size_t k = 0; k < out_.size(); ++k)
   {
     if (side_[k] == 2)
@@ -376,6 +380,10 @@ void PatchMerger::blendPoisson(const MergeOptions& options,
   const std::size_t n = static_cast<std::size_t>(fw_) * fh_;
   // Tasse: the gradient mismatch G_A - G_B at seam points (new cells with an
   // old neighbour where the old terrain exists too), spread over the new side.
+  // The height mismatch A - B rides along as a third value: the patch shifted
+  // by it is a start close to the solution near the seam (one CG iteration
+  // fewer); the start does not change what the solve converges to.
+  constexpr int GradientX = 0, HeightMismatch = 2, Values = 3;
   if (gradientShepard)
   {
     seamX_.clear();
@@ -406,9 +414,10 @@ void PatchMerger::blendPoisson(const MergeOptions& options,
           const auto g = gradientPair(old_, new_, fw_, fh_, i, j, axis);
           seamValue_.push_back(g.first - g.second);
         }
+        seamValue_.push_back(static_cast<double>(old_[k]) - new_[k]); // HeightMismatch
       }
     }
-    shepard(2, options.shepardRadius, options.shepardPower, shepardOut_);
+    shepard<Values>(options.shepardRadius, options.shepardPower, shepardOut_);
   }
   // Guidance differences per edge.
   gx_.assign(n, NaN);
@@ -439,7 +448,7 @@ void PatchMerger::blendPoisson(const MergeOptions& options,
           {
             if (side_[e] == 2)
             {
-              c += shepardOut_[e * 2 + axis];
+              c += shepardOut_[e * Values + GradientX + axis];
               ++ends;
             }
           }
@@ -472,7 +481,9 @@ void PatchMerger::blendPoisson(const MergeOptions& options,
   for (std::size_t k = 0; k < n; ++k)
   {
     unknown[k] = side_[k] == 2;
-    out_[k] = side_[k] == 2 ? new_[k] : (side_[k] == 1 ? old_[k] : NaN);
+    const double start =
+      gradientShepard ? new_[k] + shepardOut_[k * Values + HeightMismatch] : new_[k];
+    out_[k] = side_[k] == 2 ? start : (side_[k] == 1 ? old_[k] : NaN);
   }
   PoissonOptions poisson = options.poisson;
   if (!(poisson.errorTolerance > 0.0) && options.relativeHeightTolerance > 0.0)

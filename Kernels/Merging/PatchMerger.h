@@ -104,7 +104,9 @@ private:
     int y0,
     const std::vector<std::uint8_t>* core,
     const SeamCutOptions& options);
-  void shepard(int valuesPerPoint, double radius, double power, std::vector<double>& out);
+  // Shepard interpolation of V values per seam point (seamValue_) to the new cells.
+  template<int V>
+  void shepard(double radius, double power, std::vector<double>& out);
   void blendShepard(const MergeOptions& options);
   void blendPoisson(const MergeOptions& options, bool gradientShepard, MergeResult& result);
 

@@ -112,8 +112,8 @@ void SeamCut::computeWeights(int width,
   const double invX = 1.0 / cellX;
   const double invY = 1.0 / cellY;
   auto inOverlap = [&](std::size_t k) { return constraints[k] != SeamConstraint::Outside; };
-  // First pass: numerators into wx/wy, denominators kept aside for eps.
-  std::vector<double> denX(n, 0.0), denY(n, 0.0);
+  // First pass: the Kwatra denominators, kept in wx / wy until eps is known
+  // (no scratch arrays); the second pass turns them into the weights.
   double denSum = 0.0;
   std::size_t edges = 0;
   for (int j = 0; j < height; ++j)
@@ -125,55 +125,46 @@ void SeamCut::computeWeights(int width,
       {
         continue;
       }
-      const double ds = std::abs(static_cast<double>(oldZ[s]) - newZ[s]);
-      for (int axis = 0; axis < 2; ++axis)
+      if (i + 1 < width && inOverlap(s + 1))
       {
-        const bool inside = axis == 0 ? i + 1 < width : j + 1 < height;
-        const std::size_t t = axis == 0 ? s + 1 : s + width;
-        if (!inside || !inOverlap(t))
-        {
-          continue;
-        }
-        const double dt = std::abs(static_cast<double>(oldZ[t]) - newZ[t]);
-        double den = 0.0;
-        if (axis == 0)
-        {
-          den = std::abs(axisGradient(oldZ, s, 1, i > 0, true, invX)) +
-            std::abs(axisGradient(oldZ, t, 1, true, i + 2 < width, invX)) +
-            std::abs(axisGradient(newZ, s, 1, i > 0, true, invX)) +
-            std::abs(axisGradient(newZ, t, 1, true, i + 2 < width, invX));
-          out.wx[s] = ds + dt;
-          denX[s] = den;
-        }
-        else
-        {
-          den = std::abs(axisGradient(oldZ, s, width, j > 0, true, invY)) +
-            std::abs(axisGradient(oldZ, t, width, true, j + 2 < height, invY)) +
-            std::abs(axisGradient(newZ, s, width, j > 0, true, invY)) +
-            std::abs(axisGradient(newZ, t, width, true, j + 2 < height, invY));
-          out.wy[s] = ds + dt;
-          denY[s] = den;
-        }
-        denSum += den;
+        const std::size_t t = s + 1;
+        out.wx[s] = std::abs(axisGradient(oldZ, s, 1, i > 0, true, invX)) +
+          std::abs(axisGradient(oldZ, t, 1, true, i + 2 < width, invX)) +
+          std::abs(axisGradient(newZ, s, 1, i > 0, true, invX)) +
+          std::abs(axisGradient(newZ, t, 1, true, i + 2 < width, invX));
+        denSum += out.wx[s];
+        ++edges;
+      }
+      if (j + 1 < height && inOverlap(s + width))
+      {
+        const std::size_t t = s + width;
+        out.wy[s] = std::abs(axisGradient(oldZ, s, width, j > 0, true, invY)) +
+          std::abs(axisGradient(oldZ, t, width, true, j + 2 < height, invY)) +
+          std::abs(axisGradient(newZ, s, width, j > 0, true, invY)) +
+          std::abs(axisGradient(newZ, t, width, true, j + 2 < height, invY));
+        denSum += out.wy[s];
         ++edges;
       }
     }
   }
   out.epsilon = std::max(options.absoluteEpsilon,
     edges > 0 ? options.relativeEpsilon * denSum / static_cast<double>(edges) : 0.0);
-  if (!options.gradientTerm)
+  auto mismatch = [&](std::size_t k) { return std::abs(static_cast<double>(oldZ[k]) - newZ[k]); };
+  for (int j = 0; j < height; ++j)
   {
-    return;
-  }
-  for (std::size_t k = 0; k < n; ++k)
-  {
-    if (!std::isnan(out.wx[k]))
+    for (int i = 0; i < width; ++i)
     {
-      out.wx[k] /= denX[k] + out.epsilon;
-    }
-    if (!std::isnan(out.wy[k]))
-    {
-      out.wy[k] /= denY[k] + out.epsilon;
+      const std::size_t s = static_cast<std::size_t>(j) * width + i;
+      for (int axis = 0; axis < 2; ++axis)
+      {
+        double& w = (axis == 0 ? out.wx : out.wy)[s];
+        if (std::isnan(w))
+        {
+          continue;
+        }
+        const double numerator = mismatch(s) + mismatch(axis == 0 ? s + 1 : s + width);
+        w = options.gradientTerm ? numerator / (w + out.epsilon) : numerator;
+      }
     }
   }
 }
@@ -220,12 +211,7 @@ const SeamCutResult& SeamCut::cut(int width,
   }
   const int bw = std::max(bx1 - bx0, 0);
   const int bh = std::max(by1 - by0, 0);
-  auto node = [&](std::size_t k)
-  {
-    const int i = static_cast<int>(k % static_cast<std::size_t>(width));
-    const int j = static_cast<int>(k / static_cast<std::size_t>(width));
-    return (j - by0) * bw + (i - bx0);
-  };
+  auto node = [&](int i, int j) { return (j - by0) * bw + (i - bx0); };
   flow_.reset(bw, bh);
   double constant = 0.0;
   for (int j = 0; j < height; ++j)
@@ -247,13 +233,13 @@ const SeamCutResult& SeamCut::cut(int width,
         const bool freeT = ct == SeamConstraint::Free;
         if (freeS && freeT)
         {
-          flow_.setEdge(node(s), axis == 0 ? GridMaxFlow::PlusX : GridMaxFlow::PlusY, w, w);
+          flow_.setEdge(node(i, j), axis == 0 ? GridMaxFlow::PlusX : GridMaxFlow::PlusY, w, w);
         }
         else if (freeS || freeT)
         {
-          const std::size_t f = freeS ? s : t;
           const bool forcedNew = (freeS ? ct : cs) == SeamConstraint::ForceNew;
-          flow_.addTerminal(node(f), forcedNew ? w : 0.0, forcedNew ? 0.0 : w);
+          const int f = freeS ? node(i, j) : node(axis == 0 ? i + 1 : i, axis == 0 ? j : j + 1);
+          flow_.addTerminal(f, forcedNew ? w : 0.0, forcedNew ? 0.0 : w);
         }
         else if (cs != ct)
         {
@@ -270,11 +256,15 @@ const SeamCutResult& SeamCut::cut(int width,
   result_.seam.assign(n, 0);
   result_.cost = 0.0;
   result_.cutEdges = 0;
-  for (std::size_t k = 0; k < n; ++k)
+  for (int j = 0; j < height; ++j)
   {
-    const SeamConstraint c = constraints_[k];
-    result_.takeNew[k] =
-      c == SeamConstraint::ForceNew || (c == SeamConstraint::Free && flow_.sourceSide(node(k)));
+    for (int i = 0; i < width; ++i)
+    {
+      const std::size_t k = static_cast<std::size_t>(j) * width + i;
+      const SeamConstraint c = constraints_[k];
+      result_.takeNew[k] = c == SeamConstraint::ForceNew ||
+        (c == SeamConstraint::Free && flow_.sourceSide(node(i, j)));
+    }
   }
   for (std::size_t s = 0; s < n; ++s)
   {
