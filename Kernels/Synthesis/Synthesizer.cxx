@@ -10,6 +10,8 @@
 #include <limits>
 #include <queue>
 
+#include <omp.h>
+
 namespace tsynth
 {
 namespace
@@ -298,39 +300,53 @@ public:
         }
       }
     }
-    Heightfield best;
-    std::size_t bestIndex = 0;
-    double bestSeam = std::numeric_limits<double>::infinity();
-    float bestOffset = 0.0f;
-    for (std::size_t c = 0; c < candidates.size(); ++c)
+    // Every candidate's dry-run seam cost, in parallel (one merger workspace per
+    // thread); the choice below reads them in candidate order, so it does not
+    // depend on the thread count.
+    std::vector<Heightfield> patches(candidates.size());
+    std::vector<float> offsets(candidates.size(), 0.0f);
+    std::vector<double> seams(candidates.size(), 0.0);
+    const long count = static_cast<long>(candidates.size());
+#pragma omp parallel for schedule(dynamic)                                                         \
+  num_threads(static_cast <int>(std::min <std::size_t>(candidates.size(), mergers_.size())))
+    for (long n = 0; n < count; ++n)
     {
+      const std::size_t c = static_cast<std::size_t>(n);
       Heightfield patch = extract(candidates[c]);
       if (!feature)
       {
         protectLines(patch, x0, y0);
       }
-      const float offset = o_.verticalOffset ? fitOffset(patch, x0, y0) : 0.0f;
+      offsets[c] = o_.verticalOffset ? fitOffset(patch, x0, y0) : 0.0f;
       for (float& z : patch.z)
       {
-        z += offset;
+        z += offsets[c];
       }
+      PatchMerger& merger = mergers_[static_cast<std::size_t>(omp_get_thread_num())];
       const MergeResult dry =
-        merger_.seamCost(out_, filled_, patch, x0, y0, feature ? &core : nullptr);
+        merger.seamCost(out_, filled_, patch, x0, y0, feature ? &core : nullptr);
+      seams[c] = dry.overlapCells > 0 ? dry.normalisedCost : 0.0;
+      patches[c] = std::move(patch);
+    }
+    std::size_t bestIndex = 0;
+    double bestSeam = std::numeric_limits<double>::infinity();
+    for (std::size_t c = 0; c < candidates.size(); ++c)
+    {
       // Anti-repetition: a source already used nearby costs more, so the same
       // exemplar patch is not copied over and over.
-      const double seam = (dry.overlapCells > 0 ? dry.normalisedCost : 0.0) +
-        o_.repetitionPenalty * reuses(candidates[c]);
+      const double seam = seams[c] + o_.repetitionPenalty * reuses(candidates[c]);
       if (seam < bestSeam)
       {
         bestSeam = seam;
-        best = std::move(patch);
         bestIndex = c;
-        bestOffset = offset;
       }
     }
+    const Heightfield& best = patches[bestIndex];
+    const float bestOffset = offsets[bestIndex];
     MergeOptions mo;
     mo.mode = o_.merge;
-    const MergeResult r = merger_.merge(out_, filled_, best, x0, y0, feature ? &core : nullptr, mo);
+    const MergeResult r =
+      mergers_[0].merge(out_, filled_, best, x0, y0, feature ? &core : nullptr, mo);
     const int id = static_cast<int>(result_.placements.size());
     const PatchCandidate& chosen = candidates[bestIndex];
     for (int j = 0; j < r.height; ++j)
@@ -726,7 +742,9 @@ private:
   std::vector<std::uint8_t> filled_;
   std::vector<std::uint8_t> line_;
   NoiseVariance noise_;
-  PatchMerger merger_;
+  // One per OpenMP thread.
+  std::vector<PatchMerger> mergers_ =
+    std::vector<PatchMerger>(static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
   SynthesisResult result_;
 };
 
