@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <queue>
+#include <unordered_map>
 
 #include <omp.h>
 
@@ -259,16 +260,48 @@ public:
   // How many placements already took a source within half a patch of this one.
   int reuses(const PatchCandidate& c) const
   {
+    const double radius = 0.5 * P_;
+    const long bx = static_cast<long>(std::floor(c.centreX / radius));
+    const long by = static_cast<long>(std::floor(c.centreY / radius));
     int n = 0;
-    for (const Placement& p : result_.placements)
+    for (long y = by - 1; y <= by + 1; ++y)
     {
-      if (p.exemplar == c.exemplar &&
-        std::hypot(p.sourceX - c.centreX, p.sourceY - c.centreY) < 0.5 * P_)
+      for (long x = bx - 1; x <= bx + 1; ++x)
       {
-        ++n;
+        const auto bucket = sources_.find(sourceKey(c.exemplar, x, y));
+        if (bucket == sources_.end())
+        {
+          continue;
+        }
+        for (std::size_t i : bucket->second)
+        {
+          const Placement& p = result_.placements[i];
+          if (std::hypot(p.sourceX - c.centreX, p.sourceY - c.centreY) < radius)
+          {
+            ++n;
+          }
+        }
       }
     }
     return n;
+  }
+
+  // Sources used so far, bucketed by exemplar and half-patch cell, so reuses()
+  // looks at neighbours only instead of every earlier placement.
+  static std::int64_t sourceKey(int exemplar, long x, long y)
+  {
+    return (static_cast<std::int64_t>(exemplar) << 42) ^
+      (static_cast<std::int64_t>(x + (1L << 20)) << 21) ^ static_cast<std::int64_t>(y + (1L << 20));
+  }
+
+  void recordSource(std::size_t placement)
+  {
+    const Placement& p = result_.placements[placement];
+    const double radius = 0.5 * P_;
+    sources_[sourceKey(p.exemplar,
+               static_cast<long>(std::floor(p.sourceX / radius)),
+               static_cast<long>(std::floor(p.sourceY / radius)))]
+      .push_back(placement);
   }
 
   // Returns how many empty cells the placement filled (0 if none could be).
@@ -380,6 +413,7 @@ public:
     p.seamCost = bestSeam;
     p.offset = bestOffset;
     result_.placements.push_back(p);
+    recordSource(result_.placements.size() - 1);
     return r.newCells;
   }
 
@@ -746,6 +780,7 @@ private:
   std::vector<PatchMerger> mergers_ =
     std::vector<PatchMerger>(static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
   SynthesisResult result_;
+  std::unordered_map<std::int64_t, std::vector<std::size_t>> sources_;
 };
 
 } // namespace
