@@ -64,10 +64,11 @@ higher), poly-lines (.vtp with a FeatureType cell array) or a real DEM used as t
 )";
 
 const char* const kEvaluateHelp =
-  R"(Usage: tsynth evaluate TERRAIN --exemplar DEM [--sketch SKETCH] [--json]
+  R"(Usage: tsynth evaluate TERRAIN --exemplar DEM [--exemplar DEM ...] [--sketch SKETCH] [--json]
 
-Quality figures of a terrain against its exemplar (and sketch), with two trivial baselines
-for scale (the exemplar tiled; random exemplar patches pasted without blending):
+Quality figures of a terrain against its exemplars (pooled: each counts by its area) and
+sketch, with two trivial baselines for scale, made from the first exemplar (the exemplar
+tiled; random exemplar patches pasted without blending):
   fidelity   share of samples along each sketched ridge (valley) where the terrain has a crest
              (trough) across the line: the extreme within 2 cells beats both sides at 8 cells
   seam       99.9th percentile of |Laplacian| over that of the exemplar (1 = as smooth)
@@ -530,7 +531,7 @@ int runSynth(std::vector<std::string> args)
     std::cerr << "tsynth: warning: " << w << "\n";
   }
   writeTerrainFile(*output, r.terrain);
-  const TerrainEvaluation quality = evaluateTerrain(r.terrain, ex.heights.front(), &graph);
+  const TerrainEvaluation quality = evaluateTerrain(r.terrain, hp, &graph);
 
   std::size_t features = 0;
   double seamSum = 0.0;
@@ -608,7 +609,17 @@ int runEvaluate(std::vector<std::string> args)
     throw UsageError("tsynth evaluate needs an --exemplar DEM to compare with.");
   }
   const Heightfield terrain = readTerrainFile(rest[0]);
-  const Heightfield exemplar = readTerrainFile(exemplarPaths.front());
+  std::vector<Heightfield> exemplars;
+  for (const std::string& path : exemplarPaths)
+  {
+    exemplars.push_back(readTerrainFile(path));
+  }
+  std::vector<const Heightfield*> pooled;
+  for (const Heightfield& x : exemplars)
+  {
+    pooled.push_back(&x);
+  }
+  const Heightfield& exemplar = exemplars.front();
   FeatureGraph graph;
   const FeatureGraph* sketch = nullptr;
   if (sketchPath)
@@ -618,7 +629,7 @@ int runEvaluate(std::vector<std::string> args)
       s.graph, s.width, s.height, terrain.width, terrain.height, terrain.cellX, terrain.cellY);
     sketch = &graph;
   }
-  const TerrainEvaluation e = evaluateTerrain(terrain, exemplar, sketch);
+  const TerrainEvaluation e = evaluateTerrain(terrain, pooled, sketch);
   const TerrainEvaluation tiled =
     evaluateTerrain(tiledBaseline(exemplar, terrain.width, terrain.height), exemplar, sketch);
   const TerrainEvaluation random = evaluateTerrain(

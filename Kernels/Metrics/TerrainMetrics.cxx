@@ -57,9 +57,12 @@ double featureFidelity(const Heightfield& t, const FeatureGraph& g, FeatureType 
   return samples > 0 ? static_cast<double>(good) / static_cast<double>(samples) : -1.0;
 }
 
-double laplacianPercentile(const Heightfield& hf, double fraction)
+namespace
 {
-  std::vector<float> v;
+
+// |Laplacian| (cell-size aware, 1/m) at every cell whose four neighbours are valid.
+void appendLaplacians(const Heightfield& hf, std::vector<float>& v)
+{
   const double ix = 1.0 / (hf.cellX * hf.cellX);
   const double iy = 1.0 / (hf.cellY * hf.cellY);
   for (int j = 1; j + 1 < hf.height; ++j)
@@ -77,6 +80,10 @@ double laplacianPercentile(const Heightfield& hf, double fraction)
       v.push_back(static_cast<float>(std::abs(lap)));
     }
   }
+}
+
+double percentile(std::vector<float>& v, double fraction)
+{
   if (v.empty())
   {
     return 0.0;
@@ -87,20 +94,10 @@ double laplacianPercentile(const Heightfield& hf, double fraction)
   return v[k];
 }
 
-double seamIndex(const Heightfield& output, const Heightfield& exemplar)
+// Slope-angle counts in 0.1 degree bins, and their sum and count.
+void addSlopes(const Heightfield& hf, std::vector<double>& h, double& sum, double& n)
 {
-  const double e = laplacianPercentile(exemplar);
-  return e > 0 ? laplacianPercentile(output) / e : 0.0;
-}
-
-namespace
-{
-
-std::vector<double> slopeHistogram(const Heightfield& hf, double& mean)
-{
-  std::vector<double> h(900, 0.0); // 0.1 degree bins
-  double n = 0.0;
-  double sum = 0.0;
+  h.resize(900, 0.0);
   for (int j = 0; j + 1 < hf.height; ++j)
   {
     for (int i = 0; i + 1 < hf.width; ++i)
@@ -117,33 +114,63 @@ std::vector<double> slopeHistogram(const Heightfield& hf, double& mean)
       n += 1.0;
     }
   }
-  for (double& v : h)
-  {
-    v /= std::max(1.0, n);
-  }
-  mean = n > 0 ? sum / n : 0.0;
-  return h;
 }
 
 } // namespace
 
-double slopeDistance(const Heightfield& output, const Heightfield& exemplar)
+double laplacianPercentile(const Heightfield& hf, double fraction)
 {
-  double mo = 0.0;
-  double me = 0.0;
-  const auto ho = slopeHistogram(output, mo);
-  const auto he = slopeHistogram(exemplar, me);
+  std::vector<float> v;
+  appendLaplacians(hf, v);
+  return percentile(v, fraction);
+}
+
+double seamIndex(const Heightfield& output, const std::vector<const Heightfield*>& exemplars)
+{
+  std::vector<float> v;
+  for (const Heightfield* e : exemplars)
+  {
+    appendLaplacians(*e, v);
+  }
+  const double reference = percentile(v, 0.999);
+  return reference > 0 ? laplacianPercentile(output) / reference : 0.0;
+}
+
+double seamIndex(const Heightfield& output, const Heightfield& exemplar)
+{
+  return seamIndex(output, std::vector<const Heightfield*>{ &exemplar });
+}
+
+double slopeDistance(const Heightfield& output, const std::vector<const Heightfield*>& exemplars)
+{
+  std::vector<double> ho, he;
+  double so = 0.0, no = 0.0, se = 0.0, ne = 0.0;
+  addSlopes(output, ho, so, no);
+  for (const Heightfield* e : exemplars)
+  {
+    addSlopes(*e, he, se, ne);
+  }
+  if (no == 0.0 || ne == 0.0)
+  {
+    return 0.0;
+  }
   // W1 = integral of |CDF_o - CDF_e|.
   double co = 0.0;
   double ce = 0.0;
   double w1 = 0.0;
   for (std::size_t b = 0; b < ho.size(); ++b)
   {
-    co += ho[b];
-    ce += he[b];
+    co += ho[b] / no;
+    ce += he[b] / ne;
     w1 += std::abs(co - ce) * 0.1;
   }
-  return me > 0 ? w1 / me : 0.0;
+  const double mean = se / ne;
+  return mean > 0 ? w1 / mean : 0.0;
+}
+
+double slopeDistance(const Heightfield& output, const Heightfield& exemplar)
+{
+  return slopeDistance(output, std::vector<const Heightfield*>{ &exemplar });
 }
 
 double pitDensity(const Heightfield& hf)
@@ -179,7 +206,7 @@ double pitDensity(const Heightfield& hf)
 }
 
 TerrainEvaluation evaluateTerrain(const Heightfield& output,
-  const Heightfield& exemplar,
+  const std::vector<const Heightfield*>& exemplars,
   const FeatureGraph* sketch)
 {
   TerrainEvaluation e;
@@ -188,11 +215,27 @@ TerrainEvaluation evaluateTerrain(const Heightfield& output,
     e.ridgeFidelity = featureFidelity(output, *sketch, FeatureType::Ridge);
     e.valleyFidelity = featureFidelity(output, *sketch, FeatureType::Valley);
   }
-  e.seamIndex = seamIndex(output, exemplar);
-  e.slopeDistance = slopeDistance(output, exemplar);
+  e.seamIndex = seamIndex(output, exemplars);
+  e.slopeDistance = slopeDistance(output, exemplars);
   e.pitDensity = pitDensity(output);
-  e.exemplarPitDensity = pitDensity(exemplar);
+  // Pits per 1000 cells over all exemplars together.
+  double pits = 0.0;
+  double cells = 0.0;
+  for (const Heightfield* x : exemplars)
+  {
+    const double n = static_cast<double>(x->validCount());
+    pits += pitDensity(*x) * n;
+    cells += n;
+  }
+  e.exemplarPitDensity = cells > 0 ? pits / cells : 0.0;
   return e;
+}
+
+TerrainEvaluation evaluateTerrain(const Heightfield& output,
+  const Heightfield& exemplar,
+  const FeatureGraph* sketch)
+{
+  return evaluateTerrain(output, std::vector<const Heightfield*>{ &exemplar }, sketch);
 }
 
 Heightfield tiledBaseline(const Heightfield& ex, int width, int height)

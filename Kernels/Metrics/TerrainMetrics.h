@@ -20,11 +20,15 @@ double featureFidelity(const Heightfield& terrain, const FeatureGraph& graph, Fe
 double laplacianPercentile(const Heightfield& hf, double fraction = 0.999);
 
 // Seam index: laplacianPercentile(output) / laplacianPercentile(exemplar).
+// With several exemplars the reference is the percentile over all their cells
+// together (each exemplar counts by its area), as for slopeDistance.
 double seamIndex(const Heightfield& output, const Heightfield& exemplar);
+double seamIndex(const Heightfield& output, const std::vector<const Heightfield*>& exemplars);
 
 // Wasserstein-1 distance between the slope-angle distributions (degrees) of
 // output and exemplar, divided by the exemplar's mean slope.
 double slopeDistance(const Heightfield& output, const Heightfield& exemplar);
+double slopeDistance(const Heightfield& output, const std::vector<const Heightfield*>& exemplars);
 
 // Strict local minima (8 neighbours, interior cells) per 1000 valid cells.
 double pitDensity(const Heightfield& hf);
@@ -41,6 +45,10 @@ struct TerrainEvaluation
 
 TerrainEvaluation evaluateTerrain(const Heightfield& output,
   const Heightfield& exemplar,
+  const FeatureGraph* sketch);
+// Against several exemplars pooled (a synthesis from all of them).
+TerrainEvaluation evaluateTerrain(const Heightfield& output,
+  const std::vector<const Heightfield*>& exemplars,
   const FeatureGraph* sketch);
 
 // Baselines for scale: the exemplar repeated over the output's size (seams where

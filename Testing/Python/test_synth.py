@@ -77,6 +77,15 @@ class SynthTest(unittest.TestCase):
         # The baselines do not follow the sketch.
         self.assertLess(figures["tiled_exemplar"]["ridge_fidelity"], 0.6)
         self.assertGreater(figures["random_patches"]["seam_index"], 2.0)
+        # Against two exemplars the references are pooled: the Alps' sharper relief
+        # raises the curvature reference, so the same terrain scores a lower seam index.
+        pooled = tsynth("evaluate", self.path("lambda.tif"), "--exemplar",
+                        os.path.join(self.dems, "colorado.png"), "--exemplar",
+                        os.path.join(self.dems, "alps-montblanc.png"), "--json")
+        self.assertEqual(pooled.returncode, 0, pooled.stderr)
+        both = json.loads(pooled.stdout)["terrain"]
+        self.assertLess(both["seam_index"], 0.9 * figures["terrain"]["seam_index"])
+        self.assertNotAlmostEqual(both["slope_distance"], figures["terrain"]["slope_distance"], places=2)
 
     def test_polyline_elevations_are_met(self):
         # An ASCII VTK poly-data sketch: a ridge at 3500 m to 3000 m, a valley at 2000 m.
