@@ -179,22 +179,39 @@ namespace
 {
 
 // One level of the hierarchy, on a grid padded by a one-cell frame so stencils
-// need no bounds tests. Vectors are zero outside the unknowns.
+// need no bounds tests. The operator is kept in double on the natural layout
+// (the CG applies it on the finest level; coarser levels are built from it).
+// The V-cycle runs in single precision on a red-black split copy: cell (i, j)
+// has colour (i + j) & 1 and lives at (j + 1) * hs + (i >> 1) + 1 of its
+// colour's arrays, so the four neighbours of a row of one colour are
+// consecutive cells of the other colour's rows and the smoother vectorises.
+// Both cells of a 2x2 aggregate (i >> 1 = ci, rows 2cj and 2cj + 1) share
+// index ci + 1. Every array is 0 off the unknowns (coefficients included), so
+// the loops run over whole row extents without tests.
 struct Level
 {
   int w = 0, h = 0; // unpadded size
   int stride = 0;
   std::vector<std::uint8_t> unknown;
-  std::vector<double> wE, wN;  // coupling to the +x / +y unknown neighbour
-  std::vector<double> diag;    // includes edges to Dirichlet cells
-  std::vector<double> invDiag; // 1 / diag on unknowns, 0 elsewhere
-  std::vector<double> x, b, r;
+  std::vector<double> wE, wN; // coupling to the +x / +y unknown neighbour
+  std::vector<double> diag;   // includes edges to Dirichlet cells
   // Per row j, the unknowns lie in columns [rowBegin[j], rowEnd[j]) (empty if
-  // equal): the loops skip the rest of the row. Vectors stay 0 outside.
+  // equal).
   std::vector<int> rowBegin, rowEnd;
   std::size_t count = 0;
-  // Coarsest level: dense Cholesky over its unknowns.
-  std::vector<int> denseIndex;
+
+  // Split single-precision copy, per colour c: couplings to the east, west,
+  // north and south neighbours, diagonal, its inverse, and the V-cycle's
+  // solution, right-hand side and residual.
+  int hs = 0; // split row length
+  std::vector<float> cE[2], cW[2], cN[2], cS[2], sDiag[2], sInv[2], x[2], b[2], r[2];
+  // Per row j, the split indices [mBegin[j], mEnd[j]) cover the unknowns of
+  // both colours.
+  std::vector<int> mBegin, mEnd;
+
+  // Coarsest level: dense Cholesky over its unknowns (split index with the
+  // colour in the lowest bit).
+  std::vector<int> denseCell;
   Eigen::LLT<Eigen::MatrixXd> dense;
   Eigen::VectorXd denseRhs;
 
@@ -202,27 +219,39 @@ struct Level
   {
     return static_cast<std::size_t>(j + 1) * stride + static_cast<std::size_t>(i + 1);
   }
+  std::size_t split(int i, int j) const
+  {
+    return static_cast<std::size_t>(j + 1) * hs + static_cast<std::size_t>((i >> 1) + 1);
+  }
   void allocate(int width, int height)
   {
     w = width;
     h = height;
     stride = w + 2;
     const std::size_t n = static_cast<std::size_t>(stride) * (h + 2);
+    // assign keeps the capacity: no allocation once the hierarchy has seen
+    // a window this large.
     unknown.assign(n, 0);
     wE.assign(n, 0.0);
     wN.assign(n, 0.0);
     diag.assign(n, 0.0);
-    x.assign(n, 0.0);
-    b.assign(n, 0.0);
-    r.assign(n, 0.0);
     count = 0;
   }
-  // After unknown and diag are final: inverse diagonal, row extents, count.
+  // After unknown and the couplings are final: row extents, count and the
+  // split single-precision copy.
   void finish()
   {
-    invDiag.assign(unknown.size(), 0.0);
     rowBegin.assign(static_cast<std::size_t>(h), 0);
     rowEnd.assign(static_cast<std::size_t>(h), 0);
+    mBegin.assign(static_cast<std::size_t>(h), 1);
+    mEnd.assign(static_cast<std::size_t>(h), 1);
+    hs = w / 2 + 2;
+    const std::size_t n = static_cast<std::size_t>(hs) * (h + 2);
+    for (int c = 0; c < 2; ++c)
+    {
+      for (auto* v : { &cE[c], &cW[c], &cN[c], &cS[c], &sDiag[c], &sInv[c], &x[c], &b[c], &r[c] })
+        v->assign(n, 0.0f);
+    }
     count = 0;
     for (int j = 0; j < h; ++j)
     {
@@ -232,13 +261,25 @@ struct Level
         const std::size_t k = pad(i, j);
         if (!unknown[k])
           continue;
-        invDiag[k] = 1.0 / diag[k];
+        const int c = (i + j) & 1;
+        const std::size_t m = split(i, j);
+        cE[c][m] = static_cast<float>(wE[k]);
+        cW[c][m] = static_cast<float>(wE[k - 1]);
+        cN[c][m] = static_cast<float>(wN[k]);
+        cS[c][m] = static_cast<float>(wN[k - stride]);
+        sDiag[c][m] = static_cast<float>(diag[k]);
+        sInv[c][m] = static_cast<float>(1.0 / diag[k]);
         first = std::min(first, i);
         last = i;
         ++count;
       }
       rowBegin[j] = last >= 0 ? first : 0;
       rowEnd[j] = last + 1;
+      if (last >= 0)
+      {
+        mBegin[j] = (first >> 1) + 1;
+        mEnd[j] = (last >> 1) + 2;
+      }
     }
   }
 };
@@ -247,13 +288,18 @@ struct Level
 // so results do not depend on the thread count.
 constexpr long ParallelCells = 32768;
 
+bool parallel(const Level& L)
+{
+  return static_cast<long>(L.w) * L.h > ParallelCells;
+}
+
 void applyOperator(const Level& L, const double* v, double* y)
 {
   const std::size_t s = L.stride;
   const double* const diag = L.diag.data();
   const double* const wE = L.wE.data();
   const double* const wN = L.wN.data();
-#pragma omp parallel for schedule(static) if (static_cast <long>(L.w) * L.h > ParallelCells)
+#pragma omp parallel for schedule(static) if (parallel(L))
   for (int j = 0; j < L.h; ++j)
   {
     const std::size_t row = L.pad(0, j);
@@ -267,25 +313,107 @@ void applyOperator(const Level& L, const double* v, double* y)
   }
 }
 
-// Gauss-Seidel update of the cells of one colour in row j (red-black order).
-inline void smoothRow(Level& L, int j, int colour)
+// Row kernels on the split layout: b plus the couplings times the other
+// colour's values at m + p (east), m + p - 1 (west), m + hs (north) and m - hs
+// (south), p being the column parity of the row's cells. Pointer parameters
+// marked __restrict (the written array is never read through another) let the
+// loops vectorise without run-time overlap checks.
+inline float neighbours(int m,
+  std::ptrdiff_t p,
+  std::ptrdiff_t hs,
+  const float* __restrict o,
+  const float* __restrict b,
+  const float* __restrict e,
+  const float* __restrict wst,
+  const float* __restrict n,
+  const float* __restrict s)
 {
-  const std::size_t s = L.stride;
-  const std::size_t row = L.pad(0, j);
-  const int begin = L.rowBegin[j] + ((L.rowBegin[j] + j + colour) & 1);
-  double* const x = L.x.data();
-  const double* const b = L.b.data();
-  const double* const wE = L.wE.data();
-  const double* const wN = L.wN.data();
-  const double* const invDiag = L.invDiag.data();
-  for (int i = begin; i < L.rowEnd[j]; i += 2)
+  return b[m] + e[m] * o[m + p] + wst[m] * o[m + p - 1] + n[m] * o[m + hs] + s[m] * o[m - hs];
+}
+
+// Gauss-Seidel update of one colour: x = (b + couplings) / diag.
+void smoothKernel(int mb,
+  int me,
+  std::ptrdiff_t p,
+  std::ptrdiff_t hs,
+  float* __restrict x,
+  const float* __restrict o,
+  const float* __restrict b,
+  const float* __restrict e,
+  const float* __restrict wst,
+  const float* __restrict n,
+  const float* __restrict s,
+  const float* __restrict inv)
+{
+  for (int m = mb; m < me; ++m)
+    x[m] = neighbours(m, p, hs, o, b, e, wst, n, s) * inv[m];
+}
+
+// Residual of one colour: r = b + couplings - diag x.
+void residualKernel(int mb,
+  int me,
+  std::ptrdiff_t p,
+  std::ptrdiff_t hs,
+  float* __restrict r,
+  const float* __restrict x,
+  const float* __restrict o,
+  const float* __restrict b,
+  const float* __restrict e,
+  const float* __restrict wst,
+  const float* __restrict n,
+  const float* __restrict s,
+  const float* __restrict d)
+{
+  for (int m = mb; m < me; ++m)
+    r[m] = neighbours(m, p, hs, o, b, e, wst, n, s) - d[m] * x[m];
+}
+
+enum class RowOp
+{
+  Smooth,      // x = (b + couplings) / diag
+  FirstSmooth, // x = b / diag (the other colour is still 0)
+  Residual     // r = b + couplings - diag x
+};
+
+// Row j of colour c.
+template<RowOp Op>
+inline void rowOp(Level& L, int j, int c)
+{
+  const std::size_t row = static_cast<std::size_t>(j + 1) * L.hs;
+  const std::ptrdiff_t p = (c + j) & 1;
+  const std::ptrdiff_t hs = L.hs;
+  const int mb = L.mBegin[j], me = L.mEnd[j];
+  if (Op == RowOp::FirstSmooth)
   {
-    const std::size_t k = row + static_cast<std::size_t>(i);
-    // invDiag is 0 off the unknowns, where x stays 0.
-    x[k] =
-      (b[k] + wE[k] * x[k + 1] + wE[k - 1] * x[k - 1] + wN[k] * x[k + s] + wN[k - s] * x[k - s]) *
-      invDiag[k];
+    float* __restrict x = L.x[c].data() + row;
+    const float* __restrict b = L.b[c].data() + row;
+    const float* __restrict inv = L.sInv[c].data() + row;
+    for (int m = mb; m < me; ++m)
+      x[m] = b[m] * inv[m];
+    return;
   }
+  const float* o = L.x[c ^ 1].data() + row;
+  const float* b = L.b[c].data() + row;
+  const float* e = L.cE[c].data() + row;
+  const float* wst = L.cW[c].data() + row;
+  const float* n = L.cN[c].data() + row;
+  const float* s = L.cS[c].data() + row;
+  if (Op == RowOp::Smooth)
+    smoothKernel(mb, me, p, hs, L.x[c].data() + row, o, b, e, wst, n, s, L.sInv[c].data() + row);
+  else
+    residualKernel(mb,
+      me,
+      p,
+      hs,
+      L.r[c].data() + row,
+      L.x[c].data() + row,
+      o,
+      b,
+      e,
+      wst,
+      n,
+      s,
+      L.sDiag[c].data() + row);
 }
 
 // One symmetric red-black Gauss-Seidel sweep: colour first, then the other.
@@ -293,26 +421,34 @@ inline void smoothRow(Level& L, int j, int colour)
 // colour one row behind (its cells then see every update they would see after
 // a full first half sweep), so each row is loaded once: same result, half the
 // memory traffic. Large grids run each half sweep in parallel instead.
-void sweep(Level& L, int first)
+// fromZero: x is 0 on entry (the first sweep of a V-cycle leg).
+void sweep(Level& L, int first, bool fromZero)
 {
-  if (static_cast<long>(L.w) * L.h > ParallelCells)
+  auto half = [&](int j, int c)
+  {
+    if (fromZero && c == first)
+      rowOp<RowOp::FirstSmooth>(L, j, c);
+    else
+      rowOp<RowOp::Smooth>(L, j, c);
+  };
+  if (parallel(L))
   {
     for (int colour : { first, first ^ 1 })
     {
 #pragma omp parallel for schedule(static)
       for (int j = 0; j < L.h; ++j)
-        smoothRow(L, j, colour);
+        half(j, colour);
     }
     return;
   }
   for (int j = 0; j < L.h; ++j)
   {
-    smoothRow(L, j, first);
+    half(j, first);
     if (j > 0)
-      smoothRow(L, j - 1, first ^ 1);
+      half(j - 1, first ^ 1);
   }
   if (L.h > 0)
-    smoothRow(L, L.h - 1, first ^ 1);
+    half(L.h - 1, first ^ 1);
 }
 
 double dot(const std::vector<double>& a, const std::vector<double>& b)
@@ -330,16 +466,20 @@ double dot(const std::vector<double>& a, const std::vector<double>& b)
 struct MaskedPoissonSolver::Impl
 {
   std::vector<Level> levels;
+  std::size_t depth = 0; // levels in use
   std::vector<double> delta, res, dir, q, z;
   std::vector<int> stack;
   std::vector<int> component;
+  std::vector<std::size_t> members;
+  std::vector<std::uint8_t> present;
+  std::vector<float> coarseRow; // prolongation scratch
 
   void buildCoarse(const Level& fine, Level& coarse)
   {
     coarse.allocate((fine.w + 1) / 2, (fine.h + 1) / 2);
     for (int j = 0; j < fine.h; ++j)
     {
-      for (int i = 0; i < fine.w; ++i)
+      for (int i = fine.rowBegin[j]; i < fine.rowEnd[j]; ++i)
       {
         const std::size_t k = fine.pad(i, j);
         if (!fine.unknown[k])
@@ -349,49 +489,49 @@ struct MaskedPoissonSolver::Impl
         const std::size_t c = coarse.pad(i / 2, j / 2);
         coarse.unknown[c] = 1;
         // Galerkin P^T A P with piecewise-constant P: edges inside the block
-        // cancel, edges leaving it stay. Halved below (see there).
+        // cancel, edges leaving it stay. Aggregation makes the coarse operator
+        // twice as stiff as a rediscretised one; halving it restores the size
+        // of the coarse correction.
         double external = fine.diag[k];
-        if (fine.wE[k] > 0.0 && (i + 1) / 2 == i / 2)
+        if ((i & 1) == 0)
           external -= fine.wE[k];
-        else if (fine.wE[k] > 0.0)
-          coarse.wE[c] += fine.wE[k];
-        if (fine.wE[k - 1] > 0.0 && (i - 1) / 2 == i / 2 && i > 0)
+        else
+          coarse.wE[c] += 0.5 * fine.wE[k];
+        if ((i & 1) == 1)
           external -= fine.wE[k - 1];
-        if (fine.wN[k] > 0.0 && (j + 1) / 2 == j / 2)
+        if ((j & 1) == 0)
           external -= fine.wN[k];
-        else if (fine.wN[k] > 0.0)
-          coarse.wN[c] += fine.wN[k];
-        if (fine.wN[k - fine.stride] > 0.0 && (j - 1) / 2 == j / 2 && j > 0)
+        else
+          coarse.wN[c] += 0.5 * fine.wN[k];
+        if ((j & 1) == 1)
           external -= fine.wN[k - fine.stride];
-        coarse.diag[c] += external;
+        coarse.diag[c] += 0.5 * external;
       }
-    }
-    // Aggregation makes the coarse operator twice as stiff as a rediscretised
-    // one; halving it restores the size of the coarse correction.
-    for (std::size_t c = 0; c < coarse.unknown.size(); ++c)
-    {
-      coarse.wE[c] *= 0.5;
-      coarse.wN[c] *= 0.5;
-      coarse.diag[c] *= 0.5;
     }
     coarse.finish();
   }
 
   void buildDense(Level& L)
   {
-    L.denseIndex.assign(L.unknown.size(), -1);
-    int n = 0;
-    for (std::size_t k = 0; k < L.unknown.size(); ++k)
+    std::vector<int>& index = component; // scratch: dense index per padded cell
+    index.assign(L.unknown.size(), -1);
+    L.denseCell.clear();
+    for (int j = 0; j < L.h; ++j)
     {
-      if (L.unknown[k])
+      for (int i = 0; i < L.w; ++i)
       {
-        L.denseIndex[k] = n++;
+        if (L.unknown[L.pad(i, j)])
+        {
+          index[L.pad(i, j)] = static_cast<int>(L.denseCell.size());
+          L.denseCell.push_back(static_cast<int>(L.split(i, j) * 2 + ((i + j) & 1)));
+        }
       }
     }
+    const int n = static_cast<int>(L.denseCell.size());
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
     for (std::size_t k = 0; k < L.unknown.size(); ++k)
     {
-      const int a = L.denseIndex[k];
+      const int a = index[k];
       if (a < 0)
       {
         continue;
@@ -399,74 +539,92 @@ struct MaskedPoissonSolver::Impl
       A(a, a) = L.diag[k];
       if (L.wE[k] > 0.0)
       {
-        const int e = L.denseIndex[k + 1];
+        const int e = index[k + 1];
         A(a, e) = A(e, a) = -L.wE[k];
       }
       if (L.wN[k] > 0.0)
       {
-        const int e = L.denseIndex[k + L.stride];
+        const int e = index[k + L.stride];
         A(a, e) = A(e, a) = -L.wN[k];
       }
     }
     L.dense.compute(A);
   }
 
+  // Approximately solves A x = b on level l (x and b in the split arrays).
   void vcycle(std::size_t l, int sweeps)
   {
     Level& L = levels[l];
-    std::fill(L.x.begin(), L.x.end(), 0.0);
-    if (l + 1 == levels.size())
+    if (l + 1 == depth)
     {
       Eigen::VectorXd& rhs = L.denseRhs;
-      rhs.resize(static_cast<Eigen::Index>(L.count));
-      for (std::size_t k = 0; k < L.unknown.size(); ++k)
-        if (L.denseIndex[k] >= 0)
-          rhs[L.denseIndex[k]] = L.b[k];
+      rhs.resize(static_cast<Eigen::Index>(L.denseCell.size()));
+      for (std::size_t a = 0; a < L.denseCell.size(); ++a)
+        rhs[static_cast<Eigen::Index>(a)] = L.b[L.denseCell[a] & 1][L.denseCell[a] >> 1];
       L.dense.solveInPlace(rhs);
-      for (std::size_t k = 0; k < L.unknown.size(); ++k)
-        if (L.denseIndex[k] >= 0)
-          L.x[k] = rhs[L.denseIndex[k]];
+      for (std::size_t a = 0; a < L.denseCell.size(); ++a)
+        L.x[L.denseCell[a] & 1][L.denseCell[a] >> 1] =
+          static_cast<float>(rhs[static_cast<Eigen::Index>(a)]);
       return;
     }
     for (int s = 0; s < sweeps; ++s)
-      sweep(L, 0);
-    applyOperator(L, L.x.data(), L.r.data());
+      sweep(L, 0, s == 0);
+      // The last half sweep (colour 1) left a zero residual on colour 1: only
+      // colour 0 has one, a single cell per row of each 2x2 aggregate.
+#pragma omp parallel for schedule(static) if (parallel(L))
+    for (int j = 0; j < L.h; ++j)
+      rowOp<RowOp::Residual>(L, j, 0);
     Level& C = levels[l + 1];
-    std::fill(C.b.begin(), C.b.end(), 0.0);
-    // Restriction by coarse row, so threads never share an output cell.
-#pragma omp parallel for schedule(static) if (static_cast <long>(L.w) * L.h > ParallelCells)
+    const std::size_t hs = L.hs;
+    // Restriction by coarse row, so threads never share an output cell. Rows
+    // past the last (the frame) hold zeros.
+#pragma omp parallel for schedule(static) if (parallel(L))
     for (int cj = 0; cj < C.h; ++cj)
     {
-      for (int j = 2 * cj; j < std::min(2 * cj + 2, L.h); ++j)
+      const float* r0 = L.r[0].data() + static_cast<std::size_t>(2 * cj + 1) * hs + 1;
+      const float* r1 = r0 + hs;
+      for (int c = 0; c < 2; ++c)
       {
-        for (int i = L.rowBegin[j]; i < L.rowEnd[j]; ++i)
+        // Coarse cells of colour c in row cj: ci = 2 (m - 1) + p.
+        const int p = (c + cj) & 1;
+        float* cb = C.b[c].data() + static_cast<std::size_t>(cj + 1) * C.hs;
+        for (int m = 1; m < C.hs; ++m)
         {
-          const std::size_t k = L.pad(i, j);
-          if (L.unknown[k])
-          {
-            C.b[C.pad(i / 2, cj)] += L.b[k] - L.r[k];
-          }
+          const int ci = 2 * (m - 1) + p;
+          cb[m] = ci < C.w ? r0[ci] + r1[ci] : 0.0f;
         }
       }
     }
     vcycle(l + 1, sweeps);
-#pragma omp parallel for schedule(static) if (static_cast <long>(L.w) * L.h > ParallelCells)
-    for (int j = 0; j < L.h; ++j)
+    // Prolongation: each cell of an aggregate gets its coarse value; cells
+    // that are not unknowns (zero inverse diagonal) stay 0.
+    // The coarse row is interleaved once for both fine rows of its aggregates.
+    coarseRow.resize(static_cast<std::size_t>(C.w) + 1);
+#pragma omp parallel for schedule(static) if (parallel(L)) firstprivate(coarseRow)
+    for (int cj = 0; cj < C.h; ++cj)
     {
-      for (int i = L.rowBegin[j]; i < L.rowEnd[j]; ++i)
+      float* nat = coarseRow.data();
+      const float* cx[2] = { C.x[cj & 1].data() + C.split(0, cj),
+        C.x[(cj + 1) & 1].data() + C.split(0, cj) };
+      for (int ci = 0; ci < C.w; ++ci)
+        nat[ci] = cx[ci & 1][ci >> 1];
+      nat[C.w] = 0.0f;
+      for (int j = 2 * cj; j < std::min(2 * cj + 2, L.h); ++j)
       {
-        const std::size_t k = L.pad(i, j);
-        if (L.unknown[k])
+        const std::size_t row = static_cast<std::size_t>(j + 1) * hs;
+        for (int c = 0; c < 2; ++c)
         {
-          L.x[k] += C.x[C.pad(i / 2, j / 2)];
+          float* __restrict x = L.x[c].data() + row;
+          const float* __restrict inv = L.sInv[c].data() + row;
+          for (int m = L.mBegin[j]; m < L.mEnd[j]; ++m)
+            x[m] += inv[m] != 0.0f ? nat[m - 1] : 0.0f;
         }
       }
     }
     // Reverse colour order so the V-cycle is a symmetric preconditioner.
     for (int s = 0; s < sweeps; ++s)
-      sweep(L, 1);
+      sweep(L, 1, false);
   }
-
   // Finest level from the problem; returns false if nothing to solve.
   // edgeOk(k, d): whether the fine edge from cell k in direction d (0 +x, 1 +y) exists.
   template<typename EdgeOk>
@@ -480,56 +638,55 @@ struct MaskedPoissonSolver::Impl
     PoissonStatistics& stats)
   {
     levels.reserve(40); // never reallocated: callers hold references to level 0
-    levels.resize(1);
+    if (levels.empty())
+      levels.resize(1);
+    depth = 1;
     Level& F = levels[0];
     F.allocate(width, height);
     const double wx = 1.0 / (cellX * cellX);
     const double wy = 1.0 / (cellY * cellY);
-    auto present = [&](int i, int j)
-    {
-      if (i < 0 || j < 0 || i >= width || j >= height)
-        return false;
-      const std::size_t g = static_cast<std::size_t>(j) * width + i;
-      return unknownIn[g] != 0 || std::isfinite(u[g]);
-    };
+    // present: unknown or holding a value (0 on the frame).
+    present.assign(F.unknown.size(), 0);
     for (int j = 0; j < height; ++j)
     {
+      const std::size_t g0 = static_cast<std::size_t>(j) * width;
       for (int i = 0; i < width; ++i)
       {
-        F.unknown[F.pad(i, j)] = unknownIn[static_cast<std::size_t>(j) * width + i] != 0;
+        const std::size_t k = F.pad(i, j);
+        F.unknown[k] = unknownIn[g0 + i] != 0;
+        present[k] = F.unknown[k] || std::isfinite(u[g0 + i]);
       }
     }
     // Edge weights: an edge counts if it touches an unknown, both ends have a
     // value or are unknown, and its guidance is defined.
+    const std::size_t s = F.stride;
     for (int j = 0; j < height; ++j)
     {
       for (int i = 0; i < width; ++i)
       {
         const std::size_t k = F.pad(i, j);
+        if (!present[k])
+          continue;
         const std::size_t g = static_cast<std::size_t>(j) * width + i;
-        if (i + 1 < width && (F.unknown[k] || F.unknown[k + 1]) && present(i, j) &&
-          present(i + 1, j) && edgeOk(g, 0))
+        if ((F.unknown[k] || F.unknown[k + 1]) && present[k + 1] && edgeOk(g, 0))
         {
           if (F.unknown[k] && F.unknown[k + 1])
             F.wE[k] = wx;
           F.diag[k] += F.unknown[k] ? wx : 0.0;
           F.diag[k + 1] += F.unknown[k + 1] ? wx : 0.0;
         }
-        if (j + 1 < height && (F.unknown[k] || F.unknown[k + F.stride]) && present(i, j) &&
-          present(i, j + 1) && edgeOk(g, 1))
+        if ((F.unknown[k] || F.unknown[k + s]) && present[k + s] && edgeOk(g, 1))
         {
-          if (F.unknown[k] && F.unknown[k + F.stride])
+          if (F.unknown[k] && F.unknown[k + s])
             F.wN[k] = wy;
           F.diag[k] += F.unknown[k] ? wy : 0.0;
-          F.diag[k + F.stride] += F.unknown[k + F.stride] ? wy : 0.0;
+          F.diag[k + s] += F.unknown[k + s] ? wy : 0.0;
         }
       }
     }
     // Components of unknowns with no Dirichlet edge (diag > couplings nowhere)
     // are singular: pin them (drop them from the unknowns).
     component.assign(F.unknown.size(), -1);
-    const std::size_t s = F.stride;
-    std::vector<std::size_t> members;
     for (std::size_t seed = 0; seed < F.unknown.size(); ++seed)
     {
       if (!F.unknown[seed] || component[seed] >= 0)
@@ -573,16 +730,19 @@ struct MaskedPoissonSolver::Impl
     stats.unknowns = F.count;
   }
 
+  // Levels 1 .. depth - 1; levels past depth keep their storage for later calls.
   void buildHierarchy()
   {
     constexpr std::size_t denseLimit = 64;
-    while (levels.back().count > denseLimit && (levels.back().w > 1 || levels.back().h > 1))
+    while (
+      levels[depth - 1].count > denseLimit && (levels[depth - 1].w > 1 || levels[depth - 1].h > 1))
     {
-      Level coarse;
-      buildCoarse(levels.back(), coarse);
-      levels.push_back(std::move(coarse));
+      if (levels.size() == depth)
+        levels.emplace_back();
+      buildCoarse(levels[depth - 1], levels[depth]);
+      ++depth;
     }
-    buildDense(levels.back());
+    buildDense(levels[depth - 1]);
   }
 
   // Solves A delta = res (res holds the initial residual on the padded grid).
@@ -602,30 +762,58 @@ struct MaskedPoissonSolver::Impl
     {
       return;
     }
-    // z = V-cycle(res): the V-cycle reads its right-hand side from F.b and
-    // leaves its result in F.x; swapping buffers avoids two copies.
+    // The residual-only restriction in vcycle needs a sweep.
+    const int sweeps = std::max(options.smoothingSweeps, 1);
+    // z = V-cycle(res), in single precision on the split layout: the CG
+    // keeps res, z and the iterates in double, so only the preconditioner is
+    // rounded; the flexible beta below tolerates that.
     auto precondition = [&]()
     {
-      F.b.swap(res);
-      vcycle(0, options.smoothingSweeps);
-      F.b.swap(res);
-      z.swap(F.x);
+#pragma omp parallel for schedule(static) if (parallel(F))
+      for (int j = 0; j < F.h; ++j)
+      {
+        const double* rrow = res.data() + F.pad(-1, j);
+        for (int c = 0; c < 2; ++c)
+        {
+          // Colour c cells: i = 2 (m - 1) + p, at rrow[i + 1].
+          const int p = (c + j) & 1;
+          float* b = F.b[c].data() + static_cast<std::size_t>(j + 1) * F.hs;
+          for (int m = F.mBegin[j]; m < F.mEnd[j]; ++m)
+            b[m] = static_cast<float>(rrow[2 * m - 1 + p]);
+        }
+      }
+      vcycle(0, sweeps);
+#pragma omp parallel for schedule(static) if (parallel(F))
+      for (int j = 0; j < F.h; ++j)
+      {
+        double* zrow = z.data() + F.pad(-1, j);
+        for (int c = 0; c < 2; ++c)
+        {
+          const int p = (c + j) & 1;
+          const float* x = F.x[c].data() + static_cast<std::size_t>(j + 1) * F.hs;
+          for (int m = F.mBegin[j]; m < F.mEnd[j]; ++m)
+            zrow[2 * m - 1 + p] = x[m];
+        }
+      }
     };
-    // rz = res . z, and whether the estimated error max |z| is small enough.
-    auto examine = [&](double& rz)
+    // rz = res . z, zq = z . q, and whether the estimated error max |z| is
+    // small enough.
+    auto examine = [&](double& rz, double& zq)
     {
-      double s = 0.0, e = 0.0;
+      double s = 0.0, t = 0.0, e = 0.0;
       for (std::size_t k = 0; k < n; ++k)
       {
         s += res[k] * z[k];
+        t += z[k] * q[k];
         e = std::max(e, std::abs(z[k]));
       }
       rz = s;
+      zq = t;
       return options.errorTolerance > 0.0 && e <= options.errorTolerance;
     };
     precondition();
-    double rz = 0.0;
-    if (examine(rz))
+    double rz = 0.0, zq = 0.0;
+    if (examine(rz, zq))
     {
       return;
     }
@@ -650,11 +838,13 @@ struct MaskedPoissonSolver::Impl
       }
       precondition();
       double rzNew = 0.0;
-      if (examine(rzNew))
+      if (examine(rzNew, zq))
       {
         break;
       }
-      const double beta = rzNew / rz;
+      // Flexible (Polak-Ribiere) beta = z . (res - resOld) / rz, with
+      // res - resOld = -alpha q: robust to the rounding of the preconditioner.
+      const double beta = -alpha * zq / rz;
       rz = rzNew;
       for (std::size_t k = 0; k < n; ++k)
       {
@@ -708,21 +898,25 @@ PoissonStatistics MaskedPoissonSolver::solveGuided(int width,
         continue;
       const std::size_t g = static_cast<std::size_t>(j) * width + i;
       double r = 0.0;
-      auto edge = [&](std::size_t gq, double wanted, bool exists)
+      // present is 0 on the frame, so the neighbour's guidance is read only
+      // inside the grid.
+      auto edge =
+        [&](std::size_t kq, std::ptrdiff_t dg, const double* field, std::size_t gf, double sign)
       {
-        if (exists && (unknown[gq] || std::isfinite(u[gq])) && !std::isnan(wanted))
-          r += (wanted - (u[gq] - u[g]));
+        if (!m.present[kq])
+          return;
+        const double wanted = field ? sign * field[gf] : 0.0;
+        if (!std::isnan(wanted))
+          r += (wanted - (u[g + dg] - u[g]));
       };
-      if (i + 1 < width)
-        edge(g + 1, gx ? gx[g] : 0.0, true);
-      if (i > 0)
-        edge(g - 1, gx ? -gx[g - 1] : 0.0, true);
+      const std::ptrdiff_t w = width;
+      const std::size_t s = F.stride;
+      edge(k + 1, 1, gx, g, 1.0);
+      edge(k - 1, -1, gx, g - 1, -1.0);
       const double rx = r;
       r = 0.0;
-      if (j + 1 < height)
-        edge(g + width, gy ? gy[g] : 0.0, true);
-      if (j > 0)
-        edge(g - width, gy ? -gy[g - width] : 0.0, true);
+      edge(k + s, w, gy, g, 1.0);
+      edge(k - s, -w, gy, g - width, -1.0);
       // A delta = -(residual of the normal equations) with A = -L.
       m.res[k] = -(wx * rx + wy * r);
     }

@@ -45,7 +45,8 @@ struct PoissonOptions
 {
   double tolerance = 1e-10; // stop when |residual| <= tolerance * |initial residual|
   int maxIterations = 100;  // preconditioned CG iterations
-  int smoothingSweeps = 2;  // red-black Gauss-Seidel sweeps before and after each coarse solve
+  // Red-black Gauss-Seidel sweeps before and after each coarse solve (at least 1).
+  int smoothingSweeps = 2;
   // Also stop when the estimated error of u, in the units of u, is at most this
   // (0 = off). The estimate is the largest entry of the multigrid-preconditioned
   // residual, which approximates the error itself (one V-cycle approximates the
@@ -63,9 +64,10 @@ struct PoissonStatistics
   std::size_t pinnedUnknowns = 0; // in components with no Dirichlet neighbour (kept as given)
 };
 
-// Poisson on an arbitrary mask of unknown cells: conjugate gradient
+// Poisson on an arbitrary mask of unknown cells: conjugate gradient (double)
 // preconditioned by one multigrid V-cycle (Galerkin aggregation of 2x2 cells,
-// symmetric red-black Gauss-Seidel). Cells outside the mask with a finite value
+// symmetric red-black Gauss-Seidel, in single precision on a red-black split
+// layout so the smoother vectorises). Cells outside the mask with a finite value
 // are Dirichlet values; edges to cells without one (nodata, unfilled) are left
 // out (natural Neumann boundary). Connected parts of the mask with no Dirichlet
 // neighbour have no unique solution and keep their starting values. Holds its
