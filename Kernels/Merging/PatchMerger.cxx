@@ -83,7 +83,8 @@ MergeResult PatchMerger::prepare(const Heightfield& terrain,
   int x0,
   int y0,
   const std::vector<std::uint8_t>* core,
-  const SeamCutOptions& options)
+  const SeamCutOptions& options,
+  const MergeResult* given)
 {
   if (filled.size() != terrain.size())
   {
@@ -152,36 +153,58 @@ MergeResult PatchMerger::prepare(const Heightfield& terrain,
       }
     }
   }
-  const std::vector<SeamConstraint> constraints = buildSeamConstraints(
-    fw_, fh_, oldMask_.data(), newMask_.data(), core ? coreMask_.data() : nullptr);
-  const SeamCutResult& cut =
-    cut_.cut(fw_, fh_, old_.data(), new_.data(), constraints.data(), cellX_, cellY_, options);
-
-  side_.assign(n, 0);
   MergeResult result;
   result.x0 = wx0;
   result.y0 = wy0;
   result.width = wx1 - wx0;
   result.height = wy1 - wy0;
+  if (given != nullptr &&
+    (given->x0 != wx0 || given->y0 != wy0 || given->width != result.width ||
+      given->height != result.height ||
+      given->takeNew.size() != static_cast<std::size_t>(result.width) * result.height ||
+      given->seam.size() != given->takeNew.size()))
+  {
+    throw Error("The given cut belongs to another placement of the patch.");
+  }
+  const SeamCutResult* cut = nullptr;
+  if (given == nullptr)
+  {
+    const std::vector<SeamConstraint> constraints = buildSeamConstraints(
+      fw_, fh_, oldMask_.data(), newMask_.data(), core ? coreMask_.data() : nullptr);
+    cut =
+      &cut_.cut(fw_, fh_, old_.data(), new_.data(), constraints.data(), cellX_, cellY_, options);
+    result.cutCost = cut->cost;
+    result.cutEdges = cut->cutEdges;
+    result.normalisedCost = cut->normalisedCost();
+  }
+  else
+  {
+    result.cutCost = given->cutCost;
+    result.cutEdges = given->cutEdges;
+    result.normalisedCost = given->normalisedCost;
+  }
+
+  side_.assign(n, 0);
   result.takeNew.assign(static_cast<std::size_t>(result.width) * result.height, 0);
   result.seam.assign(result.takeNew.size(), 0);
-  result.cutCost = cut.cost;
-  result.cutEdges = cut.cutEdges;
-  result.normalisedCost = cut.normalisedCost();
   for (int j = 0; j < fh_; ++j)
   {
     for (int i = 0; i < fw_; ++i)
     {
       const std::size_t k = static_cast<std::size_t>(j) * fw_ + i;
-      const bool isNew = newMask_[k] && (!oldMask_[k] || cut.takeNew[k]);
-      side_[k] = isNew ? 2 : (oldMask_[k] ? 1 : 0);
       const int ri = fx0_ + i - wx0;
       const int rj = fy0_ + j - wy0;
-      if (ri >= 0 && rj >= 0 && ri < result.width && rj < result.height)
+      const bool inWindow = ri >= 0 && rj >= 0 && ri < result.width && rj < result.height;
+      const std::size_t rk = inWindow ? static_cast<std::size_t>(rj) * result.width + ri : 0;
+      // The frame around the window holds no patch cells, so a given cut (known
+      // on the window only) decides every cell that matters.
+      const bool cutNew = cut != nullptr ? cut->takeNew[k] != 0 : inWindow && given->takeNew[rk];
+      const bool isNew = newMask_[k] && (!oldMask_[k] || cutNew);
+      side_[k] = isNew ? 2 : (oldMask_[k] ? 1 : 0);
+      if (inWindow)
       {
-        const std::size_t rk = static_cast<std::size_t>(rj) * result.width + ri;
         result.takeNew[rk] = isNew;
-        result.seam[rk] = cut.seam[k];
+        result.seam[rk] = cut != nullptr ? cut->seam[k] : given->seam[rk];
         result.overlapCells += oldMask_[k] && newMask_[k];
         result.newCells += isNew;
       }
@@ -198,7 +221,7 @@ MergeResult PatchMerger::seamCost(const Heightfield& terrain,
   const std::vector<std::uint8_t>* core,
   const SeamCutOptions& options)
 {
-  return prepare(terrain, filled, patch, x0, y0, core, options);
+  return prepare(terrain, filled, patch, x0, y0, core, options, nullptr);
 }
 
 // Shepard interpolation (Shepard 1968, as in Tasse 3.5) of the seam values to
@@ -511,13 +534,14 @@ MergeResult PatchMerger::merge(Heightfield& terrain,
   int x0,
   int y0,
   const std::vector<std::uint8_t>* core,
-  const MergeOptions& options)
+  const MergeOptions& options,
+  const MergeResult* cut)
 {
   if (!(options.shepardRadius > 0.0) || !(options.shepardPower > 0.0))
   {
     throw Error("The Shepard radius and power must be positive.");
   }
-  MergeResult result = prepare(terrain, filled, patch, x0, y0, core, options.cut);
+  MergeResult result = prepare(terrain, filled, patch, x0, y0, core, options.cut, cut);
   const std::size_t n = static_cast<std::size_t>(fw_) * fh_;
   out_.assign(n, NaN);
   for (std::size_t k = 0; k < n; ++k)

@@ -85,9 +85,12 @@ public:
     int x0,
     int y0,
     const std::vector<std::uint8_t>* core,
-    const MergeOptions& options = {});
+    const MergeOptions& options = {},
+    const MergeResult* cut = nullptr);
 
   // Dry run for ranking candidates: the cut only; the terrain is not touched.
+  // Passing its result to merge() as `cut` (same terrain, filled mask, patch,
+  // placement and core) merges with that seam instead of cutting again.
   MergeResult seamCost(const Heightfield& terrain,
     const std::vector<std::uint8_t>& filled,
     const Heightfield& patch,
@@ -103,7 +106,8 @@ private:
     int x0,
     int y0,
     const std::vector<std::uint8_t>* core,
-    const SeamCutOptions& options);
+    const SeamCutOptions& options,
+    const MergeResult* given); // a seamCost() result to use instead of cutting
   // Shepard interpolation of V values per seam point (seamValue_) to the new cells.
   template<int V>
   void shepard(double radius, double power, std::vector<double>& out);

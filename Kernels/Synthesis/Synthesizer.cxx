@@ -338,7 +338,7 @@ public:
     // depend on the thread count.
     std::vector<Heightfield> patches(candidates.size());
     std::vector<float> offsets(candidates.size(), 0.0f);
-    std::vector<double> seams(candidates.size(), 0.0);
+    std::vector<MergeResult> dry(candidates.size());
     const long count = static_cast<long>(candidates.size());
 #pragma omp parallel for schedule(dynamic)                                                         \
   num_threads(static_cast <int>(std::min <std::size_t>(candidates.size(), mergers_.size())))
@@ -356,9 +356,7 @@ public:
         z += offsets[c];
       }
       PatchMerger& merger = mergers_[static_cast<std::size_t>(omp_get_thread_num())];
-      const MergeResult dry =
-        merger.seamCost(out_, filled_, patch, x0, y0, feature ? &core : nullptr);
-      seams[c] = dry.overlapCells > 0 ? dry.normalisedCost : 0.0;
+      dry[c] = merger.seamCost(out_, filled_, patch, x0, y0, feature ? &core : nullptr);
       patches[c] = std::move(patch);
     }
     std::size_t bestIndex = 0;
@@ -367,7 +365,8 @@ public:
     {
       // Anti-repetition: a source already used nearby costs more, so the same
       // exemplar patch is not copied over and over.
-      const double seam = seams[c] + o_.repetitionPenalty * reuses(candidates[c]);
+      const double seam = (dry[c].overlapCells > 0 ? dry[c].normalisedCost : 0.0) +
+        o_.repetitionPenalty * reuses(candidates[c]);
       if (seam < bestSeam)
       {
         bestSeam = seam;
@@ -378,8 +377,8 @@ public:
     const float bestOffset = offsets[bestIndex];
     MergeOptions mo;
     mo.mode = o_.merge;
-    const MergeResult r =
-      mergers_[0].merge(out_, filled_, best, x0, y0, feature ? &core : nullptr, mo);
+    const MergeResult r = mergers_[0].merge(
+      out_, filled_, best, x0, y0, feature ? &core : nullptr, mo, &dry[bestIndex]);
     const int id = static_cast<int>(result_.placements.size());
     const PatchCandidate& chosen = candidates[bestIndex];
     for (int j = 0; j < r.height; ++j)

@@ -375,3 +375,30 @@ TEST(PatchMerge, DryRunMatchesMergeAndLeavesTerrainAlone)
       }
     }
 }
+
+TEST(PatchMerge, MergeWithTheDryRunsCutEqualsAFreshMerge)
+{
+  // The synthesiser ranks candidates by dry runs and merges the winner with the
+  // cut it already has: the terrain must come out exactly as if cut again.
+  const Heightfield& dem = alps();
+  Heightfield a = crop(dem, 0, 0, 200, 160);
+  std::vector<std::uint8_t> filledA(a.size(), 0);
+  for (int j = 0; j < 160; ++j)
+    for (int i = 0; i < 200; ++i)
+      filledA[a.index(i, j)] = i < 100 || j < 40;
+  Heightfield b = a;
+  std::vector<std::uint8_t> filledB = filledA;
+  const Heightfield patch = crop(dem, 220, 180, 80, 80);
+  PatchMerger merger;
+  const MergeResult dry = merger.seamCost(b, filledB, patch, 80, 20, nullptr);
+  const MergeResult fresh = merger.merge(a, filledA, patch, 80, 20, nullptr);
+  const MergeResult reused = merger.merge(b, filledB, patch, 80, 20, nullptr, {}, &dry);
+  EXPECT_EQ(a.z, b.z);
+  EXPECT_EQ(filledA, filledB);
+  EXPECT_EQ(reused.takeNew, fresh.takeNew);
+  EXPECT_EQ(reused.seam, fresh.seam);
+  EXPECT_EQ(reused.cutCost, fresh.cutCost);
+  EXPECT_EQ(reused.newCells, fresh.newCells);
+  // A cut from another placement is refused, not misused.
+  EXPECT_THROW(merger.merge(b, filledB, patch, 81, 20, nullptr, {}, &dry), Error);
+}
