@@ -86,18 +86,45 @@ std::vector<std::size_t> smallestOffsets(const std::vector<float>& costs, std::s
   { return costs[a] < costs[b] || (costs[a] == costs[b] && a < b); };
   std::vector<std::size_t> heap; // max-heap under `before`: the worst kept on top
   heap.reserve(count + 1);
-  for (std::size_t i = 0; i < costs.size() && count > 0; ++i)
+  // Offsets come in increasing order, so one that ties with the worst kept is
+  // later, hence worse: only a strictly smaller cost gets in once the heap is
+  // full. Runs of 16 with none below the bar are skipped in one vector test.
+  float bar = kInf;
+  const std::size_t n = costs.size();
+  std::size_t i = 0;
+  while (i < n && count > 0)
   {
-    if (!(costs[i] < kInf) || (heap.size() == count && !before(i, heap.front())))
+    if (i + 16 <= n)
     {
-      continue;
+      bool any = false;
+      for (std::size_t l = 0; l < 16; ++l)
+      {
+        any |= costs[i + l] < bar;
+      }
+      if (!any)
+      {
+        i += 16;
+        continue;
+      }
     }
-    heap.push_back(i);
-    std::push_heap(heap.begin(), heap.end(), before);
-    if (heap.size() > count)
+    const std::size_t end = std::min(n, i + 16);
+    for (; i < end; ++i)
     {
-      std::pop_heap(heap.begin(), heap.end(), before);
-      heap.pop_back();
+      if (!(costs[i] < bar))
+      {
+        continue;
+      }
+      heap.push_back(i);
+      std::push_heap(heap.begin(), heap.end(), before);
+      if (heap.size() > count)
+      {
+        std::pop_heap(heap.begin(), heap.end(), before);
+        heap.pop_back();
+      }
+      if (heap.size() == count)
+      {
+        bar = costs[heap.front()];
+      }
     }
   }
   std::sort_heap(heap.begin(), heap.end(), before);
