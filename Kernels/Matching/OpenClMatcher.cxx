@@ -454,11 +454,20 @@ std::vector<std::vector<float>> OpenClDenseScorer::coarseSsd(const CoarseTerms& 
     const std::size_t groups = (nx + 15) / 16;
     for (std::size_t y = 0; y < static_cast<std::size_t>(o.offsetsY); ++y)
     {
-      for (std::size_t x = 0; x < nx; ++x)
+      const std::uint8_t* run = asked.data() + b.runOffset[i] + y * groups;
+      for (std::size_t g = 0; g < groups; ++g)
       {
-        if (asked[b.runOffset[i] + y * groups + x / 16] == 0 || o.coarseValid[y * nx + x] == 0)
+        const std::size_t x0 = y * nx + 16 * g;
+        const std::size_t x1 = y * nx + std::min(nx, 16 * g + 16);
+        float* costs = out[i].data();
+        if (run[g] == 0)
         {
-          out[i][y * nx + x] = inf;
+          std::fill(costs + x0, costs + x1, inf);
+          continue;
+        }
+        for (std::size_t k = x0; k < x1; ++k)
+        {
+          costs[k] = o.coarseValid[k] != 0 ? costs[k] : inf;
         }
       }
     }
