@@ -131,6 +131,48 @@ std::vector<std::size_t> smallestOffsets(const std::vector<float>& costs, std::s
   return heap;
 }
 
+// The same sum at one offset (a lane of runSsd, in the same order).
+float offsetSsd(const CoarseTerms& q, const std::vector<float>& pixels, int stride, int x, int y)
+{
+  float acc = 0.0f;
+  for (std::size_t e = 0; e < q.size(); ++e)
+  {
+    const float d = q.heights[e] -
+      pixels[static_cast<std::size_t>(y + q.row[e]) * static_cast<std::size_t>(stride) +
+        static_cast<std::size_t>(x + q.column[e])];
+    acc += q.weights[e] * d * d;
+  }
+  return acc;
+}
+
+// Coarse weighted SSD of the terms at 16 neighbouring offsets (x0 .. x0 + 15,
+// y), like one work-item of the OpenCL kernel (DenseSsd.cl), in the same order.
+void runSsd(const CoarseTerms& q,
+  const std::vector<float>& pixels,
+  int stride,
+  int x0,
+  int y,
+  float* acc)
+{
+  for (int l = 0; l < 16; ++l)
+  {
+    acc[l] = 0.0f;
+  }
+  for (std::size_t e = 0; e < q.size(); ++e)
+  {
+    const float* cells = pixels.data() +
+      static_cast<std::size_t>(y + q.row[e]) * static_cast<std::size_t>(stride) +
+      static_cast<std::size_t>(x0 + q.column[e]);
+    const float h = q.heights[e];
+    const float m = q.weights[e];
+    for (int l = 0; l < 16; ++l)
+    {
+      const float d = h - cells[l];
+      acc[l] += m * d * d;
+    }
+  }
+}
+
 bool better(const DenseMatch& a, const DenseMatch& b)
 {
   if (a.cost != b.cost)
@@ -352,7 +394,6 @@ std::vector<std::vector<float>> DenseMatcher::coarseSsd(const CoarseTerms& q,
       tasks.push_back({ o, y });
     }
   }
-  const std::size_t terms = q.size();
   const long taskCount = static_cast<long>(tasks.size());
 #pragma omp parallel for schedule(dynamic, 16)
   for (long t = 0; t < taskCount; ++t)
@@ -373,20 +414,8 @@ std::vector<std::vector<float>> DenseMatcher::coarseSsd(const CoarseTerms& q,
         continue;
       }
       const int x0 = 16 * g;
-      float acc[16] = {};
-      for (std::size_t e = 0; e < terms; ++e)
-      {
-        const float* cells = pixels.data() +
-          static_cast<std::size_t>(y + q.row[e]) * static_cast<std::size_t>(r.coarseStride) +
-          static_cast<std::size_t>(x0 + q.column[e]);
-        const float h = q.heights[e];
-        const float m = q.weights[e];
-        for (int l = 0; l < 16; ++l)
-        {
-          const float d = h - cells[l];
-          acc[l] += m * d * d;
-        }
-      }
+      float acc[16];
+      runSsd(q, pixels, r.coarseStride, x0, y, acc);
       for (int l = 0; l < 16 && x0 + l < r.offsetsX; ++l)
       {
         const std::size_t k = static_cast<std::size_t>(y) * static_cast<std::size_t>(r.offsetsX) +
@@ -401,22 +430,6 @@ std::vector<std::vector<float>> DenseMatcher::coarseSsd(const CoarseTerms& q,
 std::vector<std::vector<float>> DenseMatcher::coarseCosts(const CoarseQuery& q) const
 {
   return coarseSsd(q.terms, CoarseImage::Blocks);
-}
-
-float DenseMatcher::coarseCostAt(const CoarseTerms& q, std::size_t o, std::size_t offset) const
-{
-  const Oriented& r = oriented_[o];
-  const int x = static_cast<int>(offset % static_cast<std::size_t>(r.offsetsX));
-  const int y = static_cast<int>(offset / static_cast<std::size_t>(r.offsetsX));
-  float acc = 0.0f;
-  for (std::size_t e = 0; e < q.size(); ++e)
-  {
-    const float d = q.heights[e] -
-      r.coarse[static_cast<std::size_t>(y + q.row[e]) * static_cast<std::size_t>(r.coarseStride) +
-        static_cast<std::size_t>(x + q.column[e])];
-    acc += q.weights[e] * d * d;
-  }
-  return acc;
 }
 
 std::size_t DenseMatcher::headSize() const
@@ -449,21 +462,31 @@ std::vector<std::vector<float>> DenseMatcher::prunedCoarseCosts(const CoarseQuer
     // At least `head` offsets cost at most `threshold`, so the `head` best all
     // do, and their bounds are below it. The margin covers float round-off
     // between the bound's sums and the full ones.
+    const std::size_t nx = static_cast<std::size_t>(r.offsetsX);
     float threshold = 0.0f;
     for (std::size_t idx : best)
     {
-      threshold = std::max(threshold, coarseCostAt(q.terms, o, idx));
+      threshold = std::max(threshold,
+        offsetSsd(q.terms,
+          r.coarse,
+          r.coarseStride,
+          static_cast<int>(idx % nx),
+          static_cast<int>(idx / nx)));
     }
     threshold = threshold * (1.0f + 1e-3f) + 1e-30f;
-    const int groups = (r.offsetsX + 15) / 16;
-    std::fill(runs[o].begin(), runs[o].end(), 0);
-    for (std::size_t k = 0; k < bound[o].size(); ++k)
+    const std::size_t groups = (nx + 15) / 16;
+    for (std::size_t y = 0; y < static_cast<std::size_t>(r.offsetsY); ++y)
     {
-      if (bound[o][k] <= threshold)
+      for (std::size_t g = 0; g < groups; ++g)
       {
-        const std::size_t y = k / static_cast<std::size_t>(r.offsetsX);
-        const std::size_t x = k % static_cast<std::size_t>(r.offsetsX);
-        runs[o][y * static_cast<std::size_t>(groups) + x / 16] = 1;
+        const float* b = bound[o].data() + y * nx + 16 * g;
+        const std::size_t lanes = std::min<std::size_t>(16, nx - 16 * g);
+        bool any = false;
+        for (std::size_t l = 0; l < lanes; ++l)
+        {
+          any |= b[l] <= threshold;
+        }
+        runs[o][y * groups + g] = any ? 1 : 0;
       }
     }
   }

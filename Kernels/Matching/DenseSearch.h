@@ -159,8 +159,6 @@ private:
     int x,
     int y,
     float* out) const;
-  // The coarse SSD at one offset, summed as coarseSsd does.
-  float coarseCostAt(const CoarseTerms& terms, std::size_t o, std::size_t offset) const;
   DenseMatch describe(const DenseQuery& query, std::size_t o, int x, int y, float overlap) const;
 
   DenseOptions options_;
