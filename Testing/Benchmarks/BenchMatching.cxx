@@ -140,11 +140,16 @@ int main(int argc, char** argv)
     if (device)
     {
       OpenClDenseScorer scorer(device, matcher);
+      auto cl =
+        [&](const CoarseTerms& t, CoarseImage i, const std::vector<std::vector<std::uint8_t>>* r)
+      { return scorer.coarseSsd(t, i, r); };
       (void)scorer.coarseCosts(matcher.coarseQuery(q));
-      gpu =
-        bestOf(5, [&] { fast = matcher.refine(q, scorer.coarseCosts(matcher.coarseQuery(q)), 8); });
+      gpu = bestOf(5,
+        [&]
+        { fast = matcher.refine(q, matcher.prunedCoarseCosts(matcher.coarseQuery(q), cl), 8); });
       std::printf(
-        "  coarse-to-fine, OpenCL coarse pass + CPU refinement: %.1f ms (OpenCL vs CPU %.2fx)\n",
+        "  coarse-to-fine, OpenCL pruned coarse pass + CPU refinement: %.1f ms (OpenCL vs "
+        "CPU %.2fx)\n",
         1e3 * gpu,
         cpu / gpu);
     }
