@@ -1,6 +1,7 @@
 #include "DenseSearch.h"
 
 #include "../Core/Error.h"
+#include "Vectorise.h"
 
 #include <algorithm>
 #include <cmath>
@@ -147,17 +148,16 @@ float offsetSsd(const CoarseTerms& q, const std::vector<float>& pixels, int stri
 
 // Coarse weighted SSD of the terms at 16 neighbouring offsets (x0 .. x0 + 15,
 // y), like one work-item of the OpenCL kernel (DenseSsd.cl), in the same order.
-void runSsd(const CoarseTerms& q,
+TSYNTH_VECTOR_CLONES void runSsd(const CoarseTerms& q,
   const std::vector<float>& pixels,
   int stride,
   int x0,
   int y,
-  float* acc)
+  float* out)
 {
-  for (int l = 0; l < 16; ++l)
-  {
-    acc[l] = 0.0f;
-  }
+  // A local accumulator: through `out` every lane would be stored back on each
+  // term (it might alias the inputs) and nothing would vectorise.
+  float acc[16] = {};
   for (std::size_t e = 0; e < q.size(); ++e)
   {
     const float* cells = pixels.data() +
@@ -171,6 +171,7 @@ void runSsd(const CoarseTerms& q,
       acc[l] += m * d * d;
     }
   }
+  std::copy(acc, acc + 16, out);
 }
 
 bool better(const DenseMatch& a, const DenseMatch& b)
@@ -493,7 +494,7 @@ std::vector<std::vector<float>> DenseMatcher::prunedCoarseCosts(const CoarseQuer
   return ssd(q.terms, CoarseImage::Blocks, &runs);
 }
 
-void DenseMatcher::overlapRow(const std::vector<int>& cells,
+TSYNTH_VECTOR_CLONES void DenseMatcher::overlapRow(const std::vector<int>& cells,
   const std::vector<float>& heights,
   std::size_t o,
   int x,
