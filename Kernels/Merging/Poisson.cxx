@@ -852,6 +852,24 @@ struct MaskedPoissonSolver::Impl
       }
     }
   }
+
+  // With the fine level and the residual of u set up: solve for the correction
+  // and add it to u's unknown cells.
+  void solveAndApply(double* u, const PoissonOptions& options, PoissonStatistics& stats)
+  {
+    buildHierarchy();
+    pcg(options, stats);
+    const Level& F = levels[0];
+    for (int j = 0; j < F.h; ++j)
+    {
+      for (int i = 0; i < F.w; ++i)
+      {
+        const std::size_t k = F.pad(i, j);
+        if (F.unknown[k])
+          u[static_cast<std::size_t>(j) * F.w + i] += delta[k];
+      }
+    }
+  }
 };
 
 MaskedPoissonSolver::MaskedPoissonSolver()
@@ -921,19 +939,7 @@ PoissonStatistics MaskedPoissonSolver::solveGuided(int width,
       m.res[k] = -(wx * rx + wy * r);
     }
   }
-  m.buildHierarchy();
-  m.pcg(options, stats);
-  for (int j = 0; j < height; ++j)
-  {
-    for (int i = 0; i < width; ++i)
-    {
-      const std::size_t k = F.pad(i, j);
-      if (F.unknown[k])
-      {
-        u[static_cast<std::size_t>(j) * width + i] += m.delta[k];
-      }
-    }
-  }
+  m.solveAndApply(u, options, stats);
   return stats;
 }
 
@@ -984,17 +990,7 @@ PoissonStatistics MaskedPoissonSolver::solveLaplacian(int width,
       m.res[k] = lu - laplacian[g];
     }
   }
-  m.buildHierarchy();
-  m.pcg(options, stats);
-  for (int j = 0; j < height; ++j)
-  {
-    for (int i = 0; i < width; ++i)
-    {
-      const std::size_t k = F.pad(i, j);
-      if (F.unknown[k])
-        u[static_cast<std::size_t>(j) * width + i] += m.delta[k];
-    }
-  }
+  m.solveAndApply(u, options, stats);
   return stats;
 }
 
