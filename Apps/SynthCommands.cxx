@@ -319,6 +319,11 @@ void writeDebug(const std::string& dir,
     throw Error("Cannot create the debug folder " + dir + ": " + ec.message() + ".");
   }
   writeTerrainFile(dir + "/target.tif", target.field);
+  writeTerrainFile(dir + "/patches.tif", r.patches);
+  Heightfield confidence = target.field;
+  confidence.valid.clear();
+  std::copy(target.weight.begin(), target.weight.end(), confidence.z.begin());
+  writeTerrainFile(dir + "/target-confidence.tif", confidence);
   vtkNew<vtkPolyData> tree;
   featureGraphToPolyData(target.graph, tree);
   writePolyDataFile(dir + "/sketch-features.vtp", tree);
@@ -495,7 +500,7 @@ int runSynth(std::vector<std::string> args)
     hp.push_back(&ex.heights[e]);
     gp.push_back(&ex.graphs[e]);
   }
-  const ExemplarStatistics stats = exemplarStatistics(hp, gp);
+  const ExemplarStatistics stats = exemplarStatistics(hp, gp, o.patchSize);
   const SynthesisTarget target = makeTarget(sketch.graph,
     sketch.width,
     sketch.height,
@@ -505,7 +510,8 @@ int runSynth(std::vector<std::string> args)
     cellX,
     cellY,
     stats,
-    o.patchSize);
+    o.patchSize,
+    sketch.kind == "grey sketch" ? SketchHeights::Grey : SketchHeights::Dem);
   const FeatureGraph& graph = target.graph;
   const double prepare =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -544,6 +550,15 @@ int runSynth(std::vector<std::string> args)
             << " cells from a " << sketch.kind << " with " << ex.heights.size()
             << " exemplar(s): " << r.placements.size() << " patches (" << features
             << " on features), backend " << r.backend << ".\n";
+  {
+    const LandformStatistics& l = stats.landform;
+    std::cout << std::setprecision(0) << "Landforms of the exemplars: ridges " << l.ridge.relief
+              << " m high, " << std::setprecision(1) << l.ridge.width / 1000.0
+              << " km to their foot; valleys " << std::setprecision(0) << l.valley.relief
+              << " m deep, " << std::setprecision(1) << l.valley.width / 1000.0
+              << " km to their rim; floors fall " << l.floorGradient * 100.0 << "%.\n"
+              << std::setprecision(2);
+  }
   std::cout << "Times: prepare " << prepare << " s, matcher setup " << r.timings.setup
             << " s, features " << r.timings.features << " s, fill " << r.timings.fill << " s.\n";
   printEvaluation("Quality:", quality);
@@ -571,7 +586,7 @@ int runSynth(std::vector<std::string> args)
       const Placement& p = r.placements[k];
       out << (k == 0 ? "" : ", ") << "[" << p.order << ", " << (p.feature ? 1 : 0) << ", "
           << p.exemplar << ", " << p.variant << ", " << p.x0 << ", " << p.y0 << ", "
-          << json(p.matchCost) << ", " << json(p.seamCost) << "]";
+          << json(p.matchCost) << ", " << json(p.seamCost) << ", " << json(p.landformMisfit) << "]";
     }
     out << "]\n}\n";
     out.close();

@@ -150,6 +150,7 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
     tsynth::FeatureGraph graph;
     tsynth::Heightfield heights;
     bool hasHeights = false;
+    tsynth::SketchHeights heightKind = tsynth::SketchHeights::None;
     int sw = 0;
     int sh = 0;
     if (auto* image = vtkImageData::SafeDownCast(sketchData))
@@ -163,6 +164,7 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
         tsynth::appendGraph(
           graph, tsynth::extractFeatures(heights, tsynth::FeatureType::Valley, {}).graph);
         hasHeights = true;
+        heightKind = tsynth::SketchHeights::Dem;
         sw = heights.width;
         sh = heights.height;
       }
@@ -182,6 +184,7 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
         {
           heights = tsynth::greyField(pixels);
           hasHeights = true;
+          heightKind = tsynth::SketchHeights::Grey;
         }
         sw = pixels.width;
         sh = pixels.height;
@@ -207,9 +210,18 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
     const int h = this->OutputSize[1] > 0 ? this->OutputSize[1] : sh;
 
     const tsynth::ExemplarStatistics stats =
-      tsynth::exemplarStatistics(ex.heightPointers(), ex.graphPointers());
-    const tsynth::SynthesisTarget target = tsynth::makeTarget(
-      graph, sw, sh, hasHeights ? &heights : nullptr, w, h, cellX, cellY, stats, this->PatchSize);
+      tsynth::exemplarStatistics(ex.heightPointers(), ex.graphPointers(), this->PatchSize);
+    const tsynth::SynthesisTarget target = tsynth::makeTarget(graph,
+      sw,
+      sh,
+      hasHeights ? &heights : nullptr,
+      w,
+      h,
+      cellX,
+      cellY,
+      stats,
+      this->PatchSize,
+      heightKind);
     tsynth::SynthesisOptions o;
     o.patchSize = this->PatchSize;
     o.backend = this->Backend == 1

@@ -213,7 +213,10 @@ private:
 
 } // namespace
 
-std::vector<FeatureSite> featureSites(const FeatureGraph& graph, int patchSize, double spacing)
+std::vector<FeatureSite> featureSites(const FeatureGraph& graph,
+  int patchSize,
+  double spacing,
+  const std::vector<double>* phases)
 {
   const double radius = 0.5 * patchSize;
   FeatureGraph g = graph;
@@ -245,7 +248,8 @@ std::vector<FeatureSite> featureSites(const FeatureGraph& graph, int patchSize, 
         std::hypot(ch.points[k].x - ch.points[k - 1].x, ch.points[k].y - ch.points[k - 1].y));
     }
     const double length = arc.back();
-    for (double s = 0.5 * radius; s <= length - 0.5 * radius + 1e-9; s += step)
+    const double phase = phases != nullptr && c < phases->size() ? (*phases)[c] * step : 0.0;
+    for (double s = 0.5 * radius + phase; s <= length - 0.5 * radius + 1e-9; s += step)
     {
       FeatureSite site;
       site.centre = pointAt(ch.points, arc, s);
@@ -259,6 +263,33 @@ std::vector<FeatureSite> featureSites(const FeatureGraph& graph, int patchSize, 
   }
   return sites;
 }
+
+namespace
+{
+
+// Offset (cells) of landform sample k from a placed patch's centre cell.
+int landformOffset(int k, int patchSize)
+{
+  return landformCell(k, patchSize, 1) - patchSize / 2;
+}
+
+// The low-passed heights at the landform samples around (x, y), minus the one
+// at (x, y) itself; samples off the image count as the centre (no difference).
+void landformSamples(const Heightfield& smooth, double x, double y, int patchSize, float* out)
+{
+  const float centre = sampleBilinear(smooth, x, y);
+  for (int b = 0; b < kLandformSide; ++b)
+  {
+    for (int a = 0; a < kLandformSide; ++a)
+    {
+      const float h =
+        sampleBilinear(smooth, x + landformOffset(a, patchSize), y + landformOffset(b, patchSize));
+      out[b * kLandformSide + a] = std::isnan(h) || std::isnan(centre) ? 0.0f : h - centre;
+    }
+  }
+}
+
+} // namespace
 
 CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplars,
   const std::vector<const FeatureGraph*>& graphs,
@@ -370,8 +401,11 @@ CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplar
       }
     }
     // Summaries: block means of the exemplar as seen through each variant, one
-    // oriented copy at a time (summed-area table: four reads a block).
+    // oriented copy at a time (summed-area table: four reads a block), and the
+    // landform samples of the low-passed exemplar seen the same way.
     pool.descriptor.resize(pool.size() * kDescriptorSize);
+    pool.landform.resize(pool.size() * kLandformStride, 0.0f);
+    const Heightfield smooth = landformImage(ex, P);
     for (int k = 0; k < kVariantCount; ++k)
     {
       if (!options.variants[static_cast<std::size_t>(k)])
@@ -382,6 +416,7 @@ CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplar
       double cu = 0.0;
       double cv = 0.0;
       const BlockMeans means(orientExemplar(ex, v, &cu, &cv));
+      const Heightfield placedSmooth = orientExemplar(smooth, v);
       for (std::size_t c = info.firstCandidate; c < pool.size(); ++c)
       {
         if (pool.variant[c] != k)
@@ -395,6 +430,7 @@ CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplar
         const double px = cu + (v.m[3] * dx - v.m[1] * dy) / det;
         const double py = cv + (-v.m[2] * dx + v.m[0] * dy) / det;
         means.summary(px, py, P, pool.descriptor.data() + c * kDescriptorSize);
+        landformSamples(placedSmooth, px, py, P, pool.landform.data() + c * kLandformStride);
       }
     }
     info.candidateCount = pool.size() - info.firstCandidate;
@@ -445,6 +481,7 @@ void mergePools(CandidatePool& a, const CandidatePool& b)
   append(a.across, b.across);
   append(a.noise, b.noise);
   append(a.descriptor, b.descriptor);
+  append(a.landform, b.landform);
   append(a.sites, b.sites);
   append(a.warnings, b.warnings);
 }
@@ -454,7 +491,9 @@ FeatureQuery makeFeatureQuery(const FeatureSite& site,
   const NoiseVariance& targetNoise,
   const Heightfield* output,
   const std::vector<std::uint8_t>* known,
-  int patchSize)
+  int patchSize,
+  const Heightfield* lowTarget,
+  const std::vector<float>* confidence)
 {
   FeatureQuery q;
   q.type = static_cast<int>(site.type);
@@ -508,6 +547,23 @@ FeatureQuery makeFeatureQuery(const FeatureSite& site,
         const std::size_t k = static_cast<std::size_t>(b * kDescriptorSide + a);
         q.weight[k] = total > 0 ? static_cast<float>(n / total) : 0.0f;
         q.descriptor[k] = n > 0 ? static_cast<float>(s / n) : 0.0f;
+      }
+    }
+  }
+  if (lowTarget != nullptr && confidence != nullptr)
+  {
+    landformSamples(*lowTarget, site.centre.x, site.centre.y, patchSize, q.landform.data());
+    for (int b = 0; b < kLandformSide; ++b)
+    {
+      for (int a = 0; a < kLandformSide; ++a)
+      {
+        const int i = static_cast<int>(std::lround(site.centre.x)) + landformOffset(a, patchSize);
+        const int j = static_cast<int>(std::lround(site.centre.y)) + landformOffset(b, patchSize);
+        const bool inside = i >= 0 && j >= 0 && i < lowTarget->width && j < lowTarget->height;
+        const std::size_t cell = inside ? lowTarget->index(i, j) : 0;
+        const bool done = inside && known != nullptr && (*known)[cell] != 0;
+        q.landformWeight[static_cast<std::size_t>(b * kLandformSide + a)] =
+          inside && !done ? (*confidence)[cell] : 0.0f;
       }
     }
   }

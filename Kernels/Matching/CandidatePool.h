@@ -8,6 +8,7 @@
 
 #include "../Core/Heightfield.h"
 #include "../Features/FeatureGraph.h"
+#include "LandformTerm.h"
 #include "NoiseVariance.h"
 #include "Orientation.h"
 
@@ -38,8 +39,12 @@ struct FeatureSite
 // End and branch nodes of a graph plus path points along its chains every
 // `spacing` cells (0: a quarter patch, dense enough for candidates; placement
 // uses half a patch), not closer than a quarter patch to a chain's ends, each
-// with arms where its chains cross the circle of half a patch.
-std::vector<FeatureSite> featureSites(const FeatureGraph& graph, int patchSize, double spacing = 0.0);
+// with arms where its chains cross the circle of half a patch. `phases`, when
+// given, shifts each chain's first path point by that share (0..1) of the spacing.
+std::vector<FeatureSite> featureSites(const FeatureGraph& graph,
+  int patchSize,
+  double spacing = 0.0,
+  const std::vector<double>* phases = nullptr);
 
 struct PoolOptions
 {
@@ -78,6 +83,9 @@ struct CandidatePool
   std::vector<float> across;     // size * kMaxArms * kAcrossSamples, same
   std::vector<float> noise;      // size * kNoiseLevels
   std::vector<float> descriptor; // size * kDescriptorSize block means of the placed patch (m)
+  // size * kLandformStride: the low-passed exemplar at the landform samples of
+  // the placed patch, minus its value at the centre (m); padding 0.
+  std::vector<float> landform;
 
   std::vector<FeatureSite> sites;
 
@@ -107,16 +115,24 @@ struct FeatureQuery
   std::array<float, kNoiseLevels> noise{};
   std::array<float, kDescriptorSize> descriptor{}; // already-synthesised heights
   std::array<float, kDescriptorSize> weight{};     // fraction of each descriptor cell known (0..1)
+  // The low-passed target at the landform samples minus its value at the
+  // centre, and the confidence in each (0 where the output is already known).
+  std::array<float, kLandformStride> landform{};
+  std::array<float, kLandformStride> landformWeight{};
 };
 
 // Profiles from the target heightfield (the sketch's field), noise from its
 // prepared NoiseVariance, overlap descriptor from the output synthesised so far
-// (`known` marks its filled cells; both may be null for "nothing known yet").
+// (`known` marks its filled cells; both may be null for "nothing known yet"),
+// landform samples from the low-passed target with their confidence (both may
+// be null: no landform term).
 FeatureQuery makeFeatureQuery(const FeatureSite& site,
   const Heightfield& target,
   const NoiseVariance& targetNoise,
   const Heightfield* output,
   const std::vector<std::uint8_t>* known,
-  int patchSize);
+  int patchSize,
+  const Heightfield* lowTarget = nullptr,
+  const std::vector<float>* confidence = nullptr);
 
 } // namespace tsynth

@@ -174,6 +174,54 @@ TSYNTH_VECTOR_CLONES void runSsd(const CoarseTerms& q,
   std::copy(acc, acc + 16, out);
 }
 
+// Means of f x f blocks of an image, rows of `stride` values (0 where a block
+// has an invalid cell); `valid` (if given) receives 1 per whole block.
+std::vector<float> blockMeans(const Heightfield& image,
+  int f,
+  int blocksX,
+  int blocksY,
+  int stride,
+  std::vector<std::uint8_t>* valid)
+{
+  std::vector<float> means(
+    static_cast<std::size_t>(stride) * static_cast<std::size_t>(blocksY), 0.0f);
+  if (valid != nullptr)
+  {
+    valid->assign(static_cast<std::size_t>(blocksX) * static_cast<std::size_t>(blocksY), 0);
+  }
+  for (int b = 0; b < blocksY; ++b)
+  {
+    for (int a = 0; a < blocksX; ++a)
+    {
+      double s = 0.0;
+      bool ok = true;
+      for (int j = b * f; j < (b + 1) * f && ok; ++j)
+      {
+        for (int i = a * f; i < (a + 1) * f; ++i)
+        {
+          if (!image.isValid(i, j))
+          {
+            ok = false;
+            break;
+          }
+          s += image.at(i, j);
+        }
+      }
+      if (ok)
+      {
+        means[static_cast<std::size_t>(b) * static_cast<std::size_t>(stride) +
+          static_cast<std::size_t>(a)] = static_cast<float>(s / (f * f));
+        if (valid != nullptr)
+        {
+          (*valid)[static_cast<std::size_t>(b) * static_cast<std::size_t>(blocksX) +
+            static_cast<std::size_t>(a)] = 1;
+        }
+      }
+    }
+  }
+  return means;
+}
+
 bool better(const DenseMatch& a, const DenseMatch& b)
 {
   if (a.cost != b.cost)
@@ -225,6 +273,7 @@ DenseMatcher::DenseMatcher(const std::vector<const Heightfield*>& exemplars, con
     }
     noise_.emplace_back(ex);
     exemplarSize_.push_back({ ex.width, ex.height });
+    const Heightfield smooth = landformImage(ex, P);
     for (int v = 0; v < kVariantCount; ++v)
     {
       if (!o.variants[static_cast<std::size_t>(v)])
@@ -244,37 +293,11 @@ DenseMatcher::DenseMatcher(const std::vector<const Heightfield*>& exemplars, con
       r.coarseWidth = r.full.width / f;
       r.coarseHeight = r.full.height / f;
       r.coarseStride = r.coarseWidth + 16;
-      r.coarse.assign(
-        static_cast<std::size_t>(r.coarseStride) * static_cast<std::size_t>(r.coarseHeight), 0.0f);
-      std::vector<std::uint8_t> blockValid(
-        static_cast<std::size_t>(r.coarseWidth) * static_cast<std::size_t>(r.coarseHeight), 0);
-      for (int b = 0; b < r.coarseHeight; ++b)
-      {
-        for (int a = 0; a < r.coarseWidth; ++a)
-        {
-          double s = 0.0;
-          bool ok = true;
-          for (int j = b * f; j < (b + 1) * f && ok; ++j)
-          {
-            for (int i = a * f; i < (a + 1) * f; ++i)
-            {
-              if (!r.full.isValid(i, j))
-              {
-                ok = false;
-                break;
-              }
-              s += r.full.at(i, j);
-            }
-          }
-          if (ok)
-          {
-            r.coarse[static_cast<std::size_t>(b) * static_cast<std::size_t>(r.coarseStride) +
-              static_cast<std::size_t>(a)] = static_cast<float>(s / (f * f));
-            blockValid[static_cast<std::size_t>(b) * static_cast<std::size_t>(r.coarseWidth) +
-              static_cast<std::size_t>(a)] = 1;
-          }
-        }
-      }
+      std::vector<std::uint8_t> blockValid;
+      r.coarse = blockMeans(r.full, f, r.coarseWidth, r.coarseHeight, r.coarseStride, &blockValid);
+      r.landform = padRight(orientExemplar(smooth, variant(v)), kRowLanes);
+      r.landformBlocks =
+        blockMeans(r.landform, f, r.coarseWidth, r.coarseHeight, r.coarseStride, nullptr);
       r.pairs.assign(r.coarse.size(), 0.0f);
       for (int b = 0; b + 1 < r.coarseHeight; ++b)
       {
@@ -374,6 +397,29 @@ CoarseQuery DenseMatcher::coarseQuery(const DenseQuery& q) const
       }
     }
   }
+  // Landform terms weighted so that, as in refine(), they count against the
+  // overlap as landformWeight against overlapWeight (the overlap's block sums
+  // approximate known / f^2 times its mean; with nothing known any scale will do).
+  const double known =
+    static_cast<double>(std::count(q.known.begin(), q.known.end(), std::uint8_t{ 1 }));
+  const double scale = options_.landformWeight / options_.overlapWeight *
+    (known > 0.0 ? known : static_cast<double>(P) * P) /
+    (static_cast<double>(f) * f * kLandformSamples);
+  for (int b = 0; b < kLandformSide; ++b)
+  {
+    for (int a = 0; a < kLandformSide; ++a)
+    {
+      const std::size_t k = static_cast<std::size_t>(b * kLandformSide + a);
+      const float w = q.landform.weights[k];
+      if (w > 0.0f)
+      {
+        c.landform.add(landformCell(b, P, f) / f,
+          landformCell(a, P, f) / f,
+          q.landform.heights[k],
+          static_cast<float>(w * scale));
+      }
+    }
+  }
   return c;
 }
 
@@ -401,7 +447,9 @@ std::vector<std::vector<float>> DenseMatcher::coarseSsd(const CoarseTerms& q,
   {
     const auto [o, y] = tasks[static_cast<std::size_t>(t)];
     const Oriented& r = oriented_[o];
-    const std::vector<float>& pixels = image == CoarseImage::Blocks ? r.coarse : r.pairs;
+    const std::vector<float>& pixels = image == CoarseImage::Blocks ? r.coarse
+      : image == CoarseImage::Pairs                                 ? r.pairs
+                                                                    : r.landformBlocks;
     std::vector<float>& costs = out[o];
     // Sixteen neighbouring offsets at a time, like the OpenCL kernel (DenseSsd.cl),
     // skipping runs of offsets that are all invalid or not asked for.
@@ -428,9 +476,31 @@ std::vector<std::vector<float>> DenseMatcher::coarseSsd(const CoarseTerms& q,
   return out;
 }
 
+namespace
+{
+
+// a[o][k] += b[o][k] (b may be empty: nothing to add).
+void addCosts(std::vector<std::vector<float>>& a, const std::vector<std::vector<float>>& b)
+{
+  for (std::size_t o = 0; o < a.size() && o < b.size(); ++o)
+  {
+    for (std::size_t k = 0; k < a[o].size(); ++k)
+    {
+      a[o][k] += b[o][k];
+    }
+  }
+}
+
+} // namespace
+
 std::vector<std::vector<float>> DenseMatcher::coarseCosts(const CoarseQuery& q) const
 {
-  return coarseSsd(q.terms, CoarseImage::Blocks);
+  std::vector<std::vector<float>> costs = coarseSsd(q.terms, CoarseImage::Blocks);
+  if (!q.landform.empty())
+  {
+    addCosts(costs, coarseSsd(q.landform, CoarseImage::Landform));
+  }
+  return costs;
 }
 
 std::size_t DenseMatcher::headSize() const
@@ -441,11 +511,19 @@ std::size_t DenseMatcher::headSize() const
 std::vector<std::vector<float>> DenseMatcher::prunedCoarseCosts(const CoarseQuery& q,
   const CoarseSsdFunction& ssd) const
 {
+  // The landform terms are few: computed everywhere and added to both the
+  // bound and the full sums, the bound stays a lower bound.
+  const std::vector<std::vector<float>> landform = q.landform.empty()
+    ? std::vector<std::vector<float>>()
+    : ssd(q.landform, CoarseImage::Landform, nullptr);
   if (q.bound.empty() || q.terms.empty())
   {
-    return ssd(q.terms, CoarseImage::Blocks, nullptr);
+    std::vector<std::vector<float>> costs = ssd(q.terms, CoarseImage::Blocks, nullptr);
+    addCosts(costs, landform);
+    return costs;
   }
-  const std::vector<std::vector<float>> bound = ssd(q.bound, CoarseImage::Pairs, nullptr);
+  std::vector<std::vector<float>> bound = ssd(q.bound, CoarseImage::Pairs, nullptr);
+  addCosts(bound, landform);
   std::vector<std::vector<std::uint8_t>> runs(oriented_.size());
   const std::size_t head = headSize();
   const long orientedCount = static_cast<long>(oriented_.size());
@@ -467,12 +545,14 @@ std::vector<std::vector<float>> DenseMatcher::prunedCoarseCosts(const CoarseQuer
     float threshold = 0.0f;
     for (std::size_t idx : best)
     {
+      const float extra = landform.empty() ? 0.0f : landform[o][idx];
       threshold = std::max(threshold,
         offsetSsd(q.terms,
           r.coarse,
           r.coarseStride,
           static_cast<int>(idx % nx),
-          static_cast<int>(idx / nx)));
+          static_cast<int>(idx / nx)) +
+          extra);
     }
     threshold = threshold * (1.0f + 1e-3f) + 1e-30f;
     const std::size_t groups = (nx + 15) / 16;
@@ -491,7 +571,9 @@ std::vector<std::vector<float>> DenseMatcher::prunedCoarseCosts(const CoarseQuer
       }
     }
   }
-  return ssd(q.terms, CoarseImage::Blocks, &runs);
+  std::vector<std::vector<float>> costs = ssd(q.terms, CoarseImage::Blocks, &runs);
+  addCosts(costs, landform);
+  return costs;
 }
 
 TSYNTH_VECTOR_CLONES void DenseMatcher::overlapRow(const std::vector<int>& cells,
@@ -525,11 +607,53 @@ TSYNTH_VECTOR_CLONES void DenseMatcher::overlapRow(const std::vector<int>& cells
   }
 }
 
+DenseMatcher::LandformCells DenseMatcher::landformCells(const DenseQuery& q, int stride) const
+{
+  const int P = options_.patchSize;
+  const int f = std::max(1, options_.coarseFactor);
+  LandformCells cells;
+  for (int b = 0; b < kLandformSide; ++b)
+  {
+    for (int a = 0; a < kLandformSide; ++a)
+    {
+      const std::size_t k = static_cast<std::size_t>(b * kLandformSide + a);
+      if (q.landform.weights[k] > 0.0f)
+      {
+        cells.offset.push_back(landformCell(b, P, f) * stride + landformCell(a, P, f));
+        cells.height.push_back(q.landform.heights[k]);
+        cells.weight.push_back(q.landform.weights[k]);
+      }
+    }
+  }
+  return cells;
+}
+
+double DenseMatcher::landformMisfit(const LandformCells& cells, std::size_t o, int x, int y) const
+{
+  const Oriented& r = oriented_[o];
+  const float* base = r.landform.z.data() + r.landform.index(x, y);
+  double sum = 0.0;
+  for (std::size_t k = 0; k < cells.offset.size(); ++k)
+  {
+    const double e = cells.height[k] - base[cells.offset[k]];
+    sum += cells.weight[k] * e * e;
+  }
+  return sum;
+}
+
+float DenseMatcher::combined(float overlap, double landformSquares) const
+{
+  return static_cast<float>(options_.overlapWeight * overlap +
+    options_.landformWeight * landformSquares / (kLandformSamples * heightScale_ * heightScale_));
+}
+
 DenseMatch DenseMatcher::describe(const DenseQuery& q,
   std::size_t o,
   int x,
   int y,
-  float overlap) const
+  float overlap,
+  double landformSquares,
+  double landformWeight) const
 {
   const Oriented& r = oriented_[o];
   const int P = options_.patchSize;
@@ -546,8 +670,11 @@ DenseMatch DenseMatcher::describe(const DenseQuery& q,
   const auto& size = exemplarSize_[static_cast<std::size_t>(r.exemplar)];
   match.centreX = 0.5 * (size[0] - 1) + su;
   match.centreY = 0.5 * (size[1] - 1) + sv;
-  match.overlap = overlap;
   const double scale2 = heightScale_ * heightScale_;
+  match.overlap = overlap;
+  match.landform = static_cast<float>(landformSquares / (kLandformSamples * scale2));
+  match.landformRms =
+    landformWeight > 0.0 ? static_cast<float>(std::sqrt(landformSquares / landformWeight)) : 0.0f;
   const auto nv =
     noise_[static_cast<std::size_t>(r.exemplar)].window(match.centreX, match.centreY, P);
   double cn = 0.0;
@@ -557,7 +684,7 @@ DenseMatch DenseMatcher::describe(const DenseQuery& q,
       (q.noise[static_cast<std::size_t>(l)] - nv[static_cast<std::size_t>(l)]) / scale2;
     cn += d * d;
   }
-  match.cost = static_cast<float>(options_.overlapWeight * overlap + options_.noiseWeight * cn);
+  match.cost = static_cast<float>(combined(overlap, landformSquares) + options_.noiseWeight * cn);
   return match;
 }
 
@@ -695,7 +822,11 @@ std::vector<DenseMatch> DenseMatcher::refine(const DenseQuery& q,
     // Runs of kRowLanes offsets must stay inside the (padded) image.
     const int xa = std::max(0, seed.cx * f - reach);
     const int xb = std::min(nx - kRowLanes, seed.cx * f + reach);
+    const LandformCells samples = landformCells(q, r.landform.width);
+    const double sampleWeight = std::accumulate(samples.weight.begin(), samples.weight.end(), 0.0);
     float best = kInf;
+    float bestOverlap = 0.0f;
+    double bestLandform = 0.0;
     int bx = -1;
     int by = -1;
     for (int y = std::max(0, seed.cy * f - reach); y <= std::min(ny - 1, seed.cy * f + reach); ++y)
@@ -707,18 +838,26 @@ std::vector<DenseMatch> DenseMatcher::refine(const DenseQuery& q,
         for (int x = xs; x < std::min(xs + kRowLanes, xb + 1); ++x)
         {
           if (r.fullValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) +
-                static_cast<std::size_t>(x)] != 0 &&
-            v[x - xs] < best)
+                static_cast<std::size_t>(x)] == 0)
           {
-            best = v[x - xs];
+            continue;
+          }
+          const double l = landformMisfit(samples, seed.oriented, x, y);
+          const float c = combined(v[x - xs], l);
+          if (c < best)
+          {
+            best = c;
+            bestOverlap = v[x - xs];
+            bestLandform = l;
             bx = x;
             by = y;
           }
         }
       }
     }
-    found[static_cast<std::size_t>(n)] = bx >= 0 ? describe(q, seed.oriented, bx, by, best)
-                                                 : DenseMatch{ 0, 0, 0, 0, 0.0, 0.0, kInf, kInf };
+    found[static_cast<std::size_t>(n)] = bx >= 0
+      ? describe(q, seed.oriented, bx, by, bestOverlap, bestLandform, sampleWeight)
+      : DenseMatch{ 0, 0, 0, 0, 0.0, 0.0, kInf, kInf, kInf, kInf };
   }
   std::vector<DenseMatch> all;
   for (const DenseMatch& m : found)
@@ -765,6 +904,8 @@ std::vector<DenseMatch> DenseMatcher::bruteForce(const DenseQuery& q, std::size_
     std::vector<int> cells;
     std::vector<float> heights;
     knownCells(q, P, r.full.width, cells, heights);
+    const LandformCells samples = landformCells(q, r.landform.width);
+    const double sampleWeight = std::accumulate(samples.weight.begin(), samples.weight.end(), 0.0);
 #pragma omp parallel for schedule(dynamic)
     for (int y = 0; y < ny; ++y)
     {
@@ -782,7 +923,8 @@ std::vector<DenseMatch> DenseMatcher::bruteForce(const DenseQuery& q, std::size_
           {
             continue;
           }
-          const DenseMatch m = describe(q, o, x, y, v[x - xs]);
+          const DenseMatch m =
+            describe(q, o, x, y, v[x - xs], landformMisfit(samples, o, x, y), sampleWeight);
           if (better(m, best))
           {
             best = m;

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "LandformTerm.h"
 #include "NoiseVariance.h"
 #include "Orientation.h"
 
@@ -31,6 +32,10 @@ struct DenseOptions
   int refineTotal = 32;        // ... of which this many (the best overall) are refined
   double overlapWeight = 10.0; // a_o (Tasse's non-feature weights)
   double noiseWeight = 0.0001; // a_n
+  // a_l: the landform term (LandformTerm.h) against the overlap. Equal weights
+  // make a metre of large-scale misfit on the still-empty part of a window cost
+  // as much as a metre of misfit on what is already there.
+  double landformWeight = 10.0;
   std::array<bool, kVariantCount>
     variants{ true, true, true, true, true, true, true, true, true, true };
 };
@@ -43,8 +48,10 @@ struct DenseMatch
   int y = 0;
   double centreX = 0.0; // window centre in the exemplar's own cells
   double centreY = 0.0;
-  float overlap = 0.0f; // mean squared difference over known cells / heightScale^2
-  float cost = 0.0f;    // overlapWeight * overlap + noiseWeight * noise term
+  float overlap = 0.0f;     // mean squared difference over known cells / heightScale^2
+  float landform = 0.0f;    // weighted mean squared landform misfit / heightScale^2
+  float landformRms = 0.0f; // root mean square landform misfit per unit of sample weight, m
+  float cost = 0.0f; // overlapWeight * overlap + landformWeight * landform + noiseWeight * noise
 };
 
 // The target of a dense query: a patch-sized window of heights (row-major, row
@@ -55,6 +62,9 @@ struct DenseQuery
   std::vector<float> heights;
   std::vector<std::uint8_t> known;
   std::array<float, kNoiseLevels> noise{};
+  // The low-passed target at the landform samples of the window, with its
+  // confidence (empty weights: no landform term).
+  LandformQuery landform;
 };
 
 // Terms of a coarse weighted SSD: blocks (row, column) of the query's coarse
@@ -81,13 +91,17 @@ struct CoarseQuery
   // group >= 4 w (mean d)^2, so this SSD is a lower bound of the one over
   // `terms` at every offset, for a quarter of the work.
   CoarseTerms bound;
+  // The landform samples, read from the low-passed exemplar's block means, with
+  // weights that keep their share of the cost as in refine().
+  CoarseTerms landform;
 };
 
 // Which image of an oriented exemplar a coarse SSD reads.
 enum class CoarseImage
 {
-  Blocks, // f x f block means
-  Pairs   // means of 2 x 2 blocks
+  Blocks,  // f x f block means
+  Pairs,   // means of 2 x 2 blocks
+  Landform // f x f block means of the low-passed exemplar
 };
 
 class DenseMatcher
@@ -106,6 +120,8 @@ public:
     int coarseStride = 0;      // row length, padded so 16 offsets can be read at once
     std::vector<float> coarse; // coarseHeight x coarseStride block means (0 where invalid)
     std::vector<float> pairs;  // same layout: mean of the 2 x 2 blocks from (a, b) on
+    Heightfield landform;      // the low-passed exemplar (LandformTerm.h), laid out as `full`
+    std::vector<float> landformBlocks;     // its block means, laid out as `coarse`
     std::vector<std::uint8_t> coarseValid; // per coarse offset: whole window valid
     std::vector<std::uint8_t> groupValid;  // per run of 16 coarse offsets: any of them valid
     std::vector<std::uint8_t> fullValid;   // per full offset: whole window valid
@@ -124,7 +140,7 @@ public:
   std::vector<std::vector<float>> coarseSsd(const CoarseTerms& terms,
     CoarseImage image,
     const std::vector<std::vector<std::uint8_t>>* runs = nullptr) const;
-  // Every offset of every oriented exemplar.
+  // Every offset of every oriented exemplar (overlap and landform terms).
   std::vector<std::vector<float>> coarseCosts(const CoarseQuery& query) const;
   // What refine() needs, exactly, for far less work: the query.bound SSD (a
   // quarter of the terms) everywhere; the full SSD at its best headSize()
@@ -152,14 +168,32 @@ public:
 
 private:
   // Mean squared difference over the known cells (listed as cell index and
-  // height) at offsets (x .. x + kRowLanes - 1, y).
+  // height) at offsets (x .. x + kRowLanes - 1, y), over heightScale^2.
   void overlapRow(const std::vector<int>& cells,
     const std::vector<float>& heights,
     std::size_t o,
     int x,
     int y,
     float* out) const;
-  DenseMatch describe(const DenseQuery& query, std::size_t o, int x, int y, float overlap) const;
+  // The landform samples as offsets into an oriented exemplar's rows, and
+  // their target heights and weights (samples of zero weight left out).
+  struct LandformCells
+  {
+    std::vector<int> offset;
+    std::vector<double> height, weight;
+  };
+  LandformCells landformCells(const DenseQuery& query, int stride) const;
+  // Sum of weight * misfit^2 at the landform samples at offset (x, y), m^2.
+  double landformMisfit(const LandformCells& cells, std::size_t o, int x, int y) const;
+  // overlapWeight * overlap + landformWeight * landform (both over heightScale^2).
+  float combined(float overlap, double landformSquares) const;
+  DenseMatch describe(const DenseQuery& query,
+    std::size_t o,
+    int x,
+    int y,
+    float overlap,
+    double landformSquares,
+    double landformWeight) const;
 
   DenseOptions options_;
   double heightScale_ = 1.0;

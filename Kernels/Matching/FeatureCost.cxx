@@ -108,7 +108,26 @@ float candidateCost(const CandidatePool& pool,
       invScale2;
     cn += dn * dn;
   }
-  return best + static_cast<float>(w.noise) * cn + costOverlap;
+  // Landform: weighted squared differences, 16 lanes over samples k, k + 16.
+  const float* l = pool.landform.data() + c * kLandformStride;
+  float lwl2[16] = {};
+  for (int k = 0; k < kLandformStride; k += 16)
+  {
+    for (int m = 0; m < 16; ++m)
+    {
+      const float diff = q.landform[static_cast<std::size_t>(k + m)] - l[k + m];
+      const float wk = q.landformWeight[static_cast<std::size_t>(k + m)];
+      lwl2[m] += (wk * diff) * diff;
+    }
+  }
+  float swl2 = 0.0f;
+  for (int m = 0; m < 16; ++m)
+  {
+    swl2 += lwl2[m];
+  }
+  const float cl = swl2 / static_cast<float>(kLandformSamples) * invScale2;
+  return best + static_cast<float>(w.noise) * cn + costOverlap +
+    static_cast<float>(w.landform) * cl;
 }
 
 } // namespace

@@ -13,10 +13,13 @@ namespace tsynth
 
 struct MatchWeights
 {
-  double feature = 5.0;        // a_f: profiles along and across the arms
-  double angle = 2.0;          // a_a: arm directions
-  double noise = 0.001;        // a_n: multi-resolution noise variance
-  double overlap = 1.0;        // a_o: already-synthesised pixels
+  double feature = 5.0; // a_f: profiles along and across the arms
+  double angle = 2.0;   // a_a: arm directions
+  double noise = 0.001; // a_n: multi-resolution noise variance
+  double overlap = 1.0; // a_o: already-synthesised pixels
+  // a_l: the landform around the site (LandformTerm.h), weighted like the
+  // feature profiles: it is their context out to the patch's corners.
+  double landform = 5.0;
   bool verticalOffset = false; // compare overlap heights up to a constant offset
 };
 

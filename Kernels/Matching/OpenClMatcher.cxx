@@ -208,7 +208,7 @@ std::shared_ptr<OpenClDevice> OpenClDevice::create(const std::string& extraSourc
 
 struct OpenClFeatureScorer::Buffers
 {
-  DeviceBuffer kind, type, arms, angles, along, across, noise, descriptor, out;
+  DeviceBuffer kind, type, arms, angles, along, across, noise, descriptor, landform, out;
 };
 
 OpenClFeatureScorer::OpenClFeatureScorer(std::shared_ptr<OpenClDevice> device,
@@ -227,6 +227,7 @@ OpenClFeatureScorer::OpenClFeatureScorer(std::shared_ptr<OpenClDevice> device,
   buffers_->across = upload(ctx, pool.across);
   buffers_->noise = upload(ctx, pool.noise);
   buffers_->descriptor = upload(ctx, pool.descriptor);
+  buffers_->landform = upload(ctx, pool.landform);
   buffers_->out = DeviceBuffer(ctx, CL_MEM_WRITE_ONLY, size_ * sizeof(float), nullptr);
 }
 
@@ -248,6 +249,8 @@ std::vector<float> OpenClFeatureScorer::score(const FeatureQuery& q, const Match
   DeviceBuffer qb(r.context, CL_MEM_READ_ONLY, packed.size() * sizeof(float), packed.data());
   DeviceBuffer qd(r.context, CL_MEM_READ_ONLY, sizeof q.descriptor, q.descriptor.data());
   DeviceBuffer qw(r.context, CL_MEM_READ_ONLY, sizeof q.weight, q.weight.data());
+  DeviceBuffer ql(r.context, CL_MEM_READ_ONLY, sizeof q.landform, q.landform.data());
+  DeviceBuffer qlw(r.context, CL_MEM_READ_ONLY, sizeof q.landformWeight, q.landformWeight.data());
   cl_kernel k = r.featureCost;
   const Buffers& b = *buffers_;
   cl_uint a = 0;
@@ -259,9 +262,12 @@ std::vector<float> OpenClFeatureScorer::score(const FeatureQuery& q, const Match
     &b.across,
     &b.noise,
     &b.descriptor,
+    &b.landform,
     &qb,
     &qd,
-    &qw };
+    &qw,
+    &ql,
+    &qlw };
   for (const DeviceBuffer* buf : inputs)
   {
     const cl_mem m = buf->get();
@@ -275,6 +281,7 @@ std::vector<float> OpenClFeatureScorer::score(const FeatureQuery& q, const Match
     static_cast<float>(w.noise),
     static_cast<float>(w.overlap) } };
   setArg(k, a++, weights);
+  setArg(k, a++, static_cast<float>(w.landform));
   setArg(k, a++, static_cast<cl_int>(w.verticalOffset ? 1 : 0));
   setArg(k, a++, invScale2_);
   setArg(k, a++, static_cast<cl_uint>(size_));
@@ -292,7 +299,7 @@ std::vector<float> OpenClFeatureScorer::score(const FeatureQuery& q, const Match
 
 struct OpenClDenseScorer::Buffers
 {
-  DeviceBuffer blocks, pairs; // every oriented exemplar's image, concatenated
+  DeviceBuffer blocks, pairs, landform; // every oriented exemplar's image, concatenated
   DeviceBuffer rowOriented, rowY, imageStart, strides, offsetsX, runStart, outStart;
   DeviceBuffer output;
   std::vector<std::uint8_t> runs;     // groupValid of all, concatenated
@@ -309,7 +316,7 @@ OpenClDenseScorer::OpenClDenseScorer(std::shared_ptr<OpenClDevice> device,
 {
   cl_context ctx = device_->runtime().context;
   Buffers& b = *buffers_;
-  std::vector<float> blocks, pairs;
+  std::vector<float> blocks, pairs, landform;
   std::vector<int> rowOriented, rowY, imageStart, strides, offsetsX, runStart, outStart;
   for (std::size_t i = 0; i < matcher.oriented().size(); ++i)
   {
@@ -317,9 +324,11 @@ OpenClDenseScorer::OpenClDenseScorer(std::shared_ptr<OpenClDevice> device,
     imageStart.push_back(static_cast<int>(blocks.size()));
     blocks.insert(blocks.end(), o.coarse.begin(), o.coarse.end());
     pairs.insert(pairs.end(), o.pairs.begin(), o.pairs.end());
+    landform.insert(landform.end(), o.landformBlocks.begin(), o.landformBlocks.end());
     // One spare row: the last work-items read 16 offsets past the final one.
     blocks.resize(blocks.size() + static_cast<std::size_t>(o.coarseStride), 0.0f);
     pairs.resize(pairs.size() + static_cast<std::size_t>(o.coarseStride), 0.0f);
+    landform.resize(landform.size() + static_cast<std::size_t>(o.coarseStride), 0.0f);
     strides.push_back(o.coarseStride);
     offsetsX.push_back(o.offsetsX);
     runStart.push_back(static_cast<int>(b.runs.size()));
@@ -342,6 +351,7 @@ OpenClDenseScorer::OpenClDenseScorer(std::shared_ptr<OpenClDevice> device,
   b.rowCount = rowY.size();
   b.blocks = upload(ctx, blocks);
   b.pairs = upload(ctx, pairs);
+  b.landform = upload(ctx, landform);
   b.rowOriented = upload(ctx, rowOriented);
   b.rowY = upload(ctx, rowY);
   b.imageStart = upload(ctx, imageStart);
@@ -357,7 +367,11 @@ OpenClDenseScorer::~OpenClDenseScorer() = default;
 
 std::vector<std::vector<float>> OpenClDenseScorer::coarseCosts(const CoarseQuery& q)
 {
-  return coarseSsd(q.terms, CoarseImage::Blocks, nullptr);
+  CoarseQuery unpruned = q;
+  unpruned.bound = {};
+  return matcher_.prunedCoarseCosts(unpruned,
+    [this](const CoarseTerms& t, CoarseImage i, const std::vector<std::vector<std::uint8_t>>* r)
+    { return coarseSsd(t, i, r); });
 }
 
 std::vector<std::vector<float>> OpenClDenseScorer::coarseSsd(const CoarseTerms& q,
@@ -402,7 +416,10 @@ std::vector<std::vector<float>> OpenClDenseScorer::coarseSsd(const CoarseTerms& 
     const DeviceBuffer weights = upload(r.context, q.weights);
     const DeviceBuffer runMask = upload(r.context, asked);
     cl_kernel k = r.coarseSsd;
-    const cl_mem args[] = { (image == CoarseImage::Blocks ? b.blocks : b.pairs).get(),
+    const DeviceBuffer& pixels = image == CoarseImage::Blocks ? b.blocks
+      : image == CoarseImage::Pairs                           ? b.pairs
+                                                              : b.landform;
+    const cl_mem args[] = { pixels.get(),
       b.rowOriented.get(),
       b.rowY.get(),
       b.imageStart.get(),

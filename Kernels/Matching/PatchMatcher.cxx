@@ -3,6 +3,7 @@
 #include "../Core/Error.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace tsynth
 {
@@ -22,6 +23,7 @@ PatchMatcher::PatchMatcher(const std::vector<const Heightfield*>& exemplars,
   dopt.patchSize = options.patchSize;
   dopt.coarseFactor = options.patchSize % options.coarseFactor == 0 ? options.coarseFactor : 1;
   dopt.variants = options.variants;
+  dopt.landformWeight = options.landformWeight;
   dense_ = std::make_unique<DenseMatcher>(exemplars, dopt);
 
   if (options.backend == Backend::Cpu)
@@ -113,6 +115,7 @@ std::vector<PatchCandidate> PatchMatcher::matchDense(const DenseQuery& window,
     c.centreX = m.centreX;
     c.centreY = m.centreY;
     c.cost = m.cost;
+    c.landformMisfit = m.landformRms;
     c.feature = false;
     out.push_back(c);
   }

@@ -21,6 +21,7 @@ struct MatcherOptions
   MatchWeights weights;
   std::size_t k = 8; // candidates kept per exemplar (feature) or in all (dense)
   int coarseFactor = 4;
+  double landformWeight = 10.0; // a_l of the dense search (DenseOptions)
   std::array<bool, kVariantCount>
     variants{ true, true, true, true, true, true, true, true, true, true };
 };
@@ -33,6 +34,8 @@ struct PatchCandidate
   double centreX = 0.0; // patch centre in the exemplar's cells
   double centreY = 0.0;
   float cost = 0.0f;
+  // Dense matches: root mean square landform misfit at the samples (m).
+  float landformMisfit = 0.0f;
   bool feature = true;       // false: from the dense (non-feature) search
   std::size_t poolIndex = 0; // feature matches only
 };

@@ -1,4 +1,6 @@
 set(TSYNTH_SYNTHESIS_SOURCES
+  Synthesis/Finishing.cxx
+  Synthesis/Landform.cxx
   Synthesis/Regions.cxx
   Synthesis/Synthesizer.cxx
   Synthesis/Target.cxx)

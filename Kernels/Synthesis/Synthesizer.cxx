@@ -1,8 +1,10 @@
 #include "Synthesizer.h"
 
 #include "../Core/Error.h"
+#include "../Core/Random.h"
+#include "../Distance/DistanceField.h"
 #include "../Features/Ppa.h"
-#include "../Merging/Poisson.h"
+#include "Finishing.h"
 
 #include <algorithm>
 #include <chrono>
@@ -22,9 +24,45 @@ using Clock = std::chrono::steady_clock;
 
 constexpr float kLineHalfWidth = 3.0f; // cells each side of a sketched line
 constexpr int kMaxAttempts = 4;        // placements tried at one fill site
-// Default shape scale, as a fraction of the patch (6 cells for 80-cell patches):
-// finer than the 8-cell flanks the fidelity metric tests a crest against.
-constexpr double kShapeFraction = 0.075;
+// Scale of the landform correction (during the synthesis and at its end), in
+// patches: relief coarser than a quarter patch is the landform's; the detail
+// within it is the patches' own.
+constexpr double kCorrectionScaleInPatches = 0.25;
+// Anchors every kAnchorEvery fill windows (two patches apart), where at most
+// this share of the window is filled and the target is at least this confident.
+constexpr std::size_t kAnchorEvery = 4;
+constexpr double kAnchorMaxFilled = 0.25;
+constexpr double kAnchorMinConfidence = 0.5;
+// The data term samples the target's slope every few cells: plenty for a mean.
+constexpr int kDataTermStride = 4;
+// Streams of the seed (Random.h): one per kind of decision.
+constexpr std::uint64_t kStreamGrid = 1;
+constexpr std::uint64_t kStreamFillOrder = 2;
+constexpr std::uint64_t kStreamChoice = 3;
+constexpr std::uint64_t kStreamSites = 4;
+// Candidates compared per placement are fewer than this (it spaces the
+// seed's draws of different placements apart).
+constexpr std::size_t kMaxCandidates = 4096;
+// Candidates whose seam costs are within this share of each other are equally
+// good: the seed picks among them.
+constexpr double kNearTie = 0.1;
+// Where the target leaves the land free, the final correction only removes
+// drift coarser than this (in patches), toward the target's base level.
+constexpr double kDriftScaleInPatches = 2.0;
+// Valley carving fades out over this share of a patch beside the line.
+constexpr double kDrainageReachInPatches = 0.25;
+// Where the sketch leaves the land free the target still holds it, this
+// weakly, near the exemplars' level: otherwise patch after patch, each fitted
+// to the last, the land would wander off by kilometres.
+constexpr float kFreeLandWeight = 0.05f;
+// A patch's height leans towards the target on its empty part with this
+// weight per cell (times the confidence) against 1 per overlapping cell: enough
+// to stop drift along a line of patches, small enough that the seams the
+// merge has to absorb stay small.
+constexpr double kTargetPull = 1.0;
+// Overlap this small (a share of the window) says too little about a patch's
+// height: the target decides its vertical offset instead.
+constexpr double kMinOverlapForOffset = 0.05;
 
 double secondsSince(Clock::time_point t0)
 {
@@ -43,6 +81,10 @@ public:
     , out_(target.field.width, target.field.height, std::numeric_limits<float>::quiet_NaN())
     , filled_(out_.size(), 0)
     , noise_(target.field)
+    , lowTarget_(gaussianSmooth(target.field, landformSigma(o.patchSize)))
+    , confidence_(target.weight.size() == target.field.size()
+          ? target.weight
+          : std::vector<float>(target.field.size(), 1.0f))
   {
     out_.cellX = target.field.cellX;
     out_.cellY = target.field.cellY;
@@ -62,48 +104,44 @@ public:
     }
   }
 
-  // The patch-sized window of the output at (x0, y0): known cells, else the target.
+  // The patch-sized window of the output at (x0, y0): its known cells, and
+  // the low-passed target at the landform samples of the empty part. Heights
+  // are compared as they are, so a window whose known part has drifted from
+  // the target prefers patches that lead back to it.
   DenseQuery window(int x0, int y0) const
   {
     DenseQuery q;
     q.heights.assign(static_cast<std::size_t>(P_ * P_), 0.0f);
     q.known.assign(static_cast<std::size_t>(P_ * P_), 0);
-    std::size_t known = 0;
     for (int j = 0; j < P_; ++j)
     {
       for (int i = 0; i < P_; ++i)
       {
         const int x = x0 + i;
         const int y = y0 + j;
-        if (x < 0 || y < 0 || x >= out_.width || y >= out_.height)
+        if (x < 0 || y < 0 || x >= out_.width || y >= out_.height || filled_[out_.index(x, y)] == 0)
         {
           continue;
         }
         const std::size_t c = out_.index(x, y);
         const std::size_t k = static_cast<std::size_t>(j * P_ + i);
-        if (filled_[c] != 0)
-        {
-          q.heights[k] = out_.z[c];
-          q.known[k] = 1;
-          ++known;
-        }
+        q.heights[k] = out_.z[c];
+        q.known[k] = 1;
       }
     }
-    if (known == 0)
+    const int f = matcher_.dense().options().coarseFactor;
+    for (int b = 0; b < kLandformSide; ++b)
     {
-      // Nothing synthesised here yet: match the target's shape instead.
-      for (int j = 0; j < P_; ++j)
+      for (int a = 0; a < kLandformSide; ++a)
       {
-        for (int i = 0; i < P_; ++i)
+        const int x = x0 + landformCell(a, P_, f);
+        const int y = y0 + landformCell(b, P_, f);
+        const std::size_t k = static_cast<std::size_t>(b * kLandformSide + a);
+        if (x >= 0 && y >= 0 && x < out_.width && y < out_.height &&
+          filled_[out_.index(x, y)] == 0 && lowTarget_.isValid(x, y))
         {
-          const int x = x0 + i;
-          const int y = y0 + j;
-          if (x >= 0 && y >= 0 && x < out_.width && y < out_.height && target_.field.isValid(x, y))
-          {
-            const std::size_t k = static_cast<std::size_t>(j * P_ + i);
-            q.heights[k] = target_.field.at(x, y);
-            q.known[k] = 1;
-          }
+          q.landform.heights[k] = lowTarget_.at(x, y);
+          q.landform.weights[k] = std::max(kFreeLandWeight, confidence_[out_.index(x, y)]);
         }
       }
     }
@@ -155,8 +193,11 @@ public:
   // Shift to fit what the patch overlaps (or, with no overlap, the target).
   float fitOffset(const Heightfield& patch, int x0, int y0) const
   {
-    double sOverlap = 0.0;
-    double nOverlap = 0.0;
+    // Least squares over the overlap (weight 1 per cell) and, on the empty
+    // part, the low-passed target (weight kTargetPull times its confidence):
+    // the patch continues what is there, leaning back towards the target.
+    double sum = 0.0;
+    double weight = 0.0;
     double sTarget = 0.0;
     double nTarget = 0.0;
     for (int j = 0; j < P_; ++j)
@@ -172,19 +213,25 @@ public:
         const std::size_t c = out_.index(x, y);
         if (filled_[c] != 0)
         {
-          sOverlap += static_cast<double>(out_.z[c]) - patch.at(i, j);
-          nOverlap += 1.0;
+          sum += static_cast<double>(out_.z[c]) - patch.at(i, j);
+          weight += 1.0;
         }
-        if (target_.field.isValid(x, y))
+        else if (lowTarget_.isValid(c))
         {
-          sTarget += static_cast<double>(target_.field.at(x, y)) - patch.at(i, j);
+          const double w = kTargetPull * confidence_[c];
+          sum += w * (static_cast<double>(lowTarget_.z[c]) - patch.at(i, j));
+          weight += w;
+        }
+        if (lowTarget_.isValid(c))
+        {
+          sTarget += static_cast<double>(lowTarget_.z[c]) - patch.at(i, j);
           nTarget += 1.0;
         }
       }
     }
-    if (nOverlap >= 0.05 * P_ * P_)
+    if (weight >= kMinOverlapForOffset * P_ * P_)
     {
-      return static_cast<float>(sOverlap / nOverlap);
+      return static_cast<float>(sum / weight);
     }
     return nTarget > 0 ? static_cast<float>(sTarget / nTarget) : 0.0f;
   }
@@ -365,8 +412,13 @@ public:
     {
       // Anti-repetition: a source already used nearby costs more, so the same
       // exemplar patch is not copied over and over.
-      const double seam = (dry[c].overlapCells > 0 ? dry[c].normalisedCost : 0.0) +
-        o_.repetitionPenalty * reuses(candidates[c]);
+      // Near-ties: the seed's jitter of up to kNearTie decides.
+      const double jitter = 1.0 +
+        kNearTie *
+          seededUniform(o_.seed, kStreamChoice, result_.placements.size() * kMaxCandidates + c);
+      const double seam = ((dry[c].overlapCells > 0 ? dry[c].normalisedCost : 0.0) +
+                            o_.repetitionPenalty * reuses(candidates[c])) *
+        jitter;
       if (seam < bestSeam)
       {
         bestSeam = seam;
@@ -409,6 +461,7 @@ public:
     p.x0 = x0;
     p.y0 = y0;
     p.matchCost = chosen.cost;
+    p.landformMisfit = chosen.landformMisfit;
     p.seamCost = bestSeam;
     p.offset = bestOffset;
     result_.placements.push_back(p);
@@ -424,7 +477,8 @@ public:
       const FeatureSite& site = sites[s];
       const int x0 = static_cast<int>(std::lround(site.centre.x)) - P_ / 2;
       const int y0 = static_cast<int>(std::lround(site.centre.y)) - P_ / 2;
-      const FeatureQuery q = makeFeatureQuery(site, target_.field, noise_, &out_, &filled_, P_);
+      const FeatureQuery q = makeFeatureQuery(
+        site, target_.field, noise_, &out_, &filled_, P_, &lowTarget_, &confidence_);
       const DenseQuery fallback = window(x0, y0);
       place(allowed(
               matcher_.matchFeature(q, &fallback), x0, y0, o_.k * matcher_.pool().exemplars.size()),
@@ -436,137 +490,218 @@ public:
     }
   }
 
-  void fill()
+  // The fill's windows: a grid half a patch apart (its phase drawn from the
+  // seed), plus windows flush with the output's edges.
+  struct FillGrid
   {
-    const int w = out_.width;
-    const int h = out_.height;
-    const int step = std::max(1, P_ / 2);
-    std::vector<int> xs;
-    std::vector<int> ys;
-    for (int x = 0; x + P_ < w; x += step)
-    {
-      xs.push_back(x);
-    }
-    xs.push_back(std::max(0, w - P_));
-    for (int y = 0; y + P_ < h; y += step)
-    {
-      ys.push_back(y);
-    }
-    ys.push_back(std::max(0, h - P_));
-    xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
-    ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
-    const std::size_t sites = xs.size() * ys.size();
+    std::vector<int> xs, ys;
+    std::size_t size() const { return xs.size() * ys.size(); }
+    int x0(std::size_t s) const { return xs[s % xs.size()]; }
+    int y0(std::size_t s) const { return ys[s / xs.size()]; }
+  };
 
-    // Data term: mean slope of the target in each window, scaled to 0..1.
-    std::vector<double> data(sites, 0.0);
-    double maxData = 0.0;
-    for (std::size_t s = 0; s < sites; ++s)
+  static std::vector<int> gridLine(int length, int patch, int phase)
+  {
+    const int step = std::max(1, patch / 2);
+    std::vector<int> v{ 0 };
+    for (int x = phase; x + patch < length; x += step)
     {
-      const int x0 = xs[s % xs.size()];
-      const int y0 = ys[s / xs.size()];
-      double g = 0.0;
-      for (int j = y0; j < std::min(h - 1, y0 + P_); j += 4)
+      v.push_back(x);
+    }
+    v.push_back(std::max(0, length - patch));
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    return v;
+  }
+
+  FillGrid fillGrid() const
+  {
+    const int step = std::max(1, P_ / 2);
+    FillGrid g;
+    g.xs =
+      gridLine(out_.width, P_, static_cast<int>(seededUniform(o_.seed, kStreamGrid, 0) * step));
+    g.ys =
+      gridLine(out_.height, P_, static_cast<int>(seededUniform(o_.seed, kStreamGrid, 1) * step));
+    return g;
+  }
+
+  // Data term: mean slope of the target in each window, scaled to 0..1.
+  std::vector<double> dataTerms(const FillGrid& g) const
+  {
+    std::vector<double> data(g.size(), 0.0);
+    const Heightfield& t = target_.field;
+    for (std::size_t s = 0; s < g.size(); ++s)
+    {
+      for (int j = g.y0(s); j < std::min(t.height - 1, g.y0(s) + P_); j += kDataTermStride)
       {
-        for (int i = x0; i < std::min(w - 1, x0 + P_); i += 4)
+        for (int i = g.x0(s); i < std::min(t.width - 1, g.x0(s) + P_); i += kDataTermStride)
         {
-          if (target_.field.isValid(i, j) && target_.field.isValid(i + 1, j) &&
-            target_.field.isValid(i, j + 1))
+          if (t.isValid(i, j) && t.isValid(i + 1, j) && t.isValid(i, j + 1))
           {
-            g += std::hypot((target_.field.at(i + 1, j) - target_.field.at(i, j)) / out_.cellX,
-              (target_.field.at(i, j + 1) - target_.field.at(i, j)) / out_.cellY);
+            data[s] += std::hypot(
+              (t.at(i + 1, j) - t.at(i, j)) / t.cellX, (t.at(i, j + 1) - t.at(i, j)) / t.cellY);
           }
         }
       }
-      data[s] = g;
-      maxData = std::max(maxData, g);
     }
+    const double top = *std::max_element(data.begin(), data.end());
     for (double& d : data)
     {
-      d = maxData > 0 ? d / maxData : 0.0;
+      d = top > 0 ? d / top : 0.0;
     }
-    auto stateOf = [&](std::size_t s, double& priority)
+    return data;
+  }
+
+  // Share of a window already filled (1 for a window wholly outside).
+  double filledShare(int x0, int y0) const
+  {
+    std::size_t known = 0;
+    std::size_t cells = 0;
+    for (int j = y0; j < std::min(out_.height, y0 + P_); ++j)
     {
-      const int x0 = xs[s % xs.size()];
-      const int y0 = ys[s / xs.size()];
-      std::size_t known = 0;
-      std::size_t cells = 0;
-      for (int j = y0; j < std::min(h, y0 + P_); ++j)
+      for (int i = x0; i < std::min(out_.width, x0 + P_); ++i)
       {
-        for (int i = x0; i < std::min(w, x0 + P_); ++i)
+        known += filled_[out_.index(i, j)];
+        ++cells;
+      }
+    }
+    return cells > 0 ? static_cast<double>(known) / static_cast<double>(cells) : 1.0;
+  }
+
+  double meanConfidence(int x0, int y0) const
+  {
+    double sum = 0.0;
+    std::size_t cells = 0;
+    for (int j = y0; j < std::min(out_.height, y0 + P_); ++j)
+    {
+      for (int i = x0; i < std::min(out_.width, x0 + P_); ++i)
+      {
+        sum += confidence_[out_.index(i, j)];
+        ++cells;
+      }
+    }
+    return cells > 0 ? sum / static_cast<double>(cells) : 0.0;
+  }
+
+  std::size_t fillWindow(int x0, int y0)
+  {
+    return place(
+      allowed(matcher_.matchDense(window(x0, y0), regionExemplars(x0, y0)), x0, y0, o_.fillK),
+      x0,
+      y0,
+      false);
+  }
+
+  // Anchors: before the fill spreads from the feature patches, lone patches
+  // matched to the landform alone are placed where the target is confident,
+  // two patches apart, so no chain of fill patches, each fitted to the one
+  // before, runs far enough to drift off the landform.
+  void placeAnchors(const FillGrid& g)
+  {
+    for (std::size_t by = kAnchorEvery / 2; by < g.ys.size(); by += kAnchorEvery)
+    {
+      for (std::size_t bx = kAnchorEvery / 2; bx < g.xs.size(); bx += kAnchorEvery)
+      {
+        const int x0 = g.xs[bx];
+        const int y0 = g.ys[by];
+        if (filledShare(x0, y0) <= kAnchorMaxFilled &&
+          meanConfidence(x0, y0) >= kAnchorMinConfidence)
         {
-          known += filled_[out_.index(i, j)];
-          ++cells;
+          fillWindow(x0, y0);
         }
       }
-      const double confidence =
-        cells > 0 ? static_cast<double>(known) / static_cast<double>(cells) : 1.0;
-      priority = confidence + (o_.fill == FillOrder::BestFirst ? data[s] : 0.0);
-      return known < cells; // still has empty cells
+    }
+  }
+
+  // The best-first fill: a max-heap of window priorities (confidence + data
+  // term; ties in the seed's order) with version stamps, so only the windows
+  // a merge touched are re-scored and nothing is re-sorted.
+  struct HeapEntry
+  {
+    double priority;
+    double tie;
+    std::size_t site;
+    int stamp;
+    bool operator<(const HeapEntry& o) const
+    {
+      return priority != o.priority ? priority < o.priority : tie < o.tie;
+    }
+  };
+
+  void fill()
+  {
+    const FillGrid g = fillGrid();
+    placeAnchors(g);
+    relevel();
+    const std::vector<double> data = dataTerms(g);
+    auto priorityOf = [&](std::size_t s, double& priority)
+    {
+      const double known = filledShare(g.x0(s), g.y0(s));
+      priority = known + (o_.fill == FillOrder::BestFirst ? data[s] : 0.0);
+      return known < 1.0; // still has empty cells
     };
-    // Max-heap of (priority, -site) with version stamps: only the sites a merge
-    // touched are re-scored, nothing is re-sorted.
-    using Entry = std::pair<double, long>;
-    std::priority_queue<Entry> heap;
-    std::vector<int> version(sites, 0);
-    std::vector<int> attempts(sites, 0);
-    std::vector<std::uint8_t> retired(sites, 0);
-    std::size_t open = 0;
-    for (std::size_t s = 0; s < sites; ++s)
+    std::priority_queue<HeapEntry> heap;
+    std::vector<int> version(g.size(), 0);
+    std::vector<int> attempts(g.size(), 0);
+    std::vector<std::uint8_t> retired(g.size(), 0);
+    auto push = [&](std::size_t s)
     {
       double p = 0.0;
-      if (stateOf(s, p))
+      if (retired[s] == 0 && priorityOf(s, p))
       {
-        heap.push({ p, -static_cast<long>(s) * 1024 - 0 });
-        ++open;
+        heap.push({ p, seededUniform(o_.seed, kStreamFillOrder, s), s, ++version[s] });
+        return true;
       }
+      return false;
+    };
+    std::size_t open = 0;
+    for (std::size_t s = 0; s < g.size(); ++s)
+    {
+      open += push(s) ? 1 : 0;
     }
     const std::size_t initial = std::max<std::size_t>(1, open);
     std::size_t done = 0;
     while (!heap.empty())
     {
-      const auto [priority, key] = heap.top();
+      const HeapEntry e = heap.top();
       heap.pop();
-      const std::size_t s = static_cast<std::size_t>((-key) / 1024);
-      const int stamp = static_cast<int>((-key) % 1024);
-      if (stamp != version[s] % 1024)
-      {
-        continue; // superseded by a newer score
-      }
       double now = 0.0;
-      if (retired[s] != 0 || !stateOf(s, now))
+      if (e.stamp != version[e.site] || retired[e.site] != 0 || !priorityOf(e.site, now))
       {
-        continue;
+        continue; // superseded by a newer score, or done
       }
-      const int x0 = xs[s % xs.size()];
-      const int y0 = ys[s / xs.size()];
       // A window whose empty cells no candidate can cover (they fall outside
       // every rotated exemplar's valid area) is retired, never retried forever.
-      const std::vector<PatchCandidate> candidates =
-        allowed(matcher_.matchDense(window(x0, y0), regionExemplars(x0, y0)), x0, y0, o_.fillK);
-      if (place(candidates, x0, y0, false) == 0 || ++attempts[s] >= kMaxAttempts)
+      if (fillWindow(g.x0(e.site), g.y0(e.site)) == 0 || ++attempts[e.site] >= kMaxAttempts)
       {
-        retired[s] = 1;
+        retired[e.site] = 1;
       }
       ++done;
-      // Re-score the sites whose windows this patch touched.
-      const std::size_t cx = s % xs.size();
-      const std::size_t cy = s / xs.size();
-      for (std::size_t by = cy > 2 ? cy - 2 : 0; by <= std::min(ys.size() - 1, cy + 2); ++by)
+      // Re-score the windows this patch touched.
+      const std::size_t cx = e.site % g.xs.size();
+      const std::size_t cy = e.site / g.xs.size();
+      for (std::size_t by = cy > 2 ? cy - 2 : 0; by <= std::min(g.ys.size() - 1, cy + 2); ++by)
       {
-        for (std::size_t bx = cx > 2 ? cx - 2 : 0; bx <= std::min(xs.size() - 1, cx + 2); ++bx)
+        for (std::size_t bx = cx > 2 ? cx - 2 : 0; bx <= std::min(g.xs.size() - 1, cx + 2); ++bx)
         {
-          const std::size_t t = by * xs.size() + bx;
-          double p = 0.0;
-          if (retired[t] == 0 && stateOf(t, p))
-          {
-            ++version[t];
-            heap.push({ p, -static_cast<long>(t) * 1024 - (version[t] % 1024) });
-          }
+          push(by * g.xs.size() + bx);
         }
       }
       report(0.4 + 0.6 * std::min(1.0, static_cast<double>(done) / static_cast<double>(initial)),
         "fill");
     }
+  }
+
+  // What is placed so far is pulled towards the target at the landform
+  // correction's scale, so what is placed next continues from the landform.
+  void relevel()
+  {
+    correctLandform(out_, target_.field, confidence_, correctionScale());
+  }
+
+  double correctionScale() const
+  {
+    return o_.correctionScale < 0.0 ? kCorrectionScaleInPatches * P_ : o_.correctionScale;
   }
 
   SynthesisResult finish()
@@ -587,127 +722,27 @@ public:
         " cells could not be filled from the exemplars and hold the target heights.");
     }
     normaliseMask(out_);
-    const double sigma = o_.shapeScale < 0.0 ? kShapeFraction * P_ : o_.shapeScale;
-    if (sigma > 0.0)
+    result_.patches = out_;
+    result_.finishing.landformCorrection =
+      correctLandform(out_, target_.field, confidence_, correctionScale());
+    // Free land: only the drift at the scale of several patches.
+    std::vector<float> free(confidence_.size());
+    std::transform(
+      confidence_.begin(), confidence_.end(), free.begin(), [](float w) { return 1.0f - w; });
+    correctLandform(out_, target_.field, free, kDriftScaleInPatches * P_);
+    if (o_.drainValleys)
     {
-      // Near the sketched lines only (weight falling off over a quarter patch),
-      // so the land between them keeps the exemplars' own large-scale relief.
-      const Heightfield lowOut = gaussianSmooth(out_, sigma);
-      const Heightfield lowTarget = gaussianSmooth(target_.field, sigma);
-      const std::vector<float> d = distanceTransform(
-        rasteriseChains(target_.graph, out_.width, out_.height), out_.width, out_.height);
-      const double reach = 0.25 * P_;
-      for (std::size_t c = 0; c < out_.size(); ++c)
-      {
-        if (out_.isValid(c) && lowTarget.isValid(c))
-        {
-          const double w =
-            target_.graph.chains.empty() ? 1.0 : std::exp(-0.5 * d[c] * d[c] / (reach * reach));
-          out_.z[c] += static_cast<float>(w * (lowTarget.z[c] - lowOut.z[c]));
-        }
-      }
+      DrainageOptions d;
+      d.reach = kDrainageReachInPatches * P_;
+      const DrainageReport r = drainValleys(out_, target_.downstream, d);
+      result_.finishing.valleyCells = r.cells;
+      result_.finishing.valleyCellsLowered = r.lowered;
+      result_.finishing.deepestValleyCut = r.largest;
+      result_.finishing.meanValleyCut = r.mean;
     }
-    meetConstraints();
+    meetConstraints(out_, target_.graph, P_);
     result_.terrain = std::move(out_);
     return std::move(result_);
-  }
-
-  // Height constraints (poly-line Elevation): the terrain is bent so the
-  // constrained lines sit exactly at their heights. The correction is harmonic
-  // between the lines and fades to zero a patch away (Tasse's final deformation).
-  void meetConstraints()
-  {
-    const int w = out_.width;
-    const int h = out_.height;
-    std::vector<double> correction(out_.size(), std::numeric_limits<double>::quiet_NaN());
-    std::vector<std::uint8_t> onLine(out_.size(), 0);
-    bool any = false;
-    for (const FeatureChain& c : target_.graph.chains)
-    {
-      if (c.constraint.size() != c.points.size())
-      {
-        continue;
-      }
-      // Heights along the chain: given values, linear in between, none past the ends.
-      std::vector<double> z(c.points.size(), std::numeric_limits<double>::quiet_NaN());
-      int last = -1;
-      for (std::size_t k = 0; k < c.points.size(); ++k)
-      {
-        if (std::isnan(c.constraint[k]))
-        {
-          continue;
-        }
-        z[k] = c.constraint[k];
-        if (last >= 0)
-        {
-          for (std::size_t m = static_cast<std::size_t>(last) + 1; m < k; ++m)
-          {
-            const double t = static_cast<double>(m - static_cast<std::size_t>(last)) /
-              static_cast<double>(k - static_cast<std::size_t>(last));
-            z[m] = (1 - t) * c.constraint[static_cast<std::size_t>(last)] + t * c.constraint[k];
-          }
-        }
-        last = static_cast<int>(k);
-      }
-      for (std::size_t k = 1; k < c.points.size(); ++k)
-      {
-        if (std::isnan(z[k - 1]) || std::isnan(z[k]))
-        {
-          continue;
-        }
-        const Point2& a = c.points[k - 1];
-        const Point2& b = c.points[k];
-        const int steps =
-          std::max(1, static_cast<int>(std::ceil(2.0 * std::hypot(b.x - a.x, b.y - a.y))));
-        for (int s = 0; s <= steps; ++s)
-        {
-          const double t = static_cast<double>(s) / steps;
-          const int i = static_cast<int>(std::lround(a.x + t * (b.x - a.x)));
-          const int j = static_cast<int>(std::lround(a.y + t * (b.y - a.y)));
-          if (i >= 0 && j >= 0 && i < w && j < h && out_.isValid(i, j))
-          {
-            const std::size_t cell = out_.index(i, j);
-            correction[cell] = (1 - t) * z[k - 1] + t * z[k] - out_.z[cell];
-            onLine[cell] = 1;
-            any = true;
-          }
-        }
-      }
-    }
-    if (!any)
-    {
-      return;
-    }
-    const std::vector<float> d = distanceTransform(onLine, w, h);
-    std::vector<std::uint8_t> unknown(out_.size(), 0);
-    for (std::size_t c = 0; c < out_.size(); ++c)
-    {
-      if (onLine[c] == 0)
-      {
-        if (d[c] < P_ && out_.isValid(c))
-        {
-          unknown[c] = 1;
-          correction[c] = 0.0;
-        }
-        else
-        {
-          correction[c] = 0.0; // Dirichlet: no change a patch away
-        }
-      }
-    }
-    std::vector<double> zero(out_.size(), 0.0);
-    MaskedPoissonSolver solver;
-    PoissonOptions po;
-    po.tolerance = 1e-6;
-    solver.solveLaplacian(
-      w, h, out_.cellX, out_.cellY, unknown.data(), zero.data(), correction.data(), po);
-    for (std::size_t c = 0; c < out_.size(); ++c)
-    {
-      if (out_.isValid(c) && std::isfinite(correction[c]))
-      {
-        out_.z[c] = static_cast<float>(out_.z[c] + correction[c]);
-      }
-    }
   }
 
   void report(double fraction, const char* stage) const
@@ -722,7 +757,12 @@ private:
   // Breadth-first: each node, then the path points of its not yet visited chains.
   std::vector<FeatureSite> orderedSites() const
   {
-    const std::vector<FeatureSite> all = featureSites(target_.graph, P_, 0.5 * P_);
+    std::vector<double> phases(target_.graph.chains.size());
+    for (std::size_t c = 0; c < phases.size(); ++c)
+    {
+      phases[c] = seededUniform(o_.seed, kStreamSites, c);
+    }
+    const std::vector<FeatureSite> all = featureSites(target_.graph, P_, 0.5 * P_, &phases);
     std::vector<std::vector<std::size_t>> pathsOfChain(target_.graph.chains.size());
     std::vector<std::size_t> siteOfNode(
       target_.graph.nodes.size(), std::numeric_limits<std::size_t>::max());
@@ -775,6 +815,8 @@ private:
   std::vector<std::uint8_t> filled_;
   std::vector<std::uint8_t> line_;
   NoiseVariance noise_;
+  Heightfield lowTarget_;         // the target through the landform term's low-pass
+  std::vector<float> confidence_; // the target's confidence per cell
   // One per OpenMP thread.
   std::vector<PatchMerger> mergers_ =
     std::vector<PatchMerger>(static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
@@ -835,6 +877,7 @@ SynthesisResult synthesize(const SynthesisTarget& target,
   state.report(0.1, "setup");
   t0 = Clock::now();
   state.placeFeatures();
+  state.relevel();
   const double features = secondsSince(t0);
   t0 = Clock::now();
   state.fill();

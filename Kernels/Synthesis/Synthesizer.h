@@ -35,12 +35,16 @@ struct SynthesisOptions
   // Added to a candidate's seam cost (per seam edge) for every earlier placement
   // that took a source within half a patch of it: discourages visible repeats.
   double repetitionPenalty = 0.5;
-  // Shape from the target near the sketched lines: there, the output's relief
-  // coarser than this Gaussian sigma (cells) is replaced by the target's and the
-  // exemplars' finer detail kept (the role of Tasse's final deformation); the
-  // correction fades out over a quarter patch from the lines. <0: 0.075 patch
-  // (6 cells for 80-cell patches); 0: off.
-  double shapeScale = -1.0;
+  // The final, gentle correction (Tasse's final deformation): the output's
+  // relief coarser than this Gaussian sigma (cells) is pulled towards the
+  // target's, as far as the target is confident. The landforms' cross-sections
+  // are finer and stay the patches' own. <0: half a patch; 0: off.
+  double correctionScale = -1.0;
+  // Sketched valleys are made to drain: floors descend to their outlets and a
+  // channel runs along them (Finishing.h).
+  bool drainValleys = true;
+  // Seeds every arbitrary choice; the same seed gives the same bits on every backend.
+  std::uint64_t seed = 0;
   // Style regions (Zhou's Middle-earth): a label per output cell (row 0 south;
   // empty = one region) and, per label, the exemplars that may serve it (a
   // label missing from the map may use every exemplar).
@@ -61,8 +65,19 @@ struct Placement
   int x0 = 0; // patch's lower-left cell in the output
   int y0 = 0;
   float matchCost = 0.0f;
-  double seamCost = 0.0; // graph-cut cost per seam edge
-  float offset = 0.0f;   // vertical shift applied, metres
+  float landformMisfit = 0.0f; // fill placements: rms landform misfit at the samples, m
+  double seamCost = 0.0;       // graph-cut cost per seam edge
+  float offset = 0.0f;         // vertical shift applied, metres
+};
+
+// What the final steps changed, for reports.
+struct FinishingReport
+{
+  double landformCorrection = 0.0; // largest change of the landform correction, m
+  std::size_t valleyCells = 0;     // sketched valley line cells
+  std::size_t valleyCellsLowered = 0;
+  double deepestValleyCut = 0.0; // m
+  double meanValleyCut = 0.0;    // m, over the valley line cells
 };
 
 struct SynthesisTimings
@@ -81,6 +96,9 @@ struct SynthesisResult
   std::vector<float> matchCost;   // match cost of the placement that wrote each cell
   std::vector<Placement> placements;
   SynthesisTimings timings;
+  FinishingReport finishing;
+  // The terrain as the patches made it, before the final corrections.
+  Heightfield patches;
   std::vector<std::string> warnings;
   std::string backend;
 };

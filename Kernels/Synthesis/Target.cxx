@@ -1,6 +1,9 @@
 #include "Target.h"
 
 #include "../Core/Error.h"
+#include "../Distance/DistanceField.h"
+#include "../Features/Ppa.h"
+#include "../Features/Profiles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,6 +13,12 @@ namespace tsynth
 {
 namespace
 {
+
+// A grey sketch's background leaves out cells this close to its strokes (in
+// patches: 5 cells for 80-cell patches, wider than a drawn stroke's half width)
+// and is smoothed over a quarter patch.
+constexpr double kStrokeClearanceInPatches = 1.0 / 16.0;
+constexpr double kBackgroundSigmaInPatches = 0.25;
 
 double percentile(std::vector<float> v, double p)
 {
@@ -21,63 +30,6 @@ double percentile(std::vector<float> v, double p)
     std::min(v.size() - 1, static_cast<std::size_t>(p * static_cast<double>(v.size() - 1)));
   std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
   return v[k];
-}
-
-// One dimension of the squared distance transform (lower envelope of parabolas).
-void transform1d(const std::vector<float>& f, std::vector<float>& d, int n)
-{
-  std::vector<int> v(static_cast<std::size_t>(n));
-  std::vector<float> z(static_cast<std::size_t>(n + 1));
-  const float inf = std::numeric_limits<float>::infinity();
-  int k = -1;
-  for (int q = 0; q < n; ++q)
-  {
-    if (!(f[static_cast<std::size_t>(q)] < inf))
-    {
-      continue;
-    }
-    while (k >= 0)
-    {
-      const int p = v[static_cast<std::size_t>(k)];
-      const float s = ((f[static_cast<std::size_t>(q)] + static_cast<float>(q) * q) -
-                        (f[static_cast<std::size_t>(p)] + static_cast<float>(p) * p)) /
-        (2.0f * static_cast<float>(q - p));
-      if (s <= z[static_cast<std::size_t>(k)])
-      {
-        --k;
-      }
-      else
-      {
-        break;
-      }
-    }
-    ++k;
-    v[static_cast<std::size_t>(k)] = q;
-    z[static_cast<std::size_t>(k)] = k == 0
-      ? -inf
-      : ((f[static_cast<std::size_t>(q)] + static_cast<float>(q) * q) -
-          (f[static_cast<std::size_t>(v[static_cast<std::size_t>(k - 1)])] +
-            static_cast<float>(v[static_cast<std::size_t>(k - 1)]) *
-              v[static_cast<std::size_t>(k - 1)])) /
-        (2.0f * static_cast<float>(q - v[static_cast<std::size_t>(k - 1)]));
-    z[static_cast<std::size_t>(k + 1)] = inf;
-  }
-  if (k < 0)
-  {
-    std::fill(d.begin(), d.begin() + n, inf);
-    return;
-  }
-  int j = 0;
-  for (int q = 0; q < n; ++q)
-  {
-    while (z[static_cast<std::size_t>(j + 1)] < static_cast<float>(q))
-    {
-      ++j;
-    }
-    const int p = v[static_cast<std::size_t>(j)];
-    d[static_cast<std::size_t>(q)] =
-      static_cast<float>(q - p) * (q - p) + f[static_cast<std::size_t>(p)];
-  }
 }
 
 // Cells of the chains of one type (or all), drawn between consecutive points.
@@ -119,48 +71,9 @@ std::vector<std::uint8_t> rasteriseChains(const FeatureGraph& graph, int width, 
   return rasterise(graph, nullptr, width, height);
 }
 
-std::vector<float> distanceTransform(const std::vector<std::uint8_t>& seeds, int w, int h)
-{
-  const float inf = std::numeric_limits<float>::infinity();
-  std::vector<float> d(seeds.size(), inf);
-  std::vector<float> f(static_cast<std::size_t>(std::max(w, h)));
-  std::vector<float> out(static_cast<std::size_t>(std::max(w, h)));
-  for (int i = 0; i < w; ++i)
-  {
-    for (int j = 0; j < h; ++j)
-    {
-      f[static_cast<std::size_t>(j)] =
-        seeds[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
-          static_cast<std::size_t>(i)] != 0
-        ? 0.0f
-        : inf;
-    }
-    transform1d(f, out, h);
-    for (int j = 0; j < h; ++j)
-    {
-      d[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)] =
-        out[static_cast<std::size_t>(j)];
-    }
-  }
-  for (int j = 0; j < h; ++j)
-  {
-    for (int i = 0; i < w; ++i)
-    {
-      f[static_cast<std::size_t>(i)] =
-        d[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)];
-    }
-    transform1d(f, out, w);
-    for (int i = 0; i < w; ++i)
-    {
-      d[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)] =
-        std::sqrt(out[static_cast<std::size_t>(i)]);
-    }
-  }
-  return d;
-}
-
 ExemplarStatistics exemplarStatistics(const std::vector<const Heightfield*>& exemplars,
-  const std::vector<const FeatureGraph*>& graphs)
+  const std::vector<const FeatureGraph*>& graphs,
+  int patchSize)
 {
   std::vector<float> all;
   std::vector<float> ridge;
@@ -195,6 +108,9 @@ ExemplarStatistics exemplarStatistics(const std::vector<const Heightfield*>& exe
   s.median = percentile(all, 0.5);
   s.ridge = ridge.empty() ? s.high : percentile(ridge, 0.9);
   s.valley = valley.empty() ? s.low : percentile(valley, 0.1);
+  LandformMeasureOptions lo;
+  lo.patchSize = patchSize;
+  s.landform = measureLandforms(exemplars, graphs, lo);
   return s;
 }
 
@@ -242,26 +158,29 @@ SynthesisTarget targetFromStrokes(const FeatureGraph& graph,
   double cellX,
   double cellY,
   const ExemplarStatistics& stats,
-  double profileWidth)
+  int patchSize,
+  std::uint64_t seed)
 {
+  LineHeights constraints;
+  bool constrained = false;
+  for (const FeatureChain& c : graph.chains)
+  {
+    constraints.push_back(
+      c.constraint.size() == c.points.size() ? c.constraint : std::vector<float>());
+    constrained = constrained || !constraints.back().empty();
+  }
+  LandformFieldOptions lo;
+  lo.patchSize = patchSize;
+  lo.seed = seed;
+  LandformField f = landformField(
+    graph, w, h, cellX, cellY, stats.landform, lo, nullptr, constrained ? &constraints : nullptr);
   SynthesisTarget t;
   t.graph = graph;
-  t.field = Heightfield(w, h, static_cast<float>(stats.median));
-  t.field.cellX = cellX;
-  t.field.cellY = cellY;
-  t.field.cellSizeKnown = true;
-  const double s2 = 2.0 * profileWidth * profileWidth;
-  const FeatureType ridge = FeatureType::Ridge;
-  const FeatureType valley = FeatureType::Valley;
-  const std::vector<float> dr = distanceTransform(rasterise(graph, &ridge, w, h), w, h);
-  const std::vector<float> dv = distanceTransform(rasterise(graph, &valley, w, h), w, h);
-  for (std::size_t k = 0; k < t.field.size(); ++k)
-  {
-    const double r = std::isinf(dr[k]) ? 0.0 : std::exp(-static_cast<double>(dr[k]) * dr[k] / s2);
-    const double v = std::isinf(dv[k]) ? 0.0 : std::exp(-static_cast<double>(dv[k]) * dv[k] / s2);
-    t.field.z[k] = static_cast<float>(
-      stats.median + r * (stats.ridge - stats.median) + v * (stats.valley - stats.median));
-  }
+  t.field = std::move(f.field);
+  t.weight = std::move(f.weight);
+  t.downstream = std::move(f.downstream);
+  t.warnings = stats.landform.warnings;
+  t.warnings.insert(t.warnings.end(), f.warnings.begin(), f.warnings.end());
   if (graph.chains.empty())
   {
     t.warnings.push_back(
@@ -287,11 +206,87 @@ SynthesisTarget targetFromHeights(const Heightfield& heights,
         static_cast<float>(stats.low + (t.field.z[k] - r.min) / span * (stats.high - stats.low));
     }
   }
+  t.weight.assign(t.field.size(), 1.0f);
+  t.downstream.assign(t.field.size(), std::numeric_limits<float>::quiet_NaN());
   if (graph.chains.empty())
   {
     t.warnings.push_back(
       "The target has no features: the terrain is filled without feature placement.");
   }
+  return t;
+}
+
+namespace
+{
+
+// The grey sketch's background: its heights smoothed over a quarter patch with
+// the strokes left out, so a stroke does not raise the land it stands on.
+Heightfield greyBackground(const Heightfield& mapped, const FeatureGraph& graph, int patchSize)
+{
+  Heightfield masked = mapped;
+  const std::vector<float> d = distanceTransform(
+    rasteriseChains(graph, mapped.width, mapped.height), mapped.width, mapped.height);
+  masked.valid.assign(masked.size(), 1);
+  for (std::size_t k = 0; k < masked.size(); ++k)
+  {
+    if (!mapped.isValid(k) || d[k] <= kStrokeClearanceInPatches * patchSize)
+    {
+      masked.valid[k] = 0;
+    }
+  }
+  Heightfield smooth = gaussianSmooth(masked, kBackgroundSigmaInPatches * patchSize);
+  for (std::size_t k = 0; k < smooth.size(); ++k)
+  {
+    if (!(smooth.isValid(k) && std::isfinite(smooth.z[k])))
+    {
+      smooth.z[k] = mapped.isValid(k) ? mapped.z[k] : 0.0f;
+    }
+  }
+  smooth.valid.clear();
+  return smooth;
+}
+
+} // namespace
+
+SynthesisTarget targetFromGreySketch(const Heightfield& grey,
+  const FeatureGraph& graph,
+  const ExemplarStatistics& stats,
+  int patchSize,
+  std::uint64_t seed)
+{
+  const SynthesisTarget mapped = targetFromHeights(grey, graph, stats);
+  LineHeights heights;
+  for (const FeatureChain& c : graph.chains)
+  {
+    std::vector<float> h;
+    for (const Point2& p : c.points)
+    {
+      h.push_back(sampleBilinear(mapped.field, p.x, p.y));
+    }
+    heights.push_back(std::move(h));
+  }
+  const Heightfield background = greyBackground(mapped.field, graph, patchSize);
+  LandformFieldOptions lo;
+  lo.patchSize = patchSize;
+  lo.seed = seed;
+  LandformField f = landformField(graph,
+    grey.width,
+    grey.height,
+    grey.cellX,
+    grey.cellY,
+    stats.landform,
+    lo,
+    &background,
+    &heights);
+  SynthesisTarget t;
+  t.graph = graph;
+  t.field = std::move(f.field);
+  t.field.georef = grey.georef;
+  t.weight = std::move(f.weight);
+  t.downstream = std::move(f.downstream);
+  t.warnings = stats.landform.warnings;
+  t.warnings.insert(t.warnings.end(), f.warnings.begin(), f.warnings.end());
+  t.warnings.insert(t.warnings.end(), mapped.warnings.begin(), mapped.warnings.end());
   return t;
 }
 
@@ -304,15 +299,16 @@ SynthesisTarget makeTarget(const FeatureGraph& sketchGraph,
   double cellX,
   double cellY,
   const ExemplarStatistics& stats,
-  int patchSize)
+  int patchSize,
+  SketchHeights kind,
+  std::uint64_t seed)
 {
   FeatureGraph graph =
     scaleGraph(sketchGraph, sketchWidth, sketchHeight, width, height, cellX, cellY);
   computeControlPoints(graph, 0.5 * patchSize);
-  if (sketchHeights == nullptr)
+  if (sketchHeights == nullptr || kind == SketchHeights::None)
   {
-    return targetFromStrokes(
-      graph, width, height, cellX, cellY, stats, defaultProfileWidth(patchSize));
+    return targetFromStrokes(graph, width, height, cellX, cellY, stats, patchSize, seed);
   }
   // Nearest-neighbour resampling of the sketch's heights onto the output grid.
   Heightfield field(width, height);
@@ -332,7 +328,8 @@ SynthesisTarget makeTarget(const FeatureGraph& sketchGraph,
     }
   }
   normaliseMask(field);
-  return targetFromHeights(field, graph, stats);
+  return kind == SketchHeights::Grey ? targetFromGreySketch(field, graph, stats, patchSize, seed)
+                                     : targetFromHeights(field, graph, stats);
 }
 
 } // namespace tsynth

@@ -1,11 +1,13 @@
 // The target of a synthesis: a feature graph on the output grid and a smooth
-// heightfield T_tar with the sketched features at heights typical of the
-// exemplars (Tasse's thesis: the sketch deforms a flat terrain; here a sum of
-// Gaussian ridges and troughs along the stroke centre lines).
+// heightfield T_tar at the scale of the drawing (Tasse's thesis: the sketch
+// deforms a flat terrain). Stroke and poly-line sketches become landforms with
+// the exemplars' own cross-sections (Landform.h); a grey map's strokes too,
+// over its background; a DEM target keeps its own shape.
 #pragma once
 
 #include "../Core/Heightfield.h"
 #include "../Features/FeatureGraph.h"
+#include "Landform.h"
 
 #include <string>
 #include <vector>
@@ -19,17 +21,26 @@ struct ExemplarStatistics
   double low = 0.0;  // 5th percentile of heights
   double high = 1.0; // 95th percentile
   double median = 0.5;
-  double ridge = 1.0;  // median height of ridge nodes
-  double valley = 0.0; // median height of valley nodes
+  double ridge = 1.0;          // median height of ridge nodes
+  double valley = 0.0;         // median height of valley nodes
+  LandformStatistics landform; // cross-sections of the major ridges and valleys
 };
 
+// `patchSize` sets how far out the landform cross-sections are measured.
 ExemplarStatistics exemplarStatistics(const std::vector<const Heightfield*>& exemplars,
-  const std::vector<const FeatureGraph*>& graphs);
+  const std::vector<const FeatureGraph*>& graphs,
+  int patchSize = 80);
 
 struct SynthesisTarget
 {
   Heightfield field;  // T_tar, metres, on the output grid
   FeatureGraph graph; // on the output grid
+  // Confidence in T_tar per cell (0..1): 1 near the sketched lines (or all over
+  // a DEM target), 0 where the sketch leaves the land free.
+  std::vector<float> weight;
+  // Per cell of the sketched valley lines, the flow distance to their outlet
+  // (metres, NaN elsewhere): water runs towards smaller values.
+  std::vector<float> downstream;
   std::vector<std::string> warnings;
 };
 
@@ -43,32 +54,43 @@ FeatureGraph scaleGraph(const FeatureGraph& graph,
   double cellX,
   double cellY);
 
-// From strokes or poly-lines: background at the exemplars' median height, ridges
-// raised to their ridge height and valleys lowered to their valley height with
-// Gaussian profiles of standard deviation `profileWidth` cells around the
-// centre lines (defaultProfileWidth: 0.075 patch, 6 cells for 80-cell patches,
-// narrow enough that a crest stands out against its flanks 8 cells away).
-inline double defaultProfileWidth(int patchSize)
-{
-  return 0.075 * patchSize;
-}
-
+// From strokes or poly-lines on the output grid: the exemplars' landforms
+// along them (landformField), poly-line Elevation as crest and floor heights.
 SynthesisTarget targetFromStrokes(const FeatureGraph& graph,
   int width,
   int height,
   double cellX,
   double cellY,
   const ExemplarStatistics& stats,
-  double profileWidth);
+  int patchSize,
+  std::uint64_t seed = 0);
 
-// From a grey sketch or a DEM already on the output grid: its range mapped
-// linearly onto the exemplars' 5th..95th percentile heights.
+// From a DEM already on the output grid: its range mapped linearly onto the
+// exemplars' 5th..95th percentile heights; confidence 1 everywhere.
 SynthesisTarget targetFromHeights(const Heightfield& heights,
   const FeatureGraph& graph,
   const ExemplarStatistics& stats);
 
+// From a grey sketch already on the output grid (brighter is higher): its
+// strokes become landforms whose crests and floors take the sketch's heights
+// (mapped onto the exemplars' 5th..95th percentiles), standing on the sketch's
+// smoothed background.
+SynthesisTarget targetFromGreySketch(const Heightfield& grey,
+  const FeatureGraph& graph,
+  const ExemplarStatistics& stats,
+  int patchSize,
+  std::uint64_t seed = 0);
+
 // Cells under the chains of a graph (8-connected lines between their points).
 std::vector<std::uint8_t> rasteriseChains(const FeatureGraph& graph, int width, int height);
+
+// What the sketch's heights are, when it has them.
+enum class SketchHeights
+{
+  None, // strokes or poly-lines
+  Grey, // a grey sketch map: brighter is higher
+  Dem   // a real DEM used as the target
+};
 
 // The target on an output grid of width x height cells from a sketch drawn on
 // sketchWidth x sketchHeight pixels: its graph scaled onto the grid (with
@@ -83,10 +105,8 @@ SynthesisTarget makeTarget(const FeatureGraph& sketchGraph,
   double cellX,
   double cellY,
   const ExemplarStatistics& stats,
-  int patchSize);
-
-// Exact Euclidean distance (in cells) from every cell to the nearest seed cell
-// (Felzenszwalb and Huttenlocher's two-pass transform); +inf without seeds.
-std::vector<float> distanceTransform(const std::vector<std::uint8_t>& seeds, int width, int height);
+  int patchSize,
+  SketchHeights kind = SketchHeights::Dem,
+  std::uint64_t seed = 0);
 
 } // namespace tsynth

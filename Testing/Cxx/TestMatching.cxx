@@ -63,6 +63,8 @@ CandidatePool handPool()
   p.across.assign(kMaxArms * kAcrossSamples, 0.0f);
   p.noise = { 100.0f, 0.0f, 0.0f };
   p.descriptor.assign(kDescriptorSize, 1000.0f);
+  p.landform.assign(kLandformStride, 0.0f);
+  p.landform[3] = 30.0f; // one landform sample 30 m above the centre
   return p;
 }
 
@@ -85,6 +87,9 @@ FeatureQuery handQuery()
   }
   q.noise = { 0.0f, 0.0f, 0.0f };
   q.descriptor.fill(1005.0f);
+  q.landform[3] = 10.0f; // the target has it 10 m above
+  q.landformWeight.fill(0.0f);
+  q.landformWeight[3] = 0.5f;
   q.weight.fill(1.0f);
   return q;
 }
@@ -156,8 +161,11 @@ TEST(FeatureCost, HandMadeCandidateHasTheExpectedCost)
   const FeatureQuery q = handQuery();
   const MatchWeights w;
   // c_f: profiles differ by 2 m, scale 10 m -> 0.04; c_a: both arms off by 0.1 rad
-  // -> (0.1 / pi)^2; c_n: 100 m^2 vs 0, scale^2 100 -> 1; c_o: 5 m -> 0.25.
-  const double expected = 5.0 * 0.04 + 2.0 * std::pow(0.1 / kPi, 2) + 0.001 * 1.0 + 1.0 * 0.25;
+  // -> (0.1 / pi)^2; c_n: 100 m^2 vs 0, scale^2 100 -> 1; c_o: 5 m -> 0.25;
+  // c_l: one sample off by 20 m with weight 0.5, over 25 samples, scale^2 100
+  // -> 0.5 * 400 / 25 / 100 = 0.08.
+  const double expected =
+    5.0 * 0.04 + 2.0 * std::pow(0.1 / kPi, 2) + 0.001 * 1.0 + 1.0 * 0.25 + 5.0 * 0.08;
   const std::vector<float> costs = scoreFeatureCandidates(pool, q, w);
   ASSERT_EQ(costs.size(), 1u);
   EXPECT_NEAR(costs[0], expected, 1e-5);
@@ -437,9 +445,26 @@ TEST(DenseSearch, PrunedCoarsePassKeepsTheExactHeadOfEveryVariant)
         q.known[k] = n == 5 ? (rng() % 3 == 0 ? 1 : 0) : ((i < 8 + 3 * n || j < 10) ? 1 : 0);
       }
     }
+    if (n % 2 == 1)
+    {
+      // Landform samples where the window continues (as the synthesis asks
+      // for them), some of them unsure.
+      for (int sy = 0; sy < kLandformSide; ++sy)
+      {
+        for (int sx = 0; sx < kLandformSide; ++sx)
+        {
+          const std::size_t k = static_cast<std::size_t>(sy * kLandformSide + sx);
+          q.landform.heights[k] = colorado().at(450 + 20 * n + landformCell(sx, 32, o.coarseFactor),
+                                    420 + landformCell(sy, 32, o.coarseFactor)) +
+            15.0f;
+          q.landform.weights[k] = static_cast<float>((sx + sy) % 3) * 0.5f;
+        }
+      }
+    }
     const CoarseQuery cq = matcher.coarseQuery(q);
     const auto full = matcher.coarseCosts(cq);
-    const auto bound = matcher.coarseSsd(cq.bound, CoarseImage::Pairs);
+    const auto boundCosts = matcher.coarseSsd(cq.bound, CoarseImage::Pairs);
+    const auto landformCosts = matcher.coarseSsd(cq.landform, CoarseImage::Landform);
     const auto pruned = matcher.prunedCoarseCosts(cq, cpu);
     ASSERT_EQ(full.size(), pruned.size());
     for (std::size_t v = 0; v < full.size(); ++v)
@@ -449,7 +474,8 @@ TEST(DenseSearch, PrunedCoarsePassKeepsTheExactHeadOfEveryVariant)
         if (std::isfinite(full[v][k]))
         {
           ++valid;
-          ASSERT_LE(bound[v][k], full[v][k] * (1 + 1e-5f) + 1e-6f) << "the bound must be a bound";
+          const float bound = boundCosts[v][k] + landformCosts[v][k];
+          ASSERT_LE(bound, full[v][k] * (1 + 1e-5f) + 1e-6f) << "the bound must be a bound";
         }
         if (std::isfinite(pruned[v][k]))
         {

@@ -7,6 +7,7 @@
 #define ACROSS 17
 #define NOISE 3
 #define PI_F 3.14159265358979f
+#define LANDFORM_SAMPLES 25.0f
 
 // Query layout in `q`: angles[4], along[4*16], across[4*17], noise[3].
 #define Q_ANGLES 0
@@ -26,9 +27,11 @@ float laneSum(float16 v)
 __kernel void featureCost(__global const int* kind, __global const int* type,
   __global const int* arms, __global const float* angles, __global const float* along,
   __global const float* across, __global const float* noise, __global const float16* descriptor,
-  __constant const float* q, __constant const float16* qd, __constant const float16* qw,
+  __global const float16* landform, __constant const float* q, __constant const float16* qd,
+  __constant const float16* qw, __constant const float16* ql, __constant const float16* qlw,
   const int qType, const int qKind, const int qArms, const float4 weights,
-  const int verticalOffset, const float invScale2, const uint n, __global float* out)
+  const float landformWeight, const int verticalOffset, const float invScale2, const uint n,
+  __global float* out)
 {
   const uint c = get_global_id(0);
   if (c >= n)
@@ -106,5 +109,13 @@ __kernel void featureCost(__global const int* kind, __global const int* type,
     const float dn = (q[Q_NOISE + l] - noise[c * NOISE + l]) * invScale2;
     cn += dn * dn;
   }
-  out[c] = best + weights.z * cn + costOverlap;
+  // Landform: 16 lanes over samples k, k + 16.
+  float16 swl216 = (float16)(0.0f);
+  for (int k = 0; k < 2; ++k)
+  {
+    const float16 diff = ql[k] - landform[c * 2 + k];
+    swl216 += (qlw[k] * diff) * diff;
+  }
+  const float cl = laneSum(swl216) / LANDFORM_SAMPLES * invScale2;
+  out[c] = best + weights.z * cn + costOverlap + landformWeight * cl;
 }

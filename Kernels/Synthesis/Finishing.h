@@ -1,0 +1,57 @@
+// The last steps of a synthesis, once every patch is placed: gentle
+// corrections that leave the patches' landforms and detail alone (the role of
+// Tasse's final deformation), and exact ones for what the sketch requires.
+#pragma once
+
+#include "../Core/Heightfield.h"
+#include "../Features/FeatureGraph.h"
+
+#include <vector>
+
+namespace tsynth
+{
+
+// Pulls the output's relief coarser than `sigma` cells towards the target's,
+// by the target's confidence per cell: drift across many patches goes, the
+// landforms' cross-sections (finer) stay the patches'. Returns the largest
+// change, metres.
+double correctLandform(Heightfield& out,
+  const Heightfield& target,
+  const std::vector<float>& confidence,
+  double sigma);
+
+struct DrainageOptions
+{
+  // The floor falls at least this much per metre along a valley (0.1%: gentle
+  // enough for any real floor, enough for D8 to see the way).
+  double minimumGradient = 0.001;
+  // The channel lies this much below the cells beside it, metres per metre of
+  // cell size (0.1 m for 100 m cells).
+  double channelDepth = 0.001;
+  // Carving fades out over this many cells either side of the line.
+  double reach = 10.0;
+};
+
+struct DrainageReport
+{
+  std::size_t cells = 0;   // valley line cells
+  std::size_t lowered = 0; // of which were lowered
+  double largest = 0.0;    // deepest cut, metres
+  double mean = 0.0;       // mean cut over the line cells, metres
+};
+
+// Makes water run along the sketched valleys: along the lines (cells with a
+// finite `downstream` flow distance) each cell is lowered, if need be, below
+// every cell upstream of it and below the cells beside the line, and the cut
+// fades out smoothly over `reach` cells (stream burning, as hydrologists
+// condition a DEM to a known river). D8 flow then follows the lines.
+DrainageReport drainValleys(Heightfield& out,
+  const std::vector<float>& downstream,
+  const DrainageOptions& options = {});
+
+// Height constraints (poly-line Elevation): bends the terrain so the
+// constrained lines sit exactly at their heights; the correction is harmonic
+// between the lines and fades to nothing `reach` cells away.
+void meetConstraints(Heightfield& out, const FeatureGraph& graph, double reach);
+
+} // namespace tsynth

@@ -1,0 +1,917 @@
+#include "Landform.h"
+
+#include "../Core/Error.h"
+#include "../Distance/DistanceField.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numeric>
+#include <queue>
+#include <random>
+
+namespace tsynth
+{
+namespace
+{
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Fewer cells than this at one distance say nothing about a cross-section.
+constexpr std::size_t kMinCellsPerDistance = 32;
+// Samples along valley lines for their floor gradient, a quarter patch apart:
+// far enough that a cell's noise does not dominate the difference.
+constexpr double kGradientSpacingInPatches = 0.25;
+// When no exemplar valley can be measured: a gentle mountain-valley descent.
+constexpr double kFallbackFloorGradient = 0.01;
+// A river's long profile is concave (steep at its heads, gentle at its outlet):
+// floor rise = share * (kOutletSlope t + (1 - kOutletSlope) t^2), t = distance / longest.
+constexpr double kOutletSlope = 0.3;
+// Where one line's influence gives way to another's: inverse squared distance
+// weights, softened within these many cells of a ridge and of a valley (the
+// smaller for valleys, so a valley's floor is never lifted by a crossing ridge).
+constexpr double kRidgeSoftening = 2.0;
+constexpr double kValleySoftening = 0.5;
+// A valley crossing a ridge cuts a gorge: within a quarter patch of the valley
+// the land may rise above its floor by at most the whole relief.
+constexpr double kGorgeReachInPatches = 0.25;
+// Confidence in the target is full where the cross-section has made this share
+// of its relief (its tail is often the exemplar's regional slope, not the
+// landform) and fades from there over half a patch.
+constexpr double kConfidentReach = 0.75;
+constexpr double kConfidenceFadeInPatches = 0.5;
+// An end within this share of a patch of the border drains out of the map.
+constexpr double kBorderReachInPatches = 0.125;
+// Outlet candidates whose flow paths differ by less than this share are
+// equally good: the seed picks one.
+constexpr double kOutletTie = 0.02;
+
+double percentile(std::vector<float> v, double p)
+{
+  if (v.empty())
+  {
+    return 0.0;
+  }
+  const std::size_t k = std::min(v.size() - 1, static_cast<std::size_t>(p * (v.size() - 1)));
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
+  return v[k];
+}
+
+// Visits the cells under a chain, with the segment and position along it.
+void walkChain(const FeatureChain& chain,
+  int w,
+  int h,
+  const std::function<void(int, int, std::size_t, double)>& visit)
+{
+  for (std::size_t k = 1; k < chain.points.size(); ++k)
+  {
+    const Point2& a = chain.points[k - 1];
+    const Point2& b = chain.points[k];
+    const int steps =
+      std::max(1, static_cast<int>(std::ceil(2.0 * std::hypot(b.x - a.x, b.y - a.y))));
+    for (int s = 0; s <= steps; ++s)
+    {
+      const double t = static_cast<double>(s) / steps;
+      const int i = static_cast<int>(std::lround(a.x + t * (b.x - a.x)));
+      const int j = static_cast<int>(std::lround(a.y + t * (b.y - a.y)));
+      if (i >= 0 && j >= 0 && i < w && j < h)
+      {
+        visit(i, j, k, t);
+      }
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Measuring the exemplars.
+
+// Median height difference to the nearest major line, per distance bin.
+struct SectionBins
+{
+  std::vector<double> median;
+  std::vector<std::size_t> count;
+};
+
+struct LineMeasure
+{
+  SectionBins bins;
+  std::vector<float> majorHeights;
+  double majorLength = 0.0; // metres
+  std::vector<double> gradients;
+};
+
+LineMeasure measureLines(const Heightfield& ex,
+  const FeatureGraph& graph,
+  FeatureType type,
+  const LandformMeasureOptions& o)
+{
+  LineMeasure m;
+  const std::size_t n = ex.size();
+  std::vector<std::uint8_t> line(n, 0);
+  for (const FeatureChain& c : graph.chains)
+  {
+    if (c.type == type)
+    {
+      walkChain(c,
+        ex.width,
+        ex.height,
+        [&](int i, int j, std::size_t, double) { line[ex.index(i, j)] = 1; });
+    }
+  }
+  std::vector<float> heights;
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    if (line[k] != 0 && ex.isValid(k))
+    {
+      heights.push_back(ex.z[k]);
+    }
+  }
+  if (heights.empty())
+  {
+    return m;
+  }
+  const bool ridge = type == FeatureType::Ridge;
+  const double threshold = percentile(heights, ridge ? 1.0 - o.majorShare : o.majorShare);
+  std::vector<std::uint8_t> major(n, 0);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    if (line[k] != 0 && ex.isValid(k) && (ridge ? ex.z[k] >= threshold : ex.z[k] <= threshold))
+    {
+      major[k] = 1;
+      m.majorHeights.push_back(ex.z[k]);
+    }
+  }
+  const double cell = std::min(ex.cellX, ex.cellY);
+  m.majorLength = static_cast<double>(m.majorHeights.size()) * cell;
+  const NearestSeeds near = nearestSeeds(major, ex.width, ex.height, ex.cellX, ex.cellY);
+  const std::size_t bins = static_cast<std::size_t>(std::ceil(o.reachInPatches * o.patchSize));
+  std::vector<std::vector<float>> differences(bins);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    if (!ex.isValid(k) || near.nearest[k] < 0)
+    {
+      continue;
+    }
+    const std::size_t bin = static_cast<std::size_t>(near.distance[k] / cell);
+    if (bin < bins)
+    {
+      differences[bin].push_back(ex.z[k] - ex.z[static_cast<std::size_t>(near.nearest[k])]);
+    }
+  }
+  m.bins.median.assign(bins, 0.0);
+  m.bins.count.assign(bins, 0);
+  for (std::size_t b = 0; b < bins; ++b)
+  {
+    m.bins.count[b] = differences[b].size();
+    m.bins.median[b] = percentile(std::move(differences[b]), 0.5);
+  }
+  // Floor (or crest) gradients along the major lines.
+  const double spacing = kGradientSpacingInPatches * o.patchSize;
+  for (const FeatureChain& c : graph.chains)
+  {
+    if (c.type != type || c.points.size() < 2 || c.elevation.size() != c.points.size())
+    {
+      continue;
+    }
+    double along = 0.0;
+    double lastAlong = 0.0;
+    float lastZ = c.elevation.front();
+    for (std::size_t k = 1; k < c.points.size(); ++k)
+    {
+      along += std::hypot((c.points[k].x - c.points[k - 1].x) * ex.cellX,
+        (c.points[k].y - c.points[k - 1].y) * ex.cellY);
+      if (along - lastAlong < spacing * cell)
+      {
+        continue;
+      }
+      const float z = c.elevation[k];
+      const bool majorPair =
+        ridge ? std::min(z, lastZ) >= threshold : std::max(z, lastZ) <= threshold;
+      if (!std::isnan(z) && !std::isnan(lastZ) && majorPair)
+      {
+        m.gradients.push_back(std::abs(z - lastZ) / (along - lastAlong));
+      }
+      lastAlong = along;
+      lastZ = z;
+    }
+  }
+  return m;
+}
+
+// The pooled cross-section of one kind of line over every exemplar.
+LandformProfile poolProfile(const std::vector<LineMeasure>& measures, FeatureType type, double cell)
+{
+  LandformProfile p;
+  if (measures.empty())
+  {
+    return p;
+  }
+  const std::size_t bins = measures.front().bins.median.size();
+  std::vector<double> distance, value, weight;
+  std::vector<float> levels;
+  for (std::size_t b = 0; b < bins; ++b)
+  {
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (const LineMeasure& m : measures)
+    {
+      if (b < m.bins.count.size())
+      {
+        sum += m.bins.median[b] * static_cast<double>(m.bins.count[b]);
+        count += m.bins.count[b];
+      }
+    }
+    if (count >= kMinCellsPerDistance)
+    {
+      distance.push_back((static_cast<double>(b) + 0.5) * cell);
+      value.push_back(sum / static_cast<double>(count));
+      weight.push_back(static_cast<double>(count));
+    }
+  }
+  for (const LineMeasure& m : measures)
+  {
+    levels.insert(levels.end(), m.majorHeights.begin(), m.majorHeights.end());
+    p.lineLength += m.majorLength;
+  }
+  if (distance.size() < 2 || levels.empty())
+  {
+    return p;
+  }
+  // The section starts at the line itself.
+  distance.insert(distance.begin(), 0.0);
+  value.insert(value.begin(), 0.0);
+  weight.insert(weight.begin(), weight.front());
+  p.section = MonotoneProfile::fit(distance,
+    value,
+    weight,
+    type == FeatureType::Ridge ? Monotonicity::NonIncreasing : Monotonicity::NonDecreasing);
+  p.level = percentile(levels, 0.5);
+  p.relief = std::abs(p.section.back() - p.section.front());
+  p.width = p.section.reach(0.9);
+  return p;
+}
+
+// The section rescaled to a given relief (sign by type), same shape.
+MonotoneProfile withRelief(const LandformProfile& p, double relief, FeatureType type)
+{
+  const MonotoneProfile s = p.section.normalised();
+  std::vector<double> v = s.values();
+  for (double& x : v)
+  {
+    x *= type == FeatureType::Ridge ? -relief : relief;
+  }
+  return MonotoneProfile::fromPoints(s.distances(), v);
+}
+
+// A ramp over half a patch, when nothing can be measured.
+LandformProfile fallbackProfile(double level,
+  double relief,
+  FeatureType type,
+  double cell,
+  int patch)
+{
+  LandformProfile p;
+  p.level = level;
+  p.relief = relief;
+  p.width = 0.5 * patch * cell;
+  const double sign = type == FeatureType::Ridge ? -1.0 : 1.0;
+  p.section = MonotoneProfile::fromPoints({ 0.0, p.width }, { 0.0, sign * relief });
+  return p;
+}
+
+// Makes ridge and valley meet the same base, and fills in what is missing.
+void reconcile(LandformStatistics& s, const std::vector<const Heightfield*>& exemplars, int patch)
+{
+  const double cell = std::min(exemplars.front()->cellX, exemplars.front()->cellY);
+  const bool ridge = !s.ridge.section.empty() && s.ridge.relief > 0.0;
+  const bool valley = !s.valley.section.empty() && s.valley.relief > 0.0;
+  if (ridge && valley)
+  {
+    s.base = 0.5 * ((s.ridge.level - s.ridge.relief) + (s.valley.level + s.valley.relief));
+    const double ridgeRelief = s.ridge.level - s.base;
+    const double valleyRelief = s.base - s.valley.level;
+    if (ridgeRelief > 0.0 && valleyRelief > 0.0)
+    {
+      s.ridge.section = withRelief(s.ridge, ridgeRelief, FeatureType::Ridge);
+      s.valley.section = withRelief(s.valley, valleyRelief, FeatureType::Valley);
+      s.ridge.relief = ridgeRelief;
+      s.valley.relief = valleyRelief;
+    }
+    return;
+  }
+  if (ridge || valley)
+  {
+    // Mirror the kind that was measured.
+    LandformProfile& known = ridge ? s.ridge : s.valley;
+    LandformProfile& other = ridge ? s.valley : s.ridge;
+    const FeatureType otherType = ridge ? FeatureType::Valley : FeatureType::Ridge;
+    s.base = ridge ? known.level - known.relief : known.level + known.relief;
+    other = known;
+    other.level = ridge ? s.base - known.relief : s.base + known.relief;
+    other.section = withRelief(known, known.relief, otherType);
+    other.lineLength = 0.0;
+    s.warnings.push_back(std::string("The exemplars have no major ") +
+      (ridge ? "valleys" : "ridges") + " to measure: their cross-section mirrors the " +
+      (ridge ? "ridges'." : "valleys'."));
+    return;
+  }
+  std::vector<float> all;
+  for (const Heightfield* ex : exemplars)
+  {
+    for (std::size_t k = 0; k < ex->size(); k += 7) // a sample is plenty for percentiles
+    {
+      if (ex->isValid(k))
+      {
+        all.push_back(ex->z[k]);
+      }
+    }
+  }
+  const double low = percentile(all, 0.05);
+  const double high = percentile(all, 0.95);
+  s.base = percentile(all, 0.5);
+  const double relief = std::max(1e-3, 0.5 * (high - low));
+  s.ridge = fallbackProfile(s.base + relief, relief, FeatureType::Ridge, cell, patch);
+  s.valley = fallbackProfile(s.base - relief, relief, FeatureType::Valley, cell, patch);
+  s.warnings.push_back("The exemplars have no ridges or valleys to measure: sketched features get "
+                       "half their height range over half a patch.");
+}
+
+} // namespace
+
+LandformStatistics measureLandforms(const std::vector<const Heightfield*>& exemplars,
+  const std::vector<const FeatureGraph*>& graphs,
+  const LandformMeasureOptions& o)
+{
+  if (exemplars.empty())
+  {
+    throw Error("No exemplar: give at least one DEM to measure landforms on.");
+  }
+  std::vector<LineMeasure> ridges, valleys;
+  std::vector<double> gradients;
+  for (std::size_t e = 0; e < exemplars.size(); ++e)
+  {
+    if (e >= graphs.size())
+    {
+      break;
+    }
+    ridges.push_back(measureLines(*exemplars[e], *graphs[e], FeatureType::Ridge, o));
+    valleys.push_back(measureLines(*exemplars[e], *graphs[e], FeatureType::Valley, o));
+    gradients.insert(
+      gradients.end(), valleys.back().gradients.begin(), valleys.back().gradients.end());
+  }
+  const double cell = std::min(exemplars.front()->cellX, exemplars.front()->cellY);
+  LandformStatistics s;
+  s.ridge = poolProfile(ridges, FeatureType::Ridge, cell);
+  s.valley = poolProfile(valleys, FeatureType::Valley, cell);
+  reconcile(s, exemplars, o.patchSize);
+  if (gradients.empty())
+  {
+    s.floorGradient = kFallbackFloorGradient;
+  }
+  else
+  {
+    std::nth_element(gradients.begin(),
+      gradients.begin() + static_cast<long>(gradients.size() / 2),
+      gradients.end());
+    s.floorGradient = gradients[gradients.size() / 2];
+  }
+  return s;
+}
+
+// ---------------------------------------------------------------------------
+// Building the target.
+
+namespace
+{
+
+// The points of a graph's chains of one type as a weighted graph: node ids
+// first, then chain interiors; edges carry their length in metres.
+class LineNetwork
+{
+public:
+  LineNetwork(const FeatureGraph& g, FeatureType type, double cellX, double cellY)
+    : graph_(g)
+    , vertexOf_(g.chains.size())
+  {
+    std::size_t next = g.nodes.size();
+    position_.resize(next);
+    for (std::size_t v = 0; v < g.nodes.size(); ++v)
+    {
+      position_[v] = g.nodes[v].position;
+    }
+    edges_.resize(next);
+    degree_.assign(next, 0);
+    used_.assign(next, 0);
+    for (std::size_t c = 0; c < g.chains.size(); ++c)
+    {
+      const FeatureChain& ch = g.chains[c];
+      if (ch.type != type || ch.points.size() < 2 || ch.from < 0 || ch.to < 0)
+      {
+        continue;
+      }
+      std::vector<std::size_t>& ids = vertexOf_[c];
+      for (std::size_t k = 0; k < ch.points.size(); ++k)
+      {
+        if (k == 0 || k + 1 == ch.points.size())
+        {
+          ids.push_back(static_cast<std::size_t>(k == 0 ? ch.from : ch.to));
+        }
+        else
+        {
+          ids.push_back(next++);
+          position_.push_back(ch.points[k]);
+          edges_.emplace_back();
+          degree_.push_back(0);
+          used_.push_back(0);
+        }
+      }
+      for (std::size_t k = 1; k < ids.size(); ++k)
+      {
+        const double len = std::hypot((ch.points[k].x - ch.points[k - 1].x) * cellX,
+          (ch.points[k].y - ch.points[k - 1].y) * cellY);
+        edges_[ids[k - 1]].push_back({ ids[k], len });
+        edges_[ids[k]].push_back({ ids[k - 1], len });
+        used_[ids[k - 1]] = used_[ids[k]] = 1;
+        ++edgeCount_;
+      }
+      ++degree_[ids.front()];
+      ++degree_[ids.back()];
+    }
+  }
+
+  std::size_t size() const { return position_.size(); }
+  bool used(std::size_t v) const { return used_[v] != 0; }
+  bool isEnd(std::size_t v) const { return v < graph_.nodes.size() && degree_[v] == 1; }
+  const Point2& position(std::size_t v) const { return position_[v]; }
+  // Vertex of point k of chain c (empty for chains of the other type).
+  const std::vector<std::size_t>& chainVertices(std::size_t c) const { return vertexOf_[c]; }
+  std::size_t edgeCount() const { return edgeCount_; }
+
+  // Shortest distances along the lines from the sources.
+  std::vector<double> distances(const std::vector<std::size_t>& sources) const
+  {
+    std::vector<double> d(size(), kInfinity);
+    using Item = std::pair<double, std::size_t>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
+    for (std::size_t s : sources)
+    {
+      d[s] = 0.0;
+      open.push({ 0.0, s });
+    }
+    while (!open.empty())
+    {
+      const auto [dist, v] = open.top();
+      open.pop();
+      if (dist > d[v])
+      {
+        continue;
+      }
+      for (const Edge& e : edges_[v])
+      {
+        if (dist + e.length < d[e.to])
+        {
+          d[e.to] = dist + e.length;
+          open.push({ d[e.to], e.to });
+        }
+      }
+    }
+    return d;
+  }
+
+  // Connected pieces, as lists of used vertices.
+  std::vector<std::vector<std::size_t>> components() const
+  {
+    std::vector<std::vector<std::size_t>> out;
+    std::vector<std::uint8_t> seen(size(), 0);
+    for (std::size_t s = 0; s < size(); ++s)
+    {
+      if (!used(s) || seen[s] != 0)
+      {
+        continue;
+      }
+      out.emplace_back();
+      std::vector<std::size_t> stack{ s };
+      seen[s] = 1;
+      while (!stack.empty())
+      {
+        const std::size_t v = stack.back();
+        stack.pop_back();
+        out.back().push_back(v);
+        for (const Edge& e : edges_[v])
+        {
+          if (seen[e.to] == 0)
+          {
+            seen[e.to] = 1;
+            stack.push_back(e.to);
+          }
+        }
+      }
+      std::sort(out.back().begin(), out.back().end());
+    }
+    return out;
+  }
+
+  std::size_t edgesWithin(const std::vector<std::size_t>& component) const
+  {
+    std::size_t twice = 0;
+    for (std::size_t v : component)
+    {
+      twice += edges_[v].size();
+    }
+    return twice / 2;
+  }
+
+private:
+  struct Edge
+  {
+    std::size_t to;
+    double length;
+  };
+  const FeatureGraph& graph_;
+  std::vector<std::vector<std::size_t>> vertexOf_;
+  std::vector<Point2> position_;
+  std::vector<std::vector<Edge>> edges_;
+  std::vector<int> degree_;
+  std::vector<std::uint8_t> used_;
+  std::size_t edgeCount_ = 0;
+};
+
+// Per vertex, from per chain point values (NaN where not given).
+std::vector<double> vertexValues(const LineNetwork& net,
+  const FeatureGraph& g,
+  const LineHeights* heights)
+{
+  std::vector<double> v(net.size(), std::numeric_limits<double>::quiet_NaN());
+  if (heights == nullptr)
+  {
+    return v;
+  }
+  for (std::size_t c = 0; c < g.chains.size() && c < heights->size(); ++c)
+  {
+    const std::vector<std::size_t>& ids = net.chainVertices(c);
+    const std::vector<float>& h = (*heights)[c];
+    for (std::size_t k = 0; k < ids.size() && k < h.size(); ++k)
+    {
+      if (!std::isnan(h[k]))
+      {
+        v[ids[k]] = h[k];
+      }
+    }
+  }
+  return v;
+}
+
+double borderDistance(const Point2& p, int w, int h)
+{
+  return std::min({ p.x, p.y, (w - 1) - p.x, (h - 1) - p.y });
+}
+
+// Among candidate vertices with scores, the best (highest), near-ties by the seed.
+std::size_t pickBest(const std::vector<std::size_t>& candidates,
+  const std::vector<double>& scores,
+  std::mt19937_64& rng)
+{
+  const double best = *std::max_element(scores.begin(), scores.end());
+  std::vector<std::size_t> tied;
+  for (std::size_t k = 0; k < candidates.size(); ++k)
+  {
+    if (scores[k] >= best - kOutletTie * std::abs(best))
+    {
+      tied.push_back(candidates[k]);
+    }
+  }
+  return tied[std::uniform_int_distribution<std::size_t>(0, tied.size() - 1)(rng)];
+}
+
+// Where a piece of the valley network drains: the lowest end when heights are
+// known; else an end at the border, preferring the one with the longest flow
+// path (the trunk's mouth); else the end of the longest path nearer the
+// border; a network without ends drains at its point nearest the border.
+std::size_t chooseOutlet(const LineNetwork& net,
+  const std::vector<std::size_t>& component,
+  const std::vector<double>& given,
+  int w,
+  int h,
+  int patch,
+  std::mt19937_64& rng)
+{
+  std::vector<std::size_t> ends;
+  for (std::size_t v : component)
+  {
+    if (net.isEnd(v))
+    {
+      ends.push_back(v);
+    }
+  }
+  std::vector<std::size_t> known;
+  std::vector<double> score;
+  for (std::size_t v : ends)
+  {
+    if (!std::isnan(given[v]))
+    {
+      known.push_back(v);
+      score.push_back(-given[v]);
+    }
+  }
+  if (!known.empty())
+  {
+    return pickBest(known, score, rng);
+  }
+  auto farthest = [&](std::size_t from)
+  {
+    const std::vector<double> d = net.distances({ from });
+    double far = 0.0;
+    for (std::size_t v : component)
+    {
+      far = std::max(far, d[v]);
+    }
+    return far;
+  };
+  std::vector<std::size_t> atBorder;
+  score.clear();
+  for (std::size_t v : ends)
+  {
+    if (borderDistance(net.position(v), w, h) <= kBorderReachInPatches * patch)
+    {
+      atBorder.push_back(v);
+      score.push_back(farthest(v));
+    }
+  }
+  if (!atBorder.empty())
+  {
+    return pickBest(atBorder, score, rng);
+  }
+  std::vector<std::size_t> candidates = ends.empty() ? component : ends;
+  if (!ends.empty())
+  {
+    // The two ends of the longest path.
+    std::vector<double> d = net.distances({ ends.front() });
+    auto farEnd = [&](const std::vector<double>& dist)
+    {
+      return *std::max_element(
+        ends.begin(), ends.end(), [&](std::size_t a, std::size_t b) { return dist[a] < dist[b]; });
+    };
+    const std::size_t a = farEnd(d);
+    const std::size_t b = farEnd(net.distances({ a }));
+    candidates = a == b ? std::vector<std::size_t>{ a } : std::vector<std::size_t>{ a, b };
+  }
+  score.clear();
+  for (std::size_t v : candidates)
+  {
+    score.push_back(-borderDistance(net.position(v), w, h));
+  }
+  return pickBest(candidates, score, rng);
+}
+
+// Crest height per ridge vertex: the ridge's relief over the base, tapering
+// towards free ends; given heights win.
+std::vector<double> crestHeights(const LineNetwork& net,
+  const std::vector<double>& given,
+  const std::vector<double>& baseAt,
+  const LandformStatistics& s,
+  const LandformFieldOptions& o,
+  double cell)
+{
+  std::vector<std::size_t> ends;
+  for (std::size_t v = 0; v < net.size(); ++v)
+  {
+    if (net.used(v) && net.isEnd(v))
+    {
+      ends.push_back(v);
+    }
+  }
+  const std::vector<double> fromEnd =
+    ends.empty() ? std::vector<double>(net.size(), kInfinity) : net.distances(ends);
+  const double taper = 0.5 * o.patchSize * cell;
+  std::vector<double> crest(net.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t v = 0; v < net.size(); ++v)
+  {
+    if (!net.used(v))
+    {
+      continue;
+    }
+    if (!std::isnan(given[v]))
+    {
+      crest[v] = given[v];
+      continue;
+    }
+    const double t = std::min(1.0, fromEnd[v] / taper);
+    const double smooth = t * t * (3.0 - 2.0 * t);
+    crest[v] = baseAt[v] + s.ridge.relief * (o.endRelief + (1.0 - o.endRelief) * smooth);
+  }
+  return crest;
+}
+
+struct ValleyFloors
+{
+  std::vector<double> floor;      // per vertex, metres
+  std::vector<double> rim;        // per vertex: where the valley's sides end, metres
+  std::vector<double> downstream; // per vertex: flow distance to the outlet, metres
+};
+
+ValleyFloors valleyFloors(const LineNetwork& net,
+  const std::vector<double>& given,
+  const std::vector<double>& baseAt,
+  const LandformStatistics& s,
+  const LandformFieldOptions& o,
+  int w,
+  int h,
+  std::vector<std::string>& warnings)
+{
+  ValleyFloors f;
+  f.floor.assign(net.size(), std::numeric_limits<double>::quiet_NaN());
+  f.rim.assign(net.size(), std::numeric_limits<double>::quiet_NaN());
+  f.downstream.assign(net.size(), std::numeric_limits<double>::quiet_NaN());
+  std::mt19937_64 rng(o.seed ^ 0x76616c6c6579ULL); // "valley": its own stream of the seed
+  bool loop = false;
+  for (const std::vector<std::size_t>& component : net.components())
+  {
+    loop = loop || net.edgesWithin(component) >= component.size();
+    const std::size_t outlet = chooseOutlet(net, component, given, w, h, o.patchSize, rng);
+    const std::vector<double> d = net.distances({ outlet });
+    double longest = 0.0;
+    for (std::size_t v : component)
+    {
+      longest = std::max(longest, d[v]);
+    }
+    for (std::size_t v : component)
+    {
+      f.downstream[v] = d[v];
+      const double depth = std::max(0.0, baseAt[v] - s.valley.level);
+      const double rise = std::min(s.floorGradient * longest, o.headRise * depth);
+      const double t = longest > 0.0 ? d[v] / longest : 0.0;
+      f.floor[v] = std::isnan(given[v])
+        ? s.valley.level + rise * (kOutletSlope * t + (1.0 - kOutletSlope) * t * t)
+        : given[v];
+      f.rim[v] = f.floor[v] + depth * (1.0 - (1.0 - o.headDepth) * t);
+    }
+  }
+  if (loop)
+  {
+    warnings.push_back("A sketched valley network has a loop: water cannot run downhill all the "
+                       "way round it, so its floor rises both ways from the outlet to a divide.");
+  }
+  return f;
+}
+
+// Per-cell values of a network's vertices along its rasterised chains: seeds
+// mask and the value at each seed, interpolated between chain points.
+struct RasterLines
+{
+  std::vector<std::uint8_t> seeds;
+  std::vector<float> value;
+};
+
+RasterLines rasteriseNetwork(const FeatureGraph& g,
+  const LineNetwork& net,
+  const std::vector<double>& vertexValue,
+  int w,
+  int h)
+{
+  RasterLines r;
+  const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  r.seeds.assign(n, 0);
+  r.value.assign(n, kNaN);
+  for (std::size_t c = 0; c < g.chains.size(); ++c)
+  {
+    const std::vector<std::size_t>& ids = net.chainVertices(c);
+    if (ids.empty())
+    {
+      continue;
+    }
+    walkChain(g.chains[c],
+      w,
+      h,
+      [&](int i, int j, std::size_t k, double t)
+      {
+        const std::size_t cell =
+          static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
+        const double v = (1.0 - t) * vertexValue[ids[k - 1]] + t * vertexValue[ids[k]];
+        // Where lines of the network cross, the lower value (the floor nearer
+        // the outlet, or the lower crest) is kept.
+        if (r.seeds[cell] == 0 || v < r.value[cell])
+        {
+          r.value[cell] = static_cast<float>(v);
+        }
+        r.seeds[cell] = 1;
+      });
+  }
+  return r;
+}
+
+double confidence(double d, double width, double fade)
+{
+  if (d <= width)
+  {
+    return 1.0;
+  }
+  if (d >= width + fade)
+  {
+    return 0.0;
+  }
+  const double c = std::cos(0.5 * 3.14159265358979323846 * (d - width) / fade);
+  return c * c;
+}
+
+} // namespace
+
+LandformField landformField(const FeatureGraph& graph,
+  int w,
+  int h,
+  double cellX,
+  double cellY,
+  const LandformStatistics& s,
+  const LandformFieldOptions& o,
+  const Heightfield* base,
+  const LineHeights* heights)
+{
+  LandformField out;
+  out.field = Heightfield(w, h, static_cast<float>(s.base));
+  out.field.cellX = cellX;
+  out.field.cellY = cellY;
+  out.field.cellSizeKnown = true;
+  const std::size_t n = out.field.size();
+  out.weight.assign(n, 0.0f);
+  out.downstream.assign(n, kNaN);
+  if (base != nullptr)
+  {
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      out.field.z[k] = base->isValid(k) ? base->z[k] : static_cast<float>(s.base);
+    }
+  }
+  const double cell = std::min(cellX, cellY);
+  auto baseOf = [&](const LineNetwork& net)
+  {
+    std::vector<double> b(net.size(), s.base);
+    for (std::size_t v = 0; v < net.size(); ++v)
+    {
+      const int i = std::clamp(static_cast<int>(std::lround(net.position(v).x)), 0, w - 1);
+      const int j = std::clamp(static_cast<int>(std::lround(net.position(v).y)), 0, h - 1);
+      b[v] = out.field.at(i, j);
+    }
+    return b;
+  };
+
+  const LineNetwork ridges(graph, FeatureType::Ridge, cellX, cellY);
+  const LineNetwork valleys(graph, FeatureType::Valley, cellX, cellY);
+  const std::vector<double> crest =
+    crestHeights(ridges, vertexValues(ridges, graph, heights), baseOf(ridges), s, o, cell);
+  const ValleyFloors floors = valleyFloors(
+    valleys, vertexValues(valleys, graph, heights), baseOf(valleys), s, o, w, h, out.warnings);
+  const RasterLines ridgeCells = rasteriseNetwork(graph, ridges, crest, w, h);
+  const RasterLines valleyCells = rasteriseNetwork(graph, valleys, floors.floor, w, h);
+  const RasterLines valleyRims = rasteriseNetwork(graph, valleys, floors.rim, w, h);
+  const RasterLines flow = rasteriseNetwork(graph, valleys, floors.downstream, w, h);
+  const NearestSeeds nearRidge = nearestSeeds(ridgeCells.seeds, w, h, cellX, cellY);
+  const NearestSeeds nearValley = nearestSeeds(valleyCells.seeds, w, h, cellX, cellY);
+  const MonotoneProfile ridgeShape = s.ridge.section.normalised();
+  const MonotoneProfile valleyShape = s.valley.section.normalised();
+  const double fade = kConfidenceFadeInPatches * o.patchSize * cell;
+  const double gorgeSlope =
+    (s.ridge.relief + s.valley.relief) / (kGorgeReachInPatches * o.patchSize * cell);
+  const double ridgeSoft2 = std::pow(kRidgeSoftening * cell, 2.0);
+  const double valleySoft2 = std::pow(kValleySoftening * cell, 2.0);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const double b = out.field.z[k];
+    double sum = 0.0;
+    double weights = 0.0;
+    double conf = 0.0;
+    if (!nearRidge.empty())
+    {
+      const double d = nearRidge.distance[k];
+      const double top = ridgeCells.value[static_cast<std::size_t>(nearRidge.nearest[k])];
+      const double a = 1.0 / (d * d + ridgeSoft2);
+      sum += a * (top - (top - b) * ridgeShape(d));
+      weights += a;
+      conf = std::max(conf, confidence(d, s.ridge.section.reach(kConfidentReach), fade));
+    }
+    double gorge = kInfinity;
+    if (!nearValley.empty())
+    {
+      const double d = nearValley.distance[k];
+      const std::size_t at = static_cast<std::size_t>(nearValley.nearest[k]);
+      const double bottom = valleyCells.value[at];
+      const double top = valleyRims.value[at];
+      const double a = 1.0 / (d * d + valleySoft2);
+      sum += a * (bottom + (top - bottom) * valleyShape(d));
+      weights += a;
+      conf = std::max(conf, confidence(d, s.valley.section.reach(kConfidentReach), fade));
+      gorge = bottom + gorgeSlope * d;
+    }
+    if (weights > 0.0)
+    {
+      out.field.z[k] = static_cast<float>(std::min(gorge, sum / weights));
+    }
+    out.weight[k] = static_cast<float>(conf);
+    if (flow.seeds[k] != 0)
+    {
+      out.downstream[k] = flow.value[k];
+    }
+  }
+  return out;
+}
+
+} // namespace tsynth

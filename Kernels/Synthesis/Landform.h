@@ -1,0 +1,107 @@
+// Landforms at the scale of the drawing. A sketched ridge stands for a
+// mountain ridge with the cross-section of the exemplars' own major ridges, a
+// sketched valley for a valley whose floor descends to an outlet, with flanks
+// like the exemplars' valley sides. measureLandforms() reads those
+// cross-sections off the exemplars' feature trees; landformField() turns the
+// sketch's lines into the target field T_tar and a confidence that is 1 near
+// the lines and 0 where no line is near (there the land is left free).
+#pragma once
+
+#include "../Core/Heightfield.h"
+#include "../Distance/Profile.h"
+#include "../Features/FeatureGraph.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tsynth
+{
+
+// One kind of landform (ridge or valley) as the exemplars have it.
+struct LandformProfile
+{
+  // Height relative to the line against distance from it (metres, both), from
+  // 0 at the line: falling for ridges, rising for valleys. Empty if unmeasured.
+  MonotoneProfile section;
+  double level = 0.0;      // typical height of the major lines themselves (crest or floor), m
+  double relief = 0.0;     // height between the line and the land it stands on, m
+  double width = 0.0;      // distance in which 90% of the relief is made, m
+  double lineLength = 0.0; // metres of major line measured
+};
+
+struct LandformStatistics
+{
+  LandformProfile ridge;
+  LandformProfile valley;
+  double base = 0.0;          // the land ridges stand on and valleys are cut into, m
+  double floorGradient = 0.0; // typical descent of major valley floors, m per m
+  std::vector<std::string> warnings;
+};
+
+struct LandformMeasureOptions
+{
+  int patchSize = 80;
+  // Share of an exemplar's ridge (valley) cells, the highest (lowest), taken as
+  // its major features: the main ranges and trunk valleys, not the spurs and
+  // gullies between them, whose cross-sections end at the next spur.
+  double majorShare = 0.25;
+  // Cross-sections are measured this many patches out from the lines: a
+  // landform is wider than a patch.
+  double reachInPatches = 1.5;
+};
+
+// Cross-sections of the exemplars' major ridges and valleys, pooled over the
+// exemplars (each counts by its length of line), and the levels they share.
+// Exemplars without one kind of feature fall back on the other kind or on
+// their height distribution, with a warning.
+LandformStatistics measureLandforms(const std::vector<const Heightfield*>& exemplars,
+  const std::vector<const FeatureGraph*>& graphs,
+  const LandformMeasureOptions& options = {});
+
+struct LandformFieldOptions
+{
+  int patchSize = 80;
+  std::uint64_t seed = 0; // breaks ties between equally good valley outlets
+  // A ridge's crest keeps this share of its relief at a free end (a spur ends
+  // in a slope, not a cliff), rising to all of it half a patch along the line.
+  double endRelief = 0.4;
+  // A valley's floor rises from its outlet towards its heads by at most this
+  // many times its depth (the land around rises with it: the basin tilts
+  // towards its outlet) ...
+  double headRise = 1.0;
+  // ... and the valley becomes shallower towards its heads, keeping this share
+  // of its depth at the farthest head.
+  double headDepth = 0.6;
+};
+
+// Heights along the sketch's lines, when the sketch says them (a grey map or
+// DEM, or poly-line Elevation): per chain point of `graph`, NaN where unknown.
+using LineHeights = std::vector<std::vector<float>>;
+
+struct LandformField
+{
+  Heightfield field;         // T_tar, metres
+  std::vector<float> weight; // confidence 0..1 of T_tar, per cell
+  // Along the sketched valleys: per cell of their rasterised lines the flow
+  // distance to the outlet (metres), NaN elsewhere. Water runs towards smaller
+  // values, so the result's floors can be made to descend the same way.
+  std::vector<float> downstream;
+  std::vector<std::string> warnings;
+};
+
+// The target of a graph already on the output grid (cells of cellX x cellY m).
+// `base`, when given, is the land's height per cell (a grey map's background);
+// else the statistics' base everywhere. `heights` optionally fixes crest and
+// floor heights along the lines.
+LandformField landformField(const FeatureGraph& graph,
+  int width,
+  int height,
+  double cellX,
+  double cellY,
+  const LandformStatistics& statistics,
+  const LandformFieldOptions& options,
+  const Heightfield* base = nullptr,
+  const LineHeights* heights = nullptr);
+
+} // namespace tsynth
