@@ -322,37 +322,68 @@ Heightfield fillDepressions(const Heightfield& dem, const std::vector<std::uint8
   return out;
 }
 
+namespace
+{
+
+// Rows below this are not worth a thread team.
+constexpr int kParallelRows = 64;
+
+// Steepest strictly-downhill code of cell (i, j), or kNoFlow. `inside` says all
+// eight neighbours are on the grid (no bounds checks needed).
+std::int8_t steepestDescent(const Heightfield& dem,
+  int i,
+  int j,
+  bool inside,
+  const std::array<double, kD8Directions>& distance,
+  const std::array<std::ptrdiff_t, kD8Directions>& offset)
+{
+  const std::size_t k = dem.index(i, j);
+  const double h = dem.z[k];
+  double steepest = 0.0;
+  std::int8_t code = kNoFlow;
+  for (int c = 0; c < kD8Directions; ++c)
+  {
+    const std::size_t u = static_cast<std::size_t>(c);
+    if (!inside && !inGrid(dem, i + kD8Dx[u], j + kD8Dy[u]))
+    {
+      continue;
+    }
+    const std::size_t n = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k) + offset[u]);
+    if (!isUsableCell(dem, n))
+    {
+      continue;
+    }
+    const double slope = (h - static_cast<double>(dem.z[n])) / distance[u];
+    if (slope > steepest)
+    {
+      steepest = slope;
+      code = static_cast<std::int8_t>(c);
+    }
+  }
+  return code;
+}
+
+} // namespace
+
 std::vector<std::int8_t> flowDirections(const Heightfield& dem)
 {
   const std::array<double, kD8Directions> distance = d8Distances(dem.cellX, dem.cellY);
+  std::array<std::ptrdiff_t, kD8Directions> offset{};
+  for (int c = 0; c < kD8Directions; ++c)
+  {
+    offset[static_cast<std::size_t>(c)] = d8Offset(c, dem.width);
+  }
   std::vector<std::int8_t> dir(dem.size(), kNoFlow);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (dem.height >= kParallelRows)
   for (int j = 0; j < dem.height; ++j)
   {
+    const bool innerRow = j > 0 && j + 1 < dem.height;
     for (int i = 0; i < dem.width; ++i)
     {
-      const std::size_t k = dem.index(i, j);
-      if (!isUsableCell(dem, k))
+      if (isUsableCell(dem, dem.index(i, j)))
       {
-        continue;
-      }
-      double steepest = 0.0;
-      for (int c = 0; c < kD8Directions; ++c)
-      {
-        const std::size_t u = static_cast<std::size_t>(c);
-        const int ni = i + kD8Dx[u];
-        const int nj = j + kD8Dy[u];
-        if (!inGrid(dem, ni, nj) || !isUsableCell(dem, dem.index(ni, nj)))
-        {
-          continue;
-        }
-        const double slope =
-          (static_cast<double>(dem.z[k]) - static_cast<double>(dem.at(ni, nj))) / distance[u];
-        if (slope > steepest)
-        {
-          steepest = slope;
-          dir[k] = static_cast<std::int8_t>(c);
-        }
+        const bool inside = innerRow && i > 0 && i + 1 < dem.width;
+        dir[dem.index(i, j)] = steepestDescent(dem, i, j, inside, distance, offset);
       }
     }
   }
