@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <queue>
 #include <string>
 #include <utility>
 
@@ -196,6 +195,14 @@ void forEachCellNear(const Heightfield& hf, const Point2& p, double radius, F&& 
   }
 }
 
+double floorNear(const Heightfield& hf, const Point2& p, double radius)
+{
+  double lowest = std::numeric_limits<double>::infinity();
+  forEachCellNear(
+    hf, p, radius, [&](std::size_t k) { lowest = std::min<double>(lowest, hf.z[k]); });
+  return lowest;
+}
+
 // Mann-Whitney AUC: P(ridge > valley) + P(ridge == valley) / 2.
 double aboveProbability(const std::vector<double>& ridges, std::vector<double> valleys)
 {
@@ -254,16 +261,6 @@ struct ValleyNetwork
   }
 };
 
-std::size_t findRoot(std::vector<std::size_t>& parent, std::size_t v)
-{
-  while (parent[v] != v)
-  {
-    parent[v] = parent[parent[v]];
-    v = parent[v];
-  }
-  return v;
-}
-
 std::vector<std::size_t> valleyChains(const FeatureGraph& g)
 {
   std::vector<std::size_t> out;
@@ -286,103 +283,19 @@ std::vector<std::size_t> valleyChains(const FeatureGraph& g)
   return out;
 }
 
-// Per connected valley network the outlet: the end node (any node if none)
-// where the terrain is lowest, ties to the lower id.
-std::vector<std::size_t> valleyOutlets(const FeatureGraph& g,
-  const std::vector<std::size_t>& chains,
-  const Heightfield& terrain)
+// Floor height of every node used by a valley chain (lowest valid height within
+// `tolerance`; +infinity if none), which orders nodes downstream.
+std::vector<double> nodeFloors(const FeatureGraph& g, const Heightfield& terrain, double tolerance)
 {
-  const std::size_t n = g.nodes.size();
-  std::vector<std::size_t> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
-  std::vector<int> degree(n, 0);
-  std::vector<std::uint8_t> used(n, 0);
-  for (const std::size_t c : chains)
+  std::vector<double> floors(g.nodes.size(), std::numeric_limits<double>::infinity());
+  for (std::size_t v = 0; v < g.nodes.size(); ++v)
   {
-    const std::size_t a = static_cast<std::size_t>(g.chains[c].from);
-    const std::size_t b = static_cast<std::size_t>(g.chains[c].to);
-    ++degree[a];
-    ++degree[b];
-    used[a] = used[b] = 1;
-    parent[findRoot(parent, a)] = findRoot(parent, b);
+    floors[v] = floorNear(terrain, g.nodes[v].position, tolerance);
   }
-  std::vector<int> hasEnd(n, 0);
-  for (std::size_t v = 0; v < n; ++v)
-  {
-    hasEnd[findRoot(parent, v)] |= (used[v] != 0 && degree[v] == 1) ? 1 : 0;
-  }
-  const double inf = std::numeric_limits<double>::infinity();
-  std::vector<double> best(n, inf);
-  std::vector<long> pick(n, -1);
-  for (std::size_t v = 0; v < n; ++v)
-  {
-    const std::size_t root = findRoot(parent, v);
-    if (used[v] == 0 || (hasEnd[root] != 0 && degree[v] != 1))
-    {
-      continue;
-    }
-    const double z = sampleBilinear(terrain, g.nodes[v].position.x, g.nodes[v].position.y);
-    const double key = std::isnan(z) ? inf : z;
-    if (pick[root] < 0 || key < best[root])
-    {
-      best[root] = key;
-      pick[root] = static_cast<long>(v);
-    }
-  }
-  std::vector<std::size_t> outlets;
-  for (std::size_t v = 0; v < n; ++v)
-  {
-    if (pick[v] >= 0)
-    {
-      outlets.push_back(static_cast<std::size_t>(pick[v]));
-    }
-  }
-  return outlets;
+  return floors;
 }
 
-// Shortest sketched distance (cells) from every node to its network's outlet.
-std::vector<double> distanceToOutlet(const FeatureGraph& g,
-  const std::vector<std::size_t>& chains,
-  const std::vector<ChainPath>& paths,
-  const std::vector<std::size_t>& outlets)
-{
-  std::vector<std::vector<std::pair<std::size_t, double>>> adjacent(g.nodes.size());
-  for (const std::size_t c : chains)
-  {
-    const std::size_t a = static_cast<std::size_t>(g.chains[c].from);
-    const std::size_t b = static_cast<std::size_t>(g.chains[c].to);
-    adjacent[a].push_back({ b, paths[c].length() });
-    adjacent[b].push_back({ a, paths[c].length() });
-  }
-  std::vector<double> dist(g.nodes.size(), std::numeric_limits<double>::infinity());
-  using Item = std::pair<double, std::size_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
-  for (const std::size_t o : outlets)
-  {
-    dist[o] = 0.0;
-    open.push({ 0.0, o });
-  }
-  while (!open.empty())
-  {
-    const auto [d, v] = open.top();
-    open.pop();
-    if (d > dist[v])
-    {
-      continue;
-    }
-    for (const auto& [w, len] : adjacent[v])
-    {
-      if (d + len < dist[w])
-      {
-        dist[w] = d + len;
-        open.push({ dist[w], w });
-      }
-    }
-  }
-  return dist;
-}
-
-ValleyNetwork orientValleys(const FeatureGraph& g, const Heightfield& terrain)
+ValleyNetwork orientValleys(const FeatureGraph& g, const Heightfield& terrain, double tolerance)
 {
   ValleyNetwork net;
   const std::vector<std::size_t> chains = valleyChains(g);
@@ -392,14 +305,13 @@ ValleyNetwork orientValleys(const FeatureGraph& g, const Heightfield& terrain)
     net.paths.emplace_back(
       g.chains[c].type == FeatureType::Valley ? g.chains[c].points : std::vector<Point2>{});
   }
-  const std::vector<double> dist =
-    distanceToOutlet(g, chains, net.paths, valleyOutlets(g, chains, terrain));
-  // Downstream means towards the smaller (distance, id): a strict order, so no cycle.
+  // Downstream means towards the lower (floor, id): a strict order, so no cycle.
+  const std::vector<double> floors = nodeFloors(g, terrain, tolerance);
   auto lower = [&](int a, int b)
   {
-    const std::size_t ua = static_cast<std::size_t>(a);
-    const std::size_t ub = static_cast<std::size_t>(b);
-    return dist[ua] < dist[ub] || (dist[ua] == dist[ub] && a < b);
+    const double fa = floors[static_cast<std::size_t>(a)];
+    const double fb = floors[static_cast<std::size_t>(b)];
+    return fa < fb || (fa == fb && a < b);
   };
   for (const std::size_t c : chains)
   {
@@ -563,14 +475,6 @@ void measureShedding(const Drainage& d,
   {
     m.notes["ridgeShedding"] = "no ridge sample lies on valid terrain";
   }
-}
-
-double floorNear(const Heightfield& hf, const Point2& p, double radius)
-{
-  double lowest = std::numeric_limits<double>::infinity();
-  forEachCellNear(
-    hf, p, radius, [&](std::size_t k) { lowest = std::min<double>(lowest, hf.z[k]); });
-  return lowest;
 }
 
 void measureDescent(const Heightfield& terrain,
@@ -801,7 +705,7 @@ LandformMeasures measureLandforms(const Heightfield& terrain,
     }
     if (valleys)
     {
-      const ValleyNetwork net = orientValleys(sketch, terrain);
+      const ValleyNetwork net = orientValleys(sketch, terrain, o.tolerance);
       measureDrainage(d, net, o, m);
       measureDescent(terrain, net, o, m);
     }
