@@ -283,7 +283,7 @@ std::vector<std::size_t> valleyChains(const FeatureGraph& g)
   return out;
 }
 
-// Floor height of every node used by a valley chain (lowest valid height within
+// Floor height of every node (lowest valid height within
 // `tolerance`; +infinity if none), which orders nodes downstream.
 std::vector<double> nodeFloors(const FeatureGraph& g, const Heightfield& terrain, double tolerance)
 {

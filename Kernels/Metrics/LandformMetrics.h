@@ -125,9 +125,9 @@ FeatureGraph ownFeatureLines(const Heightfield& dem, const PpaOptions& options =
 // Each valley chain drains towards the lower of its two end nodes (the lowest
 // terrain within `tolerance`; ties to the lower node id), so a network drawn
 // across a divide drains both ways from it; paths from the heads continue
-// through the nodes where chains meet. Throws tsynth::Error if a graph's grid size differs
-// from its heightfield's, the exemplar and line counts differ, or an option is
-// out of range.
+// through the nodes where chains meet. Throws tsynth::Error if a graph's grid
+// size differs from its heightfield's, the exemplar and line counts differ, or
+// an option is out of range.
 LandformMeasures measureLandforms(const Heightfield& terrain,
   const FeatureGraph& sketch,
   const std::vector<const Heightfield*>& exemplars,
