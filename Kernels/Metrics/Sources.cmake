@@ -1,2 +1,3 @@
 set(TSYNTH_METRICS_SOURCES
+  Metrics/LandformMetrics.cxx
   Metrics/TerrainMetrics.cxx)

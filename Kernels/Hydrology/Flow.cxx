@@ -1,0 +1,585 @@
+#include "Flow.h"
+
+#include "../Core/Error.h"
+#include "RadixHeap.h"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+
+namespace tsynth
+{
+
+std::array<double, kD8Directions> d8Distances(double cellX, double cellY)
+{
+  std::array<double, kD8Directions> d{};
+  for (int c = 0; c < kD8Directions; ++c)
+  {
+    const std::size_t u = static_cast<std::size_t>(c);
+    d[u] = std::hypot(kD8Dx[u] * cellX, kD8Dy[u] * cellY);
+  }
+  return d;
+}
+
+namespace
+{
+
+bool inGrid(const Heightfield& dem, int i, int j)
+{
+  return i >= 0 && j >= 0 && i < dem.width && j < dem.height;
+}
+
+void checkSinks(const Heightfield& dem, const std::vector<std::uint8_t>* sinks)
+{
+  if (sinks != nullptr && sinks->size() != dem.size())
+  {
+    throw Error("The sink mask has " + std::to_string(sinks->size()) +
+      " cells but the terrain has " + std::to_string(dem.size()) +
+      "; give one byte per terrain cell.");
+  }
+}
+
+} // namespace
+
+bool isSeedCell(const Heightfield& dem, const std::vector<std::uint8_t>* sinks, int i, int j)
+{
+  const std::size_t k = dem.index(i, j);
+  if (!isUsableCell(dem, k))
+  {
+    return false;
+  }
+  if (sinks != nullptr && (*sinks)[k] != 0)
+  {
+    return true;
+  }
+  for (int c = 0; c < kD8Directions; ++c)
+  {
+    const int ni = i + kD8Dx[static_cast<std::size_t>(c)];
+    const int nj = j + kD8Dy[static_cast<std::size_t>(c)];
+    if (!inGrid(dem, ni, nj) || !isUsableCell(dem, dem.index(ni, nj)))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+namespace
+{
+
+// Flood keys: the height's bits made to sort as unsigned integers in the high
+// half (negative floats reversed), the cell index in the low half, so keys
+// order by height and then by index.
+std::uint64_t floodKey(float z, std::uint32_t cell)
+{
+  std::uint32_t bits = 0;
+  std::memcpy(&bits, &z, sizeof bits);
+  constexpr std::uint32_t kSign = 0x80000000u;
+  bits = (bits & kSign) != 0 ? ~bits : (bits | kSign);
+  return (static_cast<std::uint64_t>(bits) << 32) | cell;
+}
+
+std::uint32_t cellOfKey(std::uint64_t key)
+{
+  return static_cast<std::uint32_t>(key);
+}
+
+// std::nextafter(z, +infinity) for finite z, without the library call: the
+// next float up is the bit pattern one step away from zero for positive z and
+// towards zero for negative z (-0 and +0 both step to the smallest positive).
+float raisedAbove(float z)
+{
+  if (z == 0.0f)
+  {
+    return std::numeric_limits<float>::denorm_min();
+  }
+  std::uint32_t bits = 0;
+  std::memcpy(&bits, &z, sizeof bits);
+  bits = z > 0.0f ? bits + 1 : bits - 1;
+  std::memcpy(&z, &bits, sizeof bits);
+  return z;
+}
+
+// The flood on a copy of the grid with a one-cell frame of closed cells, so
+// neighbour loops need no bounds checks. See fillDepressions for the contract.
+//
+// Order: the cell popped next is the lower of the pit queue's front and the
+// priority queue's top, so cells are settled in non-decreasing height as in the
+// plain algorithm. A cell reached from one at height h takes max(its height,
+// nextafter(h)) from the first neighbour settled, which is then a lowest one;
+// ties between equal heights cannot change that value, so the heights equal
+// those of a plain priority-queue fill. Cells raised to nextafter(h) join the
+// FIFO pit queue (pushed in non-decreasing order, so it stays sorted).
+//
+// Slopes: a cell strictly higher than a settled neighbour keeps its own height
+// whatever else happens (it already drains), so it is settled at once and
+// climbs further ("slope" stack) without waiting for its turn; it enters the
+// priority queue only if it has an unsettled neighbour no higher than itself,
+// which must be raised in flood order.
+class PriorityFlood
+{
+public:
+  PriorityFlood(const Heightfield& dem, const std::vector<std::uint8_t>* sinks)
+    : width_(dem.width + 2)
+    , z_(static_cast<std::size_t>(width_) * static_cast<std::size_t>(dem.height + 2), 0.0f)
+    , closed_(z_.size(), 1)
+  {
+    for (int c = 0; c < kD8Directions; ++c)
+    {
+      offsets_[static_cast<std::size_t>(c)] = d8Offset(c, width_);
+    }
+    for (int j = 0; j < dem.height; ++j)
+    {
+      for (int i = 0; i < dem.width; ++i)
+      {
+        const std::size_t k = dem.index(i, j);
+        if (isUsableCell(dem, k)) // invalid cells stay closed: never raised, never a path
+        {
+          z_[framed(i, j)] = dem.z[k];
+          closed_[framed(i, j)] = 0;
+        }
+      }
+    }
+    // Seeds: sinks and cells next to a closed one (the frame or an invalid cell).
+    std::vector<std::uint32_t> seeds;
+    for (int j = 0; j < dem.height; ++j)
+    {
+      for (int i = 0; i < dem.width; ++i)
+      {
+        const std::size_t p = framed(i, j);
+        if (closed_[p] == 0 &&
+          ((sinks != nullptr && (*sinks)[dem.index(i, j)] != 0) || touchesClosed(p)))
+        {
+          seeds.push_back(static_cast<std::uint32_t>(p));
+        }
+      }
+    }
+    for (const std::uint32_t p : seeds)
+    {
+      closed_[p] = 1;
+      heap_.push(floodKey(z_[p], p));
+    }
+  }
+
+  void run()
+  {
+    for (;;)
+    {
+      std::uint32_t cell = 0;
+      if (pitHead_ < pit_.size())
+      {
+        const std::uint32_t front = pit_[pitHead_];
+        if (heap_.hasKeyBelow(floodKey(z_[front], 0)))
+        {
+          cell = cellOfKey(heap_.pop());
+        }
+        else
+        {
+          cell = front;
+          if (++pitHead_ == pit_.size())
+          {
+            pit_.clear();
+            pitHead_ = 0;
+          }
+        }
+      }
+      else if (!heap_.empty())
+      {
+        cell = cellOfKey(heap_.pop());
+      }
+      else
+      {
+        return;
+      }
+      settleNeighbours(cell);
+      climbSlopes();
+    }
+  }
+
+  void copyTo(Heightfield& out) const
+  {
+    for (int j = 0; j < out.height; ++j)
+    {
+      for (int i = 0; i < out.width; ++i)
+      {
+        const std::size_t k = out.index(i, j);
+        if (isUsableCell(out, k))
+        {
+          out.z[k] = z_[framed(i, j)];
+        }
+      }
+    }
+  }
+
+private:
+  std::size_t framed(int i, int j) const
+  {
+    return static_cast<std::size_t>(j + 1) * static_cast<std::size_t>(width_) +
+      static_cast<std::size_t>(i + 1);
+  }
+
+  std::size_t neighbour(std::uint32_t cell, std::size_t code) const
+  {
+    return static_cast<std::size_t>(static_cast<std::ptrdiff_t>(cell) + offsets_[code]);
+  }
+
+  bool touchesClosed(std::size_t p) const
+  {
+    for (const std::ptrdiff_t o : offsets_)
+    {
+      if (closed_[static_cast<std::size_t>(static_cast<std::ptrdiff_t>(p) + o)] != 0)
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  // In flood order: raise lower neighbours, settle higher ones as slopes.
+  void settleNeighbours(std::uint32_t cell)
+  {
+    const float h = z_[cell];
+    const float raised = raisedAbove(h);
+    for (std::size_t c = 0; c < offsets_.size(); ++c)
+    {
+      const std::size_t n = neighbour(cell, c);
+      if (closed_[n] != 0)
+      {
+        continue;
+      }
+      closed_[n] = 1;
+      if (z_[n] > h)
+      {
+        slope_.push_back(static_cast<std::uint32_t>(n));
+      }
+      else
+      {
+        z_[n] = raised;
+        pit_.push_back(static_cast<std::uint32_t>(n));
+      }
+    }
+  }
+
+  void climbSlopes()
+  {
+    while (!slope_.empty())
+    {
+      const std::uint32_t cell = slope_.back();
+      slope_.pop_back();
+      const float h = z_[cell];
+      bool lowerOpen = false;
+      for (std::size_t c = 0; c < offsets_.size(); ++c)
+      {
+        const std::size_t n = neighbour(cell, c);
+        if (closed_[n] != 0)
+        {
+          continue;
+        }
+        if (z_[n] > h)
+        {
+          closed_[n] = 1;
+          slope_.push_back(static_cast<std::uint32_t>(n));
+        }
+        else
+        {
+          lowerOpen = true;
+        }
+      }
+      if (lowerOpen)
+      {
+        heap_.push(floodKey(h, cell));
+      }
+    }
+  }
+
+  int width_;
+  std::vector<float> z_;
+  std::vector<std::uint8_t> closed_;
+  std::array<std::ptrdiff_t, kD8Directions> offsets_{};
+  MonotoneRadixHeap heap_;
+  std::vector<std::uint32_t> pit_; // FIFO: pit_[pitHead_ ..] are waiting
+  std::size_t pitHead_ = 0;
+  std::vector<std::uint32_t> slope_;
+};
+
+} // namespace
+
+Heightfield fillDepressions(const Heightfield& dem, const std::vector<std::uint8_t>* sinks)
+{
+  checkSinks(dem, sinks);
+  const std::size_t framedCells =
+    static_cast<std::size_t>(dem.width + 2) * static_cast<std::size_t>(dem.height + 2);
+  if (framedCells > std::numeric_limits<std::uint32_t>::max())
+  {
+    throw Error("The terrain is too large to fill (" + std::to_string(dem.size()) +
+      " cells; at most about 4.29 billion); fill it in tiles.");
+  }
+  PriorityFlood flood(dem, sinks);
+  flood.run();
+  Heightfield out = dem;
+  flood.copyTo(out);
+  return out;
+}
+
+namespace
+{
+
+// Rows below this are not worth a thread team.
+constexpr int kParallelRows = 64;
+
+// Steepest strictly-downhill code of cell (i, j), or kNoFlow. `inside` says all
+// eight neighbours are on the grid (no bounds checks needed).
+std::int8_t steepestDescent(const Heightfield& dem,
+  int i,
+  int j,
+  bool inside,
+  const std::array<double, kD8Directions>& distance,
+  const std::array<std::ptrdiff_t, kD8Directions>& offset)
+{
+  const std::size_t k = dem.index(i, j);
+  const double h = dem.z[k];
+  double steepest = 0.0;
+  std::int8_t code = kNoFlow;
+  for (int c = 0; c < kD8Directions; ++c)
+  {
+    const std::size_t u = static_cast<std::size_t>(c);
+    if (!inside && !inGrid(dem, i + kD8Dx[u], j + kD8Dy[u]))
+    {
+      continue;
+    }
+    const std::size_t n = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k) + offset[u]);
+    if (!isUsableCell(dem, n))
+    {
+      continue;
+    }
+    const double slope = (h - static_cast<double>(dem.z[n])) / distance[u];
+    if (slope > steepest)
+    {
+      steepest = slope;
+      code = static_cast<std::int8_t>(c);
+    }
+  }
+  return code;
+}
+
+} // namespace
+
+std::vector<std::int8_t> flowDirections(const Heightfield& dem)
+{
+  const std::array<double, kD8Directions> distance = d8Distances(dem.cellX, dem.cellY);
+  std::array<std::ptrdiff_t, kD8Directions> offset{};
+  for (int c = 0; c < kD8Directions; ++c)
+  {
+    offset[static_cast<std::size_t>(c)] = d8Offset(c, dem.width);
+  }
+  std::vector<std::int8_t> dir(dem.size(), kNoFlow);
+#pragma omp parallel for schedule(static) if (dem.height >= kParallelRows)
+  for (int j = 0; j < dem.height; ++j)
+  {
+    const bool innerRow = j > 0 && j + 1 < dem.height;
+    for (int i = 0; i < dem.width; ++i)
+    {
+      if (isUsableCell(dem, dem.index(i, j)))
+      {
+        const bool inside = innerRow && i > 0 && i + 1 < dem.width;
+        dir[dem.index(i, j)] = steepestDescent(dem, i, j, inside, distance, offset);
+      }
+    }
+  }
+  return dir;
+}
+
+namespace
+{
+
+// Index of the cell `code` points to, after checking it is a valid target.
+std::size_t downstreamOf(std::size_t k,
+  int code,
+  int width,
+  int height,
+  const std::vector<std::uint8_t>* valid)
+{
+  if (code < 0 || code >= kD8Directions)
+  {
+    throw Error("Flow direction " + std::to_string(code) + " at cell " + std::to_string(k) +
+      " is not a D8 code (0..7 or -1 for no flow).");
+  }
+  const int i =
+    static_cast<int>(k % static_cast<std::size_t>(width)) + kD8Dx[static_cast<std::size_t>(code)];
+  const int j =
+    static_cast<int>(k / static_cast<std::size_t>(width)) + kD8Dy[static_cast<std::size_t>(code)];
+  if (i < 0 || j < 0 || i >= width || j >= height)
+  {
+    throw Error("The flow direction at cell " + std::to_string(k) +
+      " points off the grid; directions must come from the same grid.");
+  }
+  const std::size_t n =
+    static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i);
+  if (valid != nullptr && (*valid)[n] == 0)
+  {
+    throw Error("The flow direction at cell " + std::to_string(k) +
+      " points into an invalid cell; compute directions with the same mask.");
+  }
+  return n;
+}
+
+} // namespace
+
+std::vector<std::uint32_t> flowAccumulation(const std::vector<std::int8_t>& directions,
+  int width,
+  int height,
+  const std::vector<std::uint8_t>* valid)
+{
+  const std::size_t n =
+    static_cast<std::size_t>(std::max(width, 0)) * static_cast<std::size_t>(std::max(height, 0));
+  if (directions.size() != n || (valid != nullptr && valid->size() != n))
+  {
+    throw Error("Flow accumulation needs one direction (and one mask byte) per cell of the " +
+      std::to_string(width) + " x " + std::to_string(height) + " grid.");
+  }
+  auto counts = [valid](std::size_t k) { return valid == nullptr || (*valid)[k] != 0; };
+  std::vector<std::uint32_t> downstream(n, std::numeric_limits<std::uint32_t>::max());
+  std::vector<std::uint8_t> inDegree(n, 0);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    if (counts(k) && directions[k] != kNoFlow)
+    {
+      const std::size_t d = downstreamOf(k, directions[k], width, height, valid);
+      downstream[k] = static_cast<std::uint32_t>(d);
+      ++inDegree[d];
+    }
+  }
+  std::vector<std::uint32_t> acc(n, 0);
+  std::vector<std::uint32_t> ready; // cells whose upstream is complete
+  std::size_t cells = 0;
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    if (counts(k))
+    {
+      acc[k] = 1;
+      ++cells;
+      if (inDegree[k] == 0)
+      {
+        ready.push_back(static_cast<std::uint32_t>(k));
+      }
+    }
+  }
+  std::size_t done = 0;
+  while (!ready.empty())
+  {
+    const std::uint32_t k = ready.back();
+    ready.pop_back();
+    ++done;
+    const std::uint32_t d = downstream[k];
+    if (d != std::numeric_limits<std::uint32_t>::max())
+    {
+      acc[d] += acc[k];
+      if (--inDegree[d] == 0)
+      {
+        ready.push_back(d);
+      }
+    }
+  }
+  if (done != cells)
+  {
+    throw Error("The flow directions form a cycle (" + std::to_string(cells - done) +
+      " cells never reach an outlet); compute them on a heightfield with flowDirections.");
+  }
+  return acc;
+}
+
+bool drainsEverywhere(const Heightfield& dem,
+  const std::vector<std::uint8_t>* sinks,
+  std::size_t* firstBadCell)
+{
+  checkSinks(dem, sinks);
+  std::vector<std::uint8_t> drains(dem.size(), 0);
+  std::vector<std::size_t> front;
+  for (int j = 0; j < dem.height; ++j)
+  {
+    for (int i = 0; i < dem.width; ++i)
+    {
+      const std::size_t k = dem.index(i, j);
+      if (!isUsableCell(dem, k))
+      {
+        continue;
+      }
+      bool ok = isSeedCell(dem, sinks, i, j);
+      for (int c = 0; c < kD8Directions && !ok; ++c)
+      {
+        const int ni = i + kD8Dx[static_cast<std::size_t>(c)];
+        const int nj = j + kD8Dy[static_cast<std::size_t>(c)];
+        ok =
+          inGrid(dem, ni, nj) && isUsableCell(dem, dem.index(ni, nj)) && dem.at(ni, nj) < dem.z[k];
+      }
+      if (ok)
+      {
+        drains[k] = 1;
+        front.push_back(k);
+      }
+    }
+  }
+  // Flats: water crosses cells of equal height to one that drains.
+  while (!front.empty())
+  {
+    const std::size_t k = front.back();
+    front.pop_back();
+    const int i = static_cast<int>(k % static_cast<std::size_t>(dem.width));
+    const int j = static_cast<int>(k / static_cast<std::size_t>(dem.width));
+    for (int c = 0; c < kD8Directions; ++c)
+    {
+      const int ni = i + kD8Dx[static_cast<std::size_t>(c)];
+      const int nj = j + kD8Dy[static_cast<std::size_t>(c)];
+      if (!inGrid(dem, ni, nj))
+      {
+        continue;
+      }
+      const std::size_t n = dem.index(ni, nj);
+      if (drains[n] == 0 && isUsableCell(dem, n) && dem.z[n] == dem.z[k])
+      {
+        drains[n] = 1;
+        front.push_back(n);
+      }
+    }
+  }
+  for (std::size_t k = 0; k < dem.size(); ++k)
+  {
+    if (drains[k] == 0 && isUsableCell(dem, k))
+    {
+      if (firstBadCell != nullptr)
+      {
+        *firstBadCell = k;
+      }
+      return false;
+    }
+  }
+  return true;
+}
+
+std::size_t countPits(const Heightfield& dem)
+{
+  std::size_t pits = 0;
+  for (int j = 1; j + 1 < dem.height; ++j)
+  {
+    for (int i = 1; i + 1 < dem.width; ++i)
+    {
+      const std::size_t k = dem.index(i, j);
+      if (!isUsableCell(dem, k))
+      {
+        continue;
+      }
+      bool pit = true;
+      for (int c = 0; c < kD8Directions && pit; ++c)
+      {
+        const std::size_t n =
+          dem.index(i + kD8Dx[static_cast<std::size_t>(c)], j + kD8Dy[static_cast<std::size_t>(c)]);
+        pit = isUsableCell(dem, n) && dem.z[n] > dem.z[k];
+      }
+      pits += pit ? 1 : 0;
+    }
+  }
+  return pits;
+}
+
+} // namespace tsynth
