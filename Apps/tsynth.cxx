@@ -93,6 +93,14 @@ ridges, blue valleys), or a .vtp of poly-lines with a FeatureType cell array.
   --relative-dip F           dip as a fraction of the local relief (default 0.1)
   --min-dip M                minimum dip in metres (default 0)
   --smooth SIGMA             Gaussian pre-smoothing in cells (default 0)
+  --significance F           a target must also stand out at landform scale: on both
+                             sides of one axis the ground drops, before rising as
+                             much, within the radius by F times the DEM's relief
+                             (1st-99th percentile range) and at least K noise sigmas
+                             (default 0.02; 0 = off, PPA as before; DEMs only)
+  --significance-noise K     that drop's floor in sigmas of the DEM's cell-scale
+                             noise (default 4; 0 = no floor)
+  --significance-radius N    cells searched for that drop (default 20)
   --end-reductions N         end-cell removal passes (default 3)
   --min-branch N             shortest dangling branch kept, cells (default 15)
   --min-tree N               smallest tree kept, cells (default 30)
@@ -464,21 +472,10 @@ std::optional<int> takeCount(CommandLine& cl, const std::string& name, int lo, i
   return static_cast<int>(*v);
 }
 
-int runFeatures(std::vector<std::string> args)
+// The PPA options of `tsynth features` (control radius half the patch).
+tsynth::PpaOptions takePpaOptions(CommandLine& cl, int patch)
 {
-  if (wantsHelp(args))
-  {
-    std::cout << kFeaturesHelp << kReadOptionsHelp;
-    return 0;
-  }
-  CommandLine cl(std::move(args));
-  const std::optional<std::string> output = cl.take("--output", "-o");
-  const std::optional<std::string> controlOutput = cl.take("--control-points");
-  const bool valleys = cl.takeFlag("--valleys");
-  const bool both = cl.takeFlag("--both");
-  const bool sketch = cl.takeFlag("--sketch");
   tsynth::PpaOptions ppa;
-  const int patch = takeCount(cl, "--patch", 8, 4096).value_or(80);
   ppa.controlRadius = 0.5 * patch;
   ppa.halfProfileLength = takeCount(cl, "--profile-length", 1, 100).value_or(ppa.halfProfileLength);
   ppa.endReductions = takeCount(cl, "--end-reductions", 0, 1000).value_or(ppa.endReductions);
@@ -508,6 +505,42 @@ int runFeatures(std::vector<std::string> args)
     }
     ppa.presmoothSigma = *v;
   }
+  if (auto v = cl.takeNumber("--significance"))
+  {
+    if (*v < 0.0 || *v > 1.0)
+    {
+      throw UsageError("--significance expects a fraction of the relief from 0 to 1.");
+    }
+    ppa.significance = *v;
+  }
+  if (auto v = cl.takeNumber("--significance-noise"))
+  {
+    if (*v < 0.0)
+    {
+      throw UsageError("--significance-noise must not be negative.");
+    }
+    ppa.significanceNoise = *v;
+  }
+  ppa.significanceRadius =
+    takeCount(cl, "--significance-radius", 1, 1000).value_or(ppa.significanceRadius);
+  return ppa;
+}
+
+int runFeatures(std::vector<std::string> args)
+{
+  if (wantsHelp(args))
+  {
+    std::cout << kFeaturesHelp << kReadOptionsHelp;
+    return 0;
+  }
+  CommandLine cl(std::move(args));
+  const std::optional<std::string> output = cl.take("--output", "-o");
+  const std::optional<std::string> controlOutput = cl.take("--control-points");
+  const bool valleys = cl.takeFlag("--valleys");
+  const bool both = cl.takeFlag("--both");
+  const bool sketch = cl.takeFlag("--sketch");
+  const int patch = takeCount(cl, "--patch", 8, 4096).value_or(80);
+  const tsynth::PpaOptions ppa = takePpaOptions(cl, patch);
   const tsynth::ReadOptions options = takeReadOptions(cl);
   const std::string path = oneInput(cl, "features");
   if (!output)
@@ -526,6 +559,7 @@ int runFeatures(std::vector<std::string> args)
   const auto t0 = std::chrono::steady_clock::now();
   tsynth::FeatureGraph graph;
   std::vector<std::string> warnings;
+  tsynth::PpaStatistics significance;
   if (sketch && hasExtension(path, ".vtp"))
   {
     const double cell = options.cellX > 0.0 ? options.cellX : 1.0;
@@ -583,6 +617,7 @@ int runFeatures(std::vector<std::string> args)
       if (wanted)
       {
         tsynth::FeatureExtraction e = tsynth::extractFeatures(hf, type, ppa);
+        significance = e.statistics; // the relief and drop are the same for both types
         tsynth::appendGraph(graph, e.graph);
         warnings.insert(warnings.end(), e.warnings.begin(), e.warnings.end());
       }
@@ -608,6 +643,12 @@ int runFeatures(std::vector<std::string> args)
             << graph.countKind(tsynth::NodeKind::End) << " end, "
             << graph.countKind(tsynth::NodeKind::Path) << " loop anchors), " << graph.chains.size()
             << " chains in " << graph.componentCount << " trees; " << seconds << " s\n";
+  if (significance.significantDrop > 0.0)
+  {
+    std::cout << "Significance: features stand " << significance.significantDrop
+              << " m above their sides within " << ppa.significanceRadius << " cells (relief "
+              << significance.relief << " m, noise sigma " << significance.noise << " m)\n";
+  }
   std::cout << "Wrote " << *output << "\n";
   return 0;
 }

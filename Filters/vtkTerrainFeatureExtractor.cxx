@@ -43,6 +43,9 @@ int vtkTerrainFeatureExtractor::RequestData(vtkInformation*,
     o.halfProfileLength = this->HalfProfileLength;
     o.minDip = this->MinimumDip;
     o.relativeDip = this->RelativeDip;
+    o.significance = this->Significance;
+    o.significanceNoise = this->SignificanceNoise;
+    o.significanceRadius = this->SignificanceRadius;
     o.presmoothSigma = this->PresmoothSigma;
     o.endReductions = this->EndReductions;
     o.minBranchLength = this->MinimumBranchLength;
@@ -99,6 +102,9 @@ void vtkTerrainFeatureExtractor::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HalfProfileLength: " << this->HalfProfileLength << "\n";
   os << indent << "MinimumDip: " << this->MinimumDip << "\n";
   os << indent << "RelativeDip: " << this->RelativeDip << "\n";
+  os << indent << "Significance: " << this->Significance << "\n";
+  os << indent << "SignificanceNoise: " << this->SignificanceNoise << "\n";
+  os << indent << "SignificanceRadius: " << this->SignificanceRadius << "\n";
   os << indent << "PresmoothSigma: " << this->PresmoothSigma << "\n";
   os << indent << "EndReductions: " << this->EndReductions << "\n";
   os << indent << "MinimumBranchLength: " << this->MinimumBranchLength << "\n";

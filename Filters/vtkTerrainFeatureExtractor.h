@@ -56,6 +56,30 @@ public:
   ///@}
 
   ///@{
+  /// Significance as a fraction of the heightfield's robust relief (the range
+  /// between its 1st and 99th height percentiles; default 0.02, 0 = off): a
+  /// target is kept only if along one axis both sides drop, each before rising
+  /// as much, within SignificanceRadius cells by Significance x relief and by at
+  /// least SignificanceNoise sigmas of the cell-scale noise. Removes the trees
+  /// that noise grows on flat ground; unit-free.
+  vtkSetClampMacro(Significance, double, 0.0, 1.0);
+  vtkGetMacro(Significance, double);
+  ///@}
+
+  ///@{
+  /// Floor of the significance drop in sigmas of the heightfield's cell-scale
+  /// noise (default 4, 0 = no floor).
+  vtkSetClampMacro(SignificanceNoise, double, 0.0, 100.0);
+  vtkGetMacro(SignificanceNoise, double);
+  ///@}
+
+  ///@{
+  /// Cells searched on each side for the significance drop (default 20).
+  vtkSetClampMacro(SignificanceRadius, int, 1, 1000);
+  vtkGetMacro(SignificanceRadius, int);
+  ///@}
+
+  ///@{
   /// Gaussian pre-smoothing in cells (default 0: none).
   vtkSetClampMacro(PresmoothSigma, double, 0.0, 100.0);
   vtkGetMacro(PresmoothSigma, double);
@@ -102,6 +126,9 @@ protected:
   int HalfProfileLength = 3;
   double MinimumDip = 0.0;
   double RelativeDip = 0.1;
+  double Significance = 0.02;
+  double SignificanceNoise = 4.0;
+  int SignificanceRadius = 20;
   double PresmoothSigma = 0.0;
   int EndReductions = 3;
   int MinimumBranchLength = 15;

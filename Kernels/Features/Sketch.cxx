@@ -277,6 +277,10 @@ SketchFeatures greyFeatures(const ColourImage& image, const SketchOptions& o)
   p.presmoothSigma = std::max(1.0, 0.5 * out.strokeWidth);
   p.halfProfileLength = std::max(3, static_cast<int>(std::ceil(out.strokeWidth)) + 1);
   p.minDip = 0.02 * contrast;
+  // A drawn sketch has no noise to reject (minDip above already ignores faint
+  // shading), and its strokes may cover under 1% of the image, where the DEM
+  // significance's percentile relief would not see them at all.
+  p.significance = 0.0;
   p.endReductions = 2;
   p.minBranchLength = std::max(7, static_cast<int>(std::lround(2.0 * out.strokeWidth)));
   p.minTreeSize = std::max(20, static_cast<int>(std::lround(4.0 * out.strokeWidth)));

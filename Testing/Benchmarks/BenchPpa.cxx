@@ -1,6 +1,7 @@
 // PPA on a 2049 x 2049 real DEM (a bundled DEM mirror-tiled), per step, with
 // same-run ratios against reference implementations:
 //   - the whole extraction on 2 threads vs 1 thread;
+//   - the default (with the significance test) vs significance 0 (PPA without it);
 //   - our Kruskal (radix sort + Boost disjoint sets) vs Boost.Graph's
 //     kruskal_minimum_spanning_tree on the same edges.
 // Usage: tsynth_bench_ppa [DEM] [repetitions]
@@ -29,13 +30,16 @@ double seconds(Clock::time_point t0)
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-PpaTimings best(const Heightfield& hf, int repetitions, FeatureExtraction* last)
+PpaTimings best(const Heightfield& hf,
+  int repetitions,
+  const PpaOptions& options,
+  FeatureExtraction* last)
 {
   PpaTimings b;
   double bestTotal = 1e30;
   for (int r = 0; r < repetitions; ++r)
   {
-    FeatureExtraction e = extractFeatures(hf, FeatureType::Ridge, {});
+    FeatureExtraction e = extractFeatures(hf, FeatureType::Ridge, options);
     if (e.timings.total() < bestTotal)
     {
       bestTotal = e.timings.total();
@@ -64,26 +68,41 @@ int main(int argc, char** argv)
     repetitions);
 
   FeatureExtraction result;
+  FeatureExtraction plain;
+  const PpaOptions defaults;
+  PpaOptions off;
+  off.significance = 0.0;
   const int threads = omp_get_max_threads();
-  const PpaTimings t = best(hf, repetitions, &result);
+  const PpaTimings t = best(hf, repetitions, defaults, &result);
+  const PpaTimings tOff = best(hf, repetitions, off, &plain);
   omp_set_num_threads(1);
-  const PpaTimings t1 = best(hf, repetitions, nullptr);
+  const PpaTimings t1 = best(hf, repetitions, defaults, nullptr);
   omp_set_num_threads(threads);
 
-  std::printf("\n%-28s %10s %10s\n", "step", "ms", "ms 1 thread");
-  auto row = [](const char* name, double a, double b)
-  { std::printf("%-28s %10.1f %10.1f\n", name, 1e3 * a, 1e3 * b); };
-  row("profile recognition", t.profile, t1.profile);
-  row("target connection", t.connect, t1.connect);
-  row("spanning forest (Kruskal)", t.spanningForest, t1.spanningForest);
-  row("pruning", t.pruning, t1.pruning);
-  row("graph, smoothing, control", t.graph, t1.graph);
-  row("total", t.total(), t1.total());
-  std::printf("\ntargets %zu, candidate edges %zu, forest edges %zu, cells kept %zu\n",
+  std::printf("\n%-28s %10s %12s %16s\n", "step", "ms", "ms 1 thread", "ms significance 0");
+  auto row = [](const char* name, double a, double b, double c)
+  { std::printf("%-28s %10.1f %12.1f %16.1f\n", name, 1e3 * a, 1e3 * b, 1e3 * c); };
+  row("profile recognition", t.profile, t1.profile, tOff.profile);
+  row("significance", t.significance, t1.significance, tOff.significance);
+  row("target connection", t.connect, t1.connect, tOff.connect);
+  row("spanning forest (Kruskal)", t.spanningForest, t1.spanningForest, tOff.spanningForest);
+  row("pruning", t.pruning, t1.pruning, tOff.pruning);
+  row("graph, smoothing, control", t.graph, t1.graph, tOff.graph);
+  row("total", t.total(), t1.total(), tOff.total());
+  std::printf("\ntargets %zu (%zu removed as insignificant: drop %.1f m = max(0.02 x relief "
+              "%.1f m, 4 x noise %.2f m)), candidate edges %zu, forest edges %zu, cells kept %zu\n",
     result.statistics.targets,
+    result.statistics.insignificant,
+    result.statistics.significantDrop,
+    result.statistics.relief,
+    result.statistics.noise,
     result.statistics.candidateEdges,
     result.statistics.forestEdges,
     result.statistics.prunedCells);
+  std::printf("significance 0: targets %zu, candidate edges %zu, cells kept %zu\n",
+    plain.statistics.targets,
+    plain.statistics.candidateEdges,
+    plain.statistics.prunedCells);
   std::printf("graph: %zu nodes (%d branch, %d end), %zu chains, %d trees\n",
     result.graph.nodes.size(),
     result.graph.countKind(NodeKind::Branch),
@@ -91,10 +110,14 @@ int main(int argc, char** argv)
     result.graph.chains.size(),
     result.graph.componentCount);
   std::printf("ratio %d threads vs 1 thread: %.2fx\n", threads, t1.total() / t.total());
+  std::printf("ratio default vs significance 0: %.2fx the time (significance step %.1f%% of "
+              "the default's total)\n",
+    t.total() / tOff.total(),
+    100.0 * t.significance / t.total());
   std::printf("ratio vs Tasse's thesis (26.7 s for 2049^2): %.0fx faster\n", 26.7 / t.total());
 
   // Kruskal: ours vs Boost.Graph's on the same candidate edges.
-  const auto targets = profileTargets(hf, 3, 0.0, 0.1);
+  const auto targets = profileTargets(hf, 3, 0.0, 0.1); // significance 0: the most edges
   const auto edges = connectTargets(hf, targets);
   auto t0 = Clock::now();
   const PixelGraph ours = maximumSpanningForest(hf.width, hf.height, edges);

@@ -170,6 +170,21 @@ class CliTest(unittest.TestCase):
         self.assertGreater(vtp_counts(controls)[0], nodes)  # one control point per chain end
         valleys = tsynth("features", dem, "-o", self.path("valleys.vtp"), "--valleys")
         self.assertEqual(valleys.returncode, 0, valleys.stderr)
+        # The significance test (default 0.02 of the 1762 m relief) removes minor lines;
+        # --significance 0 is plain PPA (768 nodes on this DEM, 486 at 0.05).
+        drop = re.search(r"Significance: features stand ([0-9.]+) m", result.stdout)
+        self.assertIsNotNone(drop, result.stdout)
+        self.assertAlmostEqual(float(drop.group(1)), 0.02 * 1762.1, delta=0.5)
+        plain = tsynth("features", dem, "-o", self.path("plain.vtp"), "--significance", "0")
+        self.assertEqual(plain.returncode, 0, plain.stderr)
+        self.assertNotIn("Significance:", plain.stdout)
+        self.assertIn("Features: 768 nodes", plain.stdout)
+        strict = tsynth("features", dem, "-o", self.path("strict.vtp"), "--significance", "0.05",
+                        "--significance-noise", "0", "--significance-radius", "20")
+        self.assertEqual(strict.returncode, 0, strict.stderr)
+        self.assertIn("Features: 486 nodes", strict.stdout)
+        self.assertLess(486, nodes)
+        self.assertLess(nodes, 768)
 
     def test_features_of_sketches(self):
         sketches = os.path.join(PATHS.bundled_data, "sketches")
@@ -219,6 +234,12 @@ class CliTest(unittest.TestCase):
                                   2, "--both")
         self.assert_clean_failure(tsynth("features", dem, "-o", self.path("v.vtp"), "--min-branch", "2.5"),
                                   2, "whole number")
+        self.assert_clean_failure(tsynth("features", dem, "-o", self.path("v.vtp"), "--significance", "2"),
+                                  2, "fraction of the relief")
+        self.assert_clean_failure(tsynth("features", dem, "-o", self.path("v.vtp"),
+                                         "--significance-noise", "-1"), 2, "negative")
+        self.assert_clean_failure(tsynth("features", dem, "-o", self.path("v.vtp"),
+                                         "--significance-radius", "0"), 2, "whole number")
 
     # Bad input ----------------------------------------------------------------------------
 
