@@ -1,4 +1,5 @@
 set(TSYNTH_SYNTHESIS_SOURCES
   Synthesis/Regions.cxx
+  Synthesis/Setup.cxx
   Synthesis/Synthesizer.cxx
   Synthesis/Target.cxx)
