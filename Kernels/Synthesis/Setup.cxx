@@ -32,10 +32,18 @@ constexpr double kResampleTolerance = 0.01;
 constexpr double kPolylineSnapCells = 1.0;
 constexpr double kBytesPerGB = 1.0e9;
 
+// Four significant digits, and whole metres from 1000 up (no exponents).
 std::string number(double v)
 {
   std::ostringstream o;
-  o << std::setprecision(4) << v;
+  if (std::abs(v) >= 1000.0)
+  {
+    o << std::fixed << std::setprecision(0) << v;
+  }
+  else
+  {
+    o << std::setprecision(4) << v;
+  }
   return o.str();
 }
 
@@ -148,7 +156,8 @@ void checkPolylinesInGrid(const SketchExtent& s, const OutputGrid& g, const Setu
     (tiny ? ", less than one cell of " + cellText(g.cellX, g.cellY)
           : ", outside the output (" + number(w + 0.5 * g.cellX) + " x " +
           number(h + 0.5 * g.cellY) + " m)") +
-    "; are they in cells or degrees? Poly-line sketches are in metres in the raster frame "
+    (tiny ? "; are they in cells or degrees?" : "; are they in world coordinates?") +
+    " Poly-line sketches are in metres in the raster frame "
     "(lower-left cell centre at (0, 0)): scale or shift them, or change " +
     names.size + " or " + names.cell + ".");
 }
