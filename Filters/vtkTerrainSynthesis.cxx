@@ -294,6 +294,11 @@ int vtkTerrainSynthesis::RequestInformation(vtkInformationVector** inputVector,
   }
   catch (const std::exception& e)
   {
+    // Nothing announced: not the exemplar's grid the pipeline copied in by default.
+    vtkInformation* out = outputVector->GetInformationObject(0);
+    out->Remove(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+    out->Remove(vtkDataObject::SPACING());
+    out->Remove(vtkDataObject::ORIGIN());
     vtkErrorMacro(<< e.what());
     return 0;
   }
