@@ -104,22 +104,32 @@ void checkRequest(const GridRequest& r, const SetupOptionNames& names)
   }
 }
 
+// What was found, the start of every poly-line refusal.
+std::string spanText(const SketchExtent& s)
+{
+  return "The poly-lines span " + number(s.maxX - s.minX) + " x " + number(s.maxY - s.minY) +
+    " m (x " + number(s.minX) + " to " + number(s.maxX) + ", y " + number(s.minY) + " to " +
+    number(s.maxY) + ")";
+}
+
+// What to do, the end of every poly-line refusal.
+std::string unitAdvice(const SetupOptionNames& names)
+{
+  return " Poly-line sketches are in metres in the raster frame (lower-left cell centre at "
+         "(0, 0)): scale or shift them, or set " +
+    names.size + " and " + names.cell + ".";
+}
+
 // The poly-lines' size from their frame or extent, refusing coordinates that
 // are not metres in the raster frame.
 void polylineSize(const SketchExtent& s, OutputGrid& g, int patch, const SetupOptionNames& names)
 {
-  const std::string span = "The poly-lines span " + number(s.maxX - s.minX) + " x " +
-    number(s.maxY - s.minY) + " m (x " + number(s.minX) + " to " + number(s.maxX) + ", y " +
-    number(s.minY) + " to " + number(s.maxY) + ")";
-  const std::string advice = "Poly-line sketches are in metres in the raster frame (lower-left "
-                             "cell centre at (0, 0)): scale or shift them, or give " +
-    names.size + " and " + names.cell + ".";
+  const std::string span = spanText(s);
+  const std::string advice = unitAdvice(names);
   if (s.minX < -0.5 * g.cellX || s.minY < -0.5 * g.cellY)
   {
     throw Error(span +
-      ", west or south of the raster frame; are they in degrees or world "
-      "coordinates? " +
-      advice);
+      ", west or south of the raster frame; are they in degrees or world coordinates?" + advice);
   }
   g.width = std::max(cellsToReach(s.maxX, g.cellX), cellsInFrame(s.frameWidth, g.cellX));
   g.height = std::max(cellsToReach(s.maxY, g.cellY), cellsInFrame(s.frameHeight, g.cellY));
@@ -127,13 +137,13 @@ void polylineSize(const SketchExtent& s, OutputGrid& g, int patch, const SetupOp
   {
     throw Error(span + ": an output of " + sizeText(g.width, g.height) + " cells of " +
       cellText(g.cellX, g.cellY) + ", smaller than one patch (" + std::to_string(patch) +
-      " cells); are they in cells or degrees? " + advice);
+      " cells); are they in cells or degrees?" + advice);
   }
   if (g.width > kMaxOutputSide || g.height > kMaxOutputSide)
   {
     throw Error(span + ": an output of " + sizeText(g.width, g.height) + " cells of " +
       cellText(g.cellX, g.cellY) + ", more than " + std::to_string(kMaxOutputSide) +
-      " a side; are they in world coordinates, or in cells of a finer grid? " + advice);
+      " a side; are they in world coordinates, or in cells of a finer grid?" + advice);
   }
 }
 
@@ -150,16 +160,12 @@ void checkPolylinesInGrid(const SketchExtent& s, const OutputGrid& g, const Setu
   {
     return;
   }
-  throw Error("The poly-lines span " + number(s.maxX - s.minX) + " x " + number(s.maxY - s.minY) +
-    " m (x " + number(s.minX) + " to " + number(s.maxX) + ", y " + number(s.minY) + " to " +
-    number(s.maxY) + ")" +
-    (tiny ? ", less than one cell of " + cellText(g.cellX, g.cellY)
+  throw Error(spanText(s) +
+    (tiny ? ", less than one cell of " + cellText(g.cellX, g.cellY) +
+          "; are they in cells or degrees?"
           : ", outside the output (" + number(w + 0.5 * g.cellX) + " x " +
-          number(h + 0.5 * g.cellY) + " m)") +
-    (tiny ? "; are they in cells or degrees?" : "; are they in world coordinates?") +
-    " Poly-line sketches are in metres in the raster frame "
-    "(lower-left cell centre at (0, 0)): scale or shift them, or change " +
-    names.size + " or " + names.cell + ".");
+          number(h + 0.5 * g.cellY) + " m); are they in world coordinates?") +
+    unitAdvice(names));
 }
 
 bool needsResampling(const Heightfield& hf, double cx, double cy)
