@@ -4,26 +4,32 @@
 #include "FeatureGraphConversion.h"
 #include "TerrainFileIO.h"
 
+#include "Analysis/Hillshade.h"
+#include "Analysis/ReliefImage.h"
 #include "Core/Error.h"
 #include "Core/HeightfieldIO.h"
 #include "Core/OutputFile.h"
-#include "Core/Resample.h"
-#include "Features/Ppa.h"
 #include "Features/Sketch.h"
 #include "Metrics/TerrainMetrics.h"
 #include "Synthesis/Regions.h"
+#include "Synthesis/Setup.h"
 #include "Synthesis/Synthesizer.h"
 
+#include <nlohmann/json.hpp>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 
+#include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <unistd.h>
@@ -41,18 +47,22 @@ placed along the sketch's ridges and valleys (breadth-first), the rest filled be
 patch chosen among the matcher's best by its graph-cut seam and merged in the gradient domain.
 
 The sketch is a stroke map (RGB: red ridges, blue valleys), a grey sketch map (brighter is
-higher), poly-lines (.vtp with a FeatureType cell array) or a real DEM used as the target.
+higher), a real DEM used as the target, or poly-lines: a .vtp with a FeatureType cell array
+(+1 ridge, -1 valley) and optional Elevation point array (height constraints), in metres in
+the raster frame (lower-left cell centre at (0, 0), x east, y north), as `tsynth features`
+writes them: its output works directly as a sketch of the same DEM.
 
   --exemplar DEM         a DEM to copy terrain from (repeat for several)
   --sketch SKETCH        the sketch
   -o, --output OUT       .tif (GeoTIFF float32), .png (16-bit + sidecar) or .vti
-  --size WxH             output size in cells (default: the sketch's pixels)
+  --size WxH             output size in cells (default: the sketch's pixels; for poly-lines
+                         the grid they were found on, else as far as they reach)
   --cell M               output cell size in metres (default: the first exemplar's)
   --patch N              patch size in cells (default 80)
   --backend B            auto (default), opencl or cpu: same result, different speed
   --merge M              new (default), poisson, shepard or cut
   --fill F               best-first (default) or concentric
-  --seed N               accepted for reproducible scripts; the method is deterministic
+  --seed N               another seed gives another terrain; the same seed the same terrain
   --report FILE.json     per-stage times, counts, costs and quality figures
   --debug-dir DIR        target field, feature trees, patch ids and seams as files
   --regions LABELS       style regions: a single-band image of labels over the output (resized to
@@ -60,6 +70,8 @@ higher), poly-lines (.vtp with a FeatureType cell array) or a real DEM used as t
                          --region L=E1,E2 says otherwise (repeatable)
   --no-vertical-offset   place patches at their own heights (default: fitted to the overlap)
   --repetition P         seam-cost penalty for reusing a nearby source (default 0.5; 0 = off)
+  --max-memory GB        refuse a synthesis estimated to need more (default: 80% of the
+                         machine's memory)
   --no-progress          no progress bar on the terminal
 )";
 
@@ -75,6 +87,11 @@ tiled; random exemplar patches pasted without blending):
   slope      Wasserstein-1 distance of slope-angle distributions over the exemplar's mean slope
   pits       strict local minima per 1000 cells
 )";
+
+// The synthesis' default patch: the random-patch baseline's patch, and the
+// smallest sketch evaluate accepts.
+constexpr int kEvaluationPatch = 80;
+constexpr double kBytesPerGB = 1.0e9;
 
 bool hasExtension(const std::string& path, const char* wanted)
 {
@@ -122,123 +139,52 @@ std::vector<std::string> takeRepeated(std::vector<std::string>& args, const std:
   return out;
 }
 
-struct Exemplars
+void printWarnings(const std::vector<std::string>& warnings)
 {
-  std::vector<Heightfield> heights;
-  std::vector<FeatureGraph> graphs;
-  std::vector<std::string> paths;
-};
-
-// Reads the exemplars; any whose cells differ from the output's by more than 1%
-// is resampled to the output's cell size (and says so), then its features found.
-Exemplars readExemplars(const std::vector<std::string>& paths, std::optional<double> cell)
-{
-  Exemplars ex;
-  for (const std::string& p : paths)
+  for (const auto& w : warnings)
   {
-    tsynth::RasterInfo info;
-    Heightfield hf = readTerrainFile(p, {}, &info);
-    for (const auto& w : info.warnings)
-    {
-      std::cerr << "tsynth: warning: " << w << "\n";
-    }
-    ex.heights.push_back(std::move(hf));
-    ex.paths.push_back(p);
+    std::cerr << "tsynth: warning: " << w << "\n";
   }
-  const double cx = cell.value_or(ex.heights.front().cellX);
-  const double cy = cell.value_or(ex.heights.front().cellY);
-  for (std::size_t e = 0; e < ex.heights.size(); ++e)
-  {
-    Heightfield& hf = ex.heights[e];
-    if (std::abs(hf.cellX - cx) > 0.01 * cx || std::abs(hf.cellY - cy) > 0.01 * cy)
-    {
-      std::cerr << "tsynth: note: " << ex.paths[e] << " has " << hf.cellX << " x " << hf.cellY
-                << " m cells; resampled to the output's " << cx << " x " << cy << " m.\n";
-      hf = resampleToCellSize(hf, cx, cy);
-    }
-    FeatureGraph g = extractFeatures(hf, FeatureType::Ridge, {}).graph;
-    appendGraph(g, extractFeatures(hf, FeatureType::Valley, {}).graph);
-    ex.graphs.push_back(std::move(g));
-  }
-  return ex;
 }
 
-// The sketch's feature graph in its own pixels, and its size; for a DEM or grey
-// map also its heights (for the target field).
-struct Sketch
+// A single-band raster that is not 8-bit (a DEM used as the target)?
+bool isDemRaster(const std::string& path)
 {
-  FeatureGraph graph;
-  int width = 0;
-  int height = 0;
-  bool heights = false;
-  Heightfield field;
-  std::string kind;
-  std::vector<std::string> warnings;
-};
+  try
+  {
+    const RasterInfo info = readRasterInfo(path, {});
+    return rasterIsDemTarget(info.bands, info.dataType == "Byte");
+  }
+  catch (const Error&)
+  {
+    return false; // several bands: a sketch image, read as one
+  }
+}
 
-Sketch readSketch(const std::string& path, int patch)
+// The sketch file as the set-up takes it: .vtp poly-lines (metres in the raster
+// frame), a DEM used as the target, or a sketch image (stroke map or grey map).
+SketchInput readSketchInput(const std::string& path, std::vector<std::string>& warnings)
 {
-  Sketch s;
   if (hasExtension(path, ".vtp"))
   {
     vtkNew<vtkPolyData> lines;
     readPolyDataFile(path, lines);
     std::string warning;
-    const auto polylines = polyDataToPolylines(lines, 1.0, 1.0, 0.0, 0.0, &warning);
+    PolylineSketch sketch = polyDataToPolylineSketch(lines, &warning);
     if (!warning.empty())
     {
-      s.warnings.push_back(warning);
+      warnings.push_back(warning);
     }
-    double b[6];
-    lines->GetBounds(b);
-    s.width = static_cast<int>(std::ceil(b[1])) + 1;
-    s.height = static_cast<int>(std::ceil(b[3])) + 1;
-    s.graph = polylineFeatures(polylines, s.width, s.height, 1.0, 1.0, 1.0, 0.5 * patch);
-    s.kind = "poly-lines";
-    return s;
+    return sketch;
   }
-  // A single-band raster that is not 8-bit is a DEM used as the target.
-  bool dem = false;
-  try
+  if (isVtiPath(path) || isDemRaster(path))
   {
-    const RasterInfo info = readRasterInfo(path, {});
-    dem = info.bands == 1 && info.dataType != "Byte";
+    RasterInfo info;
+    Heightfield dem = readTerrainFile(path, {}, &info);
+    warnings.insert(warnings.end(), info.warnings.begin(), info.warnings.end());
+    return dem;
   }
-  catch (const Error&)
-  {
-    dem = false; // several bands: a sketch image, read below
-  }
-  if (dem)
-  {
-    s.field = readTerrainFile(path);
-    s.width = s.field.width;
-    s.height = s.field.height;
-    s.heights = true;
-    s.graph = extractFeatures(s.field, FeatureType::Ridge, {}).graph;
-    appendGraph(s.graph, extractFeatures(s.field, FeatureType::Valley, {}).graph);
-    s.kind = "DEM";
-    return s;
-  }
-  const ColourImage image = readColourImage(path);
-  SketchOptions so;
-  so.patchSize = patch;
-  so.controlRadius = 0.5 * patch;
-  SketchFeatures f = sketchFeatures(image, so);
-  s.graph = std::move(f.graph);
-  s.warnings = f.warnings;
-  s.width = image.width;
-  s.height = image.height;
-  if (f.kind == SketchKind::Grey)
-  {
-    s.heights = true;
-    s.field = greyField(image);
-    s.kind = "grey sketch";
-  }
-  else
-  {
-    s.kind = "stroke map";
-  }
-  return s;
+  return readColourImage(path);
 }
 
 class ProgressBar
@@ -273,26 +219,14 @@ private:
   bool enabled_;
 };
 
-std::string json(double v)
+nlohmann::json evaluationJson(const TerrainEvaluation& e)
 {
-  if (!std::isfinite(v))
-  {
-    return "null";
-  }
-  std::ostringstream o;
-  o << std::setprecision(6) << v;
-  return o.str();
-}
-
-std::string evaluationJson(const TerrainEvaluation& e)
-{
-  std::ostringstream o;
-  o << "{\"ridge_fidelity\": " << json(e.ridgeFidelity)
-    << ", \"valley_fidelity\": " << json(e.valleyFidelity)
-    << ", \"seam_index\": " << json(e.seamIndex)
-    << ", \"slope_distance\": " << json(e.slopeDistance)
-    << ", \"pit_density\": " << json(e.pitDensity) << "}";
-  return o.str();
+  // nlohmann writes NaN (a figure that does not apply) as null.
+  return { { "ridge_fidelity", e.ridgeFidelity },
+    { "valley_fidelity", e.valleyFidelity },
+    { "seam_index", e.seamIndex },
+    { "slope_distance", e.slopeDistance },
+    { "pit_density", e.pitDensity } };
 }
 
 void printEvaluation(const char* name, const TerrainEvaluation& e)
@@ -307,10 +241,356 @@ void printEvaluation(const char* name, const TerrainEvaluation& e)
             << f(e.slopeDistance) << "  pits " << f(e.pitDensity) << "\n";
 }
 
-void writeDebug(const std::string& dir,
-  const SynthesisTarget& target,
+// Everything `tsynth synth` was asked to do, checked.
+struct SynthArguments
+{
+  std::vector<std::string> exemplars;
+  std::string sketch;
+  std::string output;
+  std::optional<std::string> report;
+  std::optional<std::string> debugDir;
+  std::optional<std::string> regions;
+  std::vector<std::string> regionMaps;
+  GridRequest grid;
+  double memoryBudget = 0.0; // bytes; 0: the set-up's default
+  SynthesisOptions options;
+  bool progress = true;
+};
+
+// "WxH" in cells, each side from 1 to kMaxOutputSide.
+GridRequest parseSize(const std::string& text, GridRequest grid)
+{
+  const std::size_t x = text.find('x');
+  auto side = [&](std::size_t from, std::size_t to)
+  {
+    int v = 0;
+    const char* end = text.data() + to;
+    const auto r = std::from_chars(text.data() + from, end, v);
+    const bool digits = x != std::string::npos && from != to && r.ptr == end;
+    if (digits && r.ec == std::errc::result_out_of_range)
+    {
+      v = std::numeric_limits<int>::max(); // refused below as too large
+    }
+    else if (!digits || r.ec != std::errc() || v < 1)
+    {
+      throw UsageError("--size expects WxH in cells, e.g. 1024x1024, not \"" + text + "\".");
+    }
+    if (v > kMaxOutputSide)
+    {
+      throw UsageError("--size " + text + " is beyond any machine: at most " +
+        std::to_string(kMaxOutputSide) + " cells a side.");
+    }
+    return v;
+  };
+  grid.width = side(0, x == std::string::npos ? text.size() : x);
+  grid.height = side(x + 1, text.size());
+  return grid;
+}
+
+// A whole number from 0 to 2^64 - 1.
+std::uint64_t parseSeed(const std::string& text)
+{
+  std::uint64_t seed = 0;
+  const char* end = text.data() + text.size();
+  const auto r = std::from_chars(text.data(), end, seed);
+  if (text.empty() || r.ec != std::errc() || r.ptr != end)
+  {
+    throw UsageError("--seed expects a whole number from 0 to " +
+      std::to_string(std::numeric_limits<std::uint64_t>::max()) + ", not \"" + text + "\".");
+  }
+  return seed;
+}
+
+void checkPaths(const SynthArguments& a)
+{
+  if (a.exemplars.empty())
+  {
+    throw UsageError("tsynth synth needs at least one --exemplar DEM.");
+  }
+  if (a.sketch.empty())
+  {
+    throw UsageError("tsynth synth needs a --sketch.");
+  }
+  if (a.output.empty())
+  {
+    throw UsageError("tsynth synth needs an output file: -o OUT.tif|.png|.vti.");
+  }
+  if (!isVtiPath(a.output) && !isHeightfieldWriteExtension(a.output))
+  {
+    throw UsageError("The output must end in .tif, .png or .vti, not " + a.output + ".");
+  }
+  if (a.report && !hasExtension(*a.report, ".json"))
+  {
+    throw UsageError("--report expects a .json file.");
+  }
+  if (!a.regions && !a.regionMaps.empty())
+  {
+    throw UsageError("--region needs --regions LABELS.");
+  }
+}
+
+// --patch, --backend, --merge, --fill, --seed, --no-vertical-offset, --repetition.
+SynthesisOptions takeSynthesisOptions(CommandLine& cl)
+{
+  SynthesisOptions o;
+  if (const auto patch = cl.takeNumber("--patch"))
+  {
+    if (*patch != std::floor(*patch) || *patch < 16 || *patch > 512 ||
+      static_cast<int>(*patch) % 4 != 0)
+    {
+      throw UsageError("--patch expects a multiple of 4 from 16 to 512.");
+    }
+    o.patchSize = static_cast<int>(*patch);
+  }
+  if (const auto backend = cl.take("--backend"))
+  {
+    try
+    {
+      o.backend = parseBackend(*backend);
+    }
+    catch (const Error&)
+    {
+      throw UsageError("--backend must be auto, opencl or cpu.");
+    }
+  }
+  if (const auto merge = cl.take("--merge"))
+  {
+    try
+    {
+      o.merge = parseMergeMode(*merge);
+    }
+    catch (const Error&)
+    {
+      throw UsageError("--merge must be new, poisson, shepard or cut.");
+    }
+  }
+  if (const auto fill = cl.take("--fill"))
+  {
+    if (*fill != "best-first" && *fill != "concentric")
+    {
+      throw UsageError("--fill must be best-first or concentric.");
+    }
+    o.fill = *fill == "concentric" ? FillOrder::Concentric : FillOrder::BestFirst;
+  }
+  if (const auto seed = cl.take("--seed"))
+  {
+    o.seed = parseSeed(*seed);
+  }
+  o.verticalOffset = !cl.takeFlag("--no-vertical-offset");
+  if (const auto repetition = cl.takeNumber("--repetition"))
+  {
+    if (*repetition < 0.0)
+    {
+      throw UsageError("--repetition must not be negative.");
+    }
+    o.repetitionPenalty = *repetition;
+  }
+  return o;
+}
+
+// --size, --cell and --max-memory.
+void takeGridOptions(CommandLine& cl, SynthArguments& a)
+{
+  if (const auto size = cl.take("--size"))
+  {
+    a.grid = parseSize(*size, a.grid);
+  }
+  if (const auto cell = cl.takeNumber("--cell"))
+  {
+    if (!(*cell > 0.0) || !std::isfinite(*cell))
+    {
+      throw UsageError("--cell expects a positive number of metres.");
+    }
+    a.grid.cellX = a.grid.cellY = *cell;
+  }
+  if (const auto budget = cl.takeNumber("--max-memory"))
+  {
+    if (!(*budget > 0.0) || !std::isfinite(*budget))
+    {
+      throw UsageError("--max-memory expects a positive number of GB.");
+    }
+    a.memoryBudget = *budget * kBytesPerGB;
+  }
+}
+
+SynthArguments parseSynthArguments(std::vector<std::string> args)
+{
+  SynthArguments a;
+  a.exemplars = takeRepeated(args, "--exemplar");
+  a.regionMaps = takeRepeated(args, "--region");
+  CommandLine cl(std::move(args));
+  a.regions = cl.take("--regions");
+  a.sketch = cl.take("--sketch").value_or("");
+  a.output = cl.take("--output", "-o").value_or("");
+  a.report = cl.take("--report");
+  a.debugDir = cl.take("--debug-dir");
+  a.progress = !cl.takeFlag("--no-progress");
+  a.options = takeSynthesisOptions(cl);
+  takeGridOptions(cl, a);
+  if (!cl.positionals().empty())
+  {
+    throw UsageError("Unexpected argument \"" + cl.positionals()[0] + "\".");
+  }
+  checkPaths(a);
+  return a;
+}
+
+// The files read into the set-up's inputs (warnings printed as they come).
+SetupInputs readSynthInputs(const SynthArguments& a)
+{
+  SetupInputs in;
+  for (const std::string& path : a.exemplars)
+  {
+    RasterInfo info;
+    in.exemplars.push_back(readTerrainFile(path, {}, &info));
+    in.exemplarNames.push_back(path);
+    printWarnings(info.warnings);
+  }
+  std::vector<std::string> warnings;
+  in.sketch = readSketchInput(a.sketch, warnings);
+  printWarnings(warnings);
+  in.grid = a.grid;
+  in.patchSize = a.options.patchSize;
+  in.seed = a.options.seed;
+  in.memoryBudget = a.memoryBudget;
+  in.names.size = "--size";
+  in.names.cell = "--cell";
+  in.names.patch = "--patch";
+  in.names.memory = "--max-memory";
+  return in;
+}
+
+SynthesisResult runWithProgress(const SynthesisSetup& setup,
+  const SynthArguments& a,
+  SynthesisOptions o)
+{
+  if (a.regions)
+  {
+    ReadOptions plain;
+    plain.useSidecar = false;
+    assignRegions(o,
+      readHeightfield(*a.regions, plain),
+      a.regionMaps,
+      setup.grid.width,
+      setup.grid.height,
+      setup.exemplars.size());
+  }
+  ProgressBar bar(a.progress);
+  o.progress = [&](double f, const std::string& stage) { bar(f, stage); };
+  SynthesisResult r = synthesize(setup.target, setup.exemplarPointers(), setup.graphPointers(), o);
+  bar(1.0, "done");
+  printWarnings(r.warnings);
+  return r;
+}
+
+std::size_t featurePlacements(const SynthesisResult& r)
+{
+  return static_cast<std::size_t>(std::count_if(
+    r.placements.begin(), r.placements.end(), [](const Placement& p) { return p.feature; }));
+}
+
+void printSummary(const SynthesisSetup& setup,
   const SynthesisResult& r,
-  const Exemplars& ex)
+  const TerrainEvaluation& quality,
+  double prepare,
+  const std::string& output)
+{
+  std::cout << std::fixed << std::setprecision(2) << "Synthesised " << setup.grid.width << " x "
+            << setup.grid.height << " cells of " << setup.grid.cellX
+            << " m (sketch: " << setup.sketchKind << ") with " << setup.exemplars.size()
+            << " exemplar(s): " << r.placements.size() << " patches (" << featurePlacements(r)
+            << " on features), backend " << r.backend << ".\n";
+  const LandformStatistics& l = setup.landform;
+  std::cout << std::setprecision(0) << "Landforms of the exemplars: ridges " << l.ridge.relief
+            << " m high, " << std::setprecision(1) << l.ridge.width / 1000.0
+            << " km to their foot; valleys " << std::setprecision(0) << l.valley.relief
+            << " m deep, " << std::setprecision(1) << l.valley.width / 1000.0
+            << " km to their rim; floors fall " << l.floorGradient * 100.0 << "%.\n"
+            << std::setprecision(2);
+  std::cout << "Times: prepare " << prepare << " s, matcher setup " << r.timings.setup
+            << " s, features " << r.timings.features << " s, fill " << r.timings.fill << " s.\n";
+  printEvaluation("Quality:", quality);
+  std::cout << "Wrote " << output << "\n";
+}
+
+void writeReport(const std::string& path,
+  const SynthArguments& a,
+  const SynthesisSetup& setup,
+  const SynthesisResult& r,
+  const TerrainEvaluation& quality,
+  double prepare)
+{
+  double seamSum = 0.0;
+  // [order, feature, exemplar, variant, x0, y0, match cost, seam cost, landform misfit (m)]
+  nlohmann::json list = nlohmann::json::array();
+  for (const Placement& p : r.placements)
+  {
+    seamSum += p.seamCost;
+    list.push_back({ p.order,
+      p.feature ? 1 : 0,
+      p.exemplar,
+      p.variant,
+      p.x0,
+      p.y0,
+      p.matchCost,
+      p.seamCost,
+      p.landformMisfit });
+  }
+  const LandformStatistics& l = setup.landform;
+  auto profile = [](const LandformProfile& p)
+  {
+    return nlohmann::json{ { "level_m", p.level },
+      { "relief_m", p.relief },
+      { "width_m", p.width },
+      { "distance_m", p.section.distances() },
+      { "height_m", p.section.values() } };
+  };
+  const nlohmann::json landforms = { { "ridge", profile(l.ridge) },
+    { "valley", profile(l.valley) },
+    { "base_m", l.base },
+    { "floor_gradient", l.floorGradient } };
+  const nlohmann::json finishing = { { "landform_correction_max_m", r.finishing.landformCorrection },
+    { "valley_cells", r.finishing.valleyCells },
+    { "valley_cells_lowered", r.finishing.valleyCellsLowered },
+    { "deepest_valley_cut_m", r.finishing.deepestValleyCut },
+    { "mean_valley_cut_m", r.finishing.meanValleyCut } };
+  const double n = static_cast<double>(r.placements.size());
+  const nlohmann::json report = { { "output", a.output },
+    { "size", { setup.grid.width, setup.grid.height } },
+    { "cell_size_m", { setup.grid.cellX, setup.grid.cellY } },
+    { "sketch", a.sketch },
+    { "sketch_kind", setup.sketchKind },
+    { "exemplars", setup.exemplars.size() },
+    { "backend", r.backend },
+    { "patch_size", a.options.patchSize },
+    { "merge", mergeModeName(a.options.merge) },
+    { "seed", a.options.seed },
+    { "memory_estimate_gb", setup.memoryEstimate / kBytesPerGB },
+    { "times_s",
+      { { "prepare", prepare },
+        { "setup", r.timings.setup },
+        { "features", r.timings.features },
+        { "fill", r.timings.fill } } },
+    { "placements", r.placements.size() },
+    { "feature_placements", featurePlacements(r) },
+    { "mean_seam_cost", n > 0 ? seamSum / n : 0.0 },
+    { "quality", evaluationJson(quality) },
+    { "landforms", landforms },
+    { "finishing", finishing },
+    { "placement_list", list } };
+  OutputFile file(path);
+  std::ofstream out(file.temporaryPath());
+  out << report.dump(2) << "\n";
+  out.close();
+  if (!out)
+  {
+    throw Error("Cannot write " + path + ".");
+  }
+  file.commit();
+}
+
+// Target field, feature trees, patch ids and seams, for looking at in ParaView.
+void writeDebug(const std::string& dir, const SynthesisSetup& setup, const SynthesisResult& r)
 {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -318,19 +598,24 @@ void writeDebug(const std::string& dir,
   {
     throw Error("Cannot create the debug folder " + dir + ": " + ec.message() + ".");
   }
-  writeTerrainFile(dir + "/target.tif", target.field);
+  writeTerrainFile(dir + "/target.tif", setup.target.field);
+  const ShadedRelief shade = computeHillshade(setup.target.field, HillshadeOptions{});
+  writeRgbPng(dir + "/target.png",
+    setup.target.field.width,
+    setup.target.field.height,
+    renderRelief(setup.target.field, shade));
   writeTerrainFile(dir + "/patches.tif", r.patches);
-  Heightfield confidence = target.field;
+  Heightfield confidence = setup.target.field;
   confidence.valid.clear();
-  std::copy(target.weight.begin(), target.weight.end(), confidence.z.begin());
+  std::copy(setup.target.weight.begin(), setup.target.weight.end(), confidence.z.begin());
   writeTerrainFile(dir + "/target-confidence.tif", confidence);
   vtkNew<vtkPolyData> tree;
-  featureGraphToPolyData(target.graph, tree);
+  featureGraphToPolyData(setup.target.graph, tree);
   writePolyDataFile(dir + "/sketch-features.vtp", tree);
-  for (std::size_t e = 0; e < ex.graphs.size(); ++e)
+  for (std::size_t e = 0; e < setup.graphs.size(); ++e)
   {
     vtkNew<vtkPolyData> t;
-    featureGraphToPolyData(ex.graphs[e], t);
+    featureGraphToPolyData(setup.graphs[e], t);
     writePolyDataFile(dir + "/exemplar" + std::to_string(e) + "-features.vtp", t);
   }
   Heightfield ids = r.terrain;
@@ -346,6 +631,19 @@ void writeDebug(const std::string& dir,
   writeTerrainFile(dir + "/seams.tif", seams);
 }
 
+// The sketch's features on the terrain's grid, as the synthesis reads them.
+FeatureGraph sketchOnTerrain(const std::string& path, const Heightfield& terrain)
+{
+  std::vector<std::string> warnings;
+  const SketchInput input = readSketchInput(path, warnings);
+  printWarnings(warnings);
+  const OutputGrid grid{ terrain.width, terrain.height, terrain.cellX, terrain.cellY };
+  const AnalysedSketch s = analyseSketch(input, grid, kEvaluationPatch);
+  printWarnings(s.warnings);
+  return scaleGraph(
+    s.graph, s.width, s.height, terrain.width, terrain.height, terrain.cellX, terrain.cellY);
+}
+
 } // namespace
 
 int runSynth(std::vector<std::string> args)
@@ -355,250 +653,24 @@ int runSynth(std::vector<std::string> args)
     std::cout << kSynthHelp;
     return 0;
   }
-  std::vector<std::string> exemplarPaths = takeRepeated(args, "--exemplar");
-  const std::vector<std::string> regionMaps = takeRepeated(args, "--region");
-  CommandLine cl(std::move(args));
-  const auto regionsPath = cl.take("--regions");
-  const auto sketchPath = cl.take("--sketch");
-  const auto output = cl.take("--output", "-o");
-  const auto size = cl.take("--size");
-  const auto cell = cl.takeNumber("--cell");
-  const auto patch = cl.takeNumber("--patch");
-  const auto backend = cl.take("--backend");
-  const auto merge = cl.take("--merge");
-  const auto fill = cl.take("--fill");
-  const auto seed = cl.takeNumber("--seed");
-  const auto report = cl.take("--report");
-  const auto debugDir = cl.take("--debug-dir");
-  const bool noProgress = cl.takeFlag("--no-progress");
-  const bool noOffset = cl.takeFlag("--no-vertical-offset");
-  const auto repetition = cl.takeNumber("--repetition");
-  if (!cl.positionals().empty())
-  {
-    throw UsageError("Unexpected argument \"" + cl.positionals()[0] + "\".");
-  }
-  if (exemplarPaths.empty())
-  {
-    throw UsageError("tsynth synth needs at least one --exemplar DEM.");
-  }
-  if (!sketchPath)
-  {
-    throw UsageError("tsynth synth needs a --sketch.");
-  }
-  if (!output)
-  {
-    throw UsageError("tsynth synth needs an output file: -o OUT.tif|.png|.vti.");
-  }
-  if (!isVtiPath(*output) && !isHeightfieldWriteExtension(*output))
-  {
-    throw UsageError("The output must end in .tif, .png or .vti, not " + *output + ".");
-  }
-  if (report && !hasExtension(*report, ".json"))
-  {
-    throw UsageError("--report expects a .json file.");
-  }
-  SynthesisOptions o;
-  if (patch)
-  {
-    if (*patch != std::floor(*patch) || *patch < 16 || *patch > 512 ||
-      static_cast<int>(*patch) % 4 != 0)
-    {
-      throw UsageError("--patch expects a multiple of 4 from 16 to 512.");
-    }
-    o.patchSize = static_cast<int>(*patch);
-  }
-  if (backend)
-  {
-    try
-    {
-      o.backend = parseBackend(*backend);
-    }
-    catch (const Error&)
-    {
-      throw UsageError("--backend must be auto, opencl or cpu.");
-    }
-  }
-  if (merge)
-  {
-    try
-    {
-      o.merge = parseMergeMode(*merge);
-    }
-    catch (const Error&)
-    {
-      throw UsageError("--merge must be new, poisson, shepard or cut.");
-    }
-  }
-  if (fill)
-  {
-    if (*fill != "best-first" && *fill != "concentric")
-    {
-      throw UsageError("--fill must be best-first or concentric.");
-    }
-    o.fill = *fill == "concentric" ? FillOrder::Concentric : FillOrder::BestFirst;
-  }
-  (void)seed;
-  o.verticalOffset = !noOffset;
-  if (repetition)
-  {
-    if (*repetition < 0.0)
-    {
-      throw UsageError("--repetition must not be negative.");
-    }
-    o.repetitionPenalty = *repetition;
-  }
-  if (cell && !(*cell > 0.0))
-  {
-    throw UsageError("--cell expects a positive number of metres.");
-  }
-  int width = 0;
-  int height = 0;
-  if (size)
-  {
-    char tail = 0;
-    if (std::sscanf(size->c_str(), "%dx%d%c", &width, &height, &tail) != 2 || width < 1 ||
-      height < 1)
-    {
-      throw UsageError("--size expects WxH in cells, e.g. 1024x1024.");
-    }
-  }
-
+  const SynthArguments a = parseSynthArguments(std::move(args));
   const auto t0 = std::chrono::steady_clock::now();
-  const Exemplars ex = readExemplars(exemplarPaths, cell);
-  Sketch sketch = readSketch(*sketchPath, o.patchSize);
-  for (const auto& w : sketch.warnings)
-  {
-    std::cerr << "tsynth: warning: " << w << "\n";
-  }
-  if (width == 0)
-  {
-    width = sketch.width;
-    height = sketch.height;
-  }
-  const double cellX = cell.value_or(ex.heights.front().cellX);
-  const double cellY = cell.value_or(ex.heights.front().cellY);
-  // Refuse before starting what cannot fit: output, its work arrays, and each
-  // exemplar's 10 oriented copies with their tables.
-  double bytes = static_cast<double>(width) * height * 48.0;
-  for (const Heightfield& h : ex.heights)
-  {
-    bytes += static_cast<double>(h.size()) * 10.0 * 2.0 * 12.0;
-  }
-  const double memory =
-    static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
-  if (bytes > 0.8 * memory)
-  {
-    throw Error("This synthesis needs about " + std::to_string(static_cast<long>(bytes / 1e9)) +
-      " GB but the machine has " + std::to_string(static_cast<long>(memory / 1e9)) +
-      " GB; use a smaller --size.");
-  }
-
-  std::vector<const Heightfield*> hp;
-  std::vector<const FeatureGraph*> gp;
-  for (std::size_t e = 0; e < ex.heights.size(); ++e)
-  {
-    hp.push_back(&ex.heights[e]);
-    gp.push_back(&ex.graphs[e]);
-  }
-  const ExemplarStatistics stats = exemplarStatistics(hp, gp, o.patchSize);
-  const SynthesisTarget target = makeTarget(sketch.graph,
-    sketch.width,
-    sketch.height,
-    sketch.heights ? &sketch.field : nullptr,
-    width,
-    height,
-    cellX,
-    cellY,
-    stats,
-    o.patchSize,
-    sketch.kind == "grey sketch" ? SketchHeights::Grey : SketchHeights::Dem);
-  const FeatureGraph& graph = target.graph;
+  const SynthesisSetup setup = prepareSynthesis(readSynthInputs(a));
+  printWarnings(setup.warnings);
   const double prepare =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
-  if (regionsPath)
+  const SynthesisResult r = runWithProgress(setup, a, a.options);
+  writeTerrainFile(a.output, r.terrain);
+  const TerrainEvaluation quality =
+    evaluateTerrain(r.terrain, setup.exemplarPointers(), &setup.target.graph);
+  printSummary(setup, r, quality, prepare, a.output);
+  if (a.report)
   {
-    ReadOptions plain;
-    plain.useSidecar = false;
-    assignRegions(
-      o, readHeightfield(*regionsPath, plain), regionMaps, width, height, ex.heights.size());
+    writeReport(*a.report, a, setup, r, quality, prepare);
   }
-  else if (!regionMaps.empty())
+  if (a.debugDir)
   {
-    throw UsageError("--region needs --regions LABELS.");
-  }
-
-  ProgressBar bar(!noProgress);
-  o.progress = [&](double f, const std::string& stage) { bar(f, stage); };
-  const SynthesisResult r = synthesize(target, hp, gp, o);
-  bar(1.0, "done");
-  for (const auto& w : r.warnings)
-  {
-    std::cerr << "tsynth: warning: " << w << "\n";
-  }
-  writeTerrainFile(*output, r.terrain);
-  const TerrainEvaluation quality = evaluateTerrain(r.terrain, hp, &graph);
-
-  std::size_t features = 0;
-  double seamSum = 0.0;
-  for (const Placement& p : r.placements)
-  {
-    features += p.feature ? 1 : 0;
-    seamSum += p.seamCost;
-  }
-  std::cout << std::fixed << std::setprecision(2) << "Synthesised " << width << " x " << height
-            << " cells from a " << sketch.kind << " with " << ex.heights.size()
-            << " exemplar(s): " << r.placements.size() << " patches (" << features
-            << " on features), backend " << r.backend << ".\n";
-  {
-    const LandformStatistics& l = stats.landform;
-    std::cout << std::setprecision(0) << "Landforms of the exemplars: ridges " << l.ridge.relief
-              << " m high, " << std::setprecision(1) << l.ridge.width / 1000.0
-              << " km to their foot; valleys " << std::setprecision(0) << l.valley.relief
-              << " m deep, " << std::setprecision(1) << l.valley.width / 1000.0
-              << " km to their rim; floors fall " << l.floorGradient * 100.0 << "%.\n"
-              << std::setprecision(2);
-  }
-  std::cout << "Times: prepare " << prepare << " s, matcher setup " << r.timings.setup
-            << " s, features " << r.timings.features << " s, fill " << r.timings.fill << " s.\n";
-  printEvaluation("Quality:", quality);
-  std::cout << "Wrote " << *output << "\n";
-
-  if (report)
-  {
-    OutputFile file(*report);
-    std::ofstream out(file.temporaryPath());
-    out << "{\n  \"output\": \"" << *output << "\",\n  \"size\": [" << width << ", " << height
-        << "],\n  \"cell_size_m\": [" << json(cellX) << ", " << json(cellY)
-        << "],\n  \"sketch\": \"" << *sketchPath << "\",\n  \"sketch_kind\": \"" << sketch.kind
-        << "\",\n  \"exemplars\": " << ex.heights.size() << ",\n  \"backend\": \"" << r.backend
-        << "\",\n  \"patch_size\": " << o.patchSize << ",\n  \"merge\": \""
-        << mergeModeName(o.merge) << "\",\n  \"times_s\": {\"prepare\": " << json(prepare)
-        << ", \"setup\": " << json(r.timings.setup)
-        << ", \"features\": " << json(r.timings.features) << ", \"fill\": " << json(r.timings.fill)
-        << "},\n  \"placements\": " << r.placements.size()
-        << ",\n  \"feature_placements\": " << features << ",\n  \"mean_seam_cost\": "
-        << json(r.placements.empty() ? 0.0 : seamSum / static_cast<double>(r.placements.size()))
-        << ",\n  \"quality\": " << evaluationJson(quality) << ",\n  \"placement_list\": [";
-    // [order, feature, exemplar, variant, x0, y0, match cost, seam cost]
-    for (std::size_t k = 0; k < r.placements.size(); ++k)
-    {
-      const Placement& p = r.placements[k];
-      out << (k == 0 ? "" : ", ") << "[" << p.order << ", " << (p.feature ? 1 : 0) << ", "
-          << p.exemplar << ", " << p.variant << ", " << p.x0 << ", " << p.y0 << ", "
-          << json(p.matchCost) << ", " << json(p.seamCost) << ", " << json(p.landformMisfit) << "]";
-    }
-    out << "]\n}\n";
-    out.close();
-    if (!out)
-    {
-      throw Error("Cannot write " + *report + ".");
-    }
-    file.commit();
-  }
-  if (debugDir)
-  {
-    writeDebug(*debugDir, target, r, ex);
+    writeDebug(*a.debugDir, setup, r);
   }
   return 0;
 }
@@ -639,21 +711,22 @@ int runEvaluate(std::vector<std::string> args)
   const FeatureGraph* sketch = nullptr;
   if (sketchPath)
   {
-    const Sketch s = readSketch(*sketchPath, 80);
-    graph = scaleGraph(
-      s.graph, s.width, s.height, terrain.width, terrain.height, terrain.cellX, terrain.cellY);
+    graph = sketchOnTerrain(*sketchPath, terrain);
     sketch = &graph;
   }
   const TerrainEvaluation e = evaluateTerrain(terrain, pooled, sketch);
   const TerrainEvaluation tiled =
     evaluateTerrain(tiledBaseline(exemplar, terrain.width, terrain.height), exemplar, sketch);
   const TerrainEvaluation random = evaluateTerrain(
-    randomPatchBaseline(exemplar, terrain.width, terrain.height, 80, 1), exemplar, sketch);
+    randomPatchBaseline(exemplar, terrain.width, terrain.height, kEvaluationPatch, 1),
+    exemplar,
+    sketch);
   if (asJson)
   {
-    std::cout << "{\"terrain\": " << evaluationJson(e)
-              << ", \"tiled_exemplar\": " << evaluationJson(tiled)
-              << ", \"random_patches\": " << evaluationJson(random) << "}\n";
+    const nlohmann::json figures = { { "terrain", evaluationJson(e) },
+      { "tiled_exemplar", evaluationJson(tiled) },
+      { "random_patches", evaluationJson(random) } };
+    std::cout << figures.dump() << "\n";
     return 0;
   }
   printEvaluation(rest[0].c_str(), e);

@@ -152,6 +152,13 @@ void featureGraphToPolyData(const FeatureGraph& g, vtkPolyData* out, double ox, 
   cell->InsertNextValue(g.cellX);
   cell->InsertNextValue(g.cellY);
   out->GetFieldData()->AddArray(cell);
+  // The grid the graph was found on, so the lines used as a sketch give an output
+  // of the same extent (polyDataToPolylineSketch).
+  vtkNew<vtkIntArray> grid;
+  grid->SetName("GridSize");
+  grid->InsertNextValue(g.width);
+  grid->InsertNextValue(g.height);
+  out->GetFieldData()->AddArray(grid);
 }
 
 void controlPointsToPolyData(const FeatureGraph& g, vtkPolyData* out, double ox, double oy)
@@ -231,6 +238,23 @@ std::vector<Polyline> polyDataToPolylines(const vtkPolyData* constInput,
     out.push_back(std::move(p));
   }
   return out;
+}
+
+PolylineSketch polyDataToPolylineSketch(const vtkPolyData* constInput, std::string* warning)
+{
+  auto* input = const_cast<vtkPolyData*>(constInput);
+  PolylineSketch sketch;
+  sketch.lines = polyDataToPolylines(input, 1.0, 1.0, 0.0, 0.0, warning);
+  vtkDataArray* grid = input->GetFieldData()->GetArray("GridSize");
+  vtkDataArray* cell = input->GetFieldData()->GetArray("CellSize");
+  const bool framed = grid != nullptr && cell != nullptr && grid->GetNumberOfValues() == 2 &&
+    cell->GetNumberOfValues() == 2;
+  if (framed)
+  {
+    sketch.frameWidth = grid->GetComponent(0, 0) * cell->GetComponent(0, 0);
+    sketch.frameHeight = grid->GetComponent(1, 0) * cell->GetComponent(1, 0);
+  }
+  return sketch;
 }
 
 void readPolyDataFile(const std::string& path, vtkPolyData* out)

@@ -3,6 +3,7 @@
 
 #include "Features/FeatureGraph.h"
 #include "Features/Sketch.h"
+#include "Synthesis/Setup.h"
 
 #include <string>
 #include <vector>
@@ -17,7 +18,8 @@ namespace tsynth
 // (before the lines; ChainId -1). Point data: NodeKind (0 path,
 // 1 end, 2 branch), Degree, Elevation, BFSRank (-1 off nodes), ComponentId, and
 // ElevationConstraint when any chain has one; cell data: FeatureType (+1 ridge,
-// -1 valley), ChainId; field data: BFSOrder (node point ids), CellSize.
+// -1 valley), ChainId; field data: BFSOrder (node point ids), CellSize, GridSize
+// (the graph's width and height in cells).
 void featureGraphToPolyData(const FeatureGraph& graph,
   vtkPolyData* out,
   double originX = 0.0,
@@ -37,6 +39,12 @@ std::vector<Polyline> polyDataToPolylines(const vtkPolyData* input,
   double originX,
   double originY,
   std::string* warning = nullptr);
+
+// A poly-line sketch as the set-up takes it: points in metres in the raster frame
+// exactly as stored (no origin is subtracted), FeatureType and Elevation as for
+// polyDataToPolylines; its frame GridSize x CellSize from field data when both
+// are there (a feature tree written by featureGraphToPolyData).
+PolylineSketch polyDataToPolylineSketch(const vtkPolyData* input, std::string* warning = nullptr);
 
 // Reads a .vtp file into `out`. Throws tsynth::Error if it is missing or unreadable.
 void readPolyDataFile(const std::string& path, vtkPolyData* out);

@@ -34,7 +34,7 @@ std::vector<const FeatureGraph*> ExemplarInputs::graphPointers() const
   return out;
 }
 
-ExemplarInputs gatherExemplars(vtkInformationVector* images, vtkInformationVector* trees)
+ExemplarInputs gatherExemplarImages(vtkInformationVector* images)
 {
   ExemplarInputs in;
   const int n = images != nullptr ? images->GetNumberOfInformationObjects() : 0;
@@ -42,6 +42,23 @@ ExemplarInputs gatherExemplars(vtkInformationVector* images, vtkInformationVecto
   {
     throw Error("No exemplar: connect at least one heightfield.");
   }
+  for (int e = 0; e < n; ++e)
+  {
+    vtkImageData* image = vtkImageData::GetData(images, e);
+    double ox = 0.0;
+    double oy = 0.0;
+    gridOrigin(image, ox, oy);
+    in.heights.push_back(imageToHeightfield(image));
+    in.originX.push_back(ox);
+    in.originY.push_back(oy);
+  }
+  return in;
+}
+
+ExemplarInputs gatherExemplars(vtkInformationVector* images, vtkInformationVector* trees)
+{
+  ExemplarInputs in = gatherExemplarImages(images);
+  const int n = static_cast<int>(in.heights.size());
   const int t = trees != nullptr ? trees->GetNumberOfInformationObjects() : 0;
   if (t != 0 && t != n)
   {
@@ -50,17 +67,16 @@ ExemplarInputs gatherExemplars(vtkInformationVector* images, vtkInformationVecto
   }
   for (int e = 0; e < n; ++e)
   {
-    vtkImageData* image = vtkImageData::GetData(images, e);
-    Heightfield hf = imageToHeightfield(image);
-    double ox = 0.0;
-    double oy = 0.0;
-    gridOrigin(image, ox, oy);
+    const Heightfield& hf = in.heights[static_cast<std::size_t>(e)];
     FeatureGraph graph;
     if (t > 0)
     {
       // The tree's poly-lines, snapped back onto the exemplar's grid.
-      const auto lines =
-        polyDataToPolylines(vtkPolyData::GetData(trees, e), hf.cellX, hf.cellY, ox, oy);
+      const auto lines = polyDataToPolylines(vtkPolyData::GetData(trees, e),
+        hf.cellX,
+        hf.cellY,
+        in.originX[static_cast<std::size_t>(e)],
+        in.originY[static_cast<std::size_t>(e)]);
       graph = polylineFeatures(lines, hf.width, hf.height, hf.cellX, hf.cellY, 0.5);
     }
     else
@@ -68,10 +84,7 @@ ExemplarInputs gatherExemplars(vtkInformationVector* images, vtkInformationVecto
       graph = extractFeatures(hf, FeatureType::Ridge, {}).graph;
       appendGraph(graph, extractFeatures(hf, FeatureType::Valley, {}).graph);
     }
-    in.heights.push_back(std::move(hf));
     in.graphs.push_back(std::move(graph));
-    in.originX.push_back(ox);
-    in.originY.push_back(oy);
   }
   return in;
 }

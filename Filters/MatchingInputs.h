@@ -24,6 +24,10 @@ struct ExemplarInputs
   std::vector<const FeatureGraph*> graphPointers() const;
 };
 
+// Heights and origins of the images of `images` (one or more connections), no
+// graphs. Throws tsynth::Error when there is no exemplar.
+ExemplarInputs gatherExemplarImages(vtkInformationVector* images);
+
 // Images from `images` (one or more connections); graphs from `trees` when it
 // has one per image, else ridges and valleys extracted with default settings.
 // Throws tsynth::Error when there is no exemplar or the counts disagree.

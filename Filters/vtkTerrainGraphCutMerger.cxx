@@ -1,6 +1,7 @@
 #include "vtkTerrainGraphCutMerger.h"
 
 #include "PipelineRequests.h"
+#include "PropertyEnums.h"
 #include "TerrainImageConversion.h"
 
 #include "Core/Error.h"
@@ -110,10 +111,7 @@ int vtkTerrainGraphCutMerger::RequestData(vtkInformation*,
       y0 = static_cast<int>(std::lround((py - ty) / terrain.cellY));
     }
     tsynth::MergeOptions options;
-    options.mode = this->Mode == CUT ? tsynth::MergeMode::Cut
-      : this->Mode == POISSON        ? tsynth::MergeMode::Poisson
-      : this->Mode == SHEPARD        ? tsynth::MergeMode::Shepard
-                                     : tsynth::MergeMode::New;
+    options.mode = tsynth::mergeModeFromProperty(this->Mode);
     options.shepardRadius = this->ShepardRadius;
     this->UpdateProgress(0.2);
     tsynth::PatchMerger merger;

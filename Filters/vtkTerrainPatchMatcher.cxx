@@ -2,6 +2,7 @@
 
 #include "MatchingInputs.h"
 #include "PipelineRequests.h"
+#include "PropertyEnums.h"
 #include "TerrainImageConversion.h"
 
 #include "Core/Error.h"
@@ -152,9 +153,7 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
     tsynth::MatcherOptions o;
     o.patchSize = this->PatchSize;
     o.k = static_cast<std::size_t>(this->K);
-    o.backend = this->Backend == OPENCL
-      ? tsynth::Backend::OpenCL
-      : (this->Backend == CPU ? tsynth::Backend::Cpu : tsynth::Backend::Auto);
+    o.backend = tsynth::backendFromProperty(this->Backend);
     o.weights.feature = this->FeatureWeight;
     o.weights.angle = this->AngleWeight;
     o.weights.noise = this->NoiseWeight;

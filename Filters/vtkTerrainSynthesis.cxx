@@ -3,14 +3,15 @@
 #include "FeatureGraphConversion.h"
 #include "MatchingInputs.h"
 #include "PipelineRequests.h"
+#include "PropertyEnums.h"
 #include "TerrainImageConversion.h"
 
 #include "Core/Error.h"
-#include "Features/Ppa.h"
-#include "Features/Sketch.h"
 #include "Synthesis/Regions.h"
+#include "Synthesis/Setup.h"
 #include "Synthesis/Synthesizer.h"
 
+#include <vtkAlgorithmOutput.h>
 #include <vtkDataObject.h>
 #include <vtkDoubleArray.h>
 #include <vtkFloatArray.h>
@@ -26,7 +27,9 @@
 #include <vtkTable.h>
 #include <vtkUnsignedCharArray.h>
 
-#include <cmath>
+#include <cstdint>
+#include <iterator>
+#include <new>
 
 vtkStandardNewMacro(vtkTerrainSynthesis);
 
@@ -93,215 +96,267 @@ vtkTypeBool vtkTerrainSynthesis::ProcessRequest(vtkInformation* request,
   return this->Superclass::ProcessRequest(request, inputVector, outputVector);
 }
 
+namespace
+{
+
+constexpr double kBytesPerGB = 1.0e9;
+// Share of the progress bar taken by the set-up (features of sketch and exemplars).
+constexpr double kSetupProgress = 0.05;
+constexpr double kSynthesisProgress = 0.9;
+
+tsynth::SetupOptionNames propertyNames()
+{
+  tsynth::SetupOptionNames names;
+  names.size = "OutputSize";
+  names.cell = "CellSize";
+  names.patch = "PatchSize";
+  names.memory = "MemoryBudget";
+  return names;
+}
+
+bool isDemImage(vtkImageData* image)
+{
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  return scalars != nullptr &&
+    tsynth::rasterIsDemTarget(
+      scalars->GetNumberOfComponents(), scalars->GetDataType() == VTK_UNSIGNED_CHAR);
+}
+
+// The sketch as the set-up takes it: a DEM, a sketch image or poly-lines in metres.
+tsynth::SketchInput sketchInput(vtkDataObject* data, std::vector<std::string>& warnings)
+{
+  if (auto* image = vtkImageData::SafeDownCast(data))
+  {
+    if (isDemImage(image))
+    {
+      return tsynth::imageToHeightfield(image);
+    }
+    return tsynth::imageToColourImage(image);
+  }
+  if (auto* lines = vtkPolyData::SafeDownCast(data))
+  {
+    std::string warning;
+    tsynth::PolylineSketch sketch = tsynth::polyDataToPolylineSketch(lines, &warning);
+    if (!warning.empty())
+    {
+      warnings.push_back(warning);
+    }
+    return sketch;
+  }
+  throw tsynth::Error("The sketch must be an image or poly-lines.");
+}
+
+void addDiagnosticArrays(const tsynth::SynthesisResult& r, vtkImageData* output)
+{
+  const vtkIdType n = static_cast<vtkIdType>(r.terrain.size());
+  vtkNew<vtkIntArray> patchId;
+  patchId->SetName("PatchId");
+  patchId->SetNumberOfTuples(n);
+  std::copy(r.patchId.begin(), r.patchId.end(), patchId->GetPointer(0));
+  output->GetPointData()->AddArray(patchId);
+  vtkNew<vtkIntArray> order;
+  order->DeepCopy(patchId);
+  order->SetName("PlacementOrder");
+  output->GetPointData()->AddArray(order);
+  vtkNew<vtkUnsignedCharArray> seam;
+  seam->SetName("SeamMask");
+  seam->SetNumberOfTuples(n);
+  std::copy(r.seam.begin(), r.seam.end(), seam->GetPointer(0));
+  output->GetPointData()->AddArray(seam);
+  tsynth::addPointArray(output, "MatchCost", r.matchCost.data());
+}
+
+// One row per placement; source positions in metres in each exemplar's own frame.
+void fillPlacementTable(const tsynth::SynthesisResult& r,
+  const tsynth::SynthesisSetup& setup,
+  const tsynth::ExemplarInputs& ex,
+  vtkTable* table)
+{
+  const char* intNames[] = { "Order", "Feature", "Exemplar", "Variant", "Column", "Row" };
+  const char* realNames[] = { "SourceX", "SourceY", "MatchCost", "SeamCost", "Offset" };
+  std::vector<vtkNew<vtkIntArray>> ints(std::size(intNames));
+  std::vector<vtkNew<vtkDoubleArray>> reals(std::size(realNames));
+  for (std::size_t c = 0; c < ints.size(); ++c)
+  {
+    ints[c]->SetName(intNames[c]);
+  }
+  for (std::size_t c = 0; c < reals.size(); ++c)
+  {
+    reals[c]->SetName(realNames[c]);
+  }
+  for (const tsynth::Placement& p : r.placements)
+  {
+    const auto e = static_cast<std::size_t>(p.exemplar);
+    ints[0]->InsertNextValue(p.order);
+    ints[1]->InsertNextValue(p.feature ? 1 : 0);
+    ints[2]->InsertNextValue(p.exemplar);
+    ints[3]->InsertNextValue(p.variant);
+    ints[4]->InsertNextValue(p.x0);
+    ints[5]->InsertNextValue(p.y0);
+    reals[0]->InsertNextValue(ex.originX[e] + p.sourceX * setup.exemplars[e].cellX);
+    reals[1]->InsertNextValue(ex.originY[e] + p.sourceY * setup.exemplars[e].cellY);
+    reals[2]->InsertNextValue(p.matchCost);
+    reals[3]->InsertNextValue(p.seamCost);
+    reals[4]->InsertNextValue(p.offset);
+  }
+  for (auto& a : ints)
+  {
+    table->AddColumn(a);
+  }
+  for (auto& a : reals)
+  {
+    table->AddColumn(a);
+  }
+}
+
+// The output grid the properties ask for (zeros: from the inputs).
+tsynth::GridRequest gridRequest(vtkTerrainSynthesis* filter)
+{
+  tsynth::GridRequest request;
+  const int* size = filter->GetOutputSize();
+  if (size[0] > 0 || size[1] > 0)
+  {
+    request.width = size[0];
+    request.height = size[1];
+  }
+  request.cellX = filter->GetCellSize();
+  request.cellY = filter->GetCellSize();
+  return request;
+}
+
+tsynth::SynthesisOptions synthesisOptions(vtkTerrainSynthesis* filter)
+{
+  tsynth::SynthesisOptions o;
+  o.patchSize = filter->GetPatchSize();
+  o.backend = tsynth::backendFromProperty(filter->GetBackend());
+  o.merge = tsynth::mergeModeFromProperty(filter->GetMergeMode());
+  o.fill = tsynth::fillOrderFromProperty(filter->GetFillOrder());
+  o.seed = static_cast<std::uint64_t>(filter->GetSeed());
+  o.progress = [filter](double f, const std::string&)
+  { filter->UpdateProgress(kSetupProgress + kSynthesisProgress * f); };
+  return o;
+}
+
+} // namespace
+
+vtkPolyData* vtkTerrainSynthesis::UpdatedPolylineSketch(vtkInformationVector* sketchPort)
+{
+  vtkInformation* info = sketchPort->GetInformationObject(0);
+  if (info == nullptr ||
+    vtkPolyData::SafeDownCast(info->Get(vtkDataObject::DATA_OBJECT())) == nullptr)
+  {
+    return nullptr;
+  }
+  // A poly-data producer announces no extent: the lines themselves say how far
+  // the output reaches, so they are brought up to date before it is announced.
+  vtkAlgorithmOutput* connection = this->GetInputConnection(1, 0);
+  connection->GetProducer()->Update(connection->GetIndex());
+  return vtkPolyData::SafeDownCast(info->Get(vtkDataObject::DATA_OBJECT()));
+}
+
 int vtkTerrainSynthesis::RequestInformation(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  // Size: OutputSize, else the sketch image's pixels; cells: CellSize, else the
-  // first exemplar's spacing.
-  int w = this->OutputSize[0];
-  int h = this->OutputSize[1];
   vtkInformation* sketch = inputVector[1]->GetInformationObject(0);
-  if ((w <= 0 || h <= 0) && sketch != nullptr &&
-    sketch->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  vtkInformation* exemplar = inputVector[0]->GetInformationObject(0);
+  if (sketch == nullptr || exemplar == nullptr)
   {
-    int e[6];
-    sketch->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), e);
-    w = e[1] - e[0] + 1;
-    h = e[3] - e[2] + 1;
-  }
-  if (w <= 0 || h <= 0)
-  {
-    vtkErrorMacro("Set OutputSize: poly-line sketches have no pixel size of their own.");
+    vtkErrorMacro("Connect at least one exemplar and a sketch.");
     return 0;
   }
-  double spacing[3] = { this->CellSize, this->CellSize, 1.0 };
-  vtkInformation* exemplar = inputVector[0]->GetInformationObject(0);
-  if (this->CellSize <= 0.0 && exemplar != nullptr && exemplar->Has(vtkDataObject::SPACING()))
+  try
   {
-    exemplar->Get(vtkDataObject::SPACING(), spacing);
+    // The grid RequestData's set-up will produce, by the same kernel function.
+    tsynth::SketchExtent extent;
+    if (vtkPolyData* lines = this->UpdatedPolylineSketch(inputVector[1]))
+    {
+      extent = tsynth::polylineExtent(tsynth::polyDataToPolylineSketch(lines));
+    }
+    else if (sketch->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    {
+      int e[6];
+      sketch->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), e);
+      extent = tsynth::rasterExtent(e[1] - e[0] + 1, e[3] - e[2] + 1);
+    }
+    double spacing[3] = { 0.0, 0.0, 0.0 };
+    if (exemplar->Has(vtkDataObject::SPACING()))
+    {
+      exemplar->Get(vtkDataObject::SPACING(), spacing);
+    }
+    const tsynth::OutputGrid grid = tsynth::outputGrid(
+      extent, gridRequest(this), spacing[0], spacing[1], this->PatchSize, propertyNames());
+    const int wholeExtent[6] = { 0, grid.width - 1, 0, grid.height - 1, 0, 0 };
+    const double origin[3] = { 0.0, 0.0, 0.0 };
+    vtkInformation* out = outputVector->GetInformationObject(0);
+    out->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent, 6);
+    out->Set(vtkDataObject::SPACING(), grid.cellX, grid.cellY, 1.0);
+    out->Set(vtkDataObject::ORIGIN(), origin, 3);
   }
-  if (!(spacing[0] > 0.0))
+  catch (const std::exception& e)
   {
-    spacing[0] = spacing[1] = 1.0;
+    // Nothing announced: not the exemplar's grid the pipeline copied in by default.
+    vtkInformation* out = outputVector->GetInformationObject(0);
+    out->Remove(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+    out->Remove(vtkDataObject::SPACING());
+    out->Remove(vtkDataObject::ORIGIN());
+    vtkErrorMacro(<< e.what());
+    return 0;
   }
-  const int extent[6] = { 0, w - 1, 0, h - 1, 0, 0 };
-  const double origin[3] = { 0.0, 0.0, 0.0 };
-  vtkInformation* out = outputVector->GetInformationObject(0);
-  out->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-  out->Set(vtkDataObject::SPACING(), spacing[0], spacing[1], 1.0);
-  out->Set(vtkDataObject::ORIGIN(), origin, 3);
   return 1;
 }
 
 int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
-  vtkTable* table = vtkTable::GetData(outputVector, 1);
-  vtkDataObject* sketchData = vtkDataObject::GetData(inputVector[1], 0);
   try
   {
-    const tsynth::ExemplarInputs ex = tsynth::gatherExemplars(inputVector[0], nullptr);
-    const double cellX = this->CellSize > 0.0 ? this->CellSize : ex.heights.front().cellX;
-    const double cellY = this->CellSize > 0.0 ? this->CellSize : ex.heights.front().cellY;
-    this->UpdateProgress(0.05);
+    tsynth::ExemplarInputs ex = tsynth::gatherExemplarImages(inputVector[0]);
+    tsynth::SetupInputs in;
+    in.exemplars = std::move(ex.heights);
+    in.sketch = sketchInput(vtkDataObject::GetData(inputVector[1], 0), ex.warnings);
+    in.grid = gridRequest(this);
+    in.patchSize = this->PatchSize;
+    in.seed = static_cast<std::uint64_t>(this->Seed);
+    in.memoryBudget = this->MemoryBudget * kBytesPerGB;
+    in.names = propertyNames();
+    for (const auto& w : ex.warnings)
+    {
+      vtkWarningMacro(<< w);
+    }
+    const tsynth::SynthesisSetup setup = tsynth::prepareSynthesis(std::move(in));
+    for (const auto& w : setup.warnings)
+    {
+      vtkWarningMacro(<< w);
+    }
+    this->UpdateProgress(kSetupProgress);
 
-    // The sketch's graph in its own pixels, and its heights when it has them.
-    tsynth::FeatureGraph graph;
-    tsynth::Heightfield heights;
-    bool hasHeights = false;
-    tsynth::SketchHeights heightKind = tsynth::SketchHeights::None;
-    int sw = 0;
-    int sh = 0;
-    if (auto* image = vtkImageData::SafeDownCast(sketchData))
-    {
-      vtkDataArray* scalars = image->GetPointData()->GetScalars();
-      if (scalars != nullptr && scalars->GetDataType() != VTK_UNSIGNED_CHAR &&
-        scalars->GetNumberOfComponents() == 1)
-      {
-        heights = tsynth::imageToHeightfield(image); // a DEM as the target
-        graph = tsynth::extractFeatures(heights, tsynth::FeatureType::Ridge, {}).graph;
-        tsynth::appendGraph(
-          graph, tsynth::extractFeatures(heights, tsynth::FeatureType::Valley, {}).graph);
-        hasHeights = true;
-        heightKind = tsynth::SketchHeights::Dem;
-        sw = heights.width;
-        sh = heights.height;
-      }
-      else
-      {
-        const tsynth::ColourImage pixels = tsynth::imageToColourImage(image);
-        tsynth::SketchOptions so;
-        so.patchSize = this->PatchSize;
-        so.controlRadius = 0.5 * this->PatchSize;
-        tsynth::SketchFeatures s = tsynth::sketchFeatures(pixels, so);
-        for (const auto& w : s.warnings)
-        {
-          vtkWarningMacro(<< w);
-        }
-        graph = std::move(s.graph);
-        if (s.kind == tsynth::SketchKind::Grey)
-        {
-          heights = tsynth::greyField(pixels);
-          hasHeights = true;
-          heightKind = tsynth::SketchHeights::Grey;
-        }
-        sw = pixels.width;
-        sh = pixels.height;
-      }
-    }
-    else if (auto* lines = vtkPolyData::SafeDownCast(sketchData))
-    {
-      std::string warning;
-      const auto polylines = tsynth::polyDataToPolylines(lines, cellX, cellY, 0.0, 0.0, &warning);
-      if (!warning.empty())
-      {
-        vtkWarningMacro(<< warning);
-      }
-      sw = this->OutputSize[0];
-      sh = this->OutputSize[1];
-      graph = tsynth::polylineFeatures(polylines, sw, sh, cellX, cellY, 1.0, 0.5 * this->PatchSize);
-    }
-    else
-    {
-      throw tsynth::Error("The sketch must be an image or poly-lines.");
-    }
-    const int w = this->OutputSize[0] > 0 ? this->OutputSize[0] : sw;
-    const int h = this->OutputSize[1] > 0 ? this->OutputSize[1] : sh;
-
-    const tsynth::ExemplarStatistics stats =
-      tsynth::exemplarStatistics(ex.heightPointers(), ex.graphPointers(), this->PatchSize);
-    const tsynth::SynthesisTarget target = tsynth::makeTarget(graph,
-      sw,
-      sh,
-      hasHeights ? &heights : nullptr,
-      w,
-      h,
-      cellX,
-      cellY,
-      stats,
-      this->PatchSize,
-      heightKind);
-    tsynth::SynthesisOptions o;
-    o.patchSize = this->PatchSize;
-    o.backend = this->Backend == 1
-      ? tsynth::Backend::OpenCL
-      : (this->Backend == 2 ? tsynth::Backend::Cpu : tsynth::Backend::Auto);
-    o.merge = this->MergeMode == 0 ? tsynth::MergeMode::Cut
-      : this->MergeMode == 1       ? tsynth::MergeMode::Poisson
-      : this->MergeMode == 2       ? tsynth::MergeMode::Shepard
-                                   : tsynth::MergeMode::New;
-    o.fill = this->FillOrder == 1 ? tsynth::FillOrder::Concentric : tsynth::FillOrder::BestFirst;
-    o.progress = [this](double f, const std::string&) { this->UpdateProgress(0.05 + 0.9 * f); };
+    tsynth::SynthesisOptions o = synthesisOptions(this);
     if (inputVector[2]->GetNumberOfInformationObjects() > 0)
     {
       const tsynth::Heightfield labels =
         tsynth::imageToHeightfield(vtkImageData::GetData(inputVector[2], 0));
-      tsynth::assignRegions(o, labels, this->RegionMaps, w, h, ex.heights.size());
+      tsynth::assignRegions(
+        o, labels, this->RegionMaps, setup.grid.width, setup.grid.height, setup.exemplars.size());
     }
     const tsynth::SynthesisResult r =
-      tsynth::synthesize(target, ex.heightPointers(), ex.graphPointers(), o);
+      tsynth::synthesize(setup.target, setup.exemplarPointers(), setup.graphPointers(), o);
     this->BackendUsed = r.backend;
     for (const auto& warning : r.warnings)
     {
       vtkWarningMacro(<< warning);
     }
-
+    vtkImageData* output = vtkImageData::GetData(outputVector, 0);
     tsynth::heightfieldToImage(r.terrain, output);
-    const vtkIdType n = static_cast<vtkIdType>(r.terrain.size());
-    vtkNew<vtkIntArray> patchId;
-    patchId->SetName("PatchId");
-    patchId->SetNumberOfTuples(n);
-    std::copy(r.patchId.begin(), r.patchId.end(), patchId->GetPointer(0));
-    output->GetPointData()->AddArray(patchId);
-    vtkNew<vtkIntArray> order;
-    order->DeepCopy(patchId);
-    order->SetName("PlacementOrder");
-    output->GetPointData()->AddArray(order);
-    vtkNew<vtkUnsignedCharArray> seam;
-    seam->SetName("SeamMask");
-    seam->SetNumberOfTuples(n);
-    std::copy(r.seam.begin(), r.seam.end(), seam->GetPointer(0));
-    output->GetPointData()->AddArray(seam);
-    tsynth::addPointArray(output, "MatchCost", r.matchCost.data());
-
-    const char* intNames[] = { "Order", "Feature", "Exemplar", "Variant", "Column", "Row" };
-    const char* realNames[] = { "SourceX", "SourceY", "MatchCost", "SeamCost", "Offset" };
-    std::vector<vtkNew<vtkIntArray>> ints(6);
-    std::vector<vtkNew<vtkDoubleArray>> reals(5);
-    for (std::size_t c = 0; c < 6; ++c)
-    {
-      ints[c]->SetName(intNames[c]);
-    }
-    for (std::size_t c = 0; c < 5; ++c)
-    {
-      reals[c]->SetName(realNames[c]);
-    }
-    for (const tsynth::Placement& p : r.placements)
-    {
-      const auto e = static_cast<std::size_t>(p.exemplar);
-      ints[0]->InsertNextValue(p.order);
-      ints[1]->InsertNextValue(p.feature ? 1 : 0);
-      ints[2]->InsertNextValue(p.exemplar);
-      ints[3]->InsertNextValue(p.variant);
-      ints[4]->InsertNextValue(p.x0);
-      ints[5]->InsertNextValue(p.y0);
-      reals[0]->InsertNextValue(ex.originX[e] + p.sourceX * ex.heights[e].cellX);
-      reals[1]->InsertNextValue(ex.originY[e] + p.sourceY * ex.heights[e].cellY);
-      reals[2]->InsertNextValue(p.matchCost);
-      reals[3]->InsertNextValue(p.seamCost);
-      reals[4]->InsertNextValue(p.offset);
-    }
-    for (auto& a : ints)
-    {
-      table->AddColumn(a);
-    }
-    for (auto& a : reals)
-    {
-      table->AddColumn(a);
-    }
+    addDiagnosticArrays(r, output);
+    fillPlacementTable(r, setup, ex, vtkTable::GetData(outputVector, 1));
   }
-  catch (const tsynth::Error& e)
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro("The synthesis ran out of memory; give a smaller OutputSize or a larger "
+                  "CellSize, or fewer or smaller exemplars.");
+    return 0;
+  }
+  catch (const std::exception& e)
   {
     vtkErrorMacro(<< e.what());
     return 0;
@@ -318,4 +373,6 @@ void vtkTerrainSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FillOrder: " << this->FillOrder << "\n";
   os << indent << "OutputSize: " << this->OutputSize[0] << " x " << this->OutputSize[1] << "\n";
   os << indent << "CellSize: " << this->CellSize << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "MemoryBudget: " << this->MemoryBudget << " GB\n";
 }

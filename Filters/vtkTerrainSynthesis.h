@@ -4,14 +4,16 @@
  *
  * Input port 0: one or more exemplar heightfields (images with "Elevation").
  * Input port 1: the sketch: an image (grey sketch map, RGB stroke map with red
- * ridges and blue valleys, or a DEM used as the target), or poly-lines with a
- * FeatureType cell array. Output port 0: the terrain (2D image, "Elevation" in
- * metres) with PatchId (the placement that wrote each cell, -1 for none; the
- * placement order), SeamMask, PlacementOrder and MatchCost arrays. Output port 1:
- * a table of the placements (order, feature or fill, exemplar, variant, source
- * position, output cell, match cost, seam cost, vertical offset).
- * The stages are the other Terrain Synthesis filters' kernels: feature
- * extraction, candidate pools and matching (OpenCL or CPU), graph-cut merging.
+ * ridges and blue valleys, or a DEM used as the target), or poly-lines in metres
+ * in the output's raster frame (lower-left cell centre at (0, 0)) with a
+ * FeatureType cell array and optional Elevation point array (height constraints).
+ * The set-up (output grid, exemplar resampling to its cell size, features,
+ * memory check, target) is tsynth::prepareSynthesis, the same as `tsynth synth`. Output port 0: the
+ * terrain (2D image, "Elevation" in metres) with PatchId (the placement that wrote each cell, -1
+ * for none; the placement order), SeamMask, PlacementOrder and MatchCost arrays. Output port 1: a
+ * table of the placements (order, feature or fill, exemplar, variant, source position, output cell,
+ * match cost, seam cost, vertical offset). The stages are the other Terrain Synthesis filters'
+ * kernels: feature extraction, candidate pools and matching (OpenCL or CPU), graph-cut merging.
  * Optional input port 2: style regions, an image of integer labels resized to
  * the output; label L is served by exemplar L unless AddRegionMap("L=E1,E2").
  */
@@ -25,6 +27,7 @@
 #include <vector>
 
 class vtkImageData;
+class vtkPolyData;
 class vtkTable;
 
 class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainSynthesis : public vtkAlgorithm
@@ -34,24 +37,52 @@ public:
   vtkTypeMacro(vtkTerrainSynthesis, vtkAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  enum Backends
+  {
+    AUTO = 0, // OpenCL if a device works, else the CPU
+    OPENCL = 1,
+    CPU = 2
+  };
+  enum MergeModes
+  {
+    CUT = 0,
+    POISSON = 1,
+    SHEPARD = 2,
+    NEW = 3
+  };
+  enum FillOrders
+  {
+    BEST_FIRST = 0,
+    CONCENTRIC = 1
+  };
+
   /// Patch size in cells (multiple of 4; default 80).
   vtkSetClampMacro(PatchSize, int, 16, 512);
   vtkGetMacro(PatchSize, int);
-  /// 0 auto (OpenCL if usable), 1 OpenCL, 2 CPU.
-  vtkSetClampMacro(Backend, int, 0, 2);
+  /// Where the matcher runs (default AUTO); every backend gives the same terrain.
+  vtkSetClampMacro(Backend, int, AUTO, CPU);
   vtkGetMacro(Backend, int);
-  /// 0 cut, 1 poisson, 2 shepard, 3 new (default).
-  vtkSetClampMacro(MergeMode, int, 0, 3);
+  /// Seam removal after each cut (default NEW).
+  vtkSetClampMacro(MergeMode, int, CUT, NEW);
   vtkGetMacro(MergeMode, int);
-  /// 0 best-first (default), 1 concentric.
-  vtkSetClampMacro(FillOrder, int, 0, 1);
+  /// Order of the non-feature filling (default BEST_FIRST).
+  vtkSetClampMacro(FillOrder, int, BEST_FIRST, CONCENTRIC);
   vtkGetMacro(FillOrder, int);
-  /// Output size in cells; 0 0 (default) takes the sketch's pixels.
+  /// Output size in cells; 0 0 (default) takes the sketch image's pixels, or
+  /// the poly-lines' frame (their GridSize x CellSize field data) or extent.
   vtkSetVector2Macro(OutputSize, int);
   vtkGetVector2Macro(OutputSize, int);
   /// Output cell size in metres; 0 (default) takes the first exemplar's.
   vtkSetClampMacro(CellSize, double, 0.0, 1.0e6);
   vtkGetMacro(CellSize, double);
+  /// Seeds every arbitrary choice: another seed gives another terrain, the same
+  /// seed the same terrain (default 0).
+  vtkSetClampMacro(Seed, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(Seed, vtkIdType);
+  /// A synthesis estimated to need more memory than this (GB) is refused before
+  /// it starts; 0 (default) allows 80% of the machine's physical memory.
+  vtkSetClampMacro(MemoryBudget, double, 0.0, 1.0e6);
+  vtkGetMacro(MemoryBudget, double);
 
   void RemoveAllExemplars() { this->RemoveAllInputConnections(0); }
   /// Optional style regions (port 2): an image of integer labels over the
@@ -86,15 +117,21 @@ protected:
   int RequestData(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 
   int PatchSize = 80;
-  int Backend = 0;
-  int MergeMode = 3;
-  int FillOrder = 0;
+  int Backend = AUTO;
+  int MergeMode = NEW;
+  int FillOrder = BEST_FIRST;
   int OutputSize[2] = { 0, 0 };
   double CellSize = 0.0;
+  vtkIdType Seed = 0;
+  double MemoryBudget = 0.0;
   std::string BackendUsed;
   std::vector<std::string> RegionMaps;
 
 private:
+  // The poly-line sketch on port 1, brought up to date (RequestInformation needs
+  // its extent); nullptr when the sketch is an image.
+  vtkPolyData* UpdatedPolylineSketch(vtkInformationVector* sketchPort);
+
   vtkTerrainSynthesis(const vtkTerrainSynthesis&) = delete;
   void operator=(const vtkTerrainSynthesis&) = delete;
 };

@@ -2,5 +2,6 @@ set(TSYNTH_SYNTHESIS_SOURCES
   Synthesis/Finishing.cxx
   Synthesis/Landform.cxx
   Synthesis/Regions.cxx
+  Synthesis/Setup.cxx
   Synthesis/Synthesizer.cxx
   Synthesis/Target.cxx)

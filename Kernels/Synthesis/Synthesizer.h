@@ -10,6 +10,7 @@
 #include "../Merging/PatchMerger.h"
 #include "Target.h"
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -29,6 +30,8 @@ struct SynthesisOptions
   Backend backend = Backend::Auto;
   MergeMode merge = MergeMode::New;
   FillOrder fill = FillOrder::BestFirst;
+  // Seeds every arbitrary choice; the same seed gives the same bits on every backend.
+  std::uint64_t seed = 0;
   std::size_t k = 8;          // candidates compared by seam cost per feature placement
   std::size_t fillK = 4;      // ... per fill placement (8 measured no better, 20% slower)
   bool verticalOffset = true; // shift each patch to fit what it overlaps
@@ -43,8 +46,6 @@ struct SynthesisOptions
   // Sketched valleys are made to drain: floors descend to their outlets and a
   // channel runs along them (Finishing.h).
   bool drainValleys = true;
-  // Seeds every arbitrary choice; the same seed gives the same bits on every backend.
-  std::uint64_t seed = 0;
   // Style regions (Zhou's Middle-earth): a label per output cell (row 0 south;
   // empty = one region) and, per label, the exemplars that may serve it (a
   // label missing from the map may use every exemplar).

@@ -14,6 +14,34 @@ from harness import PATHS  # noqa: E402
 from test_cli import write_png  # noqa: E402
 
 
+def write_polylines(path, points, elevation=None, types=(1, -1)):
+    """An ASCII VTK poly-data sketch: pairs of points, one line each, with FeatureType."""
+    n = len(points)
+    pd = ('<PointData><DataArray type="Float32" Name="Elevation" format="ascii">%s</DataArray></PointData>'
+          % " ".join(str(e) for e in elevation)) if elevation else ""
+    with open(path, "w") as f:
+        f.write("""<VTKFile type="PolyData" version="0.1" byte_order="LittleEndian">
+<PolyData><Piece NumberOfPoints="%d" NumberOfVerts="0" NumberOfLines="%d" NumberOfStrips="0" NumberOfPolys="0">
+%s<CellData><DataArray type="Int32" Name="FeatureType" format="ascii">%s</DataArray></CellData>
+<Points><DataArray type="Float32" NumberOfComponents="3" format="ascii">%s</DataArray></Points>
+<Lines><DataArray type="Int64" Name="connectivity" format="ascii">%s</DataArray>
+<DataArray type="Int64" Name="offsets" format="ascii">%s</DataArray></Lines>
+</Piece></PolyData></VTKFile>
+""" % (n, n // 2, pd, " ".join(str(t) for t in types[: n // 2]),
+       " ".join("%r %r 0" % (float(x), float(y)) for x, y in points),
+       " ".join(str(k) for k in range(n)), " ".join(str(2 * k + 2) for k in range(n // 2))))
+
+
+def crop_dem(tmp, name, window):
+    """A window (column, row, width, height) of a bundled DEM as a metres GeoTIFF."""
+    full = os.path.join(tmp, name + ".full.tif")
+    crop = os.path.join(tmp, name + ".crop.tif")
+    subprocess.run([PATHS.tsynth, "convert", os.path.join(PATHS.bundled_data, "dems", name), "-o", full],
+                   check=True, stdout=subprocess.DEVNULL)
+    subprocess.run(["gdal_translate", "-q", "-srcwin", *[str(v) for v in window], full, crop], check=True)
+    return crop
+
+
 def tsynth(*args):
     return subprocess.run([PATHS.tsynth, *args], capture_output=True, text=True, timeout=600)
 
@@ -88,18 +116,11 @@ class SynthTest(unittest.TestCase):
         self.assertNotAlmostEqual(both["slope_distance"], figures["terrain"]["slope_distance"], places=2)
 
     def test_polyline_elevations_are_met(self):
-        # An ASCII VTK poly-data sketch: a ridge at 3500 m to 3000 m, a valley at 2000 m.
+        # A ridge at 3500 m to 3000 m and a valley at 2000 m, drawn in metres on colorado's
+        # 90 m cells: cells (20, 100)-(180, 100) and (10, 190)-(190, 150).
         vtp = self.path("lines.vtp")
-        with open(vtp, "w") as f:
-            f.write("""<VTKFile type="PolyData" version="0.1" byte_order="LittleEndian">
-<PolyData><Piece NumberOfPoints="4" NumberOfVerts="0" NumberOfLines="2" NumberOfStrips="0" NumberOfPolys="0">
-<PointData><DataArray type="Float32" Name="Elevation" format="ascii">3500 3000 2000 2000</DataArray></PointData>
-<CellData><DataArray type="Int32" Name="FeatureType" format="ascii">1 -1</DataArray></CellData>
-<Points><DataArray type="Float32" NumberOfComponents="3" format="ascii">20 100 0 180 100 0 10 190 0 190 150 0</DataArray></Points>
-<Lines><DataArray type="Int64" Name="connectivity" format="ascii">0 1 2 3</DataArray>
-<DataArray type="Int64" Name="offsets" format="ascii">2 4</DataArray></Lines>
-</Piece></PolyData></VTKFile>
-""")
+        write_polylines(vtp, [(20 * 90, 100 * 90), (180 * 90, 100 * 90), (10 * 90, 190 * 90), (190 * 90, 150 * 90)],
+                        elevation=[3500, 3000, 2000, 2000])
         out = self.path("lines.tif")
         report = self.synth("colorado.png", vtp, out)
         self.assertEqual(report["sketch_kind"], "poly-lines")
@@ -116,6 +137,89 @@ class SynthTest(unittest.TestCase):
         for column, expected in ((20, 3500.0), (100, 3250.0), (180, 3000.0)):
             self.assertAlmostEqual(height(column, 100), expected, delta=1.0)
         self.assertAlmostEqual(height(100, 170), 2000.0, delta=1.0)
+
+    def test_features_of_a_dem_are_a_sketch_of_the_same_dem(self):
+        # tsynth features writes metres in the raster frame and the grid it was found on:
+        # used as a sketch it gives an output of the DEM's size and cell size.
+        dem = crop_dem(self.tmp, "colorado.png", (200, 200, 192, 160))
+        features = self.path("features.vtp")
+        done = tsynth("features", dem, "-o", features, "--both")
+        self.assertEqual(done.returncode, 0, done.stderr)
+        result = tsynth("synth", "--exemplar", dem, "--sketch", features, "--patch", "32",
+                        "-o", self.path("again.tif"), "--report", self.path("again.json"), "--no-progress")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        with open(self.path("again.json")) as f:
+            report = json.load(f)
+        self.assertEqual(report["sketch_kind"], "poly-lines")
+        self.assertEqual(report["size"], [192, 160])
+        self.assertEqual(report["cell_size_m"], [90.0, 90.0])
+        self.assertGreater(report["feature_placements"], 20)
+        # At half the cell size the same ground needs twice the cells a side.
+        result = tsynth("synth", "--exemplar", dem, "--sketch", features, "--patch", "32", "--cell", "45",
+                        "-o", self.path("fine.tif"), "--report", self.path("fine.json"), "--no-progress",
+                        "--max-memory", "0.001")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("384 x 320 cells", result.stderr)  # refused by the budget, after sizing
+
+    def test_polylines_in_cells_or_degrees_are_refused_with_a_sentence(self):
+        cells = self.path("cells.vtp")
+        write_polylines(cells, [(20, 100), (180, 100), (10, 190), (190, 150)])
+        out = self.path("never.tif")
+        result = tsynth("synth", "--exemplar", os.path.join(self.dems, "colorado.png"), "--sketch", cells,
+                        "-o", out, "--no-progress")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("span 180 x 90 m", result.stderr)
+        self.assertIn("are they in cells", result.stderr)
+        self.assertIn("--size", result.stderr)
+        self.assertEqual(result.stderr.count("\n"), 1)  # one sentence on one line
+        degrees = self.path("degrees.vtp")
+        write_polylines(degrees, [(-105.2, 39.1), (-104.9, 39.3)], types=(1,))
+        result = tsynth("synth", "--exemplar", os.path.join(self.dems, "colorado.png"), "--sketch", degrees,
+                        "-o", out, "--no-progress")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("west or south of the raster frame", result.stderr)
+        self.assertFalse(os.path.exists(out))
+
+    def test_memory_budget_is_applied_to_the_reported_estimate(self):
+        sketch = os.path.join(self.sketches, "strokes_y_ridges.png")
+        common = ("--exemplar", os.path.join(self.dems, "colorado.png"), "--sketch", sketch,
+                  "--size", "160x160", "--patch", "32", "--no-progress")
+        report = self.synth("colorado.png", sketch, self.path("fits.tif"), "--size", "160x160", "--patch", "32")
+        estimate = report["memory_estimate_gb"]
+        self.assertGreater(estimate, 0.1)  # the program and a 648 x 648 exemplar's tables
+        self.assertLess(estimate, 1.0)
+        out = self.path("refused.tif")
+        refused = tsynth("synth", *common, "-o", out, "--max-memory", "%.6f" % (0.99 * estimate))
+        self.assertEqual(refused.returncode, 1)
+        self.assertIn("needs about %d MB" % round(estimate * 1000), refused.stderr)
+        self.assertIn("raise --max-memory", refused.stderr)
+        self.assertFalse(os.path.exists(out))
+        fits = tsynth("synth", *common, "-o", out, "--max-memory", "%.6f" % (1.01 * estimate))
+        self.assertEqual(fits.returncode, 0, fits.stderr)
+
+    def test_report_is_valid_json_with_quotes_in_paths_and_records_the_seed(self):
+        out = self.path('a "quoted" \\ name.tif')
+        report = self.synth("colorado.png", os.path.join(self.sketches, "strokes_y_ridges.png"), out,
+                            "--size", "160x160", "--patch", "32", "--seed", "18446744073709551615")
+        self.assertEqual(report["output"], out)
+        self.assertEqual(report["seed"], 18446744073709551615)
+        self.assertEqual(report["size"], [160, 160])
+        self.assertEqual(len(report["placement_list"]), report["placements"])
+
+    def test_bad_seed_and_size_are_usage_errors(self):
+        base = ("synth", "--exemplar", os.path.join(self.dems, "colorado.png"), "--sketch",
+                os.path.join(self.sketches, "strokes_y_ridges.png"), "-o", self.path("never.tif"))
+        for seed in ("-1", "1.5", "abc", "18446744073709551616"):
+            result = tsynth(*base, "--seed", seed)
+            self.assertEqual(result.returncode, 2, seed)
+            self.assertIn("--seed expects a whole number", result.stderr)
+        for size, message in (("99999999999x2", "beyond any machine"), ("2000000x2", "beyond any machine"),
+                              ("160", "expects WxH"), ("160x", "expects WxH"), ("0x160", "expects WxH"),
+                              ("160x160x2", "expects WxH")):
+            result = tsynth(*base, "--size", size)
+            self.assertEqual(result.returncode, 2, size)
+            self.assertIn(message, result.stderr, size)
+        self.assertFalse(os.path.exists(self.path("never.tif")))
 
     def test_style_regions_choose_the_exemplars(self):
         labels = self.path("labels.asc")

@@ -1,0 +1,22 @@
+// The filters' enumeration properties (their XML EnumerationDomains and the
+// classes' enums) mapped to the kernels' enums in one place, so every filter
+// numbers them alike.
+#pragma once
+
+#include "Matching/OpenClMatcher.h"
+#include "Merging/PatchMerger.h"
+#include "Synthesis/Synthesizer.h"
+
+namespace tsynth
+{
+
+// 0 auto (OpenCL if a device works), 1 OpenCL, 2 CPU.
+Backend backendFromProperty(int value);
+
+// 0 cut, 1 poisson, 2 shepard, 3 new.
+MergeMode mergeModeFromProperty(int value);
+
+// 0 best-first, 1 concentric.
+FillOrder fillOrderFromProperty(int value);
+
+} // namespace tsynth

@@ -1,0 +1,492 @@
+#include "Setup.h"
+
+#include "../Core/Error.h"
+#include "../Core/Resample.h"
+#include "../Features/Ppa.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <unistd.h>
+
+namespace tsynth
+{
+namespace
+{
+
+// Peak resident memory measured with /usr/bin/time on `tsynth synth` (one
+// 648 x 648 exemplar at 90 m): 220 MB at 512^2, 301 MB at 1024^2, 736 MB at
+// 2048^2 output cells; 2.5 GB at 4096^2 from five exemplars. The slope between
+// the two largest is 138 bytes per output cell, another exemplar of 420 k cells
+// added 95 MB (its 16 oriented copies and tables), and the program with its
+// libraries holds about 100 MB before it starts.
+constexpr double kBytesPerOutputCell = 140.0;
+constexpr double kBytesPerExemplarCell = 240.0;
+constexpr double kBaseBytes = 128.0e6;
+// Exemplar cells differing from the output's by more than this fraction are
+// resampled (less is rounding in a file's georeference).
+constexpr double kResampleTolerance = 0.01;
+// Poly-line vertices within this many cells of each other are one vertex.
+constexpr double kPolylineSnapCells = 1.0;
+constexpr double kBytesPerGB = 1.0e9;
+
+// Four significant digits, and whole metres from 1000 up (no exponents).
+std::string number(double v)
+{
+  std::ostringstream o;
+  if (std::abs(v) >= 1000.0)
+  {
+    o << std::fixed << std::setprecision(0) << v;
+  }
+  else
+  {
+    o << std::setprecision(4) << v;
+  }
+  return o.str();
+}
+
+std::string bytesText(double bytes)
+{
+  std::ostringstream o;
+  if (bytes >= kBytesPerGB)
+  {
+    // One decimal is noise above 100 GB.
+    o << std::fixed << std::setprecision(bytes < 100.0 * kBytesPerGB ? 1 : 0) << bytes / kBytesPerGB
+      << " GB";
+  }
+  else
+  {
+    o << std::fixed << std::setprecision(0) << bytes / 1.0e6 << " MB";
+  }
+  return o.str();
+}
+
+std::string sizeText(int w, int h)
+{
+  return std::to_string(w) + " x " + std::to_string(h);
+}
+
+std::string cellText(double cx, double cy)
+{
+  return cx == cy ? number(cx) + " m" : number(cx) + " x " + number(cy) + " m";
+}
+
+// Cells needed to hold coordinates from 0 to `extent` metres (cell centres at
+// multiples of `cell`), clamped to what an int can count.
+int cellsToReach(double extent, double cell)
+{
+  const double cells = std::floor(extent / cell + 0.5) + 1.0;
+  return static_cast<int>(std::min(cells, static_cast<double>(std::numeric_limits<int>::max())));
+}
+
+int cellsInFrame(double frame, double cell)
+{
+  const double cells = std::floor(frame / cell + 0.5);
+  return static_cast<int>(std::min(cells, static_cast<double>(std::numeric_limits<int>::max())));
+}
+
+void checkRequest(const GridRequest& r, const SetupOptionNames& names)
+{
+  if (r.width < 0 || r.height < 0 || (r.width == 0) != (r.height == 0))
+  {
+    throw Error("Give " + names.size + " as two positive numbers of cells, or neither.");
+  }
+  if (r.width > kMaxOutputSide || r.height > kMaxOutputSide)
+  {
+    throw Error(names.size + " " + sizeText(r.width, r.height) +
+      " is beyond any machine: at most " + std::to_string(kMaxOutputSide) + " cells a side.");
+  }
+  if (r.cellX < 0.0 || r.cellY < 0.0 || !std::isfinite(r.cellX) || !std::isfinite(r.cellY))
+  {
+    throw Error(names.cell + " must be a positive number of metres (or 0 for the exemplar's).");
+  }
+}
+
+// What was found, the start of every poly-line refusal.
+std::string spanText(const SketchExtent& s)
+{
+  return "The poly-lines span " + number(s.maxX - s.minX) + " x " + number(s.maxY - s.minY) +
+    " m (x " + number(s.minX) + " to " + number(s.maxX) + ", y " + number(s.minY) + " to " +
+    number(s.maxY) + ")";
+}
+
+// What to do, the end of every poly-line refusal.
+std::string unitAdvice(const SetupOptionNames& names)
+{
+  return " Poly-line sketches are in metres in the raster frame (lower-left cell centre at "
+         "(0, 0)): scale or shift them, or set " +
+    names.size + " and " + names.cell + ".";
+}
+
+// The poly-lines' size from their frame or extent, refusing coordinates that
+// are not metres in the raster frame.
+void polylineSize(const SketchExtent& s, OutputGrid& g, int patch, const SetupOptionNames& names)
+{
+  const std::string span = spanText(s);
+  const std::string advice = unitAdvice(names);
+  if (s.minX < -0.5 * g.cellX || s.minY < -0.5 * g.cellY)
+  {
+    throw Error(span +
+      ", west or south of the raster frame; are they in degrees or world coordinates?" + advice);
+  }
+  g.width = std::max(cellsToReach(s.maxX, g.cellX), cellsInFrame(s.frameWidth, g.cellX));
+  g.height = std::max(cellsToReach(s.maxY, g.cellY), cellsInFrame(s.frameHeight, g.cellY));
+  if (g.width < patch || g.height < patch)
+  {
+    throw Error(span + ": an output of " + sizeText(g.width, g.height) + " cells of " +
+      cellText(g.cellX, g.cellY) + ", smaller than one patch (" + std::to_string(patch) +
+      " cells); are they in cells or degrees?" + advice);
+  }
+  if (g.width > kMaxOutputSide || g.height > kMaxOutputSide)
+  {
+    throw Error(span + ": an output of " + sizeText(g.width, g.height) + " cells of " +
+      cellText(g.cellX, g.cellY) + ", more than " + std::to_string(kMaxOutputSide) +
+      " a side; are they in world coordinates, or in cells of a finer grid?" + advice);
+  }
+}
+
+// Requested size and poly-lines: they must at least reach into the output and
+// be longer than a cell.
+void checkPolylinesInGrid(const SketchExtent& s, const OutputGrid& g, const SetupOptionNames& names)
+{
+  const double w = (g.width - 0.5) * g.cellX;
+  const double h = (g.height - 0.5) * g.cellY;
+  const bool outside =
+    s.minX > w || s.minY > h || s.maxX < -0.5 * g.cellX || s.maxY < -0.5 * g.cellY;
+  const bool tiny = s.maxX - s.minX < g.cellX && s.maxY - s.minY < g.cellY;
+  if (!outside && !tiny)
+  {
+    return;
+  }
+  throw Error(spanText(s) +
+    (tiny ? ", less than one cell of " + cellText(g.cellX, g.cellY) +
+          "; are they in cells or degrees?"
+          : ", outside the output (" + number(w + 0.5 * g.cellX) + " x " +
+          number(h + 0.5 * g.cellY) + " m); are they in world coordinates?") +
+    unitAdvice(names));
+}
+
+bool needsResampling(const Heightfield& hf, double cx, double cy)
+{
+  return std::abs(hf.cellX - cx) > kResampleTolerance * cx ||
+    std::abs(hf.cellY - cy) > kResampleTolerance * cy;
+}
+
+// The cells an exemplar will have at the output's cell size (resampleToCellSize's count).
+std::size_t cellsAtOutputSize(const Heightfield& hf, const OutputGrid& g)
+{
+  if (!needsResampling(hf, g.cellX, g.cellY))
+  {
+    return hf.size();
+  }
+  const double w = std::floor((hf.width - 1) * hf.cellX / g.cellX) + 1.0;
+  const double h = std::floor((hf.height - 1) * hf.cellY / g.cellY) + 1.0;
+  return static_cast<std::size_t>(std::max(1.0, w) * std::max(1.0, h));
+}
+
+void checkMemory(const SetupInputs& in, const OutputGrid& g, SynthesisSetup& s)
+{
+  std::vector<std::size_t> cells;
+  for (const Heightfield& hf : in.exemplars)
+  {
+    cells.push_back(cellsAtOutputSize(hf, g));
+  }
+  s.memoryEstimate = synthesisMemoryEstimate(g.width, g.height, cells);
+  s.memoryBudget = in.memoryBudget > 0.0 ? in.memoryBudget : defaultMemoryBudget();
+  if (s.memoryEstimate <= s.memoryBudget)
+  {
+    return;
+  }
+  throw Error("This synthesis of " + sizeText(g.width, g.height) + " cells from " +
+    std::to_string(in.exemplars.size()) + " exemplar(s) needs about " +
+    bytesText(s.memoryEstimate) + " but the memory budget is " + bytesText(s.memoryBudget) +
+    (in.memoryBudget > 0.0
+        ? ""
+        : " (" + number(100.0 * kDefaultMemoryFraction) + "% of this machine's memory)") +
+    "; give a smaller " + in.names.size + " or a larger " + in.names.cell +
+    ", fewer or smaller exemplars, or raise " + in.names.memory + ".");
+}
+
+std::string exemplarName(const SetupInputs& in, std::size_t e)
+{
+  return e < in.exemplarNames.size() ? in.exemplarNames[e] : "exemplar " + std::to_string(e);
+}
+
+FeatureGraph ridgesAndValleys(const Heightfield& hf)
+{
+  FeatureGraph g = extractFeatures(hf, FeatureType::Ridge, {}).graph;
+  appendGraph(g, extractFeatures(hf, FeatureType::Valley, {}).graph);
+  return g;
+}
+
+// Exemplars at the output's cell size, with their features.
+void prepareExemplars(SetupInputs& in, SynthesisSetup& s)
+{
+  const OutputGrid& g = s.grid;
+  for (std::size_t e = 0; e < in.exemplars.size(); ++e)
+  {
+    Heightfield& hf = in.exemplars[e];
+    if (needsResampling(hf, g.cellX, g.cellY))
+    {
+      s.warnings.push_back(exemplarName(in, e) + " has " + cellText(hf.cellX, hf.cellY) +
+        " cells; resampled to the output's " + cellText(g.cellX, g.cellY) + ".");
+      hf = resampleToCellSize(hf, g.cellX, g.cellY);
+    }
+    s.graphs.push_back(ridgesAndValleys(hf));
+    s.exemplars.push_back(std::move(hf));
+  }
+}
+
+AnalysedSketch analyseImage(const ColourImage& image, int patch)
+{
+  SketchOptions so;
+  so.patchSize = patch;
+  so.controlRadius = 0.5 * patch;
+  SketchFeatures f = sketchFeatures(image, so);
+  AnalysedSketch a;
+  a.graph = std::move(f.graph);
+  a.warnings = std::move(f.warnings);
+  a.width = image.width;
+  a.height = image.height;
+  a.hasHeights = f.kind == SketchKind::Grey;
+  if (a.hasHeights)
+  {
+    a.heights = greyField(image);
+  }
+  a.kind = a.hasHeights ? "grey sketch" : "stroke map";
+  return a;
+}
+
+AnalysedSketch analyseDem(const Heightfield& dem, int patch)
+{
+  if (dem.width < patch || dem.height < patch)
+  {
+    throw Error("The DEM sketch is " + sizeText(dem.width, dem.height) +
+      " cells, smaller than one patch (" + std::to_string(patch) + ").");
+  }
+  AnalysedSketch a;
+  a.graph = ridgesAndValleys(dem);
+  a.width = dem.width;
+  a.height = dem.height;
+  a.hasHeights = true;
+  a.heights = dem;
+  a.kind = "DEM";
+  return a;
+}
+
+AnalysedSketch analysePolylines(const PolylineSketch& sketch, const OutputGrid& g, int patch)
+{
+  std::vector<Polyline> cells = sketch.lines;
+  bool outside = false;
+  for (Polyline& line : cells)
+  {
+    for (Point2& p : line.points)
+    {
+      p.x /= g.cellX;
+      p.y /= g.cellY;
+      outside = outside || p.x < -0.5 || p.y < -0.5 || p.x > g.width - 0.5 || p.y > g.height - 0.5;
+    }
+  }
+  AnalysedSketch a;
+  if (outside)
+  {
+    a.warnings.push_back("Parts of the poly-lines lie outside the " + sizeText(g.width, g.height) +
+      "-cell output; only what lies inside is sketched.");
+  }
+  a.graph =
+    polylineFeatures(cells, g.width, g.height, g.cellX, g.cellY, kPolylineSnapCells, 0.5 * patch);
+  a.width = g.width;
+  a.height = g.height;
+  a.kind = "poly-lines";
+  return a;
+}
+
+} // namespace
+
+bool rasterIsDemTarget(int bands, bool eightBit)
+{
+  return bands == 1 && !eightBit;
+}
+
+SketchExtent rasterExtent(int pixelsX, int pixelsY)
+{
+  SketchExtent s;
+  s.pixelsX = pixelsX;
+  s.pixelsY = pixelsY;
+  return s;
+}
+
+SketchExtent polylineExtent(const PolylineSketch& sketch)
+{
+  SketchExtent s;
+  s.polylines = true;
+  s.minX = s.minY = std::numeric_limits<double>::infinity();
+  s.maxX = s.maxY = -std::numeric_limits<double>::infinity();
+  for (const Polyline& line : sketch.lines)
+  {
+    for (const Point2& p : line.points)
+    {
+      if (!std::isfinite(p.x) || !std::isfinite(p.y))
+      {
+        throw Error("A poly-line point is not a finite number; the sketch is damaged.");
+      }
+      s.minX = std::min(s.minX, p.x);
+      s.minY = std::min(s.minY, p.y);
+      s.maxX = std::max(s.maxX, p.x);
+      s.maxY = std::max(s.maxY, p.y);
+    }
+  }
+  if (!(s.minX <= s.maxX))
+  {
+    throw Error("The poly-line sketch has no lines: give poly-line cells with a FeatureType "
+                "cell array (+1 ridge, -1 valley).");
+  }
+  s.frameWidth = std::max(0.0, sketch.frameWidth);
+  s.frameHeight = std::max(0.0, sketch.frameHeight);
+  return s;
+}
+
+SketchExtent sketchExtent(const SketchInput& sketch)
+{
+  if (const auto* image = std::get_if<ColourImage>(&sketch))
+  {
+    return rasterExtent(image->width, image->height);
+  }
+  if (const auto* dem = std::get_if<Heightfield>(&sketch))
+  {
+    return rasterExtent(dem->width, dem->height);
+  }
+  return polylineExtent(std::get<PolylineSketch>(sketch));
+}
+
+OutputGrid outputGrid(const SketchExtent& sketch,
+  const GridRequest& request,
+  double exemplarCellX,
+  double exemplarCellY,
+  int patchSize,
+  const SetupOptionNames& names)
+{
+  checkRequest(request, names);
+  OutputGrid g;
+  g.cellX = request.cellX > 0.0 ? request.cellX : exemplarCellX;
+  g.cellY = request.cellY > 0.0 ? request.cellY : exemplarCellY;
+  if (!(g.cellX > 0.0) || !(g.cellY > 0.0))
+  {
+    throw Error("The first exemplar has no positive cell size; give " + names.cell + ".");
+  }
+  if (request.width > 0)
+  {
+    g.width = request.width;
+    g.height = request.height;
+    if (sketch.polylines)
+    {
+      checkPolylinesInGrid(sketch, g, names);
+    }
+  }
+  else if (sketch.polylines)
+  {
+    polylineSize(sketch, g, patchSize, names);
+  }
+  else
+  {
+    g.width = sketch.pixelsX;
+    g.height = sketch.pixelsY;
+  }
+  if (g.width < patchSize || g.height < patchSize)
+  {
+    throw Error("The output (" + sizeText(g.width, g.height) +
+      " cells) is smaller than one patch (" + std::to_string(patchSize) + "); give a larger " +
+      names.size + " or a smaller " + names.patch + ".");
+  }
+  return g;
+}
+
+double synthesisMemoryEstimate(int width, int height, const std::vector<std::size_t>& exemplarCells)
+{
+  double bytes = kBaseBytes + kBytesPerOutputCell * static_cast<double>(width) * height;
+  for (std::size_t cells : exemplarCells)
+  {
+    bytes += kBytesPerExemplarCell * static_cast<double>(cells);
+  }
+  return bytes;
+}
+
+double defaultMemoryBudget()
+{
+  const double physical =
+    static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  return kDefaultMemoryFraction * physical;
+}
+
+AnalysedSketch analyseSketch(const SketchInput& sketch, const OutputGrid& grid, int patchSize)
+{
+  if (const auto* image = std::get_if<ColourImage>(&sketch))
+  {
+    return analyseImage(*image, patchSize);
+  }
+  if (const auto* dem = std::get_if<Heightfield>(&sketch))
+  {
+    return analyseDem(*dem, patchSize);
+  }
+  return analysePolylines(std::get<PolylineSketch>(sketch), grid, patchSize);
+}
+
+std::vector<const Heightfield*> SynthesisSetup::exemplarPointers() const
+{
+  std::vector<const Heightfield*> out;
+  for (const Heightfield& h : exemplars)
+  {
+    out.push_back(&h);
+  }
+  return out;
+}
+
+std::vector<const FeatureGraph*> SynthesisSetup::graphPointers() const
+{
+  std::vector<const FeatureGraph*> out;
+  for (const FeatureGraph& g : graphs)
+  {
+    out.push_back(&g);
+  }
+  return out;
+}
+
+SynthesisSetup prepareSynthesis(SetupInputs in)
+{
+  if (in.exemplars.empty())
+  {
+    throw Error("No exemplar: give at least one DEM to copy terrain from.");
+  }
+  SynthesisSetup s;
+  const Heightfield& first = in.exemplars.front();
+  s.grid =
+    outputGrid(sketchExtent(in.sketch), in.grid, first.cellX, first.cellY, in.patchSize, in.names);
+  checkMemory(in, s.grid, s);
+  AnalysedSketch sketch = analyseSketch(in.sketch, s.grid, in.patchSize);
+  s.sketchKind = sketch.kind;
+  s.warnings = std::move(sketch.warnings);
+  prepareExemplars(in, s);
+  const ExemplarStatistics stats =
+    exemplarStatistics(s.exemplarPointers(), s.graphPointers(), in.patchSize);
+  const SketchHeights heights = !sketch.hasHeights ? SketchHeights::None
+    : sketch.kind == "DEM"                         ? SketchHeights::Dem
+                                                   : SketchHeights::Grey;
+  s.landform = stats.landform;
+  s.target = makeTarget(sketch.graph,
+    sketch.width,
+    sketch.height,
+    sketch.hasHeights ? &sketch.heights : nullptr,
+    s.grid.width,
+    s.grid.height,
+    s.grid.cellX,
+    s.grid.cellY,
+    stats,
+    in.patchSize,
+    heights,
+    in.seed);
+  return s;
+}
+
+} // namespace tsynth

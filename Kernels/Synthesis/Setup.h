@@ -1,0 +1,177 @@
+// Everything between "files read" and synthesize(): the one set-up both the
+// command line and the ParaView filter call, so that the same inputs give the
+// same terrain whichever front end reads them. It names the sketch, turns
+// poly-lines in metres into output cells, decides the output grid, resamples the
+// exemplars to its cell size, finds their features, refuses what would not fit
+// in memory, and builds the target.
+#pragma once
+
+#include "../Core/Heightfield.h"
+#include "../Core/HeightfieldIO.h"
+#include "../Features/FeatureGraph.h"
+#include "../Features/Sketch.h"
+#include "Target.h"
+
+#include <cstddef>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace tsynth
+{
+
+// A poly-line sketch in METRES in the output's raster frame (DESIGN.md: the
+// lower-left cell centre is (0, 0), x east, y north), as `tsynth features`
+// writes them and as a ParaView user draws them over a DEM read at origin 0.
+struct PolylineSketch
+{
+  std::vector<Polyline> lines; // points in metres; elevation in metres (NaN: none)
+  // Size in metres (edge to edge: cells x cell size) of the raster the lines were
+  // drawn on, e.g. the DEM whose features they are; 0 when unknown, and the
+  // output then reaches just as far as the lines.
+  double frameWidth = 0.0;
+  double frameHeight = 0.0;
+};
+
+// Exactly one sketch: a colour (stroke map) or grey image, a DEM used as the
+// target (heights in metres), or poly-lines in metres.
+using SketchInput = std::variant<ColourImage, Heightfield, PolylineSketch>;
+
+// A raster sketch read from a file or an image: one band that is not 8-bit is a
+// DEM used as the target; anything else is a sketch image (grey or strokes).
+bool rasterIsDemTarget(int bands, bool eightBit);
+
+// What a front end calls the settings, so that messages name what to change
+// (the command line's options or the filter's properties).
+struct SetupOptionNames
+{
+  std::string size = "the output size";
+  std::string cell = "the output cell size";
+  std::string patch = "the patch size";
+  std::string memory = "the memory budget";
+};
+
+// The output grid asked for; zeros mean "from the inputs".
+struct GridRequest
+{
+  int width = 0; // cells; 0 0: the raster sketch's pixels, or the poly-lines' frame or extent
+  int height = 0;
+  double cellX = 0.0; // metres; 0: the first exemplar's cell size
+  double cellY = 0.0;
+};
+
+struct OutputGrid
+{
+  int width = 0; // cells
+  int height = 0;
+  double cellX = 0.0; // metres
+  double cellY = 0.0;
+};
+
+// What the output size is taken from when none is asked for: a raster sketch's
+// pixels, or a poly-line sketch's bounding box and frame in metres.
+struct SketchExtent
+{
+  bool polylines = false;
+  int pixelsX = 0; // raster sketches
+  int pixelsY = 0;
+  double minX = 0.0; // poly-lines, metres
+  double minY = 0.0;
+  double maxX = 0.0;
+  double maxY = 0.0;
+  double frameWidth = 0.0;
+  double frameHeight = 0.0;
+};
+
+SketchExtent rasterExtent(int pixelsX, int pixelsY);
+// Throws tsynth::Error for a sketch without a single point.
+SketchExtent polylineExtent(const PolylineSketch& sketch);
+SketchExtent sketchExtent(const SketchInput& sketch);
+
+// The grid a synthesis will produce (what the filter announces before it runs):
+// the requested size and cell size where given; else the raster sketch's pixels,
+// or for poly-lines their frame (or extent) divided by the cell size; the cell
+// size defaults to the first exemplar's (exemplarCellX/Y). Throws tsynth::Error
+// with what was found and what to change for: a bad request, poly-lines whose
+// extent gives an absurd output (coordinates in cells or degrees rather than
+// metres, or outside the raster frame), an output smaller than one patch or
+// larger than kMaxOutputSide.
+OutputGrid outputGrid(const SketchExtent& sketch,
+  const GridRequest& request,
+  double exemplarCellX,
+  double exemplarCellY,
+  int patchSize,
+  const SetupOptionNames& names = {});
+
+// More cells a side than any machine holds the work arrays of (10^12 cells of
+// about 128 bytes); sizes above it are typing errors.
+constexpr int kMaxOutputSide = 1000000;
+
+// Peak memory in bytes of a synthesis of width x height cells from exemplars of
+// these cell counts (at the output's cell size): measured, with a margin, on
+// 512^2 to 4096^2 outputs (DESIGN.md's machines; see Setup.cxx).
+double synthesisMemoryEstimate(int width,
+  int height,
+  const std::vector<std::size_t>& exemplarCells);
+
+// kDefaultMemoryFraction of this machine's physical memory, in bytes.
+double defaultMemoryBudget();
+constexpr double kDefaultMemoryFraction = 0.8; // leaves room for the system and the caller
+
+// A sketch analysed on its own terms: its feature graph in its own pixels (a
+// raster sketch) or on the output grid (poly-lines), and its heights for a grey
+// map or a DEM.
+struct AnalysedSketch
+{
+  FeatureGraph graph;
+  int width = 0; // the pixels `graph` is drawn on
+  int height = 0;
+  bool hasHeights = false;
+  Heightfield heights; // grey map or DEM (when hasHeights)
+  std::string kind;    // "stroke map", "grey sketch", "DEM" or "poly-lines"
+  std::vector<std::string> warnings;
+};
+
+// Grey maps and DEMs through PPA (ridges and valleys), stroke maps through
+// thinning, poly-lines divided by the grid's cell size. A raster sketch smaller
+// than one patch is refused (tsynth::Error).
+AnalysedSketch analyseSketch(const SketchInput& sketch, const OutputGrid& grid, int patchSize);
+
+struct SetupInputs
+{
+  std::vector<Heightfield> exemplars;     // heights in metres, with their cell sizes
+  std::vector<std::string> exemplarNames; // for messages (file names); empty: "exemplar N"
+  SketchInput sketch;
+  GridRequest grid;
+  int patchSize = 80;
+  double memoryBudget = 0.0; // bytes; 0: defaultMemoryBudget()
+  std::uint64_t seed = 0;    // breaks ties in the target (valley outlets)
+  SetupOptionNames names;
+};
+
+// Everything synthesize() needs, and what the set-up found on the way.
+struct SynthesisSetup
+{
+  std::vector<Heightfield> exemplars; // at the output's cell size
+  std::vector<FeatureGraph> graphs;   // their PPA ridges and valleys
+  SynthesisTarget target;             // on the output grid
+  LandformStatistics landform;        // the exemplars' cross-sections the target uses
+  OutputGrid grid;
+  std::string sketchKind;      // as AnalysedSketch::kind
+  double memoryEstimate = 0.0; // bytes
+  double memoryBudget = 0.0;   // bytes, the one applied
+  // The set-up's own warnings (sketch, resampling); the target's travel in
+  // target.warnings, which synthesize() passes on.
+  std::vector<std::string> warnings;
+
+  std::vector<const Heightfield*> exemplarPointers() const;
+  std::vector<const FeatureGraph*> graphPointers() const;
+};
+
+// The whole set-up. Throws tsynth::Error, one sentence saying what was found and
+// what to change: no exemplar, a bad grid (see outputGrid), a sketch smaller
+// than a patch, a synthesis estimated above the memory budget (before any
+// exemplar is resampled or analysed).
+SynthesisSetup prepareSynthesis(SetupInputs inputs);
+
+} // namespace tsynth

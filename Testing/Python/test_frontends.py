@@ -1,0 +1,168 @@
+"""pvpython: the command line and the Terrain Synthesis filter share one set-up (prepareSynthesis),
+so the same inputs give the same terrain, bit for bit, and the same refusals."""
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import harness  # noqa: E402
+from harness import PATHS  # noqa: E402
+from test_synth import crop_dem, write_polylines  # noqa: E402
+
+import numpy as np  # noqa: E402
+from paraview import servermanager as sm  # noqa: E402
+from paraview import simple  # noqa: E402
+from vtkmodules.util.misc import calldata_type  # noqa: E402
+from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
+from vtkmodules.util.vtkConstants import VTK_STRING  # noqa: E402
+from vtkmodules.vtkCommonCore import vtkCommand  # noqa: E402
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline  # noqa: E402
+from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLPolyDataReader  # noqa: E402
+
+PATCH = 32
+SEED = 7
+CPU = 2  # the filter's Backend value for the CPU
+
+
+def read_vti(path):
+    reader = vtkXMLImageDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return reader.GetOutput()
+
+
+class FrontEndsTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        simple.LoadPlugin(PATHS.plugin, remote=False)
+        sys.path.insert(0, PATHS.python_dir)
+        cls.colorado = os.path.join(PATHS.bundled_data, "dems", "colorado.png")
+        cls.strokes = os.path.join(PATHS.bundled_data, "sketches", "strokes_y_ridges.png")
+
+    def setUp(self):
+        self.tmp = tempfile.mkdtemp(prefix="tsynth-frontends-")
+
+    def tearDown(self):
+        shutil.rmtree(self.tmp)
+
+    def path(self, name):
+        return os.path.join(self.tmp, name)
+
+    def cli(self, exemplar, sketch, *extra):
+        out = self.path("cli-%d.vti" % len(os.listdir(self.tmp)))
+        result = subprocess.run([PATHS.tsynth, "synth", "--exemplar", exemplar, "--sketch", sketch, "-o", out,
+                                 "--patch", str(PATCH), "--backend", "cpu", "--seed", str(SEED), "--no-progress",
+                                 *extra], capture_output=True, text=True, timeout=300)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        return read_vti(out)
+
+    def assert_same_terrain(self, filtered, cli):
+        self.assertGreater(filtered.GetNumberOfPoints(), 0)
+        self.assertEqual(filtered.GetDimensions(), cli.GetDimensions())
+        self.assertEqual(filtered.GetSpacing(), cli.GetSpacing())
+        self.assertEqual(filtered.GetOrigin(), cli.GetOrigin())
+        a = vtk_to_numpy(filtered.GetPointData().GetArray("Elevation"))
+        b = vtk_to_numpy(cli.GetPointData().GetArray("Elevation"))
+        self.assertGreater(float(a.max() - a.min()), 100.0)  # real relief, not a flat field
+        np.testing.assert_array_equal(a, b)
+
+    def wrapped_synthesis(self, sketch_port, **settings):
+        from terrainsynthesis import vtkTerrainReader, vtkTerrainSynthesis
+
+        self.reader = vtkTerrainReader()
+        self.reader.SetFileName(settings.pop("exemplar", self.colorado))
+        synth = vtkTerrainSynthesis()
+        synth.AddInputConnection(0, self.reader.GetOutputPort())
+        synth.SetSketchConnection(sketch_port)
+        synth.SetPatchSize(PATCH)
+        synth.SetBackend(synth.CPU)
+        synth.SetSeed(SEED)
+        for name, value in settings.items():
+            getattr(synth, "Set" + name)(*value)
+        return synth
+
+    def test_a_stroke_sketch_gives_the_same_terrain(self):
+        exemplar = simple.TerrainReader(FileName=self.colorado)
+        sketch = simple.PNGSeriesReader(FileNames=[self.strokes])
+        synth = simple.TerrainSynthesis(Exemplars=[exemplar], Sketch=sketch, OutputSize=[160, 160],
+                                        PatchSize=PATCH, Backend=CPU, Seed=SEED)
+        synth.UpdatePipeline()
+        self.assert_same_terrain(sm.Fetch(synth, arg1=None, arg2=None, idx=0),
+                                 self.cli(self.colorado, self.strokes, "--size", "160x160"))
+
+    def test_a_polyline_sketch_in_metres_gives_the_same_terrain(self):
+        # Metres on colorado's 90 m cells, reaching x = 14310 m (cell 159) and y = 12600 m (cell 140);
+        # both carry height constraints.
+        vtp = self.path("lines.vtp")
+        write_polylines(vtp, [(1800, 6300), (14310, 7200), (900, 12600), (12600, 11700)],
+                        elevation=[3600, 3200, 2600, 2600])
+        lines = vtkXMLPolyDataReader()
+        lines.SetFileName(vtp)
+        synth = self.wrapped_synthesis(lines.GetOutputPort())
+        synth.UpdateInformation()
+        announced = synth.GetOutputInformation(0).Get(vtkStreamingDemandDrivenPipeline.WHOLE_EXTENT())
+        self.assertEqual(tuple(announced), (0, 159, 0, 140, 0, 0))
+        synth.Update()
+        terrain = synth.GetOutputDataObject(0)
+        self.assertEqual(terrain.GetExtent(), tuple(announced))  # RequestInformation was honest
+        self.assert_same_terrain(terrain, self.cli(self.colorado, vtp))
+
+    def test_a_feature_tree_is_a_sketch_of_its_dem_in_both(self):
+        dem = crop_dem(self.tmp, "colorado.png", (200, 200, 192, 160))
+        exemplar = simple.TerrainReader(FileName=dem)
+        tree = simple.TerrainFeatureExtractor(Input=exemplar, Features=2)
+        synth = simple.TerrainSynthesis(Exemplars=[exemplar], Sketch=tree, PatchSize=PATCH, Backend=CPU,
+                                        Seed=SEED)
+        synth.UpdatePipeline()
+        terrain = sm.Fetch(synth, arg1=None, arg2=None, idx=0)
+        self.assertEqual(terrain.GetDimensions(), (192, 160, 1))
+        self.assertEqual(terrain.GetSpacing()[:2], (90.0, 90.0))
+        # The command line on `tsynth features` output: the same tree, the same terrain.
+        features = self.path("features.vtp")
+        subprocess.run([PATHS.tsynth, "features", dem, "-o", features, "--both"], check=True,
+                       stdout=subprocess.DEVNULL)
+        self.assert_same_terrain(terrain, self.cli(dem, features))
+
+    def test_polylines_in_cells_are_refused_by_the_filter_too(self):
+        vtp = self.path("cells.vtp")
+        write_polylines(vtp, [(20, 100), (180, 100), (10, 190), (190, 150)])
+        lines = vtkXMLPolyDataReader()
+        lines.SetFileName(vtp)
+        synth = self.wrapped_synthesis(lines.GetOutputPort())
+        errors = []
+
+        @calldata_type(VTK_STRING)
+        def on_error(_obj, _event, message):
+            errors.append(message)
+
+        synth.AddObserver(vtkCommand.ErrorEvent, on_error)
+        synth.Update()
+        self.assertTrue(any("span 180 x 90 m" in e and "are they in cells" in e and "OutputSize" in e
+                            for e in errors), errors)
+        self.assertEqual(synth.GetOutputDataObject(0).GetNumberOfPoints(), 0)
+        # No grid announced either (not the exemplar's, which the pipeline copies by default).
+        self.assertFalse(synth.GetOutputInformation(0).Has(vtkStreamingDemandDrivenPipeline.WHOLE_EXTENT()))
+
+    def test_the_memory_budget_refuses_in_the_filter(self):
+        vtp = self.path("lines.vtp")
+        write_polylines(vtp, [(1800, 6300), (14310, 7200)], types=(1,))
+        lines = vtkXMLPolyDataReader()
+        lines.SetFileName(vtp)
+        synth = self.wrapped_synthesis(lines.GetOutputPort(), MemoryBudget=(0.01,))
+        errors = []
+
+        @calldata_type(VTK_STRING)
+        def on_error(_obj, _event, message):
+            errors.append(message)
+
+        synth.AddObserver(vtkCommand.ErrorEvent, on_error)
+        synth.Update()
+        self.assertTrue(any("memory budget is 10 MB" in e and "raise MemoryBudget" in e for e in errors), errors)
+        self.assertEqual(synth.GetOutputDataObject(0).GetNumberOfPoints(), 0)
+
+
+if __name__ == "__main__":
+    harness.run(__name__)
