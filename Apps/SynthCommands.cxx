@@ -10,6 +10,7 @@
 #include "Core/HeightfieldIO.h"
 #include "Core/OutputFile.h"
 #include "Features/Sketch.h"
+#include "Metrics/LandformMetrics.h"
 #include "Metrics/TerrainMetrics.h"
 #include "Synthesis/Regions.h"
 #include "Synthesis/Setup.h"
@@ -86,6 +87,18 @@ tiled; random exemplar patches pasted without blending):
   seam       99.9th percentile of |Laplacian| over that of the exemplar (1 = as smooth)
   slope      Wasserstein-1 distance of slope-angle distributions over the exemplar's mean slope
   pits       strict local minima per 1000 cells
+and, with a sketch, at the scale of the landforms (a patch across the lines):
+  prominence median height of the sketched ridges over the land a patch away on both sides,
+             and depth of the valleys below it, in metres and as a ratio to the same figure
+             on the exemplars' own ridges and valleys (1 = like the exemplars' own)
+  order      chance that a point on a sketched ridge is higher than one on a sketched valley
+  drainage   share of the valleys' length along which D8 flow (after filling pits) gathers
+             the water of their flanks; descent: share of floor steps a quarter patch apart
+             that go down towards the outlet
+  shedding   share of the ridges' length from which water runs off to the sides
+A figure that does not apply (no ridge sketched, a flat exemplar) is shown as "-" (null in JSON).
+
+  --patch N   landform scale in cells (default 80, the synthesis default)
 )";
 
 // The synthesis' default patch: the random-patch baseline's patch, and the
@@ -227,6 +240,39 @@ nlohmann::json evaluationJson(const TerrainEvaluation& e)
     { "seam_index", e.seamIndex },
     { "slope_distance", e.slopeDistance },
     { "pit_density", e.pitDensity } };
+}
+
+nlohmann::json landformJson(const LandformMeasures& m)
+{
+  nlohmann::json notes = nlohmann::json::object();
+  for (const auto& [field, why] : m.notes)
+  {
+    notes[field] = why;
+  }
+  return { { "ridge_prominence_m", m.ridgeProminence },
+    { "ridge_prominence_ratio", m.ridgeProminenceRatio },
+    { "valley_depth_m", m.valleyDepth },
+    { "valley_depth_ratio", m.valleyDepthRatio },
+    { "ridge_over_valley", m.ridgeOverValley },
+    { "valley_drainage", m.valleyDrainage },
+    { "valley_descent", m.valleyDescent },
+    { "ridge_shedding", m.ridgeShedding },
+    { "notes", notes } };
+}
+
+void printLandforms(const char* name, const LandformMeasures& m)
+{
+  auto f = [](double v, int digits)
+  {
+    return std::isnan(v)
+      ? std::string("-")
+      : (std::ostringstream() << std::fixed << std::setprecision(digits) << v).str();
+  };
+  std::cout << std::left << std::setw(22) << name << " landforms: ridges "
+            << f(m.ridgeProminence, 0) << " m (x" << f(m.ridgeProminenceRatio, 2) << "), valleys "
+            << f(m.valleyDepth, 0) << " m (x" << f(m.valleyDepthRatio, 2) << "), order "
+            << f(m.ridgeOverValley, 3) << ", drainage " << f(m.valleyDrainage, 3) << ", descent "
+            << f(m.valleyDescent, 3) << ", shedding " << f(m.ridgeShedding, 3) << "\n";
 }
 
 void printEvaluation(const char* name, const TerrainEvaluation& e)
@@ -492,6 +538,7 @@ std::size_t featurePlacements(const SynthesisResult& r)
 void printSummary(const SynthesisSetup& setup,
   const SynthesisResult& r,
   const TerrainEvaluation& quality,
+  const LandformMeasures& landforms,
   double prepare,
   const std::string& output)
 {
@@ -510,6 +557,7 @@ void printSummary(const SynthesisSetup& setup,
   std::cout << "Times: prepare " << prepare << " s, matcher setup " << r.timings.setup
             << " s, features " << r.timings.features << " s, fill " << r.timings.fill << " s.\n";
   printEvaluation("Quality:", quality);
+  printLandforms("", landforms);
   std::cout << "Wrote " << output << "\n";
 }
 
@@ -518,6 +566,7 @@ void writeReport(const std::string& path,
   const SynthesisSetup& setup,
   const SynthesisResult& r,
   const TerrainEvaluation& quality,
+  const LandformMeasures& measures,
   double prepare)
 {
   double seamSum = 0.0;
@@ -549,7 +598,8 @@ void writeReport(const std::string& path,
     { "valley", profile(l.valley) },
     { "base_m", l.base },
     { "floor_gradient", l.floorGradient } };
-  const nlohmann::json finishing = { { "landform_correction_max_m", r.finishing.landformCorrection },
+  const nlohmann::json finishing = { { "landform_correction_max_m",
+                                       r.finishing.landformCorrection },
     { "valley_cells", r.finishing.valleyCells },
     { "valley_cells_lowered", r.finishing.valleyCellsLowered },
     { "deepest_valley_cut_m", r.finishing.deepestValleyCut },
@@ -575,6 +625,7 @@ void writeReport(const std::string& path,
     { "feature_placements", featurePlacements(r) },
     { "mean_seam_cost", n > 0 ? seamSum / n : 0.0 },
     { "quality", evaluationJson(quality) },
+    { "landform_quality", landformJson(measures) },
     { "landforms", landforms },
     { "finishing", finishing },
     { "placement_list", list } };
@@ -663,10 +714,14 @@ int runSynth(std::vector<std::string> args)
   writeTerrainFile(a.output, r.terrain);
   const TerrainEvaluation quality =
     evaluateTerrain(r.terrain, setup.exemplarPointers(), &setup.target.graph);
-  printSummary(setup, r, quality, prepare, a.output);
+  LandformOptions lo;
+  lo.patchSize = a.options.patchSize;
+  const LandformMeasures landforms = evaluateLandforms(
+    r.terrain, setup.target.graph, setup.exemplarPointers(), setup.graphPointers(), lo);
+  printSummary(setup, r, quality, landforms, prepare, a.output);
   if (a.report)
   {
-    writeReport(*a.report, a, setup, r, quality, prepare);
+    writeReport(*a.report, a, setup, r, quality, landforms, prepare);
   }
   if (a.debugDir)
   {
@@ -686,7 +741,12 @@ int runEvaluate(std::vector<std::string> args)
   CommandLine cl(std::move(args));
   const auto sketchPath = cl.take("--sketch");
   const bool asJson = cl.takeFlag("--json");
+  const auto patch = cl.takeNumber("--patch");
   const auto rest = cl.positionals();
+  if (patch && !(*patch >= 8 && *patch <= 4096))
+  {
+    throw UsageError("--patch expects a landform scale from 8 to 4096 cells.");
+  }
   if (rest.size() != 1)
   {
     throw UsageError("tsynth evaluate needs one terrain file.");
@@ -715,23 +775,52 @@ int runEvaluate(std::vector<std::string> args)
     sketch = &graph;
   }
   const TerrainEvaluation e = evaluateTerrain(terrain, pooled, sketch);
-  const TerrainEvaluation tiled =
-    evaluateTerrain(tiledBaseline(exemplar, terrain.width, terrain.height), exemplar, sketch);
-  const TerrainEvaluation random = evaluateTerrain(
-    randomPatchBaseline(exemplar, terrain.width, terrain.height, kEvaluationPatch, 1),
-    exemplar,
-    sketch);
+  const Heightfield tiledTerrain = tiledBaseline(exemplar, terrain.width, terrain.height);
+  const TerrainEvaluation tiled = evaluateTerrain(tiledTerrain, exemplar, sketch);
+  const Heightfield randomTerrain =
+    randomPatchBaseline(exemplar, terrain.width, terrain.height, kEvaluationPatch, 1);
+  const TerrainEvaluation random = evaluateTerrain(randomTerrain, exemplar, sketch);
+  // Landform figures against the exemplars' own ridges and valleys.
+  std::vector<FeatureGraph> lines;
+  for (const Heightfield& x : exemplars)
+  {
+    lines.push_back(ownFeatureLines(x));
+  }
+  std::vector<const FeatureGraph*> linePointers;
+  for (const FeatureGraph& g : lines)
+  {
+    linePointers.push_back(&g);
+  }
+  LandformOptions lo;
+  lo.patchSize = patch.value_or(kEvaluationPatch);
+  auto landforms = [&](const Heightfield& t)
+  { return sketch ? evaluateLandforms(t, *sketch, pooled, linePointers, lo) : LandformMeasures{}; };
+  const LandformMeasures le = landforms(terrain);
+  const LandformMeasures lt = landforms(tiledTerrain);
+  const LandformMeasures lr = landforms(randomTerrain);
   if (asJson)
   {
-    const nlohmann::json figures = { { "terrain", evaluationJson(e) },
+    nlohmann::json figures = { { "terrain", evaluationJson(e) },
       { "tiled_exemplar", evaluationJson(tiled) },
       { "random_patches", evaluationJson(random) } };
+    if (sketch)
+    {
+      figures["terrain"]["landforms"] = landformJson(le);
+      figures["tiled_exemplar"]["landforms"] = landformJson(lt);
+      figures["random_patches"]["landforms"] = landformJson(lr);
+    }
     std::cout << figures.dump() << "\n";
     return 0;
   }
   printEvaluation(rest[0].c_str(), e);
   printEvaluation("baseline: tiled", tiled);
   printEvaluation("baseline: random", random);
+  if (sketch)
+  {
+    printLandforms(rest[0].c_str(), le);
+    printLandforms("baseline: tiled", lt);
+    printLandforms("baseline: random", lr);
+  }
   return 0;
 }
 

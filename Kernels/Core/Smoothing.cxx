@@ -60,6 +60,47 @@ void boxLine(double* value,
   }
 }
 
+// One box pass down every column at once, row by row: a running sum per
+// column of rows j - r .. j + r (clipped), read and written row-contiguously.
+void boxColumns(std::vector<double>& value,
+  std::size_t w,
+  std::size_t h,
+  int width,
+  std::vector<double>& out)
+{
+  const std::size_t r = static_cast<std::size_t>(width / 2);
+  std::vector<double> sum(w, 0.0);
+  out.assign(w * h, 0.0);
+  for (std::size_t j = 0; j < std::min(h, r); ++j)
+  {
+    for (std::size_t i = 0; i < w; ++i)
+    {
+      sum[i] += value[j * w + i];
+    }
+  }
+  for (std::size_t j = 0; j < h; ++j)
+  {
+    if (j + r < h)
+    {
+      const double* add = value.data() + (j + r) * w;
+      for (std::size_t i = 0; i < w; ++i)
+      {
+        sum[i] += add[i];
+      }
+    }
+    if (j >= r + 1)
+    {
+      const double* drop = value.data() + (j - r - 1) * w;
+      for (std::size_t i = 0; i < w; ++i)
+      {
+        sum[i] -= drop[i];
+      }
+    }
+    std::copy(sum.begin(), sum.end(), out.begin() + static_cast<long>(j * w));
+  }
+  value.swap(out);
+}
+
 } // namespace
 
 Heightfield smoothLarge(const Heightfield& hf, double sigma)
@@ -97,14 +138,12 @@ Heightfield smoothLarge(const Heightfield& hf, double sigma)
           s);
       }
     }
-#pragma omp for schedule(static)
-    for (long i = 0; i < static_cast<long>(w); ++i)
-    {
-      for (int width : widths)
-      {
-        boxLine(value.data() + i, weight.data() + i, h, w, width, v, s);
-      }
-    }
+  }
+  std::vector<double> scratch;
+  for (int width : widths)
+  {
+    boxColumns(value, w, h, width, scratch);
+    boxColumns(weight, w, h, width, scratch);
   }
   Heightfield out = hf;
   for (std::size_t k = 0; k < out.size(); ++k)

@@ -273,17 +273,26 @@ int landformOffset(int k, int patchSize)
   return landformCell(k, patchSize, 1) - patchSize / 2;
 }
 
-// The low-passed heights at the landform samples around (x, y), minus the one
-// at (x, y) itself; samples off the image count as the centre (no difference).
-void landformSamples(const Heightfield& smooth, double x, double y, int patchSize, float* out)
+// The low-passed heights at the landform samples of a patch placed through
+// variant v around (x, y) of `smooth` (sample offsets in the placed frame, read
+// at v's source offsets), minus the one at (x, y) itself; samples off the image
+// count as the centre (no difference).
+void landformSamples(const Heightfield& smooth,
+  const Variant& v,
+  double x,
+  double y,
+  int patchSize,
+  float* out)
 {
   const float centre = sampleBilinear(smooth, x, y);
   for (int b = 0; b < kLandformSide; ++b)
   {
     for (int a = 0; a < kLandformSide; ++a)
     {
-      const float h =
-        sampleBilinear(smooth, x + landformOffset(a, patchSize), y + landformOffset(b, patchSize));
+      double su = 0.0;
+      double sv = 0.0;
+      v.toSource(landformOffset(a, patchSize), landformOffset(b, patchSize), su, sv);
+      const float h = sampleBilinear(smooth, x + su, y + sv);
       out[b * kLandformSide + a] = std::isnan(h) || std::isnan(centre) ? 0.0f : h - centre;
     }
   }
@@ -416,7 +425,6 @@ CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplar
       double cu = 0.0;
       double cv = 0.0;
       const BlockMeans means(orientExemplar(ex, v, &cu, &cv));
-      const Heightfield placedSmooth = orientExemplar(smooth, v);
       for (std::size_t c = info.firstCandidate; c < pool.size(); ++c)
       {
         if (pool.variant[c] != k)
@@ -430,7 +438,12 @@ CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplar
         const double px = cu + (v.m[3] * dx - v.m[1] * dy) / det;
         const double py = cv + (-v.m[2] * dx + v.m[0] * dy) / det;
         means.summary(px, py, P, pool.descriptor.data() + c * kDescriptorSize);
-        landformSamples(placedSmooth, px, py, P, pool.landform.data() + c * kLandformStride);
+        landformSamples(smooth,
+          v,
+          pool.centreX[c],
+          pool.centreY[c],
+          P,
+          pool.landform.data() + c * kLandformStride);
       }
     }
     info.candidateCount = pool.size() - info.firstCandidate;
@@ -552,7 +565,8 @@ FeatureQuery makeFeatureQuery(const FeatureSite& site,
   }
   if (lowTarget != nullptr && confidence != nullptr)
   {
-    landformSamples(*lowTarget, site.centre.x, site.centre.y, patchSize, q.landform.data());
+    landformSamples(
+      *lowTarget, variant(0), site.centre.x, site.centre.y, patchSize, q.landform.data());
     for (int b = 0; b < kLandformSide; ++b)
     {
       for (int a = 0; a < kLandformSide; ++a)

@@ -1,6 +1,6 @@
 #include "LandformTerm.h"
 
-#include "../Features/Ppa.h"
+#include "../Core/Smoothing.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,7 +19,7 @@ int landformCell(int k, int patchSize, int blockSize)
 
 Heightfield landformImage(const Heightfield& exemplar, int patchSize)
 {
-  return gaussianSmooth(exemplar, landformSigma(patchSize));
+  return smoothLarge(exemplar, landformSigma(patchSize));
 }
 
 bool LandformQuery::empty() const

@@ -20,9 +20,12 @@ constexpr int kLandformSide = 5;
 constexpr int kLandformSamples = kLandformSide * kLandformSide;
 // Stored per candidate padded to two float16 vectors for the OpenCL kernel.
 constexpr int kLandformStride = 32;
-// Gaussian sigma of the low-pass, in patches (10 cells for 80-cell patches):
-// detail finer than about a quarter patch is the patches' own business.
-constexpr double kLandformSigmaInPatches = 0.125;
+// Gaussian sigma of the low-pass, in patches (16 cells for 80-cell patches):
+// it keeps what is wider than about a patch (the landforms) and all but drops
+// relief of half a patch and less, where most of a terrain's slope lives, so
+// rugged candidates are not penalised against a smooth target (at P/8 the
+// synthesised terrain came out measurably flatter than the exemplars).
+constexpr double kLandformSigmaInPatches = 0.2;
 
 inline double landformSigma(int patchSize)
 {

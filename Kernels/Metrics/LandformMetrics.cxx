@@ -624,7 +624,7 @@ FeatureGraph ownFeatureLines(const Heightfield& dem, const PpaOptions& options)
   return lines;
 }
 
-LandformMeasures measureLandforms(const Heightfield& terrain,
+LandformMeasures evaluateLandforms(const Heightfield& terrain,
   const FeatureGraph& sketch,
   const std::vector<const Heightfield*>& exemplars,
   const std::vector<const FeatureGraph*>& exemplarLines,

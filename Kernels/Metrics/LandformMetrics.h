@@ -128,7 +128,7 @@ FeatureGraph ownFeatureLines(const Heightfield& dem, const PpaOptions& options =
 // through the nodes where chains meet. Throws tsynth::Error if a graph's grid
 // size differs from its heightfield's, the exemplar and line counts differ, or
 // an option is out of range.
-LandformMeasures measureLandforms(const Heightfield& terrain,
+LandformMeasures evaluateLandforms(const Heightfield& terrain,
   const FeatureGraph& sketch,
   const std::vector<const Heightfield*>& exemplars,
   const std::vector<const FeatureGraph*>& exemplarLines,

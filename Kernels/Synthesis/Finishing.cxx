@@ -16,6 +16,8 @@ namespace
 {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Rounds of drainage smoothing, each at half the radius of the one before.
+constexpr int kSmoothingRounds = 3;
 constexpr std::array<int, 8> kDx{ 1, 1, 0, -1, -1, -1, 0, 1 };
 constexpr std::array<int, 8> kDy{ 0, 1, 1, 1, 0, -1, -1, -1 };
 
@@ -58,10 +60,143 @@ void descendAlongLines(Heightfield& out,
   }
 }
 
+// The lowest valid 8-neighbour of (i, j) that is not on a line (+inf: none).
+double lowestSide(const Heightfield& hf, const std::vector<std::uint8_t>& line, std::size_t c)
+{
+  const int i = static_cast<int>(c % static_cast<std::size_t>(hf.width));
+  const int j = static_cast<int>(c / static_cast<std::size_t>(hf.width));
+  double side = std::numeric_limits<double>::infinity();
+  forNeighbours(hf,
+    i,
+    j,
+    [&](std::size_t n, double)
+    {
+      if (line[n] == 0)
+      {
+        side = std::min(side, static_cast<double>(hf.z[n]));
+      }
+    });
+  return side;
+}
+
+// A line cell's channel floor: `depth` below the cells beside the line, but
+// lowered by `maxCut` at most (where the line runs along a steep side the
+// water finds the valley floor beside it; cutting a slot there would crease).
+double channelFloor(const Heightfield& out,
+  const std::vector<std::uint8_t>& line,
+  std::size_t c,
+  double depth,
+  double maxCut)
+{
+  const double z = out.z[c];
+  const double side = lowestSide(out, line, c);
+  return std::isfinite(side) ? std::min(z, std::max(side - depth, z - maxCut)) : z;
+}
+
+void cutChannel(Heightfield& out,
+  const std::vector<std::size_t>& order,
+  const std::vector<std::uint8_t>& line,
+  double depth,
+  double maxCut)
+{
+  for (std::size_t c : order)
+  {
+    out.z[c] = static_cast<float>(channelFloor(out, line, c, depth, maxCut));
+  }
+}
+
+// Per line cell, the channel floor (below its sides) fitted, in the least-
+// squares sense, by floors that rise with the flow distance at `gradient` at
+// least (pool adjacent violators over the cells sorted by flow distance).
+std::vector<double> monotoneFloors(const Heightfield& out,
+  const std::vector<std::size_t>& upstreamFirst,
+  const std::vector<std::uint8_t>& line,
+  const std::vector<float>& downstream,
+  double depth,
+  double maxCut,
+  double gradient)
+{
+  struct Block
+  {
+    double sum = 0.0;
+    double count = 0.0;
+    std::size_t first = 0, last = 0;
+    double mean() const { return sum / count; }
+  };
+  std::vector<Block> blocks;
+  const std::size_t n = upstreamFirst.size();
+  std::vector<double> fitted(n);
+  // Outlet first; the minimum gradient is taken out and put back afterwards.
+  for (std::size_t r = 0; r < n; ++r)
+  {
+    const std::size_t c = upstreamFirst[n - 1 - r];
+    const double channel = channelFloor(out, line, c, depth, maxCut);
+    blocks.push_back({ channel - gradient * downstream[c], 1.0, r, r });
+    while (blocks.size() > 1 && blocks[blocks.size() - 2].mean() > blocks.back().mean())
+    {
+      const Block top = blocks.back();
+      blocks.pop_back();
+      blocks.back().sum += top.sum;
+      blocks.back().count += top.count;
+      blocks.back().last = top.last;
+    }
+  }
+  for (const Block& b : blocks)
+  {
+    std::fill(fitted.begin() + static_cast<long>(b.first),
+      fitted.begin() + static_cast<long>(b.last + 1),
+      b.mean());
+  }
+  std::vector<double> floors(out.size(), 0.0);
+  for (std::size_t r = 0; r < n; ++r)
+  {
+    const std::size_t c = upstreamFirst[n - 1 - r];
+    floors[c] = fitted[r] + gradient * downstream[c];
+  }
+  return floors;
+}
+
+// The mean of a per line cell value over the line cells within `radius`.
+std::vector<double> meanAlongLines(const std::vector<double>& values,
+  const std::vector<std::uint8_t>& line,
+  int w,
+  int h,
+  double radius)
+{
+  const int r = std::max(1, static_cast<int>(std::ceil(radius)));
+  std::vector<double> mean(values.size(), 0.0);
+  for (std::size_t c = 0; c < values.size(); ++c)
+  {
+    if (line[c] == 0)
+    {
+      continue;
+    }
+    const int i = static_cast<int>(c % static_cast<std::size_t>(w));
+    const int j = static_cast<int>(c / static_cast<std::size_t>(w));
+    double sum = 0.0;
+    double count = 0.0;
+    for (int y = std::max(0, j - r); y <= std::min(h - 1, j + r); ++y)
+    {
+      for (int x = std::max(0, i - r); x <= std::min(w - 1, i + r); ++x)
+      {
+        const std::size_t q =
+          static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+        if (line[q] != 0 && (x - i) * (x - i) + (y - j) * (y - j) <= radius * radius)
+        {
+          sum += values[q];
+          count += 1.0;
+        }
+      }
+    }
+    mean[c] = sum / count;
+  }
+  return mean;
+}
+
 } // namespace
 
 double correctLandform(Heightfield& out,
-  const Heightfield& target,
+  const Heightfield& lowTarget,
   const std::vector<float>& confidence,
   double sigma)
 {
@@ -70,7 +205,6 @@ double correctLandform(Heightfield& out,
     return 0.0;
   }
   const Heightfield lowOut = smoothLarge(out, sigma);
-  const Heightfield lowTarget = smoothLarge(target, sigma);
   double largest = 0.0;
   for (std::size_t c = 0; c < out.size(); ++c)
   {
@@ -110,55 +244,55 @@ DrainageReport drainValleys(Heightfield& out,
     { return downstream[a] > downstream[b] || (downstream[a] == downstream[b] && a < b); });
   const Heightfield before = out;
 
-  // 1. Floors that descend, the cut spread smoothly beside the line.
-  Heightfield floors = out;
-  descendAlongLines(floors, order, downstream, o.minimumGradient);
-  const NearestSeeds near = nearestSeeds(line, out.width, out.height);
-  for (std::size_t c = 0; c < out.size(); ++c)
-  {
-    if (!out.isValid(c) || near.nearest[c] < 0 || !(near.distance[c] < o.reach))
-    {
-      continue;
-    }
-    // A biweight: flat across the floor, no kink at the line or at the reach.
-    const std::size_t at = static_cast<std::size_t>(near.nearest[c]);
-    const double t = near.distance[c] / o.reach;
-    const double fade = (1.0 - t * t) * (1.0 - t * t);
-    out.z[c] = static_cast<float>(out.z[c] + (floors.z[at] - before.z[at]) * fade);
-  }
-  // 2. A channel: each line cell below the cells beside the line, then the
-  // floors made to descend again (lowering never undoes the channel).
+  // 1. The floors the lines should have: each line cell below the cells beside
+  // it (a channel), and descending towards the outlet with the least change in
+  // the least-squares sense (isotonic regression over the flow distance:
+  // bumps are cut and hollows filled, instead of one deep cut running down
+  // from the lowest hollow).
   const double depth = o.channelDepth * std::min(out.cellX, out.cellY);
-  for (std::size_t c : order)
+  const double maxCut = o.maximumChannelCut * std::min(out.cellX, out.cellY);
+  const NearestSeeds near = nearestSeeds(line, out.width, out.height);
+  // 2. The change made smooth along the lines and spread smoothly beside them
+  // (a change that jumped from cell to cell, or a kink at the line, would show
+  // as a crease); a few rounds of finer smoothing take it close to the floors
+  // without creasing.
+  for (int round = 0; round < kSmoothingRounds; ++round)
   {
-    const int i = static_cast<int>(c % static_cast<std::size_t>(out.width));
-    const int j = static_cast<int>(c / static_cast<std::size_t>(out.width));
-    double side = std::numeric_limits<double>::infinity();
-    forNeighbours(out,
-      i,
-      j,
-      [&](std::size_t n, double)
-      {
-        if (line[n] == 0)
-        {
-          side = std::min(side, static_cast<double>(out.z[n]));
-        }
-      });
-    if (std::isfinite(side) && out.z[c] > side - depth)
+    const std::vector<double> floors =
+      monotoneFloors(out, order, line, downstream, depth, maxCut, o.minimumGradient);
+    std::vector<double> change(out.size(), 0.0);
+    for (std::size_t c : order)
     {
-      out.z[c] = static_cast<float>(side - depth);
+      change[c] = floors[c] - out.z[c];
+    }
+    const double radius = 0.5 * o.reach / static_cast<double>(1 << round);
+    const std::vector<double> smooth = meanAlongLines(change, line, out.width, out.height, radius);
+    for (std::size_t c = 0; c < out.size(); ++c)
+    {
+      if (!out.isValid(c) || near.nearest[c] < 0 || !(near.distance[c] < o.reach))
+      {
+        continue;
+      }
+      // A biweight: flat across the floor, no kink at the line or at the reach.
+      const double t = near.distance[c] / o.reach;
+      const double fade = (1.0 - t * t) * (1.0 - t * t);
+      out.z[c] =
+        static_cast<float>(out.z[c] + smooth[static_cast<std::size_t>(near.nearest[c])] * fade);
     }
   }
+  // 3. What the smoothing left: the channel and the descent made exact by
+  // lowering line cells (small now).
+  cutChannel(out, order, line, depth, maxCut);
   descendAlongLines(out, order, downstream, o.minimumGradient);
 
   report.cells = order.size();
   double sum = 0.0;
   for (std::size_t c : order)
   {
-    const double cut = before.z[c] - out.z[c];
-    report.lowered += cut > 0.0 ? 1 : 0;
-    report.largest = std::max(report.largest, cut);
-    sum += cut;
+    const double lowered = before.z[c] - out.z[c];
+    report.lowered += lowered > 0.0 ? 1 : 0;
+    report.largest = std::max(report.largest, lowered);
+    sum += lowered;
   }
   report.mean = sum / static_cast<double>(order.size());
   return report;

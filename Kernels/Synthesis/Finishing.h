@@ -11,12 +11,13 @@
 namespace tsynth
 {
 
-// Pulls the output's relief coarser than `sigma` cells towards the target's,
-// by the target's confidence per cell: drift across many patches goes, the
-// landforms' cross-sections (finer) stay the patches'. Returns the largest
+// Pulls the output's relief coarser than `sigma` cells towards the target's
+// (`smoothTarget`: the target through smoothLarge at the same sigma), by the
+// target's confidence per cell (empty: 1): what drifted across many patches
+// goes, the detail finer than sigma stays the patches'. Returns the largest
 // change, metres.
 double correctLandform(Heightfield& out,
-  const Heightfield& target,
+  const Heightfield& smoothTarget,
   const std::vector<float>& confidence,
   double sigma);
 
@@ -28,6 +29,10 @@ struct DrainageOptions
   // The channel lies this much below the cells beside it, metres per metre of
   // cell size (0.1 m for 100 m cells).
   double channelDepth = 0.001;
+  // ... but a channel is cut at most this deep, metres per metre of cell size
+  // (4.5 m for 90 m cells): where a line runs along a steep side, a deeper slot
+  // would show as a crease, and the water finds the floor beside the line.
+  double maximumChannelCut = 0.05;
   // Carving fades out over this many cells either side of the line.
   double reach = 10.0;
 };

@@ -871,6 +871,8 @@ LandformField landformField(const FeatureGraph& graph,
   const double fade = kConfidenceFadeInPatches * o.patchSize * cell;
   const double gorgeSlope =
     (s.ridge.relief + s.valley.relief) / (kGorgeReachInPatches * o.patchSize * cell);
+  const double ridgeConfident = s.ridge.section.reach(kConfidentReach);
+  const double valleyConfident = s.valley.section.reach(kConfidentReach);
   const double ridgeSoft2 = std::pow(kRidgeSoftening * cell, 2.0);
   const double valleySoft2 = std::pow(kValleySoftening * cell, 2.0);
   for (std::size_t k = 0; k < n; ++k)
@@ -886,7 +888,7 @@ LandformField landformField(const FeatureGraph& graph,
       const double a = 1.0 / (d * d + ridgeSoft2);
       sum += a * (top - (top - b) * ridgeShape(d));
       weights += a;
-      conf = std::max(conf, confidence(d, s.ridge.section.reach(kConfidentReach), fade));
+      conf = std::max(conf, confidence(d, ridgeConfident, fade));
     }
     double gorge = kInfinity;
     if (!nearValley.empty())
@@ -898,7 +900,7 @@ LandformField landformField(const FeatureGraph& graph,
       const double a = 1.0 / (d * d + valleySoft2);
       sum += a * (bottom + (top - bottom) * valleyShape(d));
       weights += a;
-      conf = std::max(conf, confidence(d, s.valley.section.reach(kConfidentReach), fade));
+      conf = std::max(conf, confidence(d, valleyConfident, fade));
       gorge = bottom + gorgeSlope * d;
     }
     if (weights > 0.0)

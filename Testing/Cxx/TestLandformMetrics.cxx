@@ -145,16 +145,16 @@ TEST(LandformMetrics, GaussianRidgeProminenceIsHTimesOneMinusTheGaussianAtD)
   for (const double d : { 10.0, 20.0 })
   {
     const double expected = kH * (1.0 - std::exp(-d * d / (2 * kS * kS))); // 216.9, 382.4 m
-    const LandformMeasures r = measureLandforms(ridge, ridgeLine, {}, {}, optionsAt(80, d));
+    const LandformMeasures r = evaluateLandforms(ridge, ridgeLine, {}, {}, optionsAt(80, d));
     EXPECT_NEAR(r.ridgeProminence, expected, kTolerance) << "D " << d;
     EXPECT_EQ(r.ridgeSamples, 159u); // every cell of the 158.8-cell line, all sides inside
     EXPECT_NEAR(
       typicalProminence(ridge, ridgeLine, FeatureType::Ridge, d), r.ridgeProminence, 1e-9);
-    const LandformMeasures v = measureLandforms(valley, valleyLine, {}, {}, optionsAt(80, d));
+    const LandformMeasures v = evaluateLandforms(valley, valleyLine, {}, {}, optionsAt(80, d));
     EXPECT_NEAR(v.valleyDepth, expected, kTolerance) << "D " << d;
   }
   // The default D is the patch size.
-  EXPECT_NEAR(measureLandforms(ridge, ridgeLine, {}, {}, optionsAt(20)).ridgeProminence,
+  EXPECT_NEAR(evaluateLandforms(ridge, ridgeLine, {}, {}, optionsAt(20)).ridgeProminence,
     kH * (1.0 - std::exp(-400.0 / (2 * kS * kS))),
     kTolerance);
 }
@@ -171,7 +171,7 @@ TEST(LandformMetrics, RatiosCompareWithTheExemplarsOwnLines)
   {
     half.z[k] = base.z[k] + 0.5f * (ridge.z[k] - base.z[k]);
   }
-  const LandformMeasures m = measureLandforms(ridge, line, { &half }, { &line }, optionsAt(20));
+  const LandformMeasures m = evaluateLandforms(ridge, line, { &half }, { &line }, optionsAt(20));
   EXPECT_NEAR(m.ridgeProminenceRatio, 2.0, 0.01);
   EXPECT_NEAR(m.referenceRidgeProminence, 0.5 * m.ridgeProminence, 0.5);
 
@@ -191,7 +191,7 @@ TEST(LandformMetrics, RatiosCompareWithTheExemplarsOwnLines)
   }
   const FeatureGraph flippedLine = sketchOf({ { flipped, {}, FeatureType::Ridge } }, transposed);
   const LandformMeasures t =
-    measureLandforms(transposed, flippedLine, { &ridge }, { &line }, optionsAt(20));
+    evaluateLandforms(transposed, flippedLine, { &ridge }, { &line }, optionsAt(20));
   EXPECT_NEAR(t.ridgeProminenceRatio, 1.0, 1e-6); // float rounding of the bilinear sums
 
   // Pooled exemplars: the median of all samples, so two equal exemplars change nothing.
@@ -206,7 +206,7 @@ TEST(LandformMetrics, FlatReferenceGivesNaNRatiosWithAReason)
                                        { { { 20, 160 }, { 180, 150 } }, {}, FeatureType::Valley } },
     ridge);
   const Heightfield flat = terrain(200, 200, [](int, int) { return 700.0; });
-  const LandformMeasures m = measureLandforms(ridge, line, { &flat }, { &line }, optionsAt(20));
+  const LandformMeasures m = evaluateLandforms(ridge, line, { &flat }, { &line }, optionsAt(20));
   EXPECT_TRUE(std::isfinite(m.ridgeProminence));
   EXPECT_EQ(m.referenceRidgeProminence, 0.0);
   EXPECT_TRUE(std::isnan(m.ridgeProminenceRatio));
@@ -215,7 +215,7 @@ TEST(LandformMetrics, FlatReferenceGivesNaNRatiosWithAReason)
   EXPECT_TRUE(std::isfinite(m.valleyDepth)); // about 0 on the plane, but measured
   EXPECT_NE(m.notes.at("valleyDepthRatio").find("no relief"), std::string::npos);
   // No exemplar at all: NaN too, with its own reason.
-  const LandformMeasures none = measureLandforms(ridge, line, {}, {}, optionsAt(20));
+  const LandformMeasures none = evaluateLandforms(ridge, line, {}, {}, optionsAt(20));
   EXPECT_TRUE(std::isnan(none.ridgeProminenceRatio));
   EXPECT_EQ(none.notes.at("ridgeProminenceRatio"), "no exemplar given");
 }
@@ -228,7 +228,7 @@ TEST(LandformMetrics, TiltedVValleyDrainsAndDescends)
     const Heightfield v =
       terrain(kVWidth, kVLength, [&](int i, int j) { return vValley(i, j, southward); });
     const FeatureGraph sketch = sketchOf(kAxisValley, v);
-    const LandformMeasures m = measureLandforms(v, sketch, {}, {}, optionsAt(40));
+    const LandformMeasures m = evaluateLandforms(v, sketch, {}, {}, optionsAt(40));
     EXPECT_EQ(m.drainageSamples, 181u);
     EXPECT_EQ(m.valleyDrainage, 1.0);
     EXPECT_EQ(m.descentPairs, 18u); // 180 cells in steps of 10
@@ -239,7 +239,7 @@ TEST(LandformMetrics, TiltedVValleyDrainsAndDescends)
     const std::vector<Polyline> reversed = {
       { { { 60, 10 }, { 60, 190 } }, {}, FeatureType::Valley }
     };
-    const LandformMeasures r = measureLandforms(v, sketchOf(reversed, v), {}, {}, optionsAt(40));
+    const LandformMeasures r = evaluateLandforms(v, sketchOf(reversed, v), {}, {}, optionsAt(40));
     EXPECT_EQ(r.valleyDrainage, m.valleyDrainage);
     EXPECT_EQ(r.valleyDescent, m.valleyDescent);
   }
@@ -255,7 +255,7 @@ TEST(LandformMetrics, ValleyTiltedTheWrongWayBehindADamDoesNotDrain)
     kVLength,
     [](int i, int j)
     { return vValley(i, j, false) + 250.0 * std::max(0.0, 1.0 - std::abs(j - 175) / 12.0); });
-  const LandformMeasures m = measureLandforms(v, sketchOf(kAxisValley, v), {}, {}, optionsAt(40));
+  const LandformMeasures m = evaluateLandforms(v, sketchOf(kAxisValley, v), {}, {}, optionsAt(40));
   EXPECT_LT(m.valleyDrainage, 0.3);
   // Of the 18 floor pairs only row 160 -> 170 climbs (537 m -> 635 m, the lowest
   // within 2 cells); 170 -> 180 is already on the way down the dam.
@@ -300,7 +300,7 @@ TEST(LandformMetrics, ValleyTreeDrainsToItsLowestEnd)
   {
     lines.push_back({ a, {}, FeatureType::Valley });
   }
-  const LandformMeasures m = measureLandforms(v, sketchOf(lines, v), {}, {}, optionsAt(40));
+  const LandformMeasures m = evaluateLandforms(v, sketchOf(lines, v), {}, {}, optionsAt(40));
   EXPECT_EQ(m.valleyDescent, 1.0);
   EXPECT_GE(m.valleyDrainage, 0.97);
   // Pairs every 10 cells: 11 on each arm (the last walks on into the trunk
@@ -318,7 +318,7 @@ TEST(LandformMetrics, DrainageBarGrowsWithTheLongestPathFromAHead)
     terrain(kVWidth, kVLength, [](int i, int j) { return vValley(i, j, true); });
   LandformOptions o = optionsAt(40);
   o.drainageStripFraction = 3.5;
-  const LandformMeasures single = measureLandforms(v, sketchOf(kAxisValley, v), {}, {}, o);
+  const LandformMeasures single = evaluateLandforms(v, sketchOf(kAxisValley, v), {}, {}, o);
   EXPECT_DOUBLE_EQ(single.valleyDrainage, 77.0 / 181.0);
   // The same line cut at row 100 by a 3-cell side branch: below the branch the
   // path still counts from the top head (90 + 100 - j), so rows 10-100 fail as
@@ -326,7 +326,7 @@ TEST(LandformMetrics, DrainageBarGrowsWithTheLongestPathFromAHead)
   const std::vector<Polyline> cut = { { { { 60, 190 }, { 60, 100 } }, {}, FeatureType::Valley },
     { { { 60, 100 }, { 60, 10 } }, {}, FeatureType::Valley },
     { { { 63, 100 }, { 60, 100 } }, {}, FeatureType::Valley } };
-  const LandformMeasures m = measureLandforms(v, sketchOf(cut, v), {}, {}, o);
+  const LandformMeasures m = evaluateLandforms(v, sketchOf(cut, v), {}, {}, o);
   EXPECT_EQ(m.drainageSamples, 91u + 91u + 4u);
   EXPECT_DOUBLE_EQ(m.valleyDrainage, (77.0 + 4.0) / 186.0);
 }
@@ -338,18 +338,18 @@ TEST(LandformMetrics, RidgeOverValleyIsTheProbabilityOfBeingHigher)
   const std::vector<Polyline> lines = { { { { 20, 150 }, { 180, 150 } }, {}, FeatureType::Ridge },
     { { { 20, 50 }, { 180, 50 } }, {}, FeatureType::Valley } };
   EXPECT_EQ(
-    measureLandforms(north, sketchOf(lines, north), {}, {}, optionsAt(40)).ridgeOverValley, 1.0);
+    evaluateLandforms(north, sketchOf(lines, north), {}, {}, optionsAt(40)).ridgeOverValley, 1.0);
   const Heightfield flat = terrain(200, 200, [](int, int) { return 300.0; });
   EXPECT_EQ(
-    measureLandforms(flat, sketchOf(lines, flat), {}, {}, optionsAt(40)).ridgeOverValley, 0.5);
+    evaluateLandforms(flat, sketchOf(lines, flat), {}, {}, optionsAt(40)).ridgeOverValley, 0.5);
   const Heightfield south = terrain(200, 200, [](int, int j) { return 800.0 - 2.0 * j; });
   EXPECT_EQ(
-    measureLandforms(south, sketchOf(lines, south), {}, {}, optionsAt(40)).ridgeOverValley, 0.0);
+    evaluateLandforms(south, sketchOf(lines, south), {}, {}, optionsAt(40)).ridgeOverValley, 0.0);
   // Half the ridge above, half below the valley: a half.
   const Heightfield mixed =
     terrain(200, 200, [](int i, int j) { return j > 100 ? (i < 100 ? 900.0 : 100.0) : 500.0; });
   EXPECT_NEAR(
-    measureLandforms(mixed, sketchOf(lines, mixed), {}, {}, optionsAt(40)).ridgeOverValley,
+    evaluateLandforms(mixed, sketchOf(lines, mixed), {}, {}, optionsAt(40)).ridgeOverValley,
     0.5,
     0.01);
 }
@@ -357,7 +357,7 @@ TEST(LandformMetrics, RidgeOverValleyIsTheProbabilityOfBeingHigher)
 TEST(LandformMetrics, RidgesShedWaterAndValleysDoNot)
 {
   const Heightfield ridge = gaussianFeature(+1);
-  const LandformMeasures r = measureLandforms(
+  const LandformMeasures r = evaluateLandforms(
     ridge, sketchOf({ { kBent, {}, FeatureType::Ridge } }, ridge), {}, {}, optionsAt(40));
   EXPECT_EQ(r.ridgeShedding, 1.0);
   EXPECT_EQ(r.sheddingSamples,
@@ -368,7 +368,7 @@ TEST(LandformMetrics, RidgesShedWaterAndValleysDoNot)
   const std::vector<Polyline> onChannel = {
     { { { 60, 190 }, { 60, 10 } }, {}, FeatureType::Ridge }
   };
-  const LandformMeasures c = measureLandforms(v, sketchOf(onChannel, v), {}, {}, optionsAt(40));
+  const LandformMeasures c = evaluateLandforms(v, sketchOf(onChannel, v), {}, {}, optionsAt(40));
   // Even the top sample has 10 rows x 121 cells upstream, over 80 (two patch widths).
   EXPECT_EQ(c.ridgeShedding, 0.0);
   EXPECT_NEAR(c.ridgeProminence, -200.0, 1e-3); // and it lies below its surroundings
@@ -378,7 +378,7 @@ TEST(LandformMetrics, FieldsWithoutLinesAreNaNWithAReason)
 {
   const Heightfield v =
     terrain(kVWidth, kVLength, [](int i, int j) { return vValley(i, j, true); });
-  const LandformMeasures m = measureLandforms(v, sketchOf(kAxisValley, v), {}, {}, optionsAt(40));
+  const LandformMeasures m = evaluateLandforms(v, sketchOf(kAxisValley, v), {}, {}, optionsAt(40));
   for (const double x :
     { m.ridgeProminence, m.ridgeProminenceRatio, m.ridgeOverValley, m.ridgeShedding })
   {
@@ -393,14 +393,14 @@ TEST(LandformMetrics, FieldsWithoutLinesAreNaNWithAReason)
   EXPECT_EQ(m.notes.count("valleyDepth"), 0u);
 
   const FeatureGraph empty;
-  const LandformMeasures e = measureLandforms(v, empty, {}, {}, optionsAt(40));
+  const LandformMeasures e = evaluateLandforms(v, empty, {}, {}, optionsAt(40));
   EXPECT_TRUE(std::isnan(e.valleyDrainage));
   EXPECT_TRUE(std::isnan(e.valleyDescent));
   EXPECT_EQ(e.notes.at("valleyDrainage"), "the sketch has no valley line");
 
   // Lines too close to the edge for D on both sides: no prominence sample.
   const LandformMeasures edge =
-    measureLandforms(v, sketchOf(kAxisValley, v), {}, {}, optionsAt(40, 70));
+    evaluateLandforms(v, sketchOf(kAxisValley, v), {}, {}, optionsAt(40, 70));
   EXPECT_TRUE(std::isnan(edge.valleyDepth));
   EXPECT_EQ(edge.valleySamples, 0u);
   EXPECT_EQ(edge.notes.count("valleyDepth"), 1u);
@@ -413,15 +413,15 @@ TEST(LandformMetrics, BadInputIsRefused)
     terrain(kVWidth, kVLength, [](int i, int j) { return vValley(i, j, true); });
   const FeatureGraph sketch = sketchOf(kAxisValley, v);
   const Heightfield other = terrain(50, 50, [](int, int) { return 0.0; });
-  EXPECT_THROW(measureLandforms(other, sketch, {}, {}), Error);
-  EXPECT_THROW(measureLandforms(v, sketch, { &v }, {}), Error);
-  EXPECT_THROW(measureLandforms(v, sketch, { &other }, { &sketch }), Error);
+  EXPECT_THROW(evaluateLandforms(other, sketch, {}, {}), Error);
+  EXPECT_THROW(evaluateLandforms(v, sketch, { &v }, {}), Error);
+  EXPECT_THROW(evaluateLandforms(v, sketch, { &other }, { &sketch }), Error);
   LandformOptions bad;
   bad.patchSize = 0.0;
-  EXPECT_THROW(measureLandforms(v, sketch, {}, {}, bad), Error);
+  EXPECT_THROW(evaluateLandforms(v, sketch, {}, {}, bad), Error);
   bad = {};
   bad.tolerance = -1.0;
-  EXPECT_THROW(measureLandforms(v, sketch, {}, {}, bad), Error);
+  EXPECT_THROW(evaluateLandforms(v, sketch, {}, {}, bad), Error);
 }
 
 TEST(LandformMetrics, RealDemsOwnLandformLinesDrainShedAndDescend)
@@ -437,7 +437,7 @@ TEST(LandformMetrics, RealDemsOwnLandformLinesDrainShedAndDescend)
     SCOPED_TRACE(name);
     const Heightfield dem = readHeightfield(test::bundledData() / "dems" / name);
     const FeatureGraph lines = ownFeatureLines(dem, landform);
-    const LandformMeasures m = measureLandforms(dem, lines, { &dem }, { &lines });
+    const LandformMeasures m = evaluateLandforms(dem, lines, { &dem }, { &lines });
     std::printf("%-26s ridge %6.1f m, valley %6.1f m, ridge over valley %.3f, drainage %.3f, "
                 "shedding %.3f, descent %.3f\n",
       name,
@@ -461,7 +461,7 @@ TEST(LandformMetrics, RealDemsOwnLandformLinesDrainShedAndDescend)
     // exemplar's own figure is met exactly, and drainage moves only by D8's
     // tie-breaking order.
     const Heightfield turned = quarterTurn(dem);
-    const LandformMeasures t = measureLandforms(turned, quarterTurn(lines), { &dem }, { &lines });
+    const LandformMeasures t = evaluateLandforms(turned, quarterTurn(lines), { &dem }, { &lines });
     EXPECT_NEAR(t.ridgeProminenceRatio, 1.0, 1e-6);
     EXPECT_NEAR(t.valleyDepthRatio, 1.0, 1e-6);
     EXPECT_NEAR(t.valleyDrainage, m.valleyDrainage, 0.005);
