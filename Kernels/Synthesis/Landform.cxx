@@ -671,12 +671,16 @@ std::vector<double> crestHeights(const LineNetwork& net,
   const std::vector<double>& baseAt,
   const LandformStatistics& s,
   const LandformFieldOptions& o,
-  double cell)
+  double cell,
+  int w,
+  int h)
 {
+  // Free ends taper; an end at the border is where the ridge leaves the map.
   std::vector<std::size_t> ends;
   for (std::size_t v = 0; v < net.size(); ++v)
   {
-    if (net.used(v) && net.isEnd(v))
+    if (net.used(v) && net.isEnd(v) &&
+      borderDistance(net.position(v), w, h) > kBorderReachInPatches * o.patchSize)
     {
       ends.push_back(v);
     }
@@ -857,7 +861,7 @@ LandformField landformField(const FeatureGraph& graph,
   const LineNetwork ridges(graph, FeatureType::Ridge, cellX, cellY);
   const LineNetwork valleys(graph, FeatureType::Valley, cellX, cellY);
   const std::vector<double> crest =
-    crestHeights(ridges, vertexValues(ridges, graph, heights), baseOf(ridges), s, o, cell);
+    crestHeights(ridges, vertexValues(ridges, graph, heights), baseOf(ridges), s, o, cell, w, h);
   const ValleyFloors floors = valleyFloors(
     valleys, vertexValues(valleys, graph, heights), baseOf(valleys), s, o, w, h, out.warnings);
   const RasterLines ridgeCells = rasteriseNetwork(graph, ridges, crest, w, h);

@@ -64,6 +64,27 @@ std::vector<std::uint8_t> rasterise(const FeatureGraph& g, const FeatureType* ty
   return seeds;
 }
 
+// Length (cells) of the longest connected piece of the graph's lines.
+double longestStroke(const FeatureGraph& g)
+{
+  std::vector<double> length(static_cast<std::size_t>(std::max(1, g.componentCount)), 0.0);
+  double longest = 0.0;
+  for (const FeatureChain& c : g.chains)
+  {
+    const int component = c.from >= 0 ? g.nodes[static_cast<std::size_t>(c.from)].component : -1;
+    if (component >= 0 && static_cast<std::size_t>(component) < length.size())
+    {
+      length[static_cast<std::size_t>(component)] += c.length();
+      longest = std::max(longest, length[static_cast<std::size_t>(component)]);
+    }
+    else
+    {
+      longest = std::max(longest, c.length());
+    }
+  }
+  return longest;
+}
+
 } // namespace
 
 std::vector<std::uint8_t> rasteriseChains(const FeatureGraph& graph, int width, int height)
@@ -185,6 +206,13 @@ SynthesisTarget targetFromStrokes(const FeatureGraph& graph,
   {
     t.warnings.push_back(
       "The sketch has no features: the terrain is filled without feature placement.");
+  }
+  else if (longestStroke(graph) < patchSize)
+  {
+    t.warnings.push_back("Every sketched stroke is shorter than one patch (" +
+      std::to_string(patchSize) +
+      " cells): each becomes a short landform, tapering at its ends; draw longer strokes or "
+      "give a smaller --patch for finer ones.");
   }
   return t;
 }
