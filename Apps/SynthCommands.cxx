@@ -71,6 +71,8 @@ writes them: its output works directly as a sketch of the same DEM.
                          --region L=E1,E2 says otherwise (repeatable)
   --no-vertical-offset   place patches at their own heights (default: fitted to the overlap)
   --repetition P         seam-cost penalty for reusing a nearby source (default 0.5; 0 = off)
+  --landform-relief F    sketched ridges and valleys get F times the relief of the exemplars'
+                         own major ones (default 1; 0.1 to 5: above 1 for bolder landforms)
   --max-memory GB        refuse a synthesis estimated to need more (default: 80% of the
                          machine's memory)
   --no-progress          no progress bar on the terminal
@@ -299,6 +301,7 @@ struct SynthArguments
   std::vector<std::string> regionMaps;
   GridRequest grid;
   double memoryBudget = 0.0; // bytes; 0: the set-up's default
+  double landformRelief = 1.0;
   SynthesisOptions options;
   bool progress = true;
 };
@@ -449,6 +452,14 @@ void takeGridOptions(CommandLine& cl, SynthArguments& a)
     }
     a.grid.cellX = a.grid.cellY = *cell;
   }
+  if (const auto relief = cl.takeNumber("--landform-relief"))
+  {
+    if (!(*relief >= kMinLandformRelief && *relief <= kMaxLandformRelief))
+    {
+      throw UsageError("--landform-relief expects a factor from 0.1 to 5.");
+    }
+    a.landformRelief = *relief;
+  }
   if (const auto budget = cl.takeNumber("--max-memory"))
   {
     if (!(*budget > 0.0) || !std::isfinite(*budget))
@@ -498,6 +509,7 @@ SetupInputs readSynthInputs(const SynthArguments& a)
   in.grid = a.grid;
   in.patchSize = a.options.patchSize;
   in.seed = a.options.seed;
+  in.landformRelief = a.landformRelief;
   in.memoryBudget = a.memoryBudget;
   in.names.size = "--size";
   in.names.cell = "--cell";

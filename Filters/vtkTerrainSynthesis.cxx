@@ -317,6 +317,7 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
     in.grid = gridRequest(this);
     in.patchSize = this->PatchSize;
     in.seed = static_cast<std::uint64_t>(this->Seed);
+    in.landformRelief = this->LandformRelief;
     in.memoryBudget = this->MemoryBudget * kBytesPerGB;
     in.names = propertyNames();
     for (const auto& w : ex.warnings)
@@ -375,4 +376,5 @@ void vtkTerrainSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CellSize: " << this->CellSize << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "MemoryBudget: " << this->MemoryBudget << " GB\n";
+  os << indent << "LandformRelief: " << this->LandformRelief << "\n";
 }

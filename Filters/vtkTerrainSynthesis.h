@@ -81,6 +81,10 @@ public:
   vtkGetMacro(Seed, vtkIdType);
   /// A synthesis estimated to need more memory than this (GB) is refused before
   /// it starts; 0 (default) allows 80% of the machine's physical memory.
+  /// Sketched ridges and valleys get this times the relief of the exemplars'
+  /// own major ones (1: like them; above 1 for bolder landforms).
+  vtkSetClampMacro(LandformRelief, double, 0.1, 5.0);
+  vtkGetMacro(LandformRelief, double);
   vtkSetClampMacro(MemoryBudget, double, 0.0, 1.0e6);
   vtkGetMacro(MemoryBudget, double);
 
@@ -124,6 +128,7 @@ protected:
   double CellSize = 0.0;
   vtkIdType Seed = 0;
   double MemoryBudget = 0.0;
+  double LandformRelief = 1.0;
   std::string BackendUsed;
   std::vector<std::string> RegionMaps;
 

@@ -379,6 +379,18 @@ LandformStatistics measureLandforms(const std::vector<const Heightfield*>& exemp
   return s;
 }
 
+LandformStatistics withReliefScaled(const LandformStatistics& statistics, double factor)
+{
+  LandformStatistics s = statistics;
+  s.ridge.relief *= factor;
+  s.valley.relief *= factor;
+  s.ridge.level = s.base + s.ridge.relief;
+  s.valley.level = s.base - s.valley.relief;
+  s.ridge.section = withRelief(statistics.ridge, s.ridge.relief, FeatureType::Ridge);
+  s.valley.section = withRelief(statistics.valley, s.valley.relief, FeatureType::Valley);
+  return s;
+}
+
 // ---------------------------------------------------------------------------
 // Building the target.
 

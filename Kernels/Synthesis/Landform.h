@@ -59,6 +59,10 @@ LandformStatistics measureLandforms(const std::vector<const Heightfield*>& exemp
   const std::vector<const FeatureGraph*>& graphs,
   const LandformMeasureOptions& options = {});
 
+// The same landforms with their relief (height of the ridges over the base,
+// depth of the valleys below it) times `factor`, shapes and widths unchanged.
+LandformStatistics withReliefScaled(const LandformStatistics& statistics, double factor);
+
 struct LandformFieldOptions
 {
   int patchSize = 80;

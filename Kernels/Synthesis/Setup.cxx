@@ -471,6 +471,12 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
   {
     throw Error("No exemplar: give at least one DEM to copy terrain from.");
   }
+  if (!(in.landformRelief >= kMinLandformRelief && in.landformRelief <= kMaxLandformRelief))
+  {
+    throw Error("The landform relief must be from " + number(kMinLandformRelief) + " to " +
+      number(kMaxLandformRelief) + " times the exemplars' own, not " + number(in.landformRelief) +
+      ".");
+  }
   SynthesisSetup s;
   const Heightfield& first = in.exemplars.front();
   s.grid =
@@ -485,7 +491,7 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
   const SketchHeights heights = !sketch.hasHeights ? SketchHeights::None
     : sketch.kind == "DEM"                         ? SketchHeights::Dem
                                                    : SketchHeights::Grey;
-  s.landform = stats.landform;
+  s.landform = withReliefScaled(stats.landform, in.landformRelief);
   s.target = makeTarget(sketch.graph,
     sketch.width,
     sketch.height,
@@ -497,7 +503,8 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
     stats,
     in.patchSize,
     heights,
-    in.seed);
+    in.seed,
+    in.landformRelief);
   return s;
 }
 

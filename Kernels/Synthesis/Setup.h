@@ -137,6 +137,10 @@ struct AnalysedSketch
 // than one patch is refused (tsynth::Error).
 AnalysedSketch analyseSketch(const SketchInput& sketch, const OutputGrid& grid, int patchSize);
 
+// The landform relief a user may ask for, in multiples of the exemplars' own.
+constexpr double kMinLandformRelief = 0.1;
+constexpr double kMaxLandformRelief = 5.0;
+
 struct SetupInputs
 {
   std::vector<Heightfield> exemplars;     // heights in metres, with their cell sizes
@@ -146,6 +150,9 @@ struct SetupInputs
   int patchSize = 80;
   double memoryBudget = 0.0; // bytes; 0: defaultMemoryBudget()
   std::uint64_t seed = 0;    // breaks ties in the target (valley outlets)
+  // Sketched ridges and valleys get this times the relief of the exemplars'
+  // own major ones (1: like them); a DEM target keeps its own.
+  double landformRelief = 1.0;
   SetupOptionNames names;
 };
 

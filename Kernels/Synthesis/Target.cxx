@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 
 namespace tsynth
@@ -329,14 +330,20 @@ SynthesisTarget makeTarget(const FeatureGraph& sketchGraph,
   const ExemplarStatistics& stats,
   int patchSize,
   SketchHeights kind,
-  std::uint64_t seed)
+  std::uint64_t seed,
+  double landformRelief)
 {
+  ExemplarStatistics scaled = stats;
+  if (landformRelief != 1.0)
+  {
+    scaled.landform = withReliefScaled(stats.landform, landformRelief);
+  }
   FeatureGraph graph =
     scaleGraph(sketchGraph, sketchWidth, sketchHeight, width, height, cellX, cellY);
   computeControlPoints(graph, 0.5 * patchSize);
   if (sketchHeights == nullptr || kind == SketchHeights::None)
   {
-    return targetFromStrokes(graph, width, height, cellX, cellY, stats, patchSize, seed);
+    return targetFromStrokes(graph, width, height, cellX, cellY, scaled, patchSize, seed);
   }
   // Nearest-neighbour resampling of the sketch's heights onto the output grid.
   Heightfield field(width, height);
@@ -356,7 +363,7 @@ SynthesisTarget makeTarget(const FeatureGraph& sketchGraph,
     }
   }
   normaliseMask(field);
-  return kind == SketchHeights::Grey ? targetFromGreySketch(field, graph, stats, patchSize, seed)
+  return kind == SketchHeights::Grey ? targetFromGreySketch(field, graph, scaled, patchSize, seed)
                                      : targetFromHeights(field, graph, stats);
 }
 

@@ -95,7 +95,9 @@ enum class SketchHeights
 // The target on an output grid of width x height cells from a sketch drawn on
 // sketchWidth x sketchHeight pixels: its graph scaled onto the grid (with
 // control points at half a patch), and the field from the sketch's heights
-// (grey map or DEM, resampled) when given, else from its strokes.
+// (grey map or DEM, resampled) when given, else from its strokes. Sketched
+// landforms get `landformRelief` times the exemplars' relief (a DEM target
+// keeps its own).
 SynthesisTarget makeTarget(const FeatureGraph& sketchGraph,
   int sketchWidth,
   int sketchHeight,
@@ -107,6 +109,7 @@ SynthesisTarget makeTarget(const FeatureGraph& sketchGraph,
   const ExemplarStatistics& stats,
   int patchSize,
   SketchHeights kind = SketchHeights::Dem,
-  std::uint64_t seed = 0);
+  std::uint64_t seed = 0,
+  double landformRelief = 1.0);
 
 } // namespace tsynth
