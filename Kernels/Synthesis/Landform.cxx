@@ -804,6 +804,79 @@ RasterLines rasteriseNetwork(const FeatureGraph& g,
   return r;
 }
 
+// A sketch's lines with points at most kVertexSpacing cells apart, and the
+// given heights along them (interpolated where both ends of a piece are given,
+// NaN elsewhere). Crest tapers, concave floors and flow distances are values
+// per point: a poly-line drawn with a few vertices would otherwise only get
+// them at its vertices, and a straight two-point ridge would keep its end
+// height all along.
+struct DenseLines
+{
+  FeatureGraph graph;
+  LineHeights heights;
+};
+
+constexpr double kVertexSpacing = 1.0;
+
+DenseLines densify(const FeatureGraph& g, const LineHeights* heights)
+{
+  DenseLines d;
+  d.graph = g;
+  if (heights != nullptr)
+  {
+    d.heights.resize(g.chains.size());
+  }
+  auto lerp = [](float a, float b, double t)
+  {
+    return t >= 1.0 ? b
+                    : (std::isnan(a) || std::isnan(b) ? kNaN : static_cast<float>(a + t * (b - a)));
+  };
+  auto valueAt = [](const std::vector<float>& v, std::size_t k)
+  { return k < v.size() ? v[k] : kNaN; };
+  for (std::size_t c = 0; c < g.chains.size(); ++c)
+  {
+    const FeatureChain& src = g.chains[c];
+    FeatureChain& dst = d.graph.chains[c];
+    const std::vector<float> none;
+    const std::vector<float>& given =
+      heights != nullptr && c < heights->size() ? (*heights)[c] : none;
+    const bool elevation = src.elevation.size() == src.points.size();
+    const bool constraint = src.constraint.size() == src.points.size();
+    dst.points.clear();
+    dst.elevation.clear();
+    dst.constraint.clear();
+    std::vector<float>* out = heights != nullptr ? &d.heights[c] : nullptr;
+    for (std::size_t k = 0; k < src.points.size(); ++k)
+    {
+      const Point2& b = src.points[k];
+      const Point2& a = k == 0 ? b : src.points[k - 1];
+      const int pieces = k == 0
+        ? 1
+        : std::max(
+            1, static_cast<int>(std::ceil(std::hypot(b.x - a.x, b.y - a.y) / kVertexSpacing)));
+      for (int s = 1; s <= pieces; ++s)
+      {
+        const double t = static_cast<double>(s) / pieces;
+        const std::size_t from = k == 0 ? 0 : k - 1;
+        dst.points.push_back({ a.x + t * (b.x - a.x), a.y + t * (b.y - a.y) });
+        if (elevation)
+        {
+          dst.elevation.push_back(lerp(src.elevation[from], src.elevation[k], t));
+        }
+        if (constraint)
+        {
+          dst.constraint.push_back(lerp(src.constraint[from], src.constraint[k], t));
+        }
+        if (out != nullptr)
+        {
+          out->push_back(lerp(valueAt(given, from), valueAt(given, k), t));
+        }
+      }
+    }
+  }
+  return d;
+}
+
 double confidence(double d, double width, double fade)
 {
   if (d <= width)
@@ -820,7 +893,7 @@ double confidence(double d, double width, double fade)
 
 } // namespace
 
-LandformField landformField(const FeatureGraph& graph,
+LandformField landformField(const FeatureGraph& sketch,
   int w,
   int h,
   double cellX,
@@ -828,8 +901,11 @@ LandformField landformField(const FeatureGraph& graph,
   const LandformStatistics& s,
   const LandformFieldOptions& o,
   const Heightfield* base,
-  const LineHeights* heights)
+  const LineHeights* sketchHeights)
 {
+  const DenseLines dense = densify(sketch, sketchHeights);
+  const FeatureGraph& graph = dense.graph;
+  const LineHeights* heights = sketchHeights != nullptr ? &dense.heights : nullptr;
   LandformField out;
   out.field = Heightfield(w, h, static_cast<float>(s.base));
   out.field.cellX = cellX;
