@@ -818,58 +818,49 @@ struct DenseLines
 
 constexpr double kVertexSpacing = 1.0;
 
+// The value at t (0..1] between two given values; NaN unless both are given
+// (t = 1 is the point itself).
+float lerpGiven(float a, float b, double t)
+{
+  if (t >= 1.0)
+  {
+    return b;
+  }
+  return std::isnan(a) || std::isnan(b) ? kNaN : static_cast<float>(a + t * (b - a));
+}
+
+// Only what the target uses is carried over: geometry and given heights (the
+// chains' elevation and constraint samples are dropped).
 DenseLines densify(const FeatureGraph& g, const LineHeights* heights)
 {
   DenseLines d;
   d.graph = g;
-  if (heights != nullptr)
-  {
-    d.heights.resize(g.chains.size());
-  }
-  auto lerp = [](float a, float b, double t)
-  {
-    return t >= 1.0 ? b
-                    : (std::isnan(a) || std::isnan(b) ? kNaN : static_cast<float>(a + t * (b - a)));
-  };
-  auto valueAt = [](const std::vector<float>& v, std::size_t k)
-  { return k < v.size() ? v[k] : kNaN; };
+  d.heights.resize(heights != nullptr ? g.chains.size() : 0);
   for (std::size_t c = 0; c < g.chains.size(); ++c)
   {
-    const FeatureChain& src = g.chains[c];
+    const std::vector<Point2>& src = g.chains[c].points;
     FeatureChain& dst = d.graph.chains[c];
     const std::vector<float> none;
     const std::vector<float>& given =
       heights != nullptr && c < heights->size() ? (*heights)[c] : none;
-    const bool elevation = src.elevation.size() == src.points.size();
-    const bool constraint = src.constraint.size() == src.points.size();
+    auto givenAt = [&](std::size_t k) { return k < given.size() ? given[k] : kNaN; };
     dst.points.clear();
     dst.elevation.clear();
     dst.constraint.clear();
-    std::vector<float>* out = heights != nullptr ? &d.heights[c] : nullptr;
-    for (std::size_t k = 0; k < src.points.size(); ++k)
+    for (std::size_t k = 0; k < src.size(); ++k)
     {
-      const Point2& b = src.points[k];
-      const Point2& a = k == 0 ? b : src.points[k - 1];
-      const int pieces = k == 0
-        ? 1
-        : std::max(
-            1, static_cast<int>(std::ceil(std::hypot(b.x - a.x, b.y - a.y) / kVertexSpacing)));
+      const std::size_t from = k == 0 ? 0 : k - 1;
+      const Point2& a = src[from];
+      const Point2& b = src[k];
+      const double length = std::hypot(b.x - a.x, b.y - a.y);
+      const int pieces = std::max(1, static_cast<int>(std::ceil(length / kVertexSpacing)));
       for (int s = 1; s <= pieces; ++s)
       {
         const double t = static_cast<double>(s) / pieces;
-        const std::size_t from = k == 0 ? 0 : k - 1;
         dst.points.push_back({ a.x + t * (b.x - a.x), a.y + t * (b.y - a.y) });
-        if (elevation)
+        if (heights != nullptr)
         {
-          dst.elevation.push_back(lerp(src.elevation[from], src.elevation[k], t));
-        }
-        if (constraint)
-        {
-          dst.constraint.push_back(lerp(src.constraint[from], src.constraint[k], t));
-        }
-        if (out != nullptr)
-        {
-          out->push_back(lerp(valueAt(given, from), valueAt(given, k), t));
+          d.heights[c].push_back(lerpGiven(givenAt(from), givenAt(k), t));
         }
       }
     }
