@@ -9,8 +9,10 @@
 namespace tsynth
 {
 
-// Close to a Gaussian of standard deviation `sigma` cells (exact variance, a
-// smooth bell made of three boxes); sigma <= 0 returns the input.
+// Close to a Gaussian of standard deviation `sigma` cells: a smooth bell made of
+// three boxes of odd widths, whose variance is the nearest such widths allow,
+// within 1 / (3 sigma) + 1 / (6 sigma^2) of sigma^2 (8.3% low at sigma 4, 2%
+// at 16); sigma <= 0 returns the input.
 Heightfield smoothLarge(const Heightfield& hf, double sigma);
 
 } // namespace tsynth

@@ -23,7 +23,9 @@ struct NearestSeeds
 
 // Felzenszwalb and Huttenlocher's two-pass lower envelope of parabolas, with
 // cell sizes cellX (columns) and cellY (rows) in metres, so distances are true
-// metres on grids whose cells are not square. Ties go to the lower seed index.
+// metres on grids whose cells are not square. Ties go to the seed in the lowest
+// column, then the lowest row (not the lowest index: the column pass picks the
+// row, the row pass the column).
 NearestSeeds nearestSeeds(const std::vector<std::uint8_t>& seeds,
   int width,
   int height,

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
 
 namespace tsynth
 {
@@ -57,6 +58,18 @@ MonotoneProfile MonotoneProfile::fit(const std::vector<double>& distances,
   const std::vector<double>& weights,
   Monotonicity direction)
 {
+  if (values.size() != distances.size() || weights.size() != distances.size())
+  {
+    throw Error("A profile fit needs one height and one weight per distance.");
+  }
+  for (std::size_t k = 1; k < distances.size(); ++k)
+  {
+    if (!(distances[k] > distances[k - 1]))
+    {
+      throw Error("The distances of a profile fit must increase, but sample " +
+        std::to_string(k + 1) + " does not come after the one before it.");
+    }
+  }
   // Pool adjacent violators on the non-decreasing problem (a falling profile is
   // fitted as the rising profile of -value).
   const double sign = direction == Monotonicity::NonDecreasing ? 1.0 : -1.0;

@@ -27,7 +27,9 @@ public:
     const std::vector<double>& values);
 
   // Weighted least-squares monotone fit (pool adjacent violators) of noisy
-  // samples at increasing distances; samples of zero weight are ignored.
+  // samples at increasing distances; samples of zero weight or NaN value are
+  // ignored. Throws tsynth::Error if the sizes differ or a distance does not
+  // increase.
   static MonotoneProfile fit(const std::vector<double>& distances,
     const std::vector<double>& values,
     const std::vector<double>& weights,

@@ -816,6 +816,70 @@ RasterLines rasteriseNetwork(const FeatureGraph& g,
   return r;
 }
 
+// A sketch's lines with points at most kVertexSpacing cells apart, and the
+// given heights along them (interpolated where both ends of a piece are given,
+// NaN elsewhere). Crest tapers, concave floors and flow distances are values
+// per point: a poly-line drawn with a few vertices would otherwise only get
+// them at its vertices, and a straight two-point ridge would keep its end
+// height all along.
+struct DenseLines
+{
+  FeatureGraph graph;
+  LineHeights heights;
+};
+
+constexpr double kVertexSpacing = 1.0;
+
+// The value at t (0..1] between two given values; NaN unless both are given
+// (t = 1 is the point itself).
+float lerpGiven(float a, float b, double t)
+{
+  if (t >= 1.0)
+  {
+    return b;
+  }
+  return std::isnan(a) || std::isnan(b) ? kNaN : static_cast<float>(a + t * (b - a));
+}
+
+// Only what the target uses is carried over: geometry and given heights (the
+// chains' elevation and constraint samples are dropped).
+DenseLines densify(const FeatureGraph& g, const LineHeights* heights)
+{
+  DenseLines d;
+  d.graph = g;
+  d.heights.resize(heights != nullptr ? g.chains.size() : 0);
+  for (std::size_t c = 0; c < g.chains.size(); ++c)
+  {
+    const std::vector<Point2>& src = g.chains[c].points;
+    FeatureChain& dst = d.graph.chains[c];
+    const std::vector<float> none;
+    const std::vector<float>& given =
+      heights != nullptr && c < heights->size() ? (*heights)[c] : none;
+    auto givenAt = [&](std::size_t k) { return k < given.size() ? given[k] : kNaN; };
+    dst.points.clear();
+    dst.elevation.clear();
+    dst.constraint.clear();
+    for (std::size_t k = 0; k < src.size(); ++k)
+    {
+      const std::size_t from = k == 0 ? 0 : k - 1;
+      const Point2& a = src[from];
+      const Point2& b = src[k];
+      const double length = std::hypot(b.x - a.x, b.y - a.y);
+      const int pieces = std::max(1, static_cast<int>(std::ceil(length / kVertexSpacing)));
+      for (int s = 1; s <= pieces; ++s)
+      {
+        const double t = static_cast<double>(s) / pieces;
+        dst.points.push_back({ a.x + t * (b.x - a.x), a.y + t * (b.y - a.y) });
+        if (heights != nullptr)
+        {
+          d.heights[c].push_back(lerpGiven(givenAt(from), givenAt(k), t));
+        }
+      }
+    }
+  }
+  return d;
+}
+
 double confidence(double d, double width, double fade)
 {
   if (d <= width)
@@ -832,7 +896,7 @@ double confidence(double d, double width, double fade)
 
 } // namespace
 
-LandformField landformField(const FeatureGraph& graph,
+LandformField landformField(const FeatureGraph& sketch,
   int w,
   int h,
   double cellX,
@@ -840,8 +904,11 @@ LandformField landformField(const FeatureGraph& graph,
   const LandformStatistics& s,
   const LandformFieldOptions& o,
   const Heightfield* base,
-  const LineHeights* heights)
+  const LineHeights* sketchHeights)
 {
+  const DenseLines dense = densify(sketch, sketchHeights);
+  const FeatureGraph& graph = dense.graph;
+  const LineHeights* heights = sketchHeights != nullptr ? &dense.heights : nullptr;
   LandformField out;
   out.field = Heightfield(w, h, static_cast<float>(s.base));
   out.field.cellX = cellX;

@@ -97,7 +97,9 @@ struct LandformField
 // The target of a graph already on the output grid (cells of cellX x cellY m).
 // `base`, when given, is the land's height per cell (a grey map's background);
 // else the statistics' base everywhere. `heights` optionally fixes crest and
-// floor heights along the lines.
+// floor heights along the lines (linear between given points). The lines are
+// taken with a point per cell at least, so crest tapers, concave floors and
+// flow distances follow a poly-line between its vertices too.
 LandformField landformField(const FeatureGraph& graph,
   int width,
   int height,

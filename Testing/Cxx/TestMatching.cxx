@@ -68,6 +68,14 @@ CandidatePool handPool()
   return p;
 }
 
+// The hand pool with a second landform sample, in the second lane of 16.
+CandidatePool handPoolWithLandform()
+{
+  CandidatePool p = handPool();
+  p.landform[20] = -5.0f; // 5 m below the centre
+  return p;
+}
+
 FeatureQuery handQuery()
 {
   FeatureQuery q;
@@ -214,6 +222,70 @@ TEST(FeatureCost, UnitsDoNotChangeTheRanking)
   {
     ASSERT_NEAR(cm[c], cf[c], 1e-3 * std::max(1.0f, std::abs(cm[c])));
   }
+}
+
+TEST(FeatureCost, LandformSamplesAddTheirWeightedMisfit)
+{
+  const CandidatePool pool = handPoolWithLandform();
+  const MatchWeights w;
+  FeatureQuery q = handQuery();
+  FeatureQuery without = q;
+  without.landformWeight.fill(0.0f);
+  const float base = scoreFeatureCandidates(pool, without, w)[0];
+  // Sample 3: 20 m off at weight 0.5; sample 20 (the second lane of 16): the
+  // candidate 5 m below the centre, the target 10 m above, weight 1. Over 25
+  // samples and the height scale^2 100: (0.5 * 400 + 1 * 225) / 25 / 100 = 0.17.
+  q.landform[20] = 10.0f;
+  q.landformWeight[20] = 1.0f;
+  // Padding (samples 25..31) never counts: weight 0 whatever the heights.
+  q.landform[27] = 500.0f;
+  const float cost = scoreFeatureCandidates(pool, q, w)[0];
+  EXPECT_NEAR(cost - base, w.landform * 0.17, 1e-5);
+  // Twice the weight, twice the landform cost; weight 0, none.
+  MatchWeights heavy = w;
+  heavy.landform = 2.0 * w.landform;
+  EXPECT_NEAR(scoreFeatureCandidates(pool, q, heavy)[0] - base, 2.0 * w.landform * 0.17, 1e-5);
+  MatchWeights off = w;
+  off.landform = 0.0;
+  EXPECT_NEAR(scoreFeatureCandidates(pool, q, off)[0], base, 1e-6);
+}
+
+TEST(FeatureCost, ALandformOnlyQueryFindsItsOwnSite)
+{
+  // Every other term switched off: the landform samples of the low-passed
+  // exemplar around a site pick that site, unturned, out of the whole pool.
+  const Heightfield ex = crop(colorado(), 100, 100, 300, 300);
+  const FeatureExtraction f = extractFeatures(ex, FeatureType::Ridge, {});
+  PoolOptions o;
+  o.patchSize = 48;
+  const CandidatePool pool = buildCandidatePool({ &ex }, { &f.graph }, o);
+  ASSERT_GT(pool.sites.size(), 20u);
+  const Heightfield smooth = landformImage(ex, o.patchSize);
+  const std::vector<float> sure(ex.size(), 1.0f);
+  const NoiseVariance noise(ex);
+  MatchWeights w;
+  w.feature = w.angle = w.noise = w.overlap = 0.0;
+  int hits = 0;
+  int trials = 0;
+  for (std::size_t s = 0; s < pool.sites.size(); s += pool.sites.size() / 20)
+  {
+    const FeatureQuery q =
+      makeFeatureQuery(pool.sites[s], ex, noise, nullptr, nullptr, o.patchSize, &smooth, &sure);
+    ASSERT_GT(std::count(q.landformWeight.begin(), q.landformWeight.end(), 1.0f), 20);
+    const std::vector<float> costs = scoreFeatureCandidates(pool, q, w);
+    const auto best = topK(costs, 1);
+    ++trials;
+    // The site's own unturned candidate: no misfit (up to the centre's float rounding).
+    for (std::size_t c = 0; c < pool.size(); ++c)
+    {
+      if (pool.site[c] == static_cast<int>(s) && pool.variant[c] == 0)
+      {
+        EXPECT_LT(costs[c], 1e-6f) << "site " << s;
+      }
+    }
+    hits += pool.site[best[0].index] == static_cast<int>(s) && pool.variant[best[0].index] == 0;
+  }
+  EXPECT_GE(hits, trials - 1) << hits << " of " << trials;
 }
 
 TEST(CandidatePool, ASiteMatchesItselfFirst)
@@ -500,6 +572,143 @@ TEST(DenseSearch, PrunedCoarsePassKeepsTheExactHeadOfEveryVariant)
   EXPECT_LT(scored, valid / 2) << scored << " of " << valid;
 }
 
+namespace
+{
+
+// A landform-only query (nothing known yet) for the window at (x0, y0) of the
+// unturned exemplar: its own low-passed heights at the landform samples.
+DenseQuery landformQuery(const Heightfield& smooth, const DenseOptions& o, int x0, int y0)
+{
+  const int P = o.patchSize;
+  DenseQuery q;
+  q.heights.assign(static_cast<std::size_t>(P * P), 0.0f);
+  q.known.assign(static_cast<std::size_t>(P * P), 0);
+  for (int b = 0; b < kLandformSide; ++b)
+  {
+    for (int a = 0; a < kLandformSide; ++a)
+    {
+      const std::size_t k = static_cast<std::size_t>(b * kLandformSide + a);
+      q.landform.heights[k] =
+        smooth.at(x0 + landformCell(a, P, o.coarseFactor), y0 + landformCell(b, P, o.coarseFactor));
+      q.landform.weights[k] = 1.0f;
+    }
+  }
+  return q;
+}
+
+} // namespace
+
+TEST(DenseSearch, ALandformOnlyQueryFindsItsWindow)
+{
+  const Heightfield ex = crop(colorado(), 200, 200, 200, 200);
+  DenseOptions o;
+  o.patchSize = 32;
+  o.noiseWeight = 0.0; // the query says nothing of noise: only the landform decides
+  const DenseMatcher matcher({ &ex }, o);
+  const Heightfield smooth = landformImage(ex, o.patchSize);
+  for (const auto& [x0, y0] : { std::pair{ 57, 83 }, std::pair{ 120, 16 }, std::pair{ 8, 150 } })
+  {
+    const DenseQuery q = landformQuery(smooth, o, x0, y0);
+    const auto fast = matcher.search(q, 3);
+    const auto exact = matcher.bruteForce(q, 3);
+    ASSERT_FALSE(fast.empty());
+    ASSERT_FALSE(exact.empty());
+    for (const DenseMatch& m : { fast[0], exact[0] })
+    {
+      // The window itself, or one the landform cannot tell from it.
+      EXPECT_EQ(m.landform, 0.0f) << x0 << ", " << y0;
+      EXPECT_EQ(m.landformRms, 0.0f);
+      EXPECT_EQ(m.cost, 0.0f);
+      EXPECT_EQ(m.variant, 0);
+      EXPECT_EQ(m.x, x0);
+      EXPECT_EQ(m.y, y0);
+    }
+    // Elsewhere the landform misfit is a real cost: metres of misfit, weighted
+    // as landformWeight / 25 samples / heightScale^2.
+    ASSERT_GE(exact.size(), 2u);
+    EXPECT_GT(exact[1].landformRms, 0.0f);
+    EXPECT_NEAR(exact[1].cost,
+      o.landformWeight * exact[1].landformRms * exact[1].landformRms /
+        (matcher.heightScale() * matcher.heightScale()),
+      1e-4 * exact[1].cost);
+  }
+}
+
+TEST(DenseSearch, PrunedCoarsePassKeepsTheHeadWithLandformQueries)
+{
+  // Landform samples from the low-passed target (as the synthesis asks for
+  // them), with nothing, an L or most of the window known, and with the
+  // landform at full and at partial confidence.
+  const Heightfield a = crop(colorado(), 0, 0, 200, 200);
+  const Heightfield b = crop(colorado(), 220, 40, 180, 220);
+  DenseOptions o;
+  o.patchSize = 32;
+  const DenseMatcher matcher({ &a, &b }, o);
+  const Heightfield target = crop(colorado(), 380, 380, 200, 200);
+  const Heightfield smoothTarget = landformImage(target, o.patchSize);
+  auto cpu = [&](
+               const CoarseTerms& t, CoarseImage i, const std::vector<std::vector<std::uint8_t>>* r)
+  { return matcher.coarseSsd(t, i, r); };
+  for (int n = 0; n < 6; ++n)
+  {
+    const int x0 = 10 + 29 * n;
+    const int y0 = 150 - 23 * n;
+    DenseQuery q = landformQuery(smoothTarget, o, x0, y0);
+    const int band = n / 2 == 0 ? 0 : (n / 2 == 1 ? 8 : 24);
+    for (int j = 0; j < 32; ++j)
+    {
+      for (int i = 0; i < 32; ++i)
+      {
+        const std::size_t k = static_cast<std::size_t>(j * 32 + i);
+        q.heights[k] = target.at(x0 + i, y0 + j);
+        q.known[k] = (i < band || j < band) ? 1 : 0;
+      }
+    }
+    if (n % 2 == 1)
+    {
+      for (std::size_t k = 0; k < q.landform.weights.size(); ++k)
+      {
+        q.landform.weights[k] = static_cast<float>(k % 4) / 3.0f;
+      }
+    }
+    const CoarseQuery cq = matcher.coarseQuery(q);
+    ASSERT_FALSE(cq.landform.empty());
+    const auto full = matcher.coarseCosts(cq);
+    const auto pruned = matcher.prunedCoarseCosts(cq, cpu);
+    // Without the landform the head would be another: the samples matter.
+    CoarseQuery bare = cq;
+    bare.landform = CoarseTerms();
+    const auto overlapOnly = matcher.coarseCosts(bare);
+    bool differs = false;
+    for (std::size_t v = 0; v < full.size(); ++v)
+    {
+      for (std::size_t k = 0; k < full[v].size(); ++k)
+      {
+        if (std::isfinite(pruned[v][k]))
+        {
+          ASSERT_EQ(pruned[v][k], full[v][k])
+            << "query " << n << ": scored offsets keep their cost";
+        }
+      }
+      const auto head = [&](const std::vector<float>& c) { return ::head(c, matcher.headSize()); };
+      ASSERT_EQ(head(pruned[v]), head(full[v])) << "query " << n << ", oriented exemplar " << v;
+      differs = differs || (band > 0 && head(overlapOnly[v]) != head(full[v]));
+    }
+    if (band > 0)
+    {
+      EXPECT_TRUE(differs) << "query " << n;
+    }
+    const auto fast = matcher.refine(q, pruned, 4);
+    const auto exact = matcher.refine(q, full, 4);
+    ASSERT_EQ(fast.size(), exact.size());
+    for (std::size_t r = 0; r < fast.size(); ++r)
+    {
+      EXPECT_EQ(fast[r].cost, exact[r].cost);
+      EXPECT_EQ(fast[r].landform, exact[r].landform);
+    }
+  }
+}
+
 TEST(DenseSearch, BadInput)
 {
   const Heightfield small = crop(colorado(), 0, 0, 40, 40);
@@ -552,6 +761,65 @@ TEST(OpenCL, FeatureScoresEqualTheCpuReference)
       }
     }
   }
+}
+
+TEST(OpenCL, FeatureScoresWithLandformQueriesEqualTheCpuReference)
+{
+  std::shared_ptr<OpenClDevice> device;
+  ASSERT_NO_THROW(device = OpenClDevice::create()) << "this machine has PoCL: OpenCL must work";
+  const Heightfield ex = crop(colorado(), 100, 100, 300, 300);
+  const FeatureExtraction f = extractFeatures(ex, FeatureType::Ridge, {});
+  PoolOptions o;
+  o.patchSize = 48;
+  const CandidatePool pool = buildCandidatePool({ &ex }, { &f.graph }, o);
+  ASSERT_GT(pool.size(), 500u);
+  OpenClFeatureScorer scorer(device, pool);
+  // The target: another part of the DEM, low-passed, with a confidence that
+  // falls from 1 in the west to 0 in the east, and the north half known.
+  const Heightfield target = crop(colorado(), 320, 300, 300, 300);
+  const Heightfield lowTarget = landformImage(target, o.patchSize);
+  std::vector<float> confidence(target.size());
+  std::vector<std::uint8_t> known(target.size());
+  for (int j = 0; j < target.height; ++j)
+  {
+    for (int i = 0; i < target.width; ++i)
+    {
+      confidence[target.index(i, j)] = 1.0f - static_cast<float>(i) / (target.width - 1);
+      known[target.index(i, j)] = j >= target.height / 2 ? 1 : 0;
+    }
+  }
+  const NoiseVariance noise(target);
+  int withLandform = 0;
+  int queries = 0;
+  for (std::size_t s = 0; s < pool.sites.size(); s += pool.sites.size() / 9)
+  {
+    ++queries;
+    const FeatureQuery q = makeFeatureQuery(
+      pool.sites[s], target, noise, &target, &known, o.patchSize, &lowTarget, &confidence);
+    withLandform += std::any_of(
+      q.landformWeight.begin(), q.landformWeight.end(), [](float w) { return w > 0.0f; });
+    const auto cpu = scoreFeatureCandidates(pool, q, {});
+    const auto gpu = scorer.score(q, {});
+    ASSERT_EQ(cpu.size(), gpu.size());
+    for (std::size_t c = 0; c < cpu.size(); ++c)
+    {
+      ASSERT_NEAR(gpu[c], cpu[c], 1e-4 * std::max(1.0f, std::abs(cpu[c]))) << "candidate " << c;
+    }
+    const auto a = topK(cpu, 8);
+    const auto b = topK(gpu, 8);
+    for (std::size_t r = 0; r < a.size(); ++r)
+    {
+      EXPECT_EQ(a[r].index, b[r].index) << "rank " << r;
+    }
+  }
+  EXPECT_GE(2 * withLandform, queries) << "half the queries at least carry landform samples";
+  // The hand-made candidate too, both lanes of landform samples.
+  const CandidatePool hand = handPoolWithLandform();
+  FeatureQuery q = handQuery();
+  q.landform[20] = 10.0f;
+  q.landformWeight[20] = 1.0f;
+  OpenClFeatureScorer handScorer(device, hand);
+  EXPECT_NEAR(handScorer.score(q, {})[0], scoreFeatureCandidates(hand, q, {})[0], 1e-5);
 }
 
 TEST(OpenCL, DenseCoarseCostsEqualTheCpuReference)

@@ -1,0 +1,383 @@
+// The last steps of a synthesis: draining the sketched valleys, the gentle
+// landform correction and the exact height constraints, on terrains whose
+// answer is known.
+#include "Core/Smoothing.h"
+#include "Features/Sketch.h"
+#include "Hydrology/Flow.h"
+#include "Synthesis/Finishing.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <vector>
+
+using namespace tsynth;
+
+namespace
+{
+
+constexpr double kCell = 30.0; // metres
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+Heightfield terrain(int w, int h, const std::function<double(int, int)>& f)
+{
+  Heightfield hf(w, h);
+  hf.cellX = hf.cellY = kCell;
+  hf.cellSizeKnown = true;
+  for (int j = 0; j < h; ++j)
+  {
+    for (int i = 0; i < w; ++i)
+    {
+      hf.at(i, j) = static_cast<float>(f(i, j));
+    }
+  }
+  return hf;
+}
+
+// |Laplacian| (m^-1) of the interior cells, its `p` quantile.
+double laplacianQuantile(const Heightfield& hf, double p)
+{
+  std::vector<double> v;
+  for (int j = 1; j + 1 < hf.height; ++j)
+  {
+    for (int i = 1; i + 1 < hf.width; ++i)
+    {
+      const double z = hf.at(i, j);
+      const double l = (hf.at(i + 1, j) + hf.at(i - 1, j) - 2 * z) / (hf.cellX * hf.cellX) +
+        (hf.at(i, j + 1) + hf.at(i, j - 1) - 2 * z) / (hf.cellY * hf.cellY);
+      v.push_back(std::abs(l));
+    }
+  }
+  const std::size_t k = static_cast<std::size_t>(p * static_cast<double>(v.size() - 1));
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
+  return v[k];
+}
+
+// The valley: V flanks rising 5 m per cell from column 60, the floor falling
+// 1 m per cell towards the south border, bumps of 3 m along the floor and a
+// 30 m dam across it at row 100. The sketched line runs up the axis from the
+// border to row 150.
+constexpr int kW = 121;
+constexpr int kH = 170;
+constexpr int kAxis = 60;
+constexpr int kHead = 150;
+constexpr int kDamRow = 100;
+constexpr double kDam = 30.0;
+constexpr double kBumps = 3.0;
+
+Heightfield dammedValley()
+{
+  return terrain(kW,
+    kH,
+    [](int i, int j)
+    {
+      const double across = std::abs(i - kAxis);
+      double z = 500.0 + 5.0 * across + 1.0 * j;
+      // Bumps on the floor, fading over 4 cells either side.
+      z += kBumps * std::sin(0.7 * j) * std::max(0.0, 1.0 - across / 4.0);
+      // The dam: 30 m high on the floor, 5 rows thick, 8 cells either side.
+      const double along = std::abs(j - kDamRow);
+      if (along < 3.0 && across < 8.0)
+      {
+        z += kDam * 0.5 * (1.0 + std::cos(3.14159265358979 * along / 3.0));
+      }
+      return z;
+    });
+}
+
+std::size_t cell(int i, int j)
+{
+  return static_cast<std::size_t>(j) * kW + static_cast<std::size_t>(i);
+}
+
+// Flow distance along the axis from the south border, NaN off the line.
+std::vector<float> axisDownstream()
+{
+  std::vector<float> d(static_cast<std::size_t>(kW) * kH, kNaN);
+  for (int j = 0; j <= kHead; ++j)
+  {
+    d[cell(kAxis, j)] = static_cast<float>(j * kCell);
+  }
+  return d;
+}
+
+std::vector<std::uint32_t> accumulation(const Heightfield& hf)
+{
+  const Heightfield filled = fillDepressions(hf);
+  return flowAccumulation(flowDirections(filled), hf.width, hf.height);
+}
+
+// Line cells whose accumulation is not above the one upstream of them.
+int accumulationDrops(const std::vector<std::uint32_t>& acc)
+{
+  int drops = 0;
+  for (int j = 0; j < kHead; ++j)
+  {
+    drops += acc[cell(kAxis, j)] <= acc[cell(kAxis, j + 1)] ? 1 : 0;
+  }
+  return drops;
+}
+
+} // namespace
+
+TEST(DrainValleys, WaterRunsDownTheSketchedValley)
+{
+  const Heightfield before = dammedValley();
+  Heightfield out = before;
+  const std::vector<float> downstream = axisDownstream();
+  const DrainageOptions o;
+  const DrainageReport r = drainValleys(out, downstream, o);
+  std::printf("drained: %zu line cells, %zu lowered, deepest cut %.2f m, mean %.2f m\n",
+    r.cells,
+    r.lowered,
+    r.largest,
+    r.mean);
+  EXPECT_EQ(r.cells, static_cast<std::size_t>(kHead + 1));
+  // The dam is cut through (most of its 30 m), the bumps evened out.
+  EXPECT_GT(r.largest, 0.6 * kDam);
+  EXPECT_LT(r.largest, kDam + 2 * kBumps);
+  EXPECT_GT(r.lowered, static_cast<std::size_t>(kHead / 3));
+
+  // Every line cell lies below its upstream neighbour on the line by the
+  // minimum gradient at least.
+  const double step = o.minimumGradient * kCell;
+  for (int j = 0; j < kHead; ++j)
+  {
+    ASSERT_LE(out.at(kAxis, j), out.at(kAxis, j + 1) - step * (1 - 1e-3)) << j;
+  }
+  // ... and below the cells beside it.
+  for (int j = 1; j <= kHead; ++j)
+  {
+    ASSERT_LT(out.at(kAxis, j), out.at(kAxis - 1, j)) << j;
+    ASSERT_LT(out.at(kAxis, j), out.at(kAxis + 1, j)) << j;
+  }
+
+  // No lake is left on the line: before, filling raised the floor behind the
+  // dam by most of its height; after, the filled line is the drained one. (The
+  // bumps past the line's head, which nobody sketched, keep their puddles.)
+  auto deepestFillOnTheLine = [](const Heightfield& hf)
+  {
+    const Heightfield filled = fillDepressions(hf);
+    double d = 0.0;
+    for (int j = 0; j <= kHead; ++j)
+    {
+      d = std::max(d, static_cast<double>(filled.at(kAxis, j) - hf.at(kAxis, j)));
+    }
+    return d;
+  };
+  const double lakeBefore = deepestFillOnTheLine(before);
+  const double lakeAfter = deepestFillOnTheLine(out);
+  std::printf("deepest fill on the line: %.2f m before, %.4f m after\n", lakeBefore, lakeAfter);
+  EXPECT_GT(lakeBefore, 0.5 * kDam) << "the test terrain must need draining";
+  EXPECT_EQ(lakeAfter, 0.0);
+  // D8 on the filled terrain follows the line: accumulation grows at every
+  // step down it, and at the outlet collects nearly all of the map (all but the
+  // border cells that drain off it).
+  const std::vector<std::uint32_t> acc = accumulation(out);
+  EXPECT_EQ(accumulationDrops(acc), 0);
+  const double share = static_cast<double>(acc[cell(kAxis, 0)]) / (kW * kH);
+  std::printf("outlet accumulation: %.3f of the map\n", share);
+  EXPECT_GT(share, 0.9);
+
+  // The change is confined to the reach around the line.
+  for (int j = 0; j < kH; ++j)
+  {
+    for (int i = 0; i < kW; ++i)
+    {
+      const double d = j <= kHead ? std::abs(i - kAxis) : std::hypot(i - kAxis, j - kHead);
+      if (d >= o.reach)
+      {
+        ASSERT_EQ(out.at(i, j), before.at(i, j)) << i << ", " << j;
+      }
+    }
+  }
+  // No creases: the sharpest 0.1% of the terrain (the V's axis, 0.011 1/m, and
+  // its bumps) may not get more than a quarter sharper; a slot cut 1.5 m deep
+  // (maximumChannelCut) beside the cells of a 30 m grid would reach 0.1 1/m.
+  const double lapBefore = laplacianQuantile(before, 0.999);
+  const double lapAfter = laplacianQuantile(out, 0.999);
+  std::printf(
+    "99.9th percentile |Laplacian|: %.5f before, %.5f after (1/m)\n", lapBefore, lapAfter);
+  EXPECT_LT(lapAfter, 1.25 * lapBefore);
+}
+
+TEST(DrainValleys, NoLinesNoChange)
+{
+  const Heightfield before = dammedValley();
+  Heightfield out = before;
+  const DrainageReport none = drainValleys(out, std::vector<float>(before.size(), kNaN));
+  EXPECT_EQ(none.cells, 0u);
+  EXPECT_EQ(none.lowered, 0u);
+  EXPECT_EQ(none.largest, 0.0);
+  EXPECT_EQ(out.z, before.z);
+  const DrainageReport empty = drainValleys(out, {});
+  EXPECT_EQ(empty.cells, 0u);
+  EXPECT_EQ(out.z, before.z);
+}
+
+TEST(DrainValleys, AValleyAlreadyDrainingIsLeftNearlyAlone)
+{
+  // A clean V valley, descending 1 m per cell: the line already drains; only
+  // the channel below the cells beside it (0.03 m for 30 m cells) is cut.
+  const Heightfield before =
+    terrain(kW, kH, [](int i, int j) { return 500.0 + 5.0 * std::abs(i - kAxis) + j; });
+  Heightfield out = before;
+  const DrainageReport r = drainValleys(out, axisDownstream());
+  EXPECT_LT(r.largest, 0.1);
+  double largest = 0.0;
+  for (std::size_t k = 0; k < out.size(); ++k)
+  {
+    largest = std::max(largest, std::abs(static_cast<double>(out.z[k] - before.z[k])));
+  }
+  EXPECT_LT(largest, 0.1);
+}
+
+// ---------------------------------------------------------------------------
+
+namespace
+{
+
+constexpr int kSide = 160;
+constexpr double kSigma = 8.0;
+
+// Detail at a few cells over a ramp: what the patches carry.
+Heightfield detailedRamp()
+{
+  return terrain(kSide,
+    kSide,
+    [](int i, int j) { return 800.0 + 2.0 * i + 15.0 * std::sin(1.3 * i) * std::cos(0.9 * j); });
+}
+
+// The target: the same ramp with a broad 60 m hill the output lacks.
+Heightfield target()
+{
+  return terrain(kSide,
+    kSide,
+    [](int i, int j)
+    {
+      const double r2 = (i - 80.0) * (i - 80.0) + (j - 80.0) * (j - 80.0);
+      return 800.0 + 2.0 * i + 60.0 * std::exp(-r2 / (2 * 30.0 * 30.0));
+    });
+}
+
+} // namespace
+
+TEST(CorrectLandform, MovesTheLowPassWhereConfidentOnly)
+{
+  const Heightfield before = detailedRamp();
+  const Heightfield lowTarget = smoothLarge(target(), kSigma);
+  // Confident in the west half, not in the east half.
+  std::vector<float> confidence(before.size());
+  for (int j = 0; j < kSide; ++j)
+  {
+    for (int i = 0; i < kSide; ++i)
+    {
+      confidence[before.index(i, j)] = i < kSide / 2 ? 1.0f : 0.0f;
+    }
+  }
+  Heightfield out = before;
+  const double largest = correctLandform(out, lowTarget, confidence, kSigma);
+  // The change per cell is exactly the confidence times the low-pass misfit,
+  // and the largest of them is returned.
+  const Heightfield lowBefore = smoothLarge(before, kSigma);
+  double expectedLargest = 0.0;
+  for (std::size_t k = 0; k < out.size(); ++k)
+  {
+    const double change = confidence[k] * (lowTarget.z[k] - lowBefore.z[k]);
+    ASSERT_NEAR(out.z[k] - before.z[k], change, 1e-3) << k;
+    expectedLargest = std::max(expectedLargest, std::abs(change));
+  }
+  EXPECT_NEAR(largest, expectedLargest, 1e-9);
+  EXPECT_GT(largest, 40.0) << "the hill is missing from the output";
+  // Far inside the confident half (3 sigma from the edge of the map and of the
+  // confident part), the output's low-pass now matches the target's within a
+  // tenth of the misfit it had; the unconfident half keeps its own.
+  const Heightfield lowAfter = smoothLarge(out, kSigma);
+  const int margin = static_cast<int>(3 * kSigma);
+  double misfitBefore = 0.0;
+  double misfitAfter = 0.0;
+  for (int j = margin; j < kSide - margin; ++j)
+  {
+    for (int i = margin; i < kSide / 2 - margin; ++i)
+    {
+      misfitBefore =
+        std::max(misfitBefore, std::abs(double(lowBefore.at(i, j) - lowTarget.at(i, j))));
+      misfitAfter = std::max(misfitAfter, std::abs(double(lowAfter.at(i, j) - lowTarget.at(i, j))));
+    }
+    for (int i = kSide / 2; i < kSide; ++i)
+    {
+      ASSERT_EQ(out.at(i, j), before.at(i, j)) << i << ", " << j;
+    }
+  }
+  std::printf(
+    "low-pass misfit where confident: %.2f m before, %.2f m after\n", misfitBefore, misfitAfter);
+  EXPECT_LT(misfitAfter, 0.1 * misfitBefore);
+  // The detail finer than sigma stays: out - lowAfter is the old detail.
+  double detailChange = 0.0;
+  for (int j = margin; j < kSide - margin; ++j)
+  {
+    for (int i = margin; i < kSide / 2 - margin; ++i)
+    {
+      const double oldDetail = before.at(i, j) - lowBefore.at(i, j);
+      const double newDetail = out.at(i, j) - lowAfter.at(i, j);
+      detailChange = std::max(detailChange, std::abs(newDetail - oldDetail));
+    }
+  }
+  EXPECT_LT(detailChange, 0.1 * misfitBefore);
+  // Empty confidence means 1 everywhere; sigma 0 changes nothing.
+  Heightfield all = before;
+  correctLandform(all, lowTarget, {}, kSigma);
+  EXPECT_NEAR(
+    all.at(120, 80) - before.at(120, 80), lowTarget.at(120, 80) - lowBefore.at(120, 80), 1e-3);
+  Heightfield none = before;
+  EXPECT_EQ(correctLandform(none, lowTarget, {}, 0.0), 0.0);
+  EXPECT_EQ(none.z, before.z);
+}
+
+TEST(MeetConstraints, ConstrainedLinesSitAtTheirHeights)
+{
+  // A line across a rough plane asked to stand at 1500 m at its west end and
+  // 1600 m at its east end: exact on the line, fading to nothing 20 cells away.
+  Heightfield out =
+    terrain(120, 100, [](int i, int j) { return 1000.0 + 7.0 * std::sin(0.8 * i + 0.3 * j); });
+  const Heightfield before = out;
+  Polyline line{ { { 10, 50 }, { 110, 50 } }, { 1500.0f, 1600.0f }, FeatureType::Ridge };
+  const FeatureGraph g = polylineFeatures({ line }, out.width, out.height, kCell, kCell);
+  constexpr double kReach = 20.0;
+  meetConstraints(out, g, kReach);
+  for (int i = 10; i <= 110; ++i)
+  {
+    ASSERT_NEAR(out.at(i, 50), 1500.0 + (i - 10), 1e-2) << i;
+  }
+  for (int j = 0; j < out.height; ++j)
+  {
+    for (int i = 0; i < out.width; ++i)
+    {
+      const double d = i < 10 ? std::hypot(i - 10, j - 50)
+        : i > 110             ? std::hypot(i - 110, j - 50)
+                              : std::abs(j - 50);
+      if (d >= kReach + 1)
+      {
+        ASSERT_EQ(out.at(i, j), before.at(i, j)) << i << ", " << j;
+      }
+    }
+  }
+  // Harmonic between: the correction falls steadily from the line.
+  for (int k = 1; k < 20; ++k)
+  {
+    const double here = out.at(60, 50 + k) - before.at(60, 50 + k);
+    const double nearer = out.at(60, 50 + k - 1) - before.at(60, 50 + k - 1);
+    EXPECT_LT(here, nearer) << k;
+    EXPECT_GT(here, -1e-3) << k;
+  }
+  // Without constraints nothing moves.
+  Heightfield free = before;
+  meetConstraints(free,
+    polylineFeatures({ { line.points, {}, FeatureType::Ridge } }, 120, 100, kCell, kCell),
+    kReach);
+  EXPECT_EQ(free.z, before.z);
+}
