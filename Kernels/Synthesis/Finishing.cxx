@@ -224,6 +224,10 @@ DrainageReport drainValleys(Heightfield& out,
   const DrainageOptions& o)
 {
   DrainageReport report;
+  if (downstream.size() != out.size())
+  {
+    return report; // no valley lines on this grid
+  }
   std::vector<std::size_t> order;
   std::vector<std::uint8_t> line(out.size(), 0);
   for (std::size_t c = 0; c < out.size() && c < downstream.size(); ++c)
