@@ -176,6 +176,80 @@ class BundledSketchTest(unittest.TestCase):
                 self.assert_quality_bar(exemplar, sketch, 1)
 
 
+class DrawnSketchTest(unittest.TestCase):
+    """Sketches the test draws (sketch_drawing.py), 320 x 320 with a 40-cell patch (the default seed)."""
+
+    PATCH = "40"
+    BOTH = ("colorado.png", "alps-montblanc.png")
+
+    def setUp(self):
+        self.tmp = tempfile.mkdtemp(prefix="tsynth-drawn-")
+
+    def tearDown(self):
+        shutil.rmtree(self.tmp)
+
+    def assert_landforms(self, draw, exemplars, bar):
+        """Synthesises the drawing with each exemplar; returns the last run's stderr."""
+        sketch = draw().save(os.path.join(self.tmp, draw.__name__ + ".png"))
+        for exemplar in exemplars:
+            with self.subTest(exemplar=exemplar):
+                dem = os.path.join(PATHS.bundled_data, "dems", exemplar)
+                out = os.path.join(self.tmp, exemplar + ".tif")
+                report, stderr = synthesise(self, dem, sketch, out, "--patch", self.PATCH)
+                self.assertEqual(report["size"], [sketch_drawing.SIZE, sketch_drawing.SIZE])
+                self.assertLessEqual(report["quality"]["seam_index"], MAX_SEAM_INDEX)
+                assert_landform_bar(self, report, evaluate(self, out, dem, sketch, "--patch", self.PATCH), bar)
+        return stderr
+
+    # Each bar is measured over seeds 0-2 with Colorado and Mont Blanc (least values in the comments;
+    # the baselines' best in brackets), set as for BUNDLED_BARS.
+
+    def test_valley_tree_drains_to_the_border(self):
+        # depth 1.81 [-0.14], drainage 0.873 [0.174], descent 0.826 [0.607]
+        self.assert_landforms(sketch_drawing.valley_tree, self.BOTH,
+                              {"valley_depth_ratio": 1.4, "valley_drainage": 0.75, "valley_descent": 0.7})
+
+    def test_parallel_ridges(self):
+        # prominence 1.73 [-0.07], shedding 0.991 [0.780]
+        self.assert_landforms(sketch_drawing.parallel_ridges, self.BOTH,
+                              {"ridge_prominence_ratio": 1.3, "ridge_shedding": 0.93})
+
+    def test_ridge_ring_inside_a_valley_ring(self):
+        # prominence 1.91 [0.72], depth 2.44 [0.68], order 1.000 [0.675], shedding 0.980 [0.827]; the
+        # valley ring is a loop whose floor rises to a divide, so neither descent nor drainage is asked
+        # (0.50-0.92, 0.37-0.60).
+        stderr = self.assert_landforms(sketch_drawing.rings, self.BOTH,
+                                       {"ridge_prominence_ratio": 1.4, "valley_depth_ratio": 1.8,
+                                        "ridge_over_valley": 0.97, "ridge_shedding": 0.93})
+        self.assertIn("has a loop", stderr)
+
+    def test_letters_t_and_s(self):
+        # prominence 1.45 [0.19], shedding 0.975 [0.773]
+        self.assert_landforms(sketch_drawing.letters, self.BOTH,
+                              {"ridge_prominence_ratio": 1.1, "ridge_shedding": 0.92})
+
+    def test_spiral_ridge(self):
+        # Colorado: prominence 2.05 [0.68], shedding 0.996 [0.836]. Mont Blanc fails, see below.
+        self.assert_landforms(sketch_drawing.spiral, ("colorado.png",),
+                              {"ridge_prominence_ratio": 1.5, "ridge_shedding": 0.93})
+
+    @unittest.expectedFailure
+    def test_spiral_ridge_with_mont_blanc_keeps_its_heights(self):
+        # A known fault of the default merge (new): on this sketch with Mont Blanc the heights drift to
+        # 112-7092 m (the exemplar spans 454-4810 m, the target 2006-3028 m) and the spiral becomes a
+        # scarp or a trench between terraces: report prominence 0.22 at seed 0, -1.29 at seed 8, seam
+        # index 1.26-1.68 on six seeds of eight. With --merge poisson, shepard or cut the heights stay
+        # within 880-3220 m and the prominence is 2.09-2.24.
+        sketch = sketch_drawing.spiral().save(os.path.join(self.tmp, "spiral.png"))
+        dem = os.path.join(PATHS.bundled_data, "dems", "alps-montblanc.png")
+        out = os.path.join(self.tmp, "spiral.tif")
+        report, _ = synthesise(self, dem, sketch, out, "--patch", self.PATCH)
+        heights = tsynth("info", out, "--json")
+        self.assertEqual(heights.returncode, 0, heights.stderr)
+        self.assertLessEqual(json.loads(heights.stdout)["z_max_m"], 4810.0)
+        self.assertGreaterEqual(report["landform_quality"]["ridge_prominence_ratio"], 1.5)
+
+
 class SynthTest(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.mkdtemp(prefix="tsynth-synth-")
