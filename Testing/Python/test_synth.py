@@ -270,16 +270,29 @@ class SynthTest(unittest.TestCase):
         with open(report) as f:
             return json.load(f)
 
-    def test_same_result_on_opencl_and_cpu(self):
+    def test_same_seed_gives_the_same_bits_on_opencl_and_cpu_and_another_seed_another_terrain(self):
         sketch = os.path.join(self.sketches, "strokes_y_ridges.png")
-        a = self.synth("colorado.png", sketch, self.path("opencl.tif"), "--backend", "opencl", "--size", "320x320")
-        b = self.synth("colorado.png", sketch, self.path("cpu.tif"), "--backend", "cpu", "--size", "320x320")
-        self.assertIn("opencl", a["backend"])
-        self.assertEqual(b["backend"], "cpu")
-        self.assertTrue(filecmp.cmp(self.path("opencl.tif"), self.path("cpu.tif"), shallow=False))
-        again = self.synth("colorado.png", sketch, self.path("cpu2.tif"), "--backend", "cpu", "--size", "320x320")
-        self.assertEqual(again["placements"], b["placements"])
-        self.assertTrue(filecmp.cmp(self.path("cpu.tif"), self.path("cpu2.tif"), shallow=False))
+
+        def run(name, backend, *seed):
+            return self.synth("colorado.png", sketch, self.path(name), "--backend", backend, "--size", "320x320",
+                              *seed)
+
+        for tag, seed in (("default", ()), ("5", ("--seed", "5"))):
+            with self.subTest(seed=tag):
+                a = run("opencl-%s.tif" % tag, "opencl", *seed)
+                b = run("cpu-%s.tif" % tag, "cpu", *seed)
+                self.assertIn("opencl", a["backend"])
+                self.assertEqual(b["backend"], "cpu")
+                self.assertEqual(a["seed"], b["seed"])
+                self.assertTrue(filecmp.cmp(self.path("opencl-%s.tif" % tag), self.path("cpu-%s.tif" % tag),
+                                            shallow=False))
+        again = run("cpu-5-again.tif", "cpu", "--seed", "5")
+        self.assertTrue(filecmp.cmp(self.path("cpu-5.tif"), self.path("cpu-5-again.tif"), shallow=False))
+        with open(self.path("cpu-default.tif.json")) as f:
+            first = json.load(f)
+        self.assertEqual((first["seed"], again["seed"]), (0, 5))
+        self.assertNotEqual(first["placement_list"], again["placement_list"])
+        self.assertFalse(filecmp.cmp(self.path("cpu-default.tif"), self.path("cpu-5.tif"), shallow=False))
 
     def test_lambda_grey_sketch_keeps_ring_and_lambda(self):
         sketch = os.path.join(self.sketches, "lambda_circle_grey.png")
