@@ -582,7 +582,8 @@ void writeReport(const std::string& path,
   double prepare)
 {
   double seamSum = 0.0;
-  // [order, feature, exemplar, variant, x0, y0, match cost, seam cost, landform misfit (m)]
+  // [order, feature, exemplar, variant, x0, y0, match cost, seam cost, landform misfit (m),
+  //  vertical offset (m)]
   nlohmann::json list = nlohmann::json::array();
   for (const Placement& p : r.placements)
   {
@@ -595,7 +596,8 @@ void writeReport(const std::string& path,
       p.y0,
       p.matchCost,
       p.seamCost,
-      p.landformMisfit });
+      p.landformMisfit,
+      p.offset });
   }
   const LandformStatistics& l = setup.landform;
   auto profile = [](const LandformProfile& p)

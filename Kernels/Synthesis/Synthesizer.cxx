@@ -32,6 +32,11 @@ constexpr int kMaxAttempts = 4;        // placements tried at one fill site
 // landforms more strongly but flattened the land (slope distance 0.18-0.21
 // against 0.04-0.08 on the bundled sketches).
 constexpr double kCorrectionScaleInPatches = 0.25;
+// The merge spreads the seam's gradient mismatch this far (in patches: Tasse's
+// 20 cells at 80); a fixed 20 cells on smaller patches tilted them by up to
+// kilometres on steep exemplars (Mont Blanc at 40-cell patches: 112-8615 m
+// where the exemplar spans 454-4810 m).
+constexpr double kShepardRadiusInPatches = 0.25;
 // Anchors every kAnchorEvery fill windows (two patches apart), where at most
 // this share of the window is filled and the target is at least this confident.
 constexpr std::size_t kAnchorEvery = 4;
@@ -433,6 +438,7 @@ public:
     const float bestOffset = offsets[bestIndex];
     MergeOptions mo;
     mo.mode = o_.merge;
+    mo.shepardRadius = kShepardRadiusInPatches * P_;
     const MergeResult r = mergers_[0].merge(
       out_, filled_, best, x0, y0, feature ? &core : nullptr, mo, &dry[bestIndex]);
     const int id = static_cast<int>(result_.placements.size());
