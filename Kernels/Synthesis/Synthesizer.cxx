@@ -37,11 +37,6 @@ constexpr double kCorrectionScaleInPatches = 0.25;
 // kilometres on steep exemplars (Mont Blanc at 40-cell patches: 112-8615 m
 // where the exemplar spans 454-4810 m).
 constexpr double kShepardRadiusInPatches = 0.25;
-// Anchors every kAnchorEvery fill windows (two patches apart), where at most
-// this share of the window is filled and the target is at least this confident.
-constexpr std::size_t kAnchorEvery = 4;
-constexpr double kAnchorMaxFilled = 0.25;
-constexpr double kAnchorMinConfidence = 0.5;
 // The data term samples the target's slope every few cells: plenty for a mean.
 constexpr int kDataTermStride = 4;
 // Streams of the seed (Random.h): one per kind of decision.
@@ -578,21 +573,6 @@ public:
     return cells > 0 ? static_cast<double>(known) / static_cast<double>(cells) : 1.0;
   }
 
-  double meanConfidence(int x0, int y0) const
-  {
-    double sum = 0.0;
-    std::size_t cells = 0;
-    for (int j = y0; j < std::min(out_.height, y0 + P_); ++j)
-    {
-      for (int i = x0; i < std::min(out_.width, x0 + P_); ++i)
-      {
-        sum += confidence_[out_.index(i, j)];
-        ++cells;
-      }
-    }
-    return cells > 0 ? sum / static_cast<double>(cells) : 0.0;
-  }
-
   std::size_t fillWindow(int x0, int y0)
   {
     return place(
@@ -600,27 +580,6 @@ public:
       x0,
       y0,
       false);
-  }
-
-  // Anchors: before the fill spreads from the feature patches, lone patches
-  // matched to the landform alone are placed where the target is confident,
-  // two patches apart, so no chain of fill patches, each fitted to the one
-  // before, runs far enough to drift off the landform.
-  void placeAnchors(const FillGrid& g)
-  {
-    for (std::size_t by = kAnchorEvery / 2; by < g.ys.size(); by += kAnchorEvery)
-    {
-      for (std::size_t bx = kAnchorEvery / 2; bx < g.xs.size(); bx += kAnchorEvery)
-      {
-        const int x0 = g.xs[bx];
-        const int y0 = g.ys[by];
-        if (filledShare(x0, y0) <= kAnchorMaxFilled &&
-          meanConfidence(x0, y0) >= kAnchorMinConfidence)
-        {
-          fillWindow(x0, y0);
-        }
-      }
-    }
   }
 
   // The best-first fill: a max-heap of window priorities (confidence + data
@@ -641,7 +600,6 @@ public:
   void fill()
   {
     const FillGrid g = fillGrid();
-    placeAnchors(g);
     const std::vector<double> data = dataTerms(g);
     auto priorityOf = [&](std::size_t s, double& priority)
     {
