@@ -14,6 +14,11 @@ namespace
 {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
+// The coarse pass's landform samples: every kCoarseLandformStep-th of each row
+// and column of the kLandformSide x kLandformSide grid.
+constexpr int kCoarseLandformStep = 2;
+constexpr int kCoarseLandformSide = (kLandformSide + kCoarseLandformStep - 1) / kCoarseLandformStep;
+constexpr int kCoarseLandformSamples = kCoarseLandformSide * kCoarseLandformSide;
 
 // valid[y * (w - side + 1) + x] = 1 when the side x side window at (x, y) has
 // no invalid cell, from a summed-area table of invalid cells.
@@ -331,9 +336,33 @@ DenseMatcher::DenseMatcher(const std::vector<const Heightfield*>& exemplars, con
       oriented_.push_back(std::move(r));
     }
   }
+  stackLandform();
   const double mean = count > 0 ? sum / count : 0.0;
   heightScale_ =
     std::max(1e-6, std::sqrt(std::max(0.0, square / std::max(1.0, count) - mean * mean)));
+}
+
+void DenseMatcher::stackLandform()
+{
+  // The landform's block means go below the blocks (and below the pairs) of
+  // each oriented exemplar, from a row shared by all, so landform terms are
+  // ordinary terms kLandformRow rows down: one pass sums both, the pruning
+  // bound included, with no pass of its own.
+  landformRow_ = 0;
+  for (const Oriented& r : oriented_)
+  {
+    landformRow_ = std::max(landformRow_, r.coarseHeight);
+  }
+  for (Oriented& r : oriented_)
+  {
+    const std::size_t below =
+      static_cast<std::size_t>(landformRow_) * static_cast<std::size_t>(r.coarseStride);
+    for (std::vector<float>* image : { &r.coarse, &r.pairs })
+    {
+      image->resize(below, 0.0f);
+      image->insert(image->end(), r.landformBlocks.begin(), r.landformBlocks.end());
+    }
+  }
 }
 
 void CoarseTerms::add(int r, int c, float h, float w)
@@ -402,22 +431,36 @@ CoarseQuery DenseMatcher::coarseQuery(const DenseQuery& q) const
   // approximate known / f^2 times its mean; with nothing known any scale will do).
   const double known =
     static_cast<double>(std::count(q.known.begin(), q.known.end(), std::uint8_t{ 1 }));
+  // The coarse pass reads every other sample (3 x 3 of the 5 x 5, each
+  // standing for its share of all 25): the low-passed terrain changes little
+  // between neighbouring samples, refine() reads them all, and the coarse pass
+  // reads these at every offset of every exemplar.
   const double scale = options_.landformWeight / options_.overlapWeight *
     (known > 0.0 ? known : static_cast<double>(P) * P) /
-    (static_cast<double>(f) * f * kLandformSamples);
-  for (int b = 0; b < kLandformSide; ++b)
+    (static_cast<double>(f) * f * kCoarseLandformSamples);
+  for (int b = 0; b < kLandformSide; b += kCoarseLandformStep)
   {
-    for (int a = 0; a < kLandformSide; ++a)
+    for (int a = 0; a < kLandformSide; a += kCoarseLandformStep)
     {
       const std::size_t k = static_cast<std::size_t>(b * kLandformSide + a);
       const float w = q.landform.weights[k];
       if (w > 0.0f)
       {
-        c.landform.add(landformCell(b, P, f) / f,
-          landformCell(a, P, f) / f,
-          q.landform.heights[k],
-          static_cast<float>(w * scale));
+        const int row = landformRow_ + landformCell(b, P, f) / f;
+        const int column = landformCell(a, P, f) / f;
+        c.terms.add(row, column, q.landform.heights[k], static_cast<float>(w * scale));
+        c.landform.add(row, column, q.landform.heights[k], static_cast<float>(w * scale));
       }
+    }
+  }
+  // The bound reads the same landform terms (from below the pairs): it stays a
+  // lower bound of the full sum. Only with overlap terms to prune by.
+  if (!c.bound.empty())
+  {
+    for (std::size_t e = 0; e < c.landform.size(); ++e)
+    {
+      c.bound.add(
+        c.landform.row[e], c.landform.column[e], c.landform.heights[e], c.landform.weights[e]);
     }
   }
   return c;
@@ -447,9 +490,7 @@ std::vector<std::vector<float>> DenseMatcher::coarseSsd(const CoarseTerms& q,
   {
     const auto [o, y] = tasks[static_cast<std::size_t>(t)];
     const Oriented& r = oriented_[o];
-    const std::vector<float>& pixels = image == CoarseImage::Blocks ? r.coarse
-      : image == CoarseImage::Pairs                                 ? r.pairs
-                                                                    : r.landformBlocks;
+    const std::vector<float>& pixels = image == CoarseImage::Blocks ? r.coarse : r.pairs;
     std::vector<float>& costs = out[o];
     // Sixteen neighbouring offsets at a time, like the OpenCL kernel (DenseSsd.cl),
     // skipping runs of offsets that are all invalid or not asked for.
@@ -476,31 +517,9 @@ std::vector<std::vector<float>> DenseMatcher::coarseSsd(const CoarseTerms& q,
   return out;
 }
 
-namespace
-{
-
-// a[o][k] += b[o][k] (b may be empty: nothing to add).
-void addCosts(std::vector<std::vector<float>>& a, const std::vector<std::vector<float>>& b)
-{
-  for (std::size_t o = 0; o < a.size() && o < b.size(); ++o)
-  {
-    for (std::size_t k = 0; k < a[o].size(); ++k)
-    {
-      a[o][k] += b[o][k];
-    }
-  }
-}
-
-} // namespace
-
 std::vector<std::vector<float>> DenseMatcher::coarseCosts(const CoarseQuery& q) const
 {
-  std::vector<std::vector<float>> costs = coarseSsd(q.terms, CoarseImage::Blocks);
-  if (!q.landform.empty())
-  {
-    addCosts(costs, coarseSsd(q.landform, CoarseImage::Landform));
-  }
-  return costs;
+  return coarseSsd(q.terms, CoarseImage::Blocks);
 }
 
 std::size_t DenseMatcher::headSize() const
@@ -511,19 +530,13 @@ std::size_t DenseMatcher::headSize() const
 std::vector<std::vector<float>> DenseMatcher::prunedCoarseCosts(const CoarseQuery& q,
   const CoarseSsdFunction& ssd) const
 {
-  // The landform terms are few: computed everywhere and added to both the
-  // bound and the full sums, the bound stays a lower bound.
-  const std::vector<std::vector<float>> landform = q.landform.empty()
-    ? std::vector<std::vector<float>>()
-    : ssd(q.landform, CoarseImage::Landform, nullptr);
-  if (q.bound.empty() || q.terms.empty())
+  // Landform terms are among q.terms and q.bound (stackLandform).
+  const std::size_t overlapTerms = q.terms.size() - q.landform.size();
+  if (q.bound.empty() || overlapTerms == 0)
   {
-    std::vector<std::vector<float>> costs = ssd(q.terms, CoarseImage::Blocks, nullptr);
-    addCosts(costs, landform);
-    return costs;
+    return ssd(q.terms, CoarseImage::Blocks, nullptr);
   }
-  std::vector<std::vector<float>> bound = ssd(q.bound, CoarseImage::Pairs, nullptr);
-  addCosts(bound, landform);
+  const std::vector<std::vector<float>> bound = ssd(q.bound, CoarseImage::Pairs, nullptr);
   std::vector<std::vector<std::uint8_t>> runs(oriented_.size());
   const std::size_t head = headSize();
   const long orientedCount = static_cast<long>(oriented_.size());
@@ -545,14 +558,12 @@ std::vector<std::vector<float>> DenseMatcher::prunedCoarseCosts(const CoarseQuer
     float threshold = 0.0f;
     for (std::size_t idx : best)
     {
-      const float extra = landform.empty() ? 0.0f : landform[o][idx];
       threshold = std::max(threshold,
         offsetSsd(q.terms,
           r.coarse,
           r.coarseStride,
           static_cast<int>(idx % nx),
-          static_cast<int>(idx / nx)) +
-          extra);
+          static_cast<int>(idx / nx)));
     }
     threshold = threshold * (1.0f + 1e-3f) + 1e-30f;
     const std::size_t groups = (nx + 15) / 16;
@@ -571,9 +582,7 @@ std::vector<std::vector<float>> DenseMatcher::prunedCoarseCosts(const CoarseQuer
       }
     }
   }
-  std::vector<std::vector<float>> costs = ssd(q.terms, CoarseImage::Blocks, &runs);
-  addCosts(costs, landform);
-  return costs;
+  return ssd(q.terms, CoarseImage::Blocks, &runs);
 }
 
 TSYNTH_VECTOR_CLONES void DenseMatcher::overlapRow(const std::vector<int>& cells,

@@ -91,17 +91,17 @@ struct CoarseQuery
   // group >= 4 w (mean d)^2, so this SSD is a lower bound of the one over
   // `terms` at every offset, for a quarter of the work.
   CoarseTerms bound;
-  // The landform samples, read from the low-passed exemplar's block means, with
-  // weights that keep their share of the cost as in refine().
+  // The landform samples, read from the low-passed exemplar's block means
+  // stacked below the blocks (and pairs), with weights that keep their share of
+  // the cost as in refine(); they are also the last terms of `terms` and `bound`.
   CoarseTerms landform;
 };
 
 // Which image of an oriented exemplar a coarse SSD reads.
 enum class CoarseImage
 {
-  Blocks,  // f x f block means
-  Pairs,   // means of 2 x 2 blocks
-  Landform // f x f block means of the low-passed exemplar
+  Blocks, // f x f block means (then the low-passed exemplar's, see stackLandform)
+  Pairs   // means of 2 x 2 blocks (then the same)
 };
 
 class DenseMatcher
@@ -118,9 +118,11 @@ public:
     double centreX = 0.0, centreY = 0.0; // where the exemplar's centre lies in `full`
     int coarseWidth = 0, coarseHeight = 0;
     int coarseStride = 0;      // row length, padded so 16 offsets can be read at once
-    std::vector<float> coarse; // coarseHeight x coarseStride block means (0 where invalid)
-    std::vector<float> pairs;  // same layout: mean of the 2 x 2 blocks from (a, b) on
-    Heightfield landform;      // the low-passed exemplar (LandformTerm.h), laid out as `full`
+    std::vector<float> coarse; // coarseHeight x coarseStride block means (0 where invalid),
+                               // then the landform's (landformBlocks) from a shared row
+    std::vector<float>
+      pairs; // same layout: mean of the 2 x 2 blocks from (a, b) on, then the same landform rows
+    Heightfield landform; // the low-passed exemplar (LandformTerm.h), laid out as `full`
     std::vector<float> landformBlocks;     // its block means, laid out as `coarse`
     std::vector<std::uint8_t> coarseValid; // per coarse offset: whole window valid
     std::vector<std::uint8_t> groupValid;  // per run of 16 coarse offsets: any of them valid
@@ -195,7 +197,10 @@ private:
     double landformSquares,
     double landformWeight) const;
 
+  void stackLandform();
+
   DenseOptions options_;
+  int landformRow_ = 0; // where the landform block means start in coarse and pairs
   double heightScale_ = 1.0;
   std::vector<Oriented> oriented_;
   std::vector<NoiseVariance> noise_; // per exemplar

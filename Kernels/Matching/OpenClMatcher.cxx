@@ -299,7 +299,7 @@ std::vector<float> OpenClFeatureScorer::score(const FeatureQuery& q, const Match
 
 struct OpenClDenseScorer::Buffers
 {
-  DeviceBuffer blocks, pairs, landform; // every oriented exemplar's image, concatenated
+  DeviceBuffer blocks, pairs; // every oriented exemplar's image, concatenated
   DeviceBuffer rowOriented, rowY, imageStart, strides, offsetsX, runStart, outStart;
   DeviceBuffer output;
   std::vector<std::uint8_t> runs;     // groupValid of all, concatenated
@@ -316,7 +316,7 @@ OpenClDenseScorer::OpenClDenseScorer(std::shared_ptr<OpenClDevice> device,
 {
   cl_context ctx = device_->runtime().context;
   Buffers& b = *buffers_;
-  std::vector<float> blocks, pairs, landform;
+  std::vector<float> blocks, pairs;
   std::vector<int> rowOriented, rowY, imageStart, strides, offsetsX, runStart, outStart;
   for (std::size_t i = 0; i < matcher.oriented().size(); ++i)
   {
@@ -324,11 +324,9 @@ OpenClDenseScorer::OpenClDenseScorer(std::shared_ptr<OpenClDevice> device,
     imageStart.push_back(static_cast<int>(blocks.size()));
     blocks.insert(blocks.end(), o.coarse.begin(), o.coarse.end());
     pairs.insert(pairs.end(), o.pairs.begin(), o.pairs.end());
-    landform.insert(landform.end(), o.landformBlocks.begin(), o.landformBlocks.end());
     // One spare row: the last work-items read 16 offsets past the final one.
     blocks.resize(blocks.size() + static_cast<std::size_t>(o.coarseStride), 0.0f);
     pairs.resize(pairs.size() + static_cast<std::size_t>(o.coarseStride), 0.0f);
-    landform.resize(landform.size() + static_cast<std::size_t>(o.coarseStride), 0.0f);
     strides.push_back(o.coarseStride);
     offsetsX.push_back(o.offsetsX);
     runStart.push_back(static_cast<int>(b.runs.size()));
@@ -351,7 +349,6 @@ OpenClDenseScorer::OpenClDenseScorer(std::shared_ptr<OpenClDevice> device,
   b.rowCount = rowY.size();
   b.blocks = upload(ctx, blocks);
   b.pairs = upload(ctx, pairs);
-  b.landform = upload(ctx, landform);
   b.rowOriented = upload(ctx, rowOriented);
   b.rowY = upload(ctx, rowY);
   b.imageStart = upload(ctx, imageStart);
@@ -416,9 +413,7 @@ std::vector<std::vector<float>> OpenClDenseScorer::coarseSsd(const CoarseTerms& 
     const DeviceBuffer weights = upload(r.context, q.weights);
     const DeviceBuffer runMask = upload(r.context, asked);
     cl_kernel k = r.coarseSsd;
-    const DeviceBuffer& pixels = image == CoarseImage::Blocks ? b.blocks
-      : image == CoarseImage::Pairs                           ? b.pairs
-                                                              : b.landform;
+    const DeviceBuffer& pixels = image == CoarseImage::Blocks ? b.blocks : b.pairs;
     const cl_mem args[] = { pixels.get(),
       b.rowOriented.get(),
       b.rowY.get(),

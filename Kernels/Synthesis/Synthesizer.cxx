@@ -37,6 +37,10 @@ constexpr double kCorrectionScaleInPatches = 0.25;
 // kilometres on steep exemplars (Mont Blanc at 40-cell patches: 112-8615 m
 // where the exemplar spans 454-4810 m).
 constexpr double kShepardRadiusInPatches = 0.25;
+// The seed moves the fill's inner windows by up to this share of a patch.
+constexpr double kGridJitterInPatches = 0.125;
+// Windows per axis are fewer than this (it spaces the seed's draws per axis).
+constexpr std::uint64_t kMaxGridWindows = 1u << 20;
 // The data term samples the target's slope every few cells: plenty for a mean.
 constexpr int kDataTermStride = 4;
 // Streams of the seed (Random.h): one per kind of decision.
@@ -86,9 +90,10 @@ public:
     , filled_(out_.size(), 0)
     , noise_(target.field)
     , lowTarget_(landformImage(target.field, o.patchSize))
-    , confidence_(target.weight.size() == target.field.size()
-          ? target.weight
+    , ownConfidence_(target.weight.size() == target.field.size()
+          ? std::vector<float>()
           : std::vector<float>(target.field.size(), 1.0f))
+    , confidence_(target.weight.size() == target.field.size() ? target.weight : ownConfidence_)
   {
     out_.cellX = target.field.cellX;
     out_.cellY = target.field.cellY;
@@ -495,8 +500,10 @@ public:
     }
   }
 
-  // The fill's windows: a grid half a patch apart (its phase drawn from the
-  // seed), plus windows flush with the output's edges.
+  // The fill's windows: along each axis, windows flush with both edges and
+  // evenly spaced at most half a patch apart in between, each inner one moved
+  // by up to an eighth of a patch as the seed draws (consecutive windows still
+  // overlap by at least a quarter patch).
   struct FillGrid
   {
     std::vector<int> xs, ys;
@@ -505,15 +512,24 @@ public:
     int y0(std::size_t s) const { return ys[s / xs.size()]; }
   };
 
-  static std::vector<int> gridLine(int length, int patch, int phase)
+  std::vector<int> gridLine(int length, std::uint64_t axis) const
   {
-    const int step = std::max(1, patch / 2);
-    std::vector<int> v{ 0 };
-    for (int x = phase; x + patch < length; x += step)
+    const int step = std::max(1, P_ / 2);
+    const int span = std::max(0, length - P_);
+    const int windows = std::max(1, (span + step - 1) / step);
+    std::vector<int> v;
+    for (int k = 0; k <= windows; ++k)
     {
-      v.push_back(x);
+      const double even = static_cast<double>(k) * span / windows;
+      const bool inner = k > 0 && k < windows;
+      const double jitter = inner
+        ? (seededUniform(
+             o_.seed, kStreamGrid, axis * kMaxGridWindows + static_cast<std::uint64_t>(k)) -
+            0.5) *
+          kGridJitterInPatches * 2.0 * P_
+        : 0.0;
+      v.push_back(std::clamp(static_cast<int>(std::lround(even + jitter)), 0, span));
     }
-    v.push_back(std::max(0, length - patch));
     std::sort(v.begin(), v.end());
     v.erase(std::unique(v.begin(), v.end()), v.end());
     return v;
@@ -521,12 +537,9 @@ public:
 
   FillGrid fillGrid() const
   {
-    const int step = std::max(1, P_ / 2);
     FillGrid g;
-    g.xs =
-      gridLine(out_.width, P_, static_cast<int>(seededUniform(o_.seed, kStreamGrid, 0) * step));
-    g.ys =
-      gridLine(out_.height, P_, static_cast<int>(seededUniform(o_.seed, kStreamGrid, 1) * step));
+    g.xs = gridLine(out_.width, 0);
+    g.ys = gridLine(out_.height, 1);
     return g;
   }
 
@@ -786,9 +799,10 @@ private:
   std::vector<std::uint8_t> filled_;
   std::vector<std::uint8_t> line_;
   NoiseVariance noise_;
-  Heightfield lowTarget_;         // the target through the landform term's low-pass
-  Heightfield correctionTarget_;  // ... through the landform correction's
-  std::vector<float> confidence_; // the target's confidence per cell
+  Heightfield lowTarget_;                // the target through the landform term's low-pass
+  Heightfield correctionTarget_;         // ... through the landform correction's
+  std::vector<float> ownConfidence_;     // 1 everywhere, for targets that give none
+  const std::vector<float>& confidence_; // the target's confidence per cell
   // One per OpenMP thread.
   std::vector<PatchMerger> mergers_ =
     std::vector<PatchMerger>(static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
