@@ -1,5 +1,7 @@
 #include "Heightfield.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <limits>
 
@@ -79,6 +81,18 @@ void normaliseMask(Heightfield& hf)
       hf.z[k] = std::numeric_limits<float>::quiet_NaN();
     }
   }
+}
+
+double percentile(std::vector<float> values, double p)
+{
+  if (values.empty())
+  {
+    return 0.0;
+  }
+  const std::size_t k = std::min(
+    values.size() - 1, static_cast<std::size_t>(p * static_cast<double>(values.size() - 1)));
+  std::nth_element(values.begin(), values.begin() + static_cast<long>(k), values.end());
+  return values[k];
 }
 
 } // namespace tsynth

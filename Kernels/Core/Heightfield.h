@@ -65,6 +65,9 @@ struct HeightRange
 // Range and mean over valid cells only (nodata never enters the figures).
 HeightRange computeHeightRange(const Heightfield& hf);
 
+// The value at quantile p (0..1) of `values` (nearest rank below; 0 if empty).
+double percentile(std::vector<float> values, double p);
+
 // Marks NaN and infinite heights invalid; drops the mask if every cell is valid.
 void normaliseMask(Heightfield& hf);
 

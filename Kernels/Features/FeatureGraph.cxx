@@ -27,6 +27,30 @@ float heightAt(const Heightfield* hf, int i, int j)
 
 } // namespace
 
+void forEachChainCell(const FeatureChain& chain,
+  int width,
+  int height,
+  const std::function<void(int, int, std::size_t, double)>& visit)
+{
+  for (std::size_t k = 1; k < chain.points.size(); ++k)
+  {
+    const Point2& a = chain.points[k - 1];
+    const Point2& b = chain.points[k];
+    const int steps =
+      std::max(1, static_cast<int>(std::ceil(2.0 * std::hypot(b.x - a.x, b.y - a.y))));
+    for (int s = 0; s <= steps; ++s)
+    {
+      const double t = static_cast<double>(s) / steps;
+      const int i = static_cast<int>(std::lround(a.x + t * (b.x - a.x)));
+      const int j = static_cast<int>(std::lround(a.y + t * (b.y - a.y)));
+      if (i >= 0 && j >= 0 && i < width && j < height)
+      {
+        visit(i, j, k, t);
+      }
+    }
+  }
+}
+
 double FeatureChain::length() const
 {
   double sum = 0.0;

@@ -3,7 +3,9 @@
 // the placement use.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace tsynth
@@ -99,6 +101,14 @@ void computeBreadthFirstOrder(FeatureGraph& graph);
 
 // Control points of every node on a circle of `radius` cells.
 void computeControlPoints(FeatureGraph& graph, double radius);
+
+// Visits the cells (i, j) under a chain's polyline, drawn in steps of at most
+// half a cell, with the segment k (points k - 1 to k) and the position t (0..1)
+// along it; cells off the width x height grid are skipped.
+void forEachChainCell(const FeatureChain& chain,
+  int width,
+  int height,
+  const std::function<void(int i, int j, std::size_t k, double t)>& visit);
 
 // Appends b's nodes and chains to a (renumbered) and recomputes the order.
 void appendGraph(FeatureGraph& a, const FeatureGraph& b);

@@ -3,6 +3,7 @@
 #include "../Features/Profiles.h"
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 #include <random>
 
@@ -82,18 +83,6 @@ void appendLaplacians(const Heightfield& hf, std::vector<float>& v)
   }
 }
 
-double percentile(std::vector<float>& v, double fraction)
-{
-  if (v.empty())
-  {
-    return 0.0;
-  }
-  const std::size_t k =
-    std::min(v.size() - 1, static_cast<std::size_t>(fraction * static_cast<double>(v.size() - 1)));
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
-  return v[k];
-}
-
 // Slope-angle counts in 0.1 degree bins, and their sum and count.
 void addSlopes(const Heightfield& hf, std::vector<double>& h, double& sum, double& n)
 {
@@ -122,7 +111,7 @@ double laplacianPercentile(const Heightfield& hf, double fraction)
 {
   std::vector<float> v;
   appendLaplacians(hf, v);
-  return percentile(v, fraction);
+  return percentile(std::move(v), fraction);
 }
 
 double seamIndex(const Heightfield& output, const std::vector<const Heightfield*>& exemplars)
@@ -132,7 +121,7 @@ double seamIndex(const Heightfield& output, const std::vector<const Heightfield*
   {
     appendLaplacians(*e, v);
   }
-  const double reference = percentile(v, 0.999);
+  const double reference = percentile(std::move(v), 0.999);
   return reference > 0 ? laplacianPercentile(output) / reference : 0.0;
 }
 

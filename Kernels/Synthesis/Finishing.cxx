@@ -335,30 +335,20 @@ void meetConstraints(Heightfield& out, const FeatureGraph& graph, double reach)
       }
       last = k;
     }
-    for (std::size_t k = 1; k < c.points.size(); ++k)
-    {
-      if (std::isnan(z[k - 1]) || std::isnan(z[k]))
+    forEachChainCell(c,
+      w,
+      h,
+      [&](int i, int j, std::size_t k, double t)
       {
-        continue;
-      }
-      const Point2& a = c.points[k - 1];
-      const Point2& b = c.points[k];
-      const int steps =
-        std::max(1, static_cast<int>(std::ceil(2.0 * std::hypot(b.x - a.x, b.y - a.y))));
-      for (int s = 0; s <= steps; ++s)
-      {
-        const double t = static_cast<double>(s) / steps;
-        const int i = static_cast<int>(std::lround(a.x + t * (b.x - a.x)));
-        const int j = static_cast<int>(std::lround(a.y + t * (b.y - a.y)));
-        if (i >= 0 && j >= 0 && i < w && j < h && out.isValid(i, j))
+        if (std::isnan(z[k - 1]) || std::isnan(z[k]) || !out.isValid(i, j))
         {
-          const std::size_t cell = out.index(i, j);
-          correction[cell] = (1 - t) * z[k - 1] + t * z[k] - out.z[cell];
-          onLine[cell] = 1;
-          any = true;
+          return;
         }
-      }
-    }
+        const std::size_t cell = out.index(i, j);
+        correction[cell] = (1 - t) * z[k - 1] + t * z[k] - out.z[cell];
+        onLine[cell] = 1;
+        any = true;
+      });
   }
   if (!any)
   {

@@ -47,42 +47,6 @@ constexpr double kBorderReachInPatches = 0.125;
 // equally good: the seed picks one.
 constexpr double kOutletTie = 0.02;
 
-double percentile(std::vector<float> v, double p)
-{
-  if (v.empty())
-  {
-    return 0.0;
-  }
-  const std::size_t k = std::min(v.size() - 1, static_cast<std::size_t>(p * (v.size() - 1)));
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
-  return v[k];
-}
-
-// Visits the cells under a chain, with the segment and position along it.
-void walkChain(const FeatureChain& chain,
-  int w,
-  int h,
-  const std::function<void(int, int, std::size_t, double)>& visit)
-{
-  for (std::size_t k = 1; k < chain.points.size(); ++k)
-  {
-    const Point2& a = chain.points[k - 1];
-    const Point2& b = chain.points[k];
-    const int steps =
-      std::max(1, static_cast<int>(std::ceil(2.0 * std::hypot(b.x - a.x, b.y - a.y))));
-    for (int s = 0; s <= steps; ++s)
-    {
-      const double t = static_cast<double>(s) / steps;
-      const int i = static_cast<int>(std::lround(a.x + t * (b.x - a.x)));
-      const int j = static_cast<int>(std::lround(a.y + t * (b.y - a.y)));
-      if (i >= 0 && j >= 0 && i < w && j < h)
-      {
-        visit(i, j, k, t);
-      }
-    }
-  }
-}
-
 // ---------------------------------------------------------------------------
 // Measuring the exemplars.
 
@@ -113,7 +77,7 @@ LineMeasure measureLines(const Heightfield& ex,
   {
     if (c.type == type)
     {
-      walkChain(c,
+      forEachChainCell(c,
         ex.width,
         ex.height,
         [&](int i, int j, std::size_t, double) { line[ex.index(i, j)] = 1; });
@@ -796,7 +760,7 @@ RasterLines rasteriseNetwork(const FeatureGraph& g,
     {
       continue;
     }
-    walkChain(g.chains[c],
+    forEachChainCell(g.chains[c],
       w,
       h,
       [&](int i, int j, std::size_t k, double t)

@@ -21,50 +21,6 @@ namespace
 constexpr double kStrokeClearanceInPatches = 1.0 / 16.0;
 constexpr double kBackgroundSigmaInPatches = 0.25;
 
-double percentile(std::vector<float> v, double p)
-{
-  if (v.empty())
-  {
-    return 0.0;
-  }
-  const std::size_t k =
-    std::min(v.size() - 1, static_cast<std::size_t>(p * static_cast<double>(v.size() - 1)));
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
-  return v[k];
-}
-
-// Cells of the chains of one type (or all), drawn between consecutive points.
-std::vector<std::uint8_t> rasterise(const FeatureGraph& g, const FeatureType* type, int w, int h)
-{
-  std::vector<std::uint8_t> seeds(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
-  for (const FeatureChain& c : g.chains)
-  {
-    if (type != nullptr && c.type != *type)
-    {
-      continue;
-    }
-    for (std::size_t k = 1; k < c.points.size(); ++k)
-    {
-      const Point2& a = c.points[k - 1];
-      const Point2& b = c.points[k];
-      const int steps =
-        std::max(1, static_cast<int>(std::ceil(2.0 * std::hypot(b.x - a.x, b.y - a.y))));
-      for (int s = 0; s <= steps; ++s)
-      {
-        const double t = static_cast<double>(s) / steps;
-        const int i = static_cast<int>(std::lround(a.x + t * (b.x - a.x)));
-        const int j = static_cast<int>(std::lround(a.y + t * (b.y - a.y)));
-        if (i >= 0 && j >= 0 && i < w && j < h)
-        {
-          seeds[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
-            static_cast<std::size_t>(i)] = 1;
-        }
-      }
-    }
-  }
-  return seeds;
-}
-
 // Length (cells) of the longest connected piece of the graph's lines.
 double longestStroke(const FeatureGraph& g)
 {
@@ -90,7 +46,20 @@ double longestStroke(const FeatureGraph& g)
 
 std::vector<std::uint8_t> rasteriseChains(const FeatureGraph& graph, int width, int height)
 {
-  return rasterise(graph, nullptr, width, height);
+  std::vector<std::uint8_t> cells(
+    static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0);
+  for (const FeatureChain& c : graph.chains)
+  {
+    forEachChainCell(c,
+      width,
+      height,
+      [&](int i, int j, std::size_t, double)
+      {
+        cells[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) +
+          static_cast<std::size_t>(i)] = 1;
+      });
+  }
+  return cells;
 }
 
 ExemplarStatistics exemplarStatistics(const std::vector<const Heightfield*>& exemplars,
