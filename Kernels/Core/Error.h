@@ -16,4 +16,15 @@ public:
   }
 };
 
+// A long computation stopped because its caller asked it to (a progress
+// callback returned false: ParaView's abort, Ctrl-C in the command line).
+class Cancelled : public Error
+{
+public:
+  Cancelled()
+    : Error("Cancelled.")
+  {
+  }
+};
+
 } // namespace tsynth

@@ -1,3 +1,5 @@
-# Surface drainage: depression filling, D8 flow directions and accumulation.
+# Surface drainage: depression filling, breaching and the hybrid, D8 flow
+# directions and accumulation.
 set(TSYNTH_HYDROLOGY_SOURCES
-  Hydrology/Flow.cxx)
+  Hydrology/Flow.cxx
+  Hydrology/PitRemoval.cxx)

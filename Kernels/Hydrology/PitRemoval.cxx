@@ -1,0 +1,140 @@
+#include "PitRemoval.h"
+
+#include "../Core/Error.h"
+#include "Flow.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tsynth
+{
+
+std::string pitRemovalMethodName(PitRemovalMethod method)
+{
+  switch (method)
+  {
+    case PitRemovalMethod::Fill:
+      return "fill";
+    case PitRemovalMethod::Breach:
+      return "breach";
+    case PitRemovalMethod::Hybrid:
+      return "hybrid";
+  }
+  return "breach";
+}
+
+PitRemovalMethod parsePitRemovalMethod(const std::string& name)
+{
+  for (PitRemovalMethod m :
+    { PitRemovalMethod::Fill, PitRemovalMethod::Breach, PitRemovalMethod::Hybrid })
+  {
+    if (name == pitRemovalMethodName(m))
+    {
+      return m;
+    }
+  }
+  throw Error("Unknown pit removal method \"" + name + "\": use fill, breach or hybrid.");
+}
+
+Heightfield breachDepressions(const Heightfield&, const std::vector<std::uint8_t>*)
+{
+  throw Error("Breaching is not built yet.");
+}
+
+Heightfield breachOrFillDepressions(const Heightfield&,
+  double,
+  int,
+  const std::vector<std::uint8_t>*)
+{
+  throw Error("Selective breaching is not built yet.");
+}
+
+namespace
+{
+
+void checkInputs(const Heightfield& dem, const PitRemovalOptions& options)
+{
+  if (dem.validCount() == 0 ||
+    std::none_of(dem.z.begin(), dem.z.end(), [](float v) { return std::isfinite(v); }))
+  {
+    throw Error("The DEM has no valid cell: there is nothing to drain.");
+  }
+  if (options.sinks && options.sinks->size() != dem.size())
+  {
+    throw Error("The sink mask has " + std::to_string(options.sinks->size()) +
+      " cells but the DEM has " + std::to_string(dem.size()) + ": give a mask of the DEM's size.");
+  }
+  if (options.method == PitRemovalMethod::Hybrid &&
+    !(options.maxBreachDepth > 0.0 && options.maxBreachLength > 0))
+  {
+    throw Error("The hybrid method needs a positive maximum breach depth and length.");
+  }
+}
+
+Heightfield runMethod(const Heightfield& dem, const PitRemovalOptions& options)
+{
+  switch (options.method)
+  {
+    case PitRemovalMethod::Fill:
+      return fillDepressions(dem, options.sinks);
+    case PitRemovalMethod::Breach:
+      return breachDepressions(dem, options.sinks);
+    case PitRemovalMethod::Hybrid:
+      return breachOrFillDepressions(
+        dem, options.maxBreachDepth, options.maxBreachLength, options.sinks);
+  }
+  return fillDepressions(dem, options.sinks);
+}
+
+// The changed-cell codes of PitRemovalResult::changed.
+constexpr std::uint8_t kUnchanged = 0;
+constexpr std::uint8_t kRaised = 1;
+constexpr std::uint8_t kLowered = 2;
+
+} // namespace
+
+PitRemovalResult removePits(const Heightfield& dem, const PitRemovalOptions& options)
+{
+  checkInputs(dem, options);
+  PitRemovalResult r;
+  r.dem = runMethod(dem, options);
+  r.changed.assign(dem.size(), kUnchanged);
+  for (std::size_t k = 0; k < dem.size(); ++k)
+  {
+    if (!isUsableCell(dem, k))
+    {
+      continue;
+    }
+    const double change = static_cast<double>(r.dem.z[k]) - dem.z[k];
+    if (change > 0.0)
+    {
+      r.changed[k] = kRaised;
+      ++r.raisedCells;
+      r.maxRaise = std::max(r.maxRaise, change);
+    }
+    else if (change < 0.0)
+    {
+      r.changed[k] = kLowered;
+      ++r.loweredCells;
+      r.maxLower = std::max(r.maxLower, -change);
+    }
+  }
+  return r;
+}
+
+std::vector<std::uint8_t> streamNetwork(const std::vector<std::uint32_t>& accumulation,
+  std::uint32_t threshold)
+{
+  if (threshold < 1)
+  {
+    throw Error("The stream threshold must be at least 1 cell.");
+  }
+  std::vector<std::uint8_t> streams(accumulation.size(), 0);
+  for (std::size_t k = 0; k < accumulation.size(); ++k)
+  {
+    streams[k] = accumulation[k] >= threshold ? 1 : 0;
+  }
+  return streams;
+}
+
+} // namespace tsynth

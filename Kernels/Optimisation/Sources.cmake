@@ -1,0 +1,3 @@
+# Terrain optimisation (Scott & Dodgson 2021): multi-resolution PatchMatch
+# texture optimisation with pit removal.
+set(TSYNTH_OPTIMISATION_SOURCES)
