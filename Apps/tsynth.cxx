@@ -1,5 +1,6 @@
 // tsynth: the TerrainSynthesis command line. Every command exits 0 on success,
 // 1 with one sentence on bad input or failure, 2 on wrong usage.
+#include "CliSupport.h"
 #include "CommandLine.h"
 #include "Render3D.h"
 #include "SynthCommands.h"
@@ -33,6 +34,7 @@ namespace
 
 using tsynth::cli::CommandLine;
 using tsynth::cli::UsageError;
+using tsynth::cli::wantsHelp;
 
 const char* const kMainHelp = R"(tsynth: example-based terrain synthesis from real DEMs.
 
@@ -184,18 +186,6 @@ std::string oneInput(const CommandLine& cl, const char* command)
     throw UsageError("Unexpected argument \"" + rest[1] + "\".");
   }
   return rest[0];
-}
-
-bool wantsHelp(const std::vector<std::string>& args)
-{
-  for (const auto& a : args)
-  {
-    if (a == "--help" || a == "-h")
-    {
-      return true;
-    }
-  }
-  return false;
 }
 
 std::string jsonString(const std::string& s)

@@ -122,6 +122,22 @@ PitRemovalResult removePits(const Heightfield& dem, const PitRemovalOptions& opt
   return r;
 }
 
+std::vector<std::uint8_t> sinkMaskFromRaster(const Heightfield& raster, int width, int height)
+{
+  if (raster.width != width || raster.height != height)
+  {
+    throw Error("The sink mask is " + std::to_string(raster.width) + " x " +
+      std::to_string(raster.height) + " cells but the DEM is " + std::to_string(width) + " x " +
+      std::to_string(height) + ": give a mask of the DEM's size.");
+  }
+  std::vector<std::uint8_t> sinks(raster.size(), 0);
+  for (std::size_t k = 0; k < raster.size(); ++k)
+  {
+    sinks[k] = raster.isValid(k) && std::isfinite(raster.z[k]) && raster.z[k] != 0.0f ? 1 : 0;
+  }
+  return sinks;
+}
+
 std::vector<std::uint8_t> streamNetwork(const std::vector<std::uint32_t>& accumulation,
   std::uint32_t threshold)
 {

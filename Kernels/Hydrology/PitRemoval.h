@@ -71,6 +71,11 @@ Heightfield breachOrFillDepressions(const Heightfield& dem,
 // are not positive.
 PitRemovalResult removePits(const Heightfield& dem, const PitRemovalOptions& options);
 
+// A sink mask from a raster read like a DEM (a file or a ParaView image): 1
+// where the value is finite and non-zero, 0 elsewhere (nodata is no sink).
+// Throws tsynth::Error naming both sizes if it is not width x height.
+std::vector<std::uint8_t> sinkMaskFromRaster(const Heightfield& raster, int width, int height);
+
 // Cells whose flow accumulation (Flow.h) is at least `threshold` cells: a
 // stream network, 1 = stream. Throws tsynth::Error for a threshold below 1.
 std::vector<std::uint8_t> streamNetwork(const std::vector<std::uint32_t>& accumulation,
