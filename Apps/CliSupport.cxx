@@ -164,4 +164,95 @@ std::uint64_t parseSeed(const std::string& text)
   return seed;
 }
 
+const char* const kReadOptionsHelp = R"(
+Options for reading DEMs (override the NAME.json sidecar and the file):
+  --z-unit m|ft          unit of the stored heights (feet are converted to metres)
+  --cell M | MX,MY       cell size in metres
+  --z-range MIN,MAX      8/16-bit image storing a normalised range: value 0 is MIN, the largest MAX
+  --no-sidecar           ignore NAME.json beside the file
+)";
+
+ReadOptions takeReadOptions(CommandLine& cl)
+{
+  ReadOptions o;
+  if (auto unit = cl.take("--z-unit"))
+  {
+    const auto parsed = parseZUnit(*unit);
+    if (!parsed)
+    {
+      throw UsageError("--z-unit must be m or ft, not \"" + *unit + "\".");
+    }
+    o.zUnit = *parsed;
+  }
+  if (auto cell = cl.take("--cell"))
+  {
+    const std::size_t comma = cell->find(',');
+    const auto x = parseNumber(cell->substr(0, comma));
+    const auto y = comma == std::string::npos ? x : parseNumber(cell->substr(comma + 1));
+    if (!x || !y || !(*x > 0.0) || !(*y > 0.0))
+    {
+      throw UsageError("--cell expects a positive number of metres or X,Y, not \"" + *cell + "\".");
+    }
+    o.cellX = *x;
+    o.cellY = *y;
+  }
+  if (auto range = cl.take("--z-range"))
+  {
+    const std::size_t comma = range->find(',');
+    const auto lo = parseNumber(range->substr(0, comma));
+    const auto hi =
+      comma == std::string::npos ? std::nullopt : parseNumber(range->substr(comma + 1));
+    if (!lo || !hi || !(*hi > *lo))
+    {
+      throw UsageError("--z-range expects MIN,MAX with MAX > MIN, not \"" + *range + "\".");
+    }
+    o.zMin = lo;
+    o.zMax = hi;
+  }
+  o.useSidecar = !cl.takeFlag("--no-sidecar");
+  return o;
+}
+
+// Reads a DEM and passes on the reader's warnings, one line each.
+Heightfield readDem(const std::string& path, const ReadOptions& options, RasterInfo* info)
+{
+  RasterInfo local;
+  RasterInfo& used = info != nullptr ? *info : local;
+  Heightfield hf = readTerrainFile(path, options, &used);
+  for (const std::string& warning : used.warnings)
+  {
+    std::cerr << "tsynth: warning: " << warning << "\n";
+  }
+  return hf;
+}
+
+std::string oneInput(const CommandLine& cl, const char* command)
+{
+  const std::vector<std::string> rest = cl.positionals();
+  if (rest.empty())
+  {
+    throw UsageError(std::string("tsynth ") + command + " needs a DEM file.");
+  }
+  if (rest.size() > 1)
+  {
+    throw UsageError("Unexpected argument \"" + rest[1] + "\".");
+  }
+  return rest[0];
+}
+
+std::optional<int> takeCount(CommandLine& cl, const std::string& name, int lo, int hi)
+{
+  const std::optional<double> v = cl.takeNumber(name);
+  if (!v)
+  {
+    return std::nullopt;
+  }
+  if (*v != std::floor(*v) || *v < lo || *v > hi)
+  {
+    throw UsageError(name + " expects a whole number from " + std::to_string(lo) + " to " +
+      std::to_string(hi) + ".");
+  }
+  return static_cast<int>(*v);
+}
+
 } // namespace tsynth::cli

@@ -4,9 +4,11 @@
 
 #include "CommandLine.h"
 
+#include "Core/HeightfieldIO.h"
 #include "Synthesis/Setup.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +38,23 @@ public:
 private:
   bool enabled_;
 };
+
+// The help text of the DEM read options takeReadOptions parses.
+extern const char* const kReadOptionsHelp;
+
+// --z-unit, --cell, --z-range and --no-sidecar.
+ReadOptions takeReadOptions(CommandLine& cl);
+
+// Reads a DEM and passes on the reader's warnings, one line each.
+Heightfield readDem(const std::string& path,
+  const ReadOptions& options,
+  RasterInfo* info = nullptr);
+
+// The one positional argument (a DEM) of `command`; UsageError if missing or more.
+std::string oneInput(const CommandLine& cl, const char* command);
+
+// A whole-number option from lo to hi, if given (UsageError otherwise).
+std::optional<int> takeCount(CommandLine& cl, const std::string& name, int lo, int hi);
 
 // "WxH" in cells, each side from 1 to kMaxOutputSide (UsageError otherwise).
 GridRequest parseSize(const std::string& text, GridRequest grid);
