@@ -255,4 +255,15 @@ std::optional<int> takeCount(CommandLine& cl, const std::string& name, int lo, i
   return static_cast<int>(*v);
 }
 
+void requireFolder(const std::string& path)
+{
+  const std::filesystem::path p(path);
+  const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : ".";
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec))
+  {
+    throw UsageError("Cannot write " + path + ": folder " + dir.string() + " does not exist.");
+  }
+}
+
 } // namespace tsynth::cli

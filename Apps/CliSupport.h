@@ -56,6 +56,10 @@ std::string oneInput(const CommandLine& cl, const char* command);
 // A whole-number option from lo to hi, if given (UsageError otherwise).
 std::optional<int> takeCount(CommandLine& cl, const std::string& name, int lo, int hi);
 
+// UsageError unless the folder an output file goes into exists (checked before
+// any work, so a long run never ends in an unwritable path).
+void requireFolder(const std::string& path);
+
 // "WxH" in cells, each side from 1 to kMaxOutputSide (UsageError otherwise).
 GridRequest parseSize(const std::string& text, GridRequest grid);
 

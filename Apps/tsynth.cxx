@@ -2,6 +2,7 @@
 // 1 with one sentence on bad input or failure, 2 on wrong usage.
 #include "CliSupport.h"
 #include "CommandLine.h"
+#include "HydrologyCommands.h"
 #include "Render3D.h"
 #include "SynthCommands.h"
 #include "TerrainFileIO.h"
@@ -52,6 +53,7 @@ Commands:
   features DEM -o F.vtp  ridge (or valley) lines as a feature tree (PPA); --sketch for sketches
   synth --exemplar DEM --sketch SKETCH -o OUT   synthesise a terrain that follows a sketch
   evaluate TERRAIN --exemplar DEM [--sketch S]  quality figures, with baselines
+  pits DEM -o OUT        remove depressions (breach, fill or hybrid); flow accumulation, streams
 
 Run "tsynth COMMAND --help" for a command's options.
 )";
@@ -588,6 +590,10 @@ int main(int argc, char** argv)
     {
       preferPassiveOpenMp(args, argv);
       return tsynth::cli::runSynth(std::move(args));
+    }
+    if (command == "pits")
+    {
+      return tsynth::cli::runPits(std::move(args));
     }
     if (command == "evaluate")
     {
