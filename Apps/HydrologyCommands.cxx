@@ -190,7 +190,7 @@ int runPits(std::vector<std::string> args)
   {
     ReadOptions plain;
     plain.useSidecar = false;
-    sinks = sinkMaskFromRaster(readHeightfield(*a.sinks, plain), dem.width, dem.height);
+    sinks = sinkMaskFromRaster(readTerrainFile(*a.sinks, plain), dem.width, dem.height);
     a.options.sinks = &sinks;
   }
   const auto t0 = std::chrono::steady_clock::now();
