@@ -64,6 +64,9 @@ writes them: its output works directly as a sketch of the same DEM.
   --backend B            auto (default), opencl or cpu: same result, different speed
   --merge M              new (default), poisson, shepard or cut
   --fill F               best-first (default) or concentric
+  --drainage M           make every cell drain at the end: breach, fill or hybrid depressions
+                         (tsynth pits), from blocks of a quarter patch down to single cells so
+                         the changes are broad and seams stay hidden (default: off)
   --seed N               another seed gives another terrain; the same seed the same terrain
   --report FILE.json     per-stage times, counts, costs and quality figures
   --debug-dir DIR        target field, feature trees, patch ids and seams as files
@@ -280,6 +283,17 @@ SynthesisOptions takeSynthesisOptions(CommandLine& cl)
   {
     o.seed = parseSeed(*seed);
   }
+  if (const auto drainage = cl.take("--drainage"))
+  {
+    try
+    {
+      o.drainage = parsePitRemovalMethod(*drainage);
+    }
+    catch (const Error&)
+    {
+      throw UsageError("--drainage must be fill, breach or hybrid.");
+    }
+  }
   o.verticalOffset = !cl.takeFlag("--no-vertical-offset");
   if (const auto repetition = cl.takeNumber("--repetition"))
   {
@@ -423,6 +437,13 @@ void printSummary(const SynthesisSetup& setup,
             << std::setprecision(2);
   std::cout << "Times: prepare " << prepare << " s, matcher setup " << r.timings.setup
             << " s, features " << r.timings.features << " s, fill " << r.timings.fill << " s.\n";
+  if (r.finishing.drained)
+  {
+    std::cout << "Drainage: " << r.finishing.pitsBefore << " pits before, " << r.finishing.pitsAfter
+              << " after; largest change +" << r.finishing.largestDrainageRaise << " / -"
+              << r.finishing.largestDrainageLowering << " m, mean "
+              << r.finishing.meanDrainageChange << " m.\n";
+  }
   printEvaluation("Quality:", quality);
   printLandforms("", landforms);
   std::cout << "Wrote " << output << "\n";
@@ -467,12 +488,20 @@ void writeReport(const std::string& path,
     { "valley", profile(l.valley) },
     { "base_m", l.base },
     { "floor_gradient", l.floorGradient } };
-  const nlohmann::json finishing = { { "landform_correction_max_m",
-                                       r.finishing.landformCorrection },
+  nlohmann::json finishing = { { "landform_correction_max_m", r.finishing.landformCorrection },
     { "valley_cells", r.finishing.valleyCells },
     { "valley_cells_lowered", r.finishing.valleyCellsLowered },
     { "deepest_valley_cut_m", r.finishing.deepestValleyCut },
     { "mean_valley_cut_m", r.finishing.meanValleyCut } };
+  if (r.finishing.drained)
+  {
+    finishing["drainage"] = { { "method", pitRemovalMethodName(*a.options.drainage) },
+      { "pits_before", r.finishing.pitsBefore },
+      { "pits_after", r.finishing.pitsAfter },
+      { "largest_raise_m", r.finishing.largestDrainageRaise },
+      { "largest_lowering_m", r.finishing.largestDrainageLowering },
+      { "mean_change_m", r.finishing.meanDrainageChange } };
+  }
   const double n = static_cast<double>(r.placements.size());
   const nlohmann::json report = { { "output", a.output },
     { "size", { setup.grid.width, setup.grid.height } },

@@ -1,5 +1,6 @@
 #include "vtkTerrainPitRemoval.h"
 
+#include "PropertyEnums.h"
 #include "TerrainImageConversion.h"
 
 #include "Core/Error.h"
@@ -30,19 +31,6 @@ namespace
 
 constexpr int kSinksPort = 1;
 constexpr int kSinksArrayIndex = 1; // SetInputArrayToProcess index of the sink array
-
-tsynth::PitRemovalMethod methodFromProperty(int value)
-{
-  switch (value)
-  {
-    case vtkTerrainPitRemoval::FILL:
-      return tsynth::PitRemovalMethod::Fill;
-    case vtkTerrainPitRemoval::HYBRID:
-      return tsynth::PitRemovalMethod::Hybrid;
-    default:
-      return tsynth::PitRemovalMethod::Breach;
-  }
-}
 
 template<typename ArrayType, typename Value>
 void addArray(vtkImageData* image, const char* name, const std::vector<Value>& values)
@@ -99,7 +87,7 @@ int vtkTerrainPitRemoval::RequestData(vtkInformation*,
       tsynth::imageToHeightfield(input, this->GetInputArrayToProcess(0, inputVector));
     std::vector<std::uint8_t> sinks;
     tsynth::PitRemovalOptions options;
-    options.method = methodFromProperty(this->Method);
+    options.method = tsynth::pitRemovalMethodFromProperty(this->Method);
     options.maxBreachDepth = this->MaxBreachDepth;
     options.maxBreachLength = this->MaxBreachLength;
     if (sinkImage != nullptr)
@@ -148,8 +136,8 @@ int vtkTerrainPitRemoval::RequestData(vtkInformation*,
 void vtkTerrainPitRemoval::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Method: " << tsynth::pitRemovalMethodName(methodFromProperty(this->Method))
-     << "\n";
+  os << indent << "Method: "
+     << tsynth::pitRemovalMethodName(tsynth::pitRemovalMethodFromProperty(this->Method)) << "\n";
   os << indent << "MaxBreachDepth: " << this->MaxBreachDepth << "\n";
   os << indent << "MaxBreachLength: " << this->MaxBreachLength << "\n";
   os << indent << "StreamThreshold: " << this->StreamThreshold << "\n";

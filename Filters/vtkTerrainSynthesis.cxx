@@ -231,6 +231,7 @@ tsynth::SynthesisOptions synthesisOptions(vtkTerrainSynthesis* filter)
   o.backend = tsynth::backendFromProperty(filter->GetBackend());
   o.merge = tsynth::mergeModeFromProperty(filter->GetMergeMode());
   o.fill = tsynth::fillOrderFromProperty(filter->GetFillOrder());
+  o.drainage = tsynth::drainageFromProperty(filter->GetDrainage());
   o.seed = static_cast<std::uint64_t>(filter->GetSeed());
   o.progress = [filter](double f, const std::string&)
   { filter->UpdateProgress(kSetupProgress + kSynthesisProgress * f); };
@@ -372,6 +373,7 @@ void vtkTerrainSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Backend: " << this->Backend << "\n";
   os << indent << "MergeMode: " << this->MergeMode << "\n";
   os << indent << "FillOrder: " << this->FillOrder << "\n";
+  os << indent << "Drainage: " << this->Drainage << "\n";
   os << indent << "OutputSize: " << this->OutputSize[0] << " x " << this->OutputSize[1] << "\n";
   os << indent << "CellSize: " << this->CellSize << "\n";
   os << indent << "Seed: " << this->Seed << "\n";

@@ -2,4 +2,5 @@
 # directions and accumulation.
 set(TSYNTH_HYDROLOGY_SOURCES
   Hydrology/Flow.cxx
+  Hydrology/MultiscalePitRemoval.cxx
   Hydrology/PitRemoval.cxx)
