@@ -145,10 +145,6 @@ protected:
   std::vector<std::string> RegionMaps;
 
 private:
-  // The poly-line sketch on port 1, brought up to date (RequestInformation needs
-  // its extent); nullptr when the sketch is an image.
-  vtkPolyData* UpdatedPolylineSketch(vtkInformationVector* sketchPort);
-
   vtkTerrainSynthesis(const vtkTerrainSynthesis&) = delete;
   void operator=(const vtkTerrainSynthesis&) = delete;
 };
