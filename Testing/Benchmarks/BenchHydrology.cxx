@@ -138,7 +138,7 @@ int survey(int argc, char** argv)
     const Changes fill = changesOf(dem, fillDepressions(dem));
     const Changes breach = changesOf(dem, breachDepressions(dem));
     std::printf(
-      "\n%s: %d x %d, %.1f m cells, %zu depressions; fill raises %zu cells (%.0f m3/cell2), "
+      "\n%s: %d x %d, %.1f m cells, %zu depressions; fill raises %zu cells (%.0f cell-metres), "
       "breach lowers %zu (%.0f)\n",
       argv[a],
       dem.width,
