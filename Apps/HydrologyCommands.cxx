@@ -148,11 +148,12 @@ std::uint32_t streamThreshold(const Heightfield& dem, double areaKm2)
 
 void writeFlowOutputs(const PitsArguments& a, const Heightfield& dem, const Heightfield& drained)
 {
+  // Flow ends at the sinks the removal kept.
   if (!a.flow && !a.streams)
   {
     return;
   }
-  const std::vector<std::int8_t> directions = flowDirections(drained);
+  const std::vector<std::int8_t> directions = flowDirections(drained, a.options.sinks);
   const std::vector<std::uint32_t> accumulation =
     flowAccumulation(directions, dem.width, dem.height, dem.hasMask() ? &dem.valid : nullptr);
   if (a.flow)

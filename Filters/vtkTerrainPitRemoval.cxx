@@ -100,7 +100,7 @@ int vtkTerrainPitRemoval::RequestData(vtkInformation*,
     this->UpdateProgress(0.1);
     const tsynth::PitRemovalResult result = tsynth::removePits(dem, options);
     this->UpdateProgress(0.6);
-    const std::vector<std::int8_t> directions = tsynth::flowDirections(result.dem);
+    const std::vector<std::int8_t> directions = tsynth::flowDirections(result.dem, options.sinks);
     const std::vector<std::uint32_t> accumulation = tsynth::flowAccumulation(
       directions, dem.width, dem.height, dem.hasMask() ? &dem.valid : nullptr);
     this->UpdateProgress(0.9);

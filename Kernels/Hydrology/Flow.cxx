@@ -332,8 +332,77 @@ std::int8_t steepestDescent(const Heightfield& dem,
 
 } // namespace
 
-std::vector<std::int8_t> flowDirections(const Heightfield& dem)
+namespace
 {
+
+// Flats that drain (cells without a lower neighbour, joined by equal heights
+// to a cell that has one or to a seed) are routed across: a breadth-first walk
+// from their exits gives each flat cell the code of the neighbour it was
+// reached from, so water takes the shortest way over the flat to its exit.
+void routeAcrossFlats(const Heightfield& dem,
+  const std::vector<std::uint8_t>* sinks,
+  std::vector<std::int8_t>& dir)
+{
+  auto open = [&](std::size_t k, int i, int j)
+  { return dir[k] == kNoFlow && isUsableCell(dem, k) && !isSeedCell(dem, sinks, i, j); };
+  auto exit = [&](std::size_t k, int i, int j)
+  { return isUsableCell(dem, k) && (dir[k] != kNoFlow || isSeedCell(dem, sinks, i, j)); };
+  std::vector<std::uint32_t> queue;
+  std::vector<std::uint8_t> queued(dem.size(), 0);
+  for (int j = 1; j + 1 < dem.height; ++j)
+  {
+    for (int i = 1; i + 1 < dem.width; ++i)
+    {
+      const std::size_t k = dem.index(i, j);
+      if (!open(k, i, j))
+      {
+        continue;
+      }
+      for (int c = 0; c < kD8Directions; ++c)
+      {
+        const int ni = i + kD8Dx[static_cast<std::size_t>(c)];
+        const int nj = j + kD8Dy[static_cast<std::size_t>(c)];
+        const std::size_t n = dem.index(ni, nj);
+        if (dem.z[n] == dem.z[k] && exit(n, ni, nj))
+        {
+          dir[k] = static_cast<std::int8_t>(c);
+          queue.push_back(static_cast<std::uint32_t>(k));
+          queued[k] = 1;
+          break;
+        }
+      }
+    }
+  }
+  for (std::size_t head = 0; head < queue.size(); ++head)
+  {
+    const std::size_t k = queue[head];
+    const int i = static_cast<int>(k % static_cast<std::size_t>(dem.width));
+    const int j = static_cast<int>(k / static_cast<std::size_t>(dem.width));
+    for (int c = 0; c < kD8Directions; ++c)
+    {
+      const int ni = i + kD8Dx[static_cast<std::size_t>(c)];
+      const int nj = j + kD8Dy[static_cast<std::size_t>(c)];
+      if (ni < 0 || nj < 0 || ni >= dem.width || nj >= dem.height)
+      {
+        continue;
+      }
+      const std::size_t n = dem.index(ni, nj);
+      if (queued[n] == 0 && dem.z[n] == dem.z[k] && open(n, ni, nj))
+      {
+        dir[n] = static_cast<std::int8_t>(oppositeD8(c));
+        queue.push_back(static_cast<std::uint32_t>(n));
+        queued[n] = 1;
+      }
+    }
+  }
+}
+
+} // namespace
+
+std::vector<std::int8_t> flowDirections(const Heightfield& dem,
+  const std::vector<std::uint8_t>* sinks)
+{
+  checkSinks(dem, sinks);
   const std::array<double, kD8Directions> distance = d8Distances(dem.cellX, dem.cellY);
   std::array<std::ptrdiff_t, kD8Directions> offset{};
   for (int c = 0; c < kD8Directions; ++c)
@@ -354,6 +423,7 @@ std::vector<std::int8_t> flowDirections(const Heightfield& dem)
       }
     }
   }
+  routeAcrossFlats(dem, sinks, dir);
   return dir;
 }
 

@@ -73,9 +73,13 @@ Heightfield fillDepressions(const Heightfield& dem,
 
 // D8 steepest descent: for each valid cell the code of the neighbour with the
 // largest drop / distance (metres, cellX and cellY aware), ties to the lowest
-// code; kNoFlow where no valid neighbour is strictly lower (pits, flats, border
-// outlets) and on invalid cells.
-std::vector<std::int8_t> flowDirections(const Heightfield& dem);
+// code. Flats that drain (equal heights joined to a cell with a lower
+// neighbour, or to a seed) are routed across by the shortest way to their exit,
+// so water crosses them as drainsEverywhere says it can. kNoFlow on seeds with
+// no lower neighbour (outlets), on pits and flats that do not drain, and on
+// invalid cells. `sinks` as for fillDepressions (null: border and nodata only).
+std::vector<std::int8_t> flowDirections(const Heightfield& dem,
+  const std::vector<std::uint8_t>* sinks = nullptr);
 
 // Number of cells whose flow passes through each cell, itself included (a cell
 // with nothing upstream has 1). With `valid` (one byte per cell, 0 = invalid;

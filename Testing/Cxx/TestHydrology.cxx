@@ -474,10 +474,44 @@ TEST(Hydrology, D8TiesGoToTheLowestCodeAndPitsHaveNoFlow)
   hf.at(2, 1) = 11.0f;
   EXPECT_EQ(flowDirections(hf)[hf.index(1, 1)], 2);
   hf.at(1, 1) = 9.0f;
-  EXPECT_EQ(flowDirections(hf)[hf.index(1, 1)], kNoFlow); // a flat with (1, 2)
+  EXPECT_EQ(flowDirections(hf)[hf.index(1, 1)], 2); // a flat draining to the border cell (1, 2)
   hf.valid.assign(hf.size(), 1);
   hf.valid[hf.index(1, 1)] = 0;
   EXPECT_EQ(flowDirections(hf)[hf.index(1, 1)], kNoFlow); // invalid
+}
+
+TEST(Hydrology, FlatsAreRoutedToTheirExitByTheShortestWayAndClosedFlatsHaveNoFlow)
+{
+  // A flat terrace at 10 m, columns 1..6 of row 2, whose only exit is the cell
+  // (7, 2) at 10 m that flows east to the border at 9 m; the rest is 12 m.
+  Heightfield hf = grid(9, 5, 30.0, [](int i, int j) { return j == 2 && i >= 1 ? 10.0 : 12.0; });
+  hf.at(8, 2) = 9.0f;
+  std::vector<std::int8_t> dir = flowDirections(hf);
+  EXPECT_EQ(dir[hf.index(7, 2)], 0); // downhill, east
+  for (int i = 1; i <= 6; ++i)
+  {
+    EXPECT_EQ(dir[hf.index(i, 2)], 0) << i; // across the flat, east
+  }
+  // Everything but the 18 cells of rows 0 and 4 (no lower neighbour) ends at
+  // (8, 2): rows 1 and 3 (18 cells) and (0, 2) fall onto the terrace (6 cells),
+  // which crosses to (7, 2) and on to (8, 2) itself: 18 + 1 + 6 + 1 + 1.
+  EXPECT_EQ(flowAccumulation(dir, hf.width, hf.height)[hf.index(8, 2)], 27u);
+  // Closed: the exit raised above the flat, the terrace is a flat pit.
+  hf.at(7, 2) = 12.0f;
+  hf.at(8, 2) = 12.0f;
+  hf.at(0, 2) = 12.0f;
+  dir = flowDirections(hf);
+  for (int i = 1; i <= 6; ++i)
+  {
+    EXPECT_EQ(dir[hf.index(i, 2)], kNoFlow) << i;
+  }
+  // A user sink on the flat becomes its exit.
+  std::vector<std::uint8_t> sinks(hf.size(), 0);
+  sinks[hf.index(3, 2)] = 1;
+  dir = flowDirections(hf, &sinks);
+  EXPECT_EQ(dir[hf.index(3, 2)], kNoFlow);
+  EXPECT_EQ(dir[hf.index(1, 2)], 0);
+  EXPECT_EQ(dir[hf.index(6, 2)], 4); // west, to the sink
 }
 
 TEST(Hydrology, AccumulationInATiltedVValleyMatchesTheCounts)

@@ -65,9 +65,7 @@ def sinks_of(z, user=None):
     return sinks
 
 
-def undrained_cells(z, user=None):
-    """Valid non-sink cells with no strictly lower valid 8-neighbour (epsilon methods
-    leave none: every filled or carved cell is a float step above the next)."""
+def lower_neighbour(z):
     ny, nx = z.shape
     padded = np.pad(z, 1, constant_values=np.nan)
     has_lower = np.zeros(z.shape, dtype=bool)
@@ -76,7 +74,29 @@ def undrained_cells(z, user=None):
             if dx or dy:
                 n = padded[1 + dy:1 + dy + ny, 1 + dx:1 + dx + nx]
                 has_lower |= np.isfinite(n) & (n < z)
-    return int(np.count_nonzero(np.isfinite(z) & ~sinks_of(z, user) & ~has_lower))
+    return has_lower
+
+
+def undrained_cells(z, user=None):
+    """Valid non-sink cells from which water cannot reach a sink: with no strictly lower
+    valid 8-neighbour, and not joined through cells of equal height to one that has one
+    or to a sink (the flats a breach keeps)."""
+    ny, nx = z.shape
+    drains = np.isfinite(z) & (lower_neighbour(z) | sinks_of(z, user))
+    while True:
+        padded_z = np.pad(z, 1, constant_values=np.nan)
+        padded_d = np.pad(drains, 1, constant_values=False)
+        grown = drains.copy()
+        for dy in (-1, 0, 1):
+            for dx in (-1, 0, 1):
+                if dx or dy:
+                    nz = padded_z[1 + dy:1 + dy + ny, 1 + dx:1 + dx + nx]
+                    nd = padded_d[1 + dy:1 + dy + ny, 1 + dx:1 + dx + nx]
+                    grown |= nd & (nz == z)
+        if np.array_equal(grown, drains):
+            break
+        drains = grown
+    return int(np.count_nonzero(np.isfinite(z) & ~drains))
 
 
 def pits_of(z):
@@ -153,8 +173,9 @@ class PitsCommandTest(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         z = read_vti(out)
         acc = read_vti(flow)
-        # Outlets are the cells with no strictly lower neighbour: they receive everything.
-        outlets = sinks_of(z)
+        # Outlets are the sinks with no strictly lower neighbour (flats are routed
+        # across to their exits): they receive everything.
+        outlets = sinks_of(z) & ~lower_neighbour(z)
         self.assertEqual(acc[outlets].sum(), z.size)
         self.assertEqual(acc.min(), 1.0)
         threshold = int(np.ceil(2.0e6 / (90.0 * 90.0)))
