@@ -18,6 +18,14 @@
 namespace tsynth
 {
 
+// Patch sizes accepted: odd, 3..15 (a patch row is read as one or two rows of
+// 8 lanes; 15 is the largest that fits two).
+constexpr int kMinPatchSize = 3;
+constexpr int kMaxPatchSize = 15;
+// With levels = 0 the pyramid gets as many levels as keep the coarsest guide
+// and source at least this many cells on their shorter side.
+constexpr int kMinCoarsestSide = 32;
+
 struct OptimisationOptions
 {
   int patchSize = 7;          // N, odd, cells
@@ -41,7 +49,11 @@ struct OptimisationLevel
   int width = 0;
   int height = 0;
   std::vector<double> energy; // E_t (mean SSD per patch, m^2) after each iteration's M-step
-  std::size_t pitsAfter = 0;  // countPits of the level's terrain after its last E-step
+  // countPits (strict local minima) of the level's terrain after its last E-step,
+  // before and after that E-step's pit removal (equal on level 0, which is the
+  // output and has no pit removal, and when removePits is off).
+  std::size_t pitsBeforeRemoval = 0;
+  std::size_t pitsAfter = 0;
   double seconds = 0.0;
 };
 
