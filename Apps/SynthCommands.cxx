@@ -1,5 +1,6 @@
 #include "SynthCommands.h"
 
+#include "CliSupport.h"
 #include "CommandLine.h"
 #include "FeatureGraphConversion.h"
 #include "TerrainFileIO.h"
@@ -63,6 +64,9 @@ writes them: its output works directly as a sketch of the same DEM.
   --backend B            auto (default), opencl or cpu: same result, different speed
   --merge M              new (default), poisson, shepard or cut
   --fill F               best-first (default) or concentric
+  --drainage M           make every cell drain at the end: breach, fill or hybrid depressions
+                         (tsynth pits), from blocks of a quarter patch down to single cells so
+                         the changes are broad and seams stay hidden (default: off)
   --seed N               another seed gives another terrain; the same seed the same terrain
   --report FILE.json     per-stage times, counts, costs and quality figures
   --debug-dir DIR        target field, feature trees, patch ids and seams as files
@@ -108,28 +112,6 @@ A figure that does not apply (no ridge sketched, a flat exemplar) is shown as "-
 constexpr int kEvaluationPatch = 80;
 constexpr double kBytesPerGB = 1.0e9;
 
-bool hasExtension(const std::string& path, const char* wanted)
-{
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext)
-  {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return ext == wanted;
-}
-
-bool wantsHelp(const std::vector<std::string>& args)
-{
-  for (const auto& a : args)
-  {
-    if (a == "--help" || a == "-h")
-    {
-      return true;
-    }
-  }
-  return false;
-}
-
 // Every value of a repeatable option, removed from the arguments.
 std::vector<std::string> takeRepeated(std::vector<std::string>& args, const std::string& name)
 {
@@ -153,86 +135,6 @@ std::vector<std::string> takeRepeated(std::vector<std::string>& args, const std:
   }
   return out;
 }
-
-void printWarnings(const std::vector<std::string>& warnings)
-{
-  for (const auto& w : warnings)
-  {
-    std::cerr << "tsynth: warning: " << w << "\n";
-  }
-}
-
-// A single-band raster that is not 8-bit (a DEM used as the target)?
-bool isDemRaster(const std::string& path)
-{
-  try
-  {
-    const RasterInfo info = readRasterInfo(path, {});
-    return rasterIsDemTarget(info.bands, info.dataType == "Byte");
-  }
-  catch (const Error&)
-  {
-    return false; // several bands: a sketch image, read as one
-  }
-}
-
-// The sketch file as the set-up takes it: .vtp poly-lines (metres in the raster
-// frame), a DEM used as the target, or a sketch image (stroke map or grey map).
-SketchInput readSketchInput(const std::string& path, std::vector<std::string>& warnings)
-{
-  if (hasExtension(path, ".vtp"))
-  {
-    vtkNew<vtkPolyData> lines;
-    readPolyDataFile(path, lines);
-    std::string warning;
-    PolylineSketch sketch = polyDataToPolylineSketch(lines, &warning);
-    if (!warning.empty())
-    {
-      warnings.push_back(warning);
-    }
-    return sketch;
-  }
-  if (isVtiPath(path) || isDemRaster(path))
-  {
-    RasterInfo info;
-    Heightfield dem = readTerrainFile(path, {}, &info);
-    warnings.insert(warnings.end(), info.warnings.begin(), info.warnings.end());
-    return dem;
-  }
-  return readColourImage(path);
-}
-
-class ProgressBar
-{
-public:
-  explicit ProgressBar(bool enabled)
-    : enabled_(enabled && ::isatty(STDERR_FILENO) != 0)
-  {
-  }
-  void operator()(double f, const std::string& stage)
-  {
-    if (!enabled_)
-    {
-      return;
-    }
-    const int width = 30;
-    const int filled = static_cast<int>(f * width + 0.5);
-    std::fprintf(stderr,
-      "\r[%s%s] %3d%% %-10s",
-      std::string(static_cast<std::size_t>(filled), '#').c_str(),
-      std::string(static_cast<std::size_t>(width - filled), ' ').c_str(),
-      static_cast<int>(f * 100 + 0.5),
-      stage.c_str());
-    std::fflush(stderr);
-    if (f >= 1.0)
-    {
-      std::fprintf(stderr, "\n");
-    }
-  }
-
-private:
-  bool enabled_;
-};
 
 nlohmann::json evaluationJson(const TerrainEvaluation& e)
 {
@@ -305,50 +207,6 @@ struct SynthArguments
   SynthesisOptions options;
   bool progress = true;
 };
-
-// "WxH" in cells, each side from 1 to kMaxOutputSide.
-GridRequest parseSize(const std::string& text, GridRequest grid)
-{
-  const std::size_t x = text.find('x');
-  auto side = [&](std::size_t from, std::size_t to)
-  {
-    int v = 0;
-    const char* end = text.data() + to;
-    const auto r = std::from_chars(text.data() + from, end, v);
-    const bool digits = x != std::string::npos && from != to && r.ptr == end;
-    if (digits && r.ec == std::errc::result_out_of_range)
-    {
-      v = std::numeric_limits<int>::max(); // refused below as too large
-    }
-    else if (!digits || r.ec != std::errc() || v < 1)
-    {
-      throw UsageError("--size expects WxH in cells, e.g. 1024x1024, not \"" + text + "\".");
-    }
-    if (v > kMaxOutputSide)
-    {
-      throw UsageError("--size " + text + " is beyond any machine: at most " +
-        std::to_string(kMaxOutputSide) + " cells a side.");
-    }
-    return v;
-  };
-  grid.width = side(0, x == std::string::npos ? text.size() : x);
-  grid.height = side(x + 1, text.size());
-  return grid;
-}
-
-// A whole number from 0 to 2^64 - 1.
-std::uint64_t parseSeed(const std::string& text)
-{
-  std::uint64_t seed = 0;
-  const char* end = text.data() + text.size();
-  const auto r = std::from_chars(text.data(), end, seed);
-  if (text.empty() || r.ec != std::errc() || r.ptr != end)
-  {
-    throw UsageError("--seed expects a whole number from 0 to " +
-      std::to_string(std::numeric_limits<std::uint64_t>::max()) + ", not \"" + text + "\".");
-  }
-  return seed;
-}
 
 void checkPaths(const SynthArguments& a)
 {
@@ -424,6 +282,17 @@ SynthesisOptions takeSynthesisOptions(CommandLine& cl)
   if (const auto seed = cl.take("--seed"))
   {
     o.seed = parseSeed(*seed);
+  }
+  if (const auto drainage = cl.take("--drainage"))
+  {
+    try
+    {
+      o.drainage = parsePitRemovalMethod(*drainage);
+    }
+    catch (const Error&)
+    {
+      throw UsageError("--drainage must be fill, breach or hybrid.");
+    }
   }
   o.verticalOffset = !cl.takeFlag("--no-vertical-offset");
   if (const auto repetition = cl.takeNumber("--repetition"))
@@ -568,6 +437,13 @@ void printSummary(const SynthesisSetup& setup,
             << std::setprecision(2);
   std::cout << "Times: prepare " << prepare << " s, matcher setup " << r.timings.setup
             << " s, features " << r.timings.features << " s, fill " << r.timings.fill << " s.\n";
+  if (r.finishing.drained)
+  {
+    std::cout << "Drainage: " << r.finishing.pitsBefore << " pits before, " << r.finishing.pitsAfter
+              << " after; largest change +" << r.finishing.largestDrainageRaise << " / -"
+              << r.finishing.largestDrainageLowering << " m, mean "
+              << r.finishing.meanDrainageChange << " m.\n";
+  }
   printEvaluation("Quality:", quality);
   printLandforms("", landforms);
   std::cout << "Wrote " << output << "\n";
@@ -612,12 +488,20 @@ void writeReport(const std::string& path,
     { "valley", profile(l.valley) },
     { "base_m", l.base },
     { "floor_gradient", l.floorGradient } };
-  const nlohmann::json finishing = { { "landform_correction_max_m",
-                                       r.finishing.landformCorrection },
+  nlohmann::json finishing = { { "landform_correction_max_m", r.finishing.landformCorrection },
     { "valley_cells", r.finishing.valleyCells },
     { "valley_cells_lowered", r.finishing.valleyCellsLowered },
     { "deepest_valley_cut_m", r.finishing.deepestValleyCut },
     { "mean_valley_cut_m", r.finishing.meanValleyCut } };
+  if (r.finishing.drained)
+  {
+    finishing["drainage"] = { { "method", pitRemovalMethodName(*a.options.drainage) },
+      { "pits_before", r.finishing.pitsBefore },
+      { "pits_after", r.finishing.pitsAfter },
+      { "largest_raise_m", r.finishing.largestDrainageRaise },
+      { "largest_lowering_m", r.finishing.largestDrainageLowering },
+      { "mean_change_m", r.finishing.meanDrainageChange } };
+  }
   const double n = static_cast<double>(r.placements.size());
   const nlohmann::json report = { { "output", a.output },
     { "size", { setup.grid.width, setup.grid.height } },

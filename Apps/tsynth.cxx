@@ -1,6 +1,8 @@
 // tsynth: the TerrainSynthesis command line. Every command exits 0 on success,
 // 1 with one sentence on bad input or failure, 2 on wrong usage.
+#include "CliSupport.h"
 #include "CommandLine.h"
+#include "HydrologyCommands.h"
 #include "Render3D.h"
 #include "SynthCommands.h"
 #include "TerrainFileIO.h"
@@ -32,7 +34,13 @@ namespace
 {
 
 using tsynth::cli::CommandLine;
+using tsynth::cli::kReadOptionsHelp;
+using tsynth::cli::oneInput;
+using tsynth::cli::readDem;
+using tsynth::cli::takeCount;
+using tsynth::cli::takeReadOptions;
 using tsynth::cli::UsageError;
+using tsynth::cli::wantsHelp;
 
 const char* const kMainHelp = R"(tsynth: example-based terrain synthesis from real DEMs.
 
@@ -45,16 +53,9 @@ Commands:
   features DEM -o F.vtp  ridge (or valley) lines as a feature tree (PPA); --sketch for sketches
   synth --exemplar DEM --sketch SKETCH -o OUT   synthesise a terrain that follows a sketch
   evaluate TERRAIN --exemplar DEM [--sketch S]  quality figures, with baselines
+  pits DEM -o OUT        remove depressions (breach, fill or hybrid); flow accumulation, streams
 
 Run "tsynth COMMAND --help" for a command's options.
-)";
-
-const char* const kReadOptionsHelp = R"(
-Options for reading DEMs (override the NAME.json sidecar and the file):
-  --z-unit m|ft          unit of the stored heights (feet are converted to metres)
-  --cell M | MX,MY       cell size in metres
-  --z-range MIN,MAX      8/16-bit image storing a normalised range: value 0 is MIN, the largest MAX
-  --no-sidecar           ignore NAME.json beside the file
 )";
 
 const char* const kInfoHelp = R"(Usage: tsynth info DEM [--json] [read options]
@@ -114,89 +115,6 @@ Reads a DEM (units, sidecar, nodata as for every command) and writes heights in
 metres: .tif GeoTIFF float32 (georeference kept), .png 16-bit with a NAME.json
 sidecar recording the range and cell size, or .vti (opens in ParaView).
 )";
-
-tsynth::ReadOptions takeReadOptions(CommandLine& cl)
-{
-  tsynth::ReadOptions o;
-  if (auto unit = cl.take("--z-unit"))
-  {
-    const auto parsed = tsynth::parseZUnit(*unit);
-    if (!parsed)
-    {
-      throw UsageError("--z-unit must be m or ft, not \"" + *unit + "\".");
-    }
-    o.zUnit = *parsed;
-  }
-  if (auto cell = cl.take("--cell"))
-  {
-    const std::size_t comma = cell->find(',');
-    const auto x = tsynth::cli::parseNumber(cell->substr(0, comma));
-    const auto y =
-      comma == std::string::npos ? x : tsynth::cli::parseNumber(cell->substr(comma + 1));
-    if (!x || !y || !(*x > 0.0) || !(*y > 0.0))
-    {
-      throw UsageError("--cell expects a positive number of metres or X,Y, not \"" + *cell + "\".");
-    }
-    o.cellX = *x;
-    o.cellY = *y;
-  }
-  if (auto range = cl.take("--z-range"))
-  {
-    const std::size_t comma = range->find(',');
-    const auto lo = tsynth::cli::parseNumber(range->substr(0, comma));
-    const auto hi = comma == std::string::npos ? std::nullopt
-                                               : tsynth::cli::parseNumber(range->substr(comma + 1));
-    if (!lo || !hi || !(*hi > *lo))
-    {
-      throw UsageError("--z-range expects MIN,MAX with MAX > MIN, not \"" + *range + "\".");
-    }
-    o.zMin = lo;
-    o.zMax = hi;
-  }
-  o.useSidecar = !cl.takeFlag("--no-sidecar");
-  return o;
-}
-
-// Reads a DEM and passes on the reader's warnings, one line each.
-tsynth::Heightfield readDem(const std::string& path,
-  const tsynth::ReadOptions& options,
-  tsynth::RasterInfo* info = nullptr)
-{
-  tsynth::RasterInfo local;
-  tsynth::RasterInfo& used = info != nullptr ? *info : local;
-  tsynth::Heightfield hf = tsynth::readTerrainFile(path, options, &used);
-  for (const std::string& warning : used.warnings)
-  {
-    std::cerr << "tsynth: warning: " << warning << "\n";
-  }
-  return hf;
-}
-
-std::string oneInput(const CommandLine& cl, const char* command)
-{
-  const std::vector<std::string> rest = cl.positionals();
-  if (rest.empty())
-  {
-    throw UsageError(std::string("tsynth ") + command + " needs a DEM file.");
-  }
-  if (rest.size() > 1)
-  {
-    throw UsageError("Unexpected argument \"" + rest[1] + "\".");
-  }
-  return rest[0];
-}
-
-bool wantsHelp(const std::vector<std::string>& args)
-{
-  for (const auto& a : args)
-  {
-    if (a == "--help" || a == "-h")
-    {
-      return true;
-    }
-  }
-  return false;
-}
 
 std::string jsonString(const std::string& s)
 {
@@ -457,21 +375,6 @@ int runConvert(std::vector<std::string> args)
   return 0;
 }
 
-std::optional<int> takeCount(CommandLine& cl, const std::string& name, int lo, int hi)
-{
-  const std::optional<double> v = cl.takeNumber(name);
-  if (!v)
-  {
-    return std::nullopt;
-  }
-  if (*v != std::floor(*v) || *v < lo || *v > hi)
-  {
-    throw UsageError(name + " expects a whole number from " + std::to_string(lo) + " to " +
-      std::to_string(hi) + ".");
-  }
-  return static_cast<int>(*v);
-}
-
 // The PPA options of `tsynth features` (control radius half the patch).
 tsynth::PpaOptions takePpaOptions(CommandLine& cl, int patch)
 {
@@ -687,6 +590,10 @@ int main(int argc, char** argv)
     {
       preferPassiveOpenMp(args, argv);
       return tsynth::cli::runSynth(std::move(args));
+    }
+    if (command == "pits")
+    {
+      return tsynth::cli::runPits(std::move(args));
     }
     if (command == "evaluate")
     {

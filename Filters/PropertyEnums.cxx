@@ -54,4 +54,26 @@ FillOrder fillOrderFromProperty(int value)
   }
 }
 
+PitRemovalMethod pitRemovalMethodFromProperty(int value)
+{
+  switch (value)
+  {
+    case 0:
+      return PitRemovalMethod::Fill;
+    case 2:
+      return PitRemovalMethod::Hybrid;
+    default:
+      return PitRemovalMethod::Breach;
+  }
+}
+
+std::optional<PitRemovalMethod> drainageFromProperty(int value)
+{
+  if (value <= 0)
+  {
+    return std::nullopt;
+  }
+  return pitRemovalMethodFromProperty(value - 1);
+}
+
 } // namespace tsynth

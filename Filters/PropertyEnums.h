@@ -3,9 +3,12 @@
 // numbers them alike.
 #pragma once
 
+#include "Hydrology/PitRemoval.h"
 #include "Matching/OpenClMatcher.h"
 #include "Merging/PatchMerger.h"
 #include "Synthesis/Synthesizer.h"
+
+#include <optional>
 
 namespace tsynth
 {
@@ -18,5 +21,11 @@ MergeMode mergeModeFromProperty(int value);
 
 // 0 best-first, 1 concentric.
 FillOrder fillOrderFromProperty(int value);
+
+// 0 fill, 1 breach, 2 hybrid (Terrain Pit Removal's Method).
+PitRemovalMethod pitRemovalMethodFromProperty(int value);
+
+// 0 off, 1 fill, 2 breach, 3 hybrid (Terrain Synthesis' Drainage).
+std::optional<PitRemovalMethod> drainageFromProperty(int value);
 
 } // namespace tsynth

@@ -4,6 +4,7 @@
 #include "MatchingInputs.h"
 #include "PipelineRequests.h"
 #include "PropertyEnums.h"
+#include "SketchInputs.h"
 #include "TerrainImageConversion.h"
 
 #include "Core/Error.h"
@@ -114,38 +115,6 @@ tsynth::SetupOptionNames propertyNames()
   return names;
 }
 
-bool isDemImage(vtkImageData* image)
-{
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  return scalars != nullptr &&
-    tsynth::rasterIsDemTarget(
-      scalars->GetNumberOfComponents(), scalars->GetDataType() == VTK_UNSIGNED_CHAR);
-}
-
-// The sketch as the set-up takes it: a DEM, a sketch image or poly-lines in metres.
-tsynth::SketchInput sketchInput(vtkDataObject* data, std::vector<std::string>& warnings)
-{
-  if (auto* image = vtkImageData::SafeDownCast(data))
-  {
-    if (isDemImage(image))
-    {
-      return tsynth::imageToHeightfield(image);
-    }
-    return tsynth::imageToColourImage(image);
-  }
-  if (auto* lines = vtkPolyData::SafeDownCast(data))
-  {
-    std::string warning;
-    tsynth::PolylineSketch sketch = tsynth::polyDataToPolylineSketch(lines, &warning);
-    if (!warning.empty())
-    {
-      warnings.push_back(warning);
-    }
-    return sketch;
-  }
-  throw tsynth::Error("The sketch must be an image or poly-lines.");
-}
-
 void addDiagnosticArrays(const tsynth::SynthesisResult& r, vtkImageData* output)
 {
   const vtkIdType n = static_cast<vtkIdType>(r.terrain.size());
@@ -231,6 +200,7 @@ tsynth::SynthesisOptions synthesisOptions(vtkTerrainSynthesis* filter)
   o.backend = tsynth::backendFromProperty(filter->GetBackend());
   o.merge = tsynth::mergeModeFromProperty(filter->GetMergeMode());
   o.fill = tsynth::fillOrderFromProperty(filter->GetFillOrder());
+  o.drainage = tsynth::drainageFromProperty(filter->GetDrainage());
   o.seed = static_cast<std::uint64_t>(filter->GetSeed());
   o.progress = [filter](double f, const std::string&)
   { filter->UpdateProgress(kSetupProgress + kSynthesisProgress * f); };
@@ -238,21 +208,6 @@ tsynth::SynthesisOptions synthesisOptions(vtkTerrainSynthesis* filter)
 }
 
 } // namespace
-
-vtkPolyData* vtkTerrainSynthesis::UpdatedPolylineSketch(vtkInformationVector* sketchPort)
-{
-  vtkInformation* info = sketchPort->GetInformationObject(0);
-  if (info == nullptr ||
-    vtkPolyData::SafeDownCast(info->Get(vtkDataObject::DATA_OBJECT())) == nullptr)
-  {
-    return nullptr;
-  }
-  // A poly-data producer announces no extent: the lines themselves say how far
-  // the output reaches, so they are brought up to date before it is announced.
-  vtkAlgorithmOutput* connection = this->GetInputConnection(1, 0);
-  connection->GetProducer()->Update(connection->GetIndex());
-  return vtkPolyData::SafeDownCast(info->Get(vtkDataObject::DATA_OBJECT()));
-}
 
 int vtkTerrainSynthesis::RequestInformation(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
@@ -267,17 +222,7 @@ int vtkTerrainSynthesis::RequestInformation(vtkInformationVector** inputVector,
   try
   {
     // The grid RequestData's set-up will produce, by the same kernel function.
-    tsynth::SketchExtent extent;
-    if (vtkPolyData* lines = this->UpdatedPolylineSketch(inputVector[1]))
-    {
-      extent = tsynth::polylineExtent(tsynth::polyDataToPolylineSketch(lines));
-    }
-    else if (sketch->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-    {
-      int e[6];
-      sketch->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), e);
-      extent = tsynth::rasterExtent(e[1] - e[0] + 1, e[3] - e[2] + 1);
-    }
+    const tsynth::SketchExtent extent = tsynth::announcedSketchExtent(this, 1, inputVector[1]);
     double spacing[3] = { 0.0, 0.0, 0.0 };
     if (exemplar->Has(vtkDataObject::SPACING()))
     {
@@ -313,7 +258,7 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
     tsynth::ExemplarInputs ex = tsynth::gatherExemplarImages(inputVector[0]);
     tsynth::SetupInputs in;
     in.exemplars = std::move(ex.heights);
-    in.sketch = sketchInput(vtkDataObject::GetData(inputVector[1], 0), ex.warnings);
+    in.sketch = tsynth::sketchInput(vtkDataObject::GetData(inputVector[1], 0), ex.warnings);
     in.grid = gridRequest(this);
     in.patchSize = this->PatchSize;
     in.seed = static_cast<std::uint64_t>(this->Seed);
@@ -372,6 +317,7 @@ void vtkTerrainSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Backend: " << this->Backend << "\n";
   os << indent << "MergeMode: " << this->MergeMode << "\n";
   os << indent << "FillOrder: " << this->FillOrder << "\n";
+  os << indent << "Drainage: " << this->Drainage << "\n";
   os << indent << "OutputSize: " << this->OutputSize[0] << " x " << this->OutputSize[1] << "\n";
   os << indent << "CellSize: " << this->CellSize << "\n";
   os << indent << "Seed: " << this->Seed << "\n";

@@ -55,6 +55,13 @@ public:
     BEST_FIRST = 0,
     CONCENTRIC = 1
   };
+  enum Drainages
+  {
+    NO_DRAINAGE = 0,
+    DRAIN_BY_FILLING = 1,
+    DRAIN_BY_BREACHING = 2,
+    DRAIN_BY_HYBRID = 3
+  };
 
   /// Patch size in cells (multiple of 4; default 80).
   vtkSetClampMacro(PatchSize, int, 16, 512);
@@ -68,6 +75,10 @@ public:
   /// Order of the non-feature filling (default BEST_FIRST).
   vtkSetClampMacro(FillOrder, int, BEST_FIRST, CONCENTRIC);
   vtkGetMacro(FillOrder, int);
+  /// Makes every cell drain at the end (default NO_DRAINAGE): depressions
+  /// filled, breached or either, from blocks of a quarter patch down to cells.
+  vtkSetClampMacro(Drainage, int, NO_DRAINAGE, DRAIN_BY_HYBRID);
+  vtkGetMacro(Drainage, int);
   /// Output size in cells; 0 0 (default) takes the sketch image's pixels, or
   /// the poly-lines' frame (their GridSize x CellSize field data) or extent.
   vtkSetVector2Macro(OutputSize, int);
@@ -124,6 +135,7 @@ protected:
   int Backend = AUTO;
   int MergeMode = NEW;
   int FillOrder = BEST_FIRST;
+  int Drainage = NO_DRAINAGE;
   int OutputSize[2] = { 0, 0 };
   double CellSize = 0.0;
   vtkIdType Seed = 0;
@@ -133,10 +145,6 @@ protected:
   std::vector<std::string> RegionMaps;
 
 private:
-  // The poly-line sketch on port 1, brought up to date (RequestInformation needs
-  // its extent); nullptr when the sketch is an image.
-  vtkPolyData* UpdatedPolylineSketch(vtkInformationVector* sketchPort);
-
   vtkTerrainSynthesis(const vtkTerrainSynthesis&) = delete;
   void operator=(const vtkTerrainSynthesis&) = delete;
 };

@@ -1,6 +1,7 @@
 #include "PitRemoval.h"
 
 #include "../Core/Error.h"
+#include "Breach.h"
 #include "Flow.h"
 
 #include <algorithm>
@@ -36,17 +37,42 @@ PitRemovalMethod parsePitRemovalMethod(const std::string& name)
   throw Error("Unknown pit removal method \"" + name + "\": use fill, breach or hybrid.");
 }
 
-Heightfield breachDepressions(const Heightfield&, const std::vector<std::uint8_t>*)
+namespace
 {
-  throw Error("Breaching is not built yet.");
+
+void checkSinks(const Heightfield& dem, const std::vector<std::uint8_t>* sinks)
+{
+  if (sinks != nullptr && sinks->size() != dem.size())
+  {
+    throw Error("The sink mask has " + std::to_string(sinks->size()) + " cells but the DEM has " +
+      std::to_string(dem.size()) + ": give a mask of the DEM's size.");
+  }
 }
 
-Heightfield breachOrFillDepressions(const Heightfield&,
-  double,
-  int,
-  const std::vector<std::uint8_t>*)
+void checkLimits(double maxBreachDepth, int maxBreachLength)
 {
-  throw Error("Selective breaching is not built yet.");
+  if (!(maxBreachDepth > 0.0 && maxBreachLength > 0))
+  {
+    throw Error("The hybrid method needs a positive maximum breach depth and length.");
+  }
+}
+
+} // namespace
+
+Heightfield breachDepressions(const Heightfield& dem, const std::vector<std::uint8_t>* sinks)
+{
+  checkSinks(dem, sinks);
+  return breachFlood(dem, sinks);
+}
+
+Heightfield breachOrFillDepressions(const Heightfield& dem,
+  double maxBreachDepth,
+  int maxBreachLength,
+  const std::vector<std::uint8_t>* sinks)
+{
+  checkSinks(dem, sinks);
+  checkLimits(maxBreachDepth, maxBreachLength);
+  return hybridFlood(dem, maxBreachDepth, static_cast<std::size_t>(maxBreachLength), sinks);
 }
 
 namespace
@@ -59,15 +85,10 @@ void checkInputs(const Heightfield& dem, const PitRemovalOptions& options)
   {
     throw Error("The DEM has no valid cell: there is nothing to drain.");
   }
-  if (options.sinks && options.sinks->size() != dem.size())
+  checkSinks(dem, options.sinks);
+  if (options.method == PitRemovalMethod::Hybrid)
   {
-    throw Error("The sink mask has " + std::to_string(options.sinks->size()) +
-      " cells but the DEM has " + std::to_string(dem.size()) + ": give a mask of the DEM's size.");
-  }
-  if (options.method == PitRemovalMethod::Hybrid &&
-    !(options.maxBreachDepth > 0.0 && options.maxBreachLength > 0))
-  {
-    throw Error("The hybrid method needs a positive maximum breach depth and length.");
+    checkLimits(options.maxBreachDepth, options.maxBreachLength);
   }
 }
 
@@ -120,6 +141,22 @@ PitRemovalResult removePits(const Heightfield& dem, const PitRemovalOptions& opt
     }
   }
   return r;
+}
+
+std::vector<std::uint8_t> sinkMaskFromRaster(const Heightfield& raster, int width, int height)
+{
+  if (raster.width != width || raster.height != height)
+  {
+    throw Error("The sink mask is " + std::to_string(raster.width) + " x " +
+      std::to_string(raster.height) + " cells but the DEM is " + std::to_string(width) + " x " +
+      std::to_string(height) + ": give a mask of the DEM's size.");
+  }
+  std::vector<std::uint8_t> sinks(raster.size(), 0);
+  for (std::size_t k = 0; k < raster.size(); ++k)
+  {
+    sinks[k] = raster.isValid(k) && std::isfinite(raster.z[k]) && raster.z[k] != 0.0f ? 1 : 0;
+  }
+  return sinks;
 }
 
 std::vector<std::uint8_t> streamNetwork(const std::vector<std::uint32_t>& accumulation,

@@ -30,15 +30,17 @@ enum class PitRemovalMethod
 std::string pitRemovalMethodName(PitRemovalMethod method);
 PitRemovalMethod parsePitRemovalMethod(const std::string& name);
 
-// The hybrid's limits, as WhiteboxTools' BreachDepressions names them: a pit is
-// breached only if its channel is no deeper than maxBreachDepth metres below the
-// original surface anywhere and no longer than maxBreachLength cells; otherwise
-// it is filled.
+// The hybrid's limits, as WhiteboxTools' BreachDepressions names them: a
+// depression is breached only if its channel is no deeper than maxBreachDepth
+// metres below the original surface anywhere and no longer than maxBreachLength
+// cells (the most cells one carve of it lowers: the channel from its deepest
+// cell to where the path was already low enough); otherwise it is filled.
 struct PitRemovalOptions
 {
   PitRemovalMethod method = PitRemovalMethod::Breach;
-  double maxBreachDepth = 50.0; // metres (hybrid only)
-  int maxBreachLength = 100;    // cells (hybrid only)
+  // 20 m / 50 cells: on 10 real DEMs 97.8% of 18606 pits breached, the 418 deepest/longest filled
+  double maxBreachDepth = 20.0; // metres (hybrid only)
+  int maxBreachLength = 50;     // cells (hybrid only)
   // Optional: one byte per cell, non-zero = a sink the user keeps.
   const std::vector<std::uint8_t>* sinks = nullptr;
 };
@@ -54,13 +56,32 @@ struct PitRemovalResult
   double maxLower = 0.0; // metres
 };
 
-// Complete breaching: no cell is ever raised; each pit is joined to a sink by a
-// one-cell channel lowered, one float step at a time, below the pit. Throws
-// tsynth::Error if `sinks` has the wrong size.
+// Complete breaching (Soille 2004): a priority flood from the sinks on the
+// original heights, in (height, index) order, each cell remembering the cell it
+// was reached from; a cell reached lower than that cell is drained by carving
+// back along those links, each cell one float step (nextafter) below the one
+// before, until a cell already lower or a sink. No cell is ever raised; flats
+// of the original stay flat (water crosses them, as drainsEverywhere allows).
+// Sinks on the border or next to nodata are lowered when a channel needs it
+// (water leaves the grid there). A user sink keeps its height whenever any
+// other outlet can be reached: a pit that could only drain by lowering one is
+// given a channel to another sink instead; only if every outlet of its region
+// is a user sink is one lowered. Invalid cells are never crossed nor changed.
+// Deterministic. Throws tsynth::Error if `sinks` has the wrong size.
 Heightfield breachDepressions(const Heightfield& dem,
   const std::vector<std::uint8_t>* sinks = nullptr);
 
-// Selective breaching then filling (Lindsay 2016) with the limits above.
+// Selective breaching (Lindsay 2016): complete breaching is measured first;
+// each depression (the cells the flood reaches below its spill level) whose
+// channel is within both limits is breached as above, the others are filled to
+// their spill level with the epsilon gradient, cells reached below the flood
+// level going one float step above the cell they were reached from. No lowered
+// cell is cut deeper than maxBreachDepth, no carve lowers more than
+// maxBreachLength cells, user sinks are never lowered (a depression that would
+// need it is filled), and the result drains. With limits no channel reaches it
+// equals breachDepressions; with limits below one float step it only raises.
+// Throws tsynth::Error for a sink mask of the wrong size or limits that are not
+// positive.
 Heightfield breachOrFillDepressions(const Heightfield& dem,
   double maxBreachDepth,
   int maxBreachLength,
@@ -70,6 +91,11 @@ Heightfield breachOrFillDepressions(const Heightfield& dem,
 // for a DEM without a valid cell, a sink mask of the wrong size, or limits that
 // are not positive.
 PitRemovalResult removePits(const Heightfield& dem, const PitRemovalOptions& options);
+
+// A sink mask from a raster read like a DEM (a file or a ParaView image): 1
+// where the value is finite and non-zero, 0 elsewhere (nodata is no sink).
+// Throws tsynth::Error naming both sizes if it is not width x height.
+std::vector<std::uint8_t> sinkMaskFromRaster(const Heightfield& raster, int width, int height);
 
 // Cells whose flow accumulation (Flow.h) is at least `threshold` cells: a
 // stream network, 1 = stream. Throws tsynth::Error for a threshold below 1.

@@ -6,6 +6,7 @@
 #include "../Distance/DistanceField.h"
 #include "../Features/Ppa.h"
 #include "Finishing.h"
+#include "../Hydrology/MultiscalePitRemoval.h"
 
 #include <algorithm>
 #include <chrono>
@@ -59,6 +60,10 @@ constexpr double kNearTie = 0.1;
 constexpr double kDriftScaleInPatches = 2.0;
 // Valley carving fades out over this share of a patch beside the line.
 constexpr double kDrainageReachInPatches = 0.25;
+// Drainage (--drainage) starts on blocks of this share of a patch: the width
+// of the cross-sections the landform term matches, so a basin that a seam
+// closed off is opened by a valley of the patches' own scale.
+constexpr double kPitRemovalCoarsestInPatches = 0.25;
 // Where the sketch leaves the land free the target still holds it, this
 // weakly, near the exemplars' level: otherwise patch after patch, each fitted
 // to the last, the land would wander off by kilometres.
@@ -725,8 +730,27 @@ public:
       result_.finishing.meanValleyCut = r.mean;
     }
     meetConstraints(out_, target_.graph, P_);
+    if (o_.drainage)
+    {
+      drainEverywhere(*o_.drainage);
+    }
     result_.terrain = std::move(out_);
     return std::move(result_);
+  }
+
+  void drainEverywhere(PitRemovalMethod method)
+  {
+    MultiscalePitRemovalOptions d;
+    d.pitRemoval.method = method;
+    d.coarsestFactor = std::max(1, static_cast<int>(kPitRemovalCoarsestInPatches * P_));
+    const MultiscalePitRemovalReport r = removePitsMultiscale(out_, d);
+    FinishingReport& f = result_.finishing;
+    f.drained = true;
+    f.pitsBefore = r.pitsBefore;
+    f.pitsAfter = r.pitsAfter;
+    f.largestDrainageRaise = r.largestRaise;
+    f.largestDrainageLowering = r.largestLowering;
+    f.meanDrainageChange = r.meanAbsoluteChange;
   }
 
   void report(double fraction, const char* stage) const

@@ -6,12 +6,14 @@
 
 #include "../Core/Heightfield.h"
 #include "../Features/FeatureGraph.h"
+#include "../Hydrology/PitRemoval.h"
 #include "../Matching/PatchMatcher.h"
 #include "../Merging/PatchMerger.h"
 #include "Target.h"
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +48,11 @@ struct SynthesisOptions
   // Sketched valleys are made to drain: floors descend to their outlets and a
   // channel runs along them (Finishing.h).
   bool drainValleys = true;
+  // Every cell made to drain at the very end (nullopt: off): pits removed by
+  // this method through a pyramid from a quarter patch down to single cells
+  // (MultiscalePitRemoval.h), so the coarse changes are broad and smooth and
+  // the seams stay hidden.
+  std::optional<PitRemovalMethod> drainage;
   // Style regions (Zhou's Middle-earth): a label per output cell (row 0 south;
   // empty = one region) and, per label, the exemplars that may serve it (a
   // label missing from the map may use every exemplar).
@@ -79,6 +86,12 @@ struct FinishingReport
   std::size_t valleyCellsLowered = 0;
   double deepestValleyCut = 0.0; // m
   double meanValleyCut = 0.0;    // m, over the valley line cells
+  bool drained = false;          // drainage was asked for; then:
+  std::size_t pitsBefore = 0;    // strict local minima before it
+  std::size_t pitsAfter = 0;
+  double largestDrainageRaise = 0.0;    // m
+  double largestDrainageLowering = 0.0; // m
+  double meanDrainageChange = 0.0;      // m, mean absolute change over the terrain
 };
 
 struct SynthesisTimings

@@ -1,5 +1,7 @@
-# Hydrology kernels: depression filling, D8 directions, flow accumulation.
-add_executable(tsynth_hydrology_tests TestHydrology.cxx)
+# Hydrology kernels: depression filling, breaching and the hybrid, the pyramid pit
+# removal, D8 directions, flow accumulation.
+add_executable(tsynth_hydrology_tests TestHydrology.cxx TestPitRemoval.cxx
+  TestMultiscalePitRemoval.cxx)
 target_link_libraries(tsynth_hydrology_tests PRIVATE
   tsynth::kernels GDAL::GDAL OpenMP::OpenMP_CXX GTest::gtest GTest::gtest_main)
 target_compile_definitions(tsynth_hydrology_tests PRIVATE ${data_definitions})

@@ -446,6 +446,43 @@ class PluginTest(unittest.TestCase):
         self.assertEqual(set(exemplar[column + 40 < 118].tolist()), {1})
         self.assertEqual(set(exemplar[column + 40 > 138].tolist()), {0})
 
+    def test_every_xml_property_has_its_setter_getter_and_default(self):
+        """A typo in a command, or an XML default that drifted from the class's, fails here."""
+        import glob
+        import xml.etree.ElementTree as ET
+
+        sys.path.insert(0, PATHS.python_dir)
+        import terrainsynthesis
+
+        plugin_dir = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Plugin")
+        checked = 0
+        for path in sorted(glob.glob(os.path.join(plugin_dir, "*.xml"))):
+            for proxy in ET.parse(path).getroot().iter("SourceProxy"):
+                obj = getattr(terrainsynthesis, proxy.get("class"))()
+                for prop in proxy:
+                    command = prop.get("command")
+                    if not prop.tag.endswith("VectorProperty") or command is None:
+                        continue
+                    with self.subTest(xml=os.path.basename(path), property=prop.get("name")):
+                        self.assertTrue(hasattr(obj, command), command)
+                        for extra in ("clean_command",):
+                            if prop.get(extra):
+                                self.assertTrue(hasattr(obj, prop.get(extra)), prop.get(extra))
+                        if command == "SetInputArrayToProcess" or not command.startswith("Set"):
+                            continue
+                        getter = "Get" + command[3:]
+                        self.assertTrue(hasattr(obj, getter), getter)
+                        default = prop.get("default_values")
+                        if default is None or prop.tag == "StringVectorProperty":
+                            continue
+                        expected = [float(v) for v in default.split()]
+                        value = getattr(obj, getter)()
+                        actual = [float(v) for v in (value if isinstance(value, tuple) else (value,))]
+                        for e, a in zip(expected, actual):
+                            self.assertAlmostEqual(e, a, places=6, msg=getter)
+                        checked += 1
+        self.assertGreater(checked, 40)
+
     def test_missing_file_gives_an_empty_output_not_a_crash(self):
         reader = simple.TerrainReader(FileName="/nonexistent/dem.tif")
         reader.UpdatePipeline()

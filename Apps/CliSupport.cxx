@@ -1,0 +1,269 @@
+#include "CliSupport.h"
+
+#include "FeatureGraphConversion.h"
+#include "TerrainFileIO.h"
+
+#include "Core/Error.h"
+#include "Core/HeightfieldIO.h"
+
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+
+#include <cctype>
+#include <charconv>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <unistd.h>
+
+namespace tsynth::cli
+{
+namespace
+{
+
+// A single-band raster that is not 8-bit (a DEM used as the target)?
+bool isDemRaster(const std::string& path)
+{
+  try
+  {
+    const RasterInfo info = readRasterInfo(path, {});
+    return rasterIsDemTarget(info.bands, info.dataType == "Byte");
+  }
+  catch (const Error&)
+  {
+    return false; // several bands: a sketch image, read as one
+  }
+}
+
+} // namespace
+
+bool hasExtension(const std::string& path, const char* wanted)
+{
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext)
+  {
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return ext == wanted;
+}
+
+bool wantsHelp(const std::vector<std::string>& args)
+{
+  for (const auto& a : args)
+  {
+    if (a == "--help" || a == "-h")
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+void printWarnings(const std::vector<std::string>& warnings)
+{
+  for (const auto& w : warnings)
+  {
+    std::cerr << "tsynth: warning: " << w << "\n";
+  }
+}
+
+// The sketch file as the set-up takes it: .vtp poly-lines (metres in the raster
+// frame), a DEM used as the target, or a sketch image (stroke map or grey map).
+SketchInput readSketchInput(const std::string& path, std::vector<std::string>& warnings)
+{
+  if (hasExtension(path, ".vtp"))
+  {
+    vtkNew<vtkPolyData> lines;
+    readPolyDataFile(path, lines);
+    std::string warning;
+    PolylineSketch sketch = polyDataToPolylineSketch(lines, &warning);
+    if (!warning.empty())
+    {
+      warnings.push_back(warning);
+    }
+    return sketch;
+  }
+  if (isVtiPath(path) || isDemRaster(path))
+  {
+    RasterInfo info;
+    Heightfield dem = readTerrainFile(path, {}, &info);
+    warnings.insert(warnings.end(), info.warnings.begin(), info.warnings.end());
+    return dem;
+  }
+  return readColourImage(path);
+}
+
+ProgressBar::ProgressBar(bool enabled)
+  : enabled_(enabled && ::isatty(STDERR_FILENO) != 0)
+{
+}
+
+void ProgressBar::operator()(double f, const std::string& stage)
+{
+  if (!enabled_)
+  {
+    return;
+  }
+  const int width = 30;
+  const int filled = static_cast<int>(f * width + 0.5);
+  std::fprintf(stderr,
+    "\r[%s%s] %3d%% %-10s",
+    std::string(static_cast<std::size_t>(filled), '#').c_str(),
+    std::string(static_cast<std::size_t>(width - filled), ' ').c_str(),
+    static_cast<int>(f * 100 + 0.5),
+    stage.c_str());
+  std::fflush(stderr);
+  if (f >= 1.0)
+  {
+    std::fprintf(stderr, "\n");
+  }
+}
+
+// "WxH" in cells, each side from 1 to kMaxOutputSide.
+GridRequest parseSize(const std::string& text, GridRequest grid)
+{
+  const std::size_t x = text.find('x');
+  auto side = [&](std::size_t from, std::size_t to)
+  {
+    int v = 0;
+    const char* end = text.data() + to;
+    const auto r = std::from_chars(text.data() + from, end, v);
+    const bool digits = x != std::string::npos && from != to && r.ptr == end;
+    if (digits && r.ec == std::errc::result_out_of_range)
+    {
+      v = std::numeric_limits<int>::max(); // refused below as too large
+    }
+    else if (!digits || r.ec != std::errc() || v < 1)
+    {
+      throw UsageError("--size expects WxH in cells, e.g. 1024x1024, not \"" + text + "\".");
+    }
+    if (v > kMaxOutputSide)
+    {
+      throw UsageError("--size " + text + " is beyond any machine: at most " +
+        std::to_string(kMaxOutputSide) + " cells a side.");
+    }
+    return v;
+  };
+  grid.width = side(0, x == std::string::npos ? text.size() : x);
+  grid.height = side(x + 1, text.size());
+  return grid;
+}
+
+// A whole number from 0 to 2^64 - 1.
+std::uint64_t parseSeed(const std::string& text)
+{
+  std::uint64_t seed = 0;
+  const char* end = text.data() + text.size();
+  const auto r = std::from_chars(text.data(), end, seed);
+  if (text.empty() || r.ec != std::errc() || r.ptr != end)
+  {
+    throw UsageError("--seed expects a whole number from 0 to " +
+      std::to_string(std::numeric_limits<std::uint64_t>::max()) + ", not \"" + text + "\".");
+  }
+  return seed;
+}
+
+const char* const kReadOptionsHelp = R"(
+Options for reading DEMs (override the NAME.json sidecar and the file):
+  --z-unit m|ft          unit of the stored heights (feet are converted to metres)
+  --cell M | MX,MY       cell size in metres
+  --z-range MIN,MAX      8/16-bit image storing a normalised range: value 0 is MIN, the largest MAX
+  --no-sidecar           ignore NAME.json beside the file
+)";
+
+ReadOptions takeReadOptions(CommandLine& cl)
+{
+  ReadOptions o;
+  if (auto unit = cl.take("--z-unit"))
+  {
+    const auto parsed = parseZUnit(*unit);
+    if (!parsed)
+    {
+      throw UsageError("--z-unit must be m or ft, not \"" + *unit + "\".");
+    }
+    o.zUnit = *parsed;
+  }
+  if (auto cell = cl.take("--cell"))
+  {
+    const std::size_t comma = cell->find(',');
+    const auto x = parseNumber(cell->substr(0, comma));
+    const auto y = comma == std::string::npos ? x : parseNumber(cell->substr(comma + 1));
+    if (!x || !y || !(*x > 0.0) || !(*y > 0.0))
+    {
+      throw UsageError("--cell expects a positive number of metres or X,Y, not \"" + *cell + "\".");
+    }
+    o.cellX = *x;
+    o.cellY = *y;
+  }
+  if (auto range = cl.take("--z-range"))
+  {
+    const std::size_t comma = range->find(',');
+    const auto lo = parseNumber(range->substr(0, comma));
+    const auto hi =
+      comma == std::string::npos ? std::nullopt : parseNumber(range->substr(comma + 1));
+    if (!lo || !hi || !(*hi > *lo))
+    {
+      throw UsageError("--z-range expects MIN,MAX with MAX > MIN, not \"" + *range + "\".");
+    }
+    o.zMin = lo;
+    o.zMax = hi;
+  }
+  o.useSidecar = !cl.takeFlag("--no-sidecar");
+  return o;
+}
+
+// Reads a DEM and passes on the reader's warnings, one line each.
+Heightfield readDem(const std::string& path, const ReadOptions& options, RasterInfo* info)
+{
+  RasterInfo local;
+  RasterInfo& used = info != nullptr ? *info : local;
+  Heightfield hf = readTerrainFile(path, options, &used);
+  for (const std::string& warning : used.warnings)
+  {
+    std::cerr << "tsynth: warning: " << warning << "\n";
+  }
+  return hf;
+}
+
+std::string oneInput(const CommandLine& cl, const char* command)
+{
+  const std::vector<std::string> rest = cl.positionals();
+  if (rest.empty())
+  {
+    throw UsageError(std::string("tsynth ") + command + " needs a DEM file.");
+  }
+  if (rest.size() > 1)
+  {
+    throw UsageError("Unexpected argument \"" + rest[1] + "\".");
+  }
+  return rest[0];
+}
+
+std::optional<int> takeCount(CommandLine& cl, const std::string& name, int lo, int hi)
+{
+  const std::optional<double> v = cl.takeNumber(name);
+  if (!v)
+  {
+    return std::nullopt;
+  }
+  if (*v != std::floor(*v) || *v < lo || *v > hi)
+  {
+    throw UsageError(name + " expects a whole number from " + std::to_string(lo) + " to " +
+      std::to_string(hi) + ".");
+  }
+  return static_cast<int>(*v);
+}
+
+void requireFolder(const std::string& path)
+{
+  const std::filesystem::path p(path);
+  const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : ".";
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec))
+  {
+    throw UsageError("Cannot write " + path + ": folder " + dir.string() + " does not exist.");
+  }
+}
+
+} // namespace tsynth::cli

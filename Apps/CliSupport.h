@@ -1,0 +1,69 @@
+// What the command line's sub-commands share: help detection, warnings, the
+// sketch reader, a progress bar, and the parsers of --size and --seed.
+#pragma once
+
+#include "CommandLine.h"
+
+#include "Core/HeightfieldIO.h"
+#include "Synthesis/Setup.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tsynth::cli
+{
+
+// True if the file name ends in `wanted` (".json"), ignoring case.
+bool hasExtension(const std::string& path, const char* wanted);
+
+// True if the arguments ask for --help (or -h).
+bool wantsHelp(const std::vector<std::string>& args);
+
+// Prints each as "tsynth: warning: ..." on stderr.
+void printWarnings(const std::vector<std::string>& warnings);
+
+// The sketch file as the set-up takes it: .vtp poly-lines (metres in the raster
+// frame), a DEM used as the target, or a sketch image (stroke map or grey map).
+SketchInput readSketchInput(const std::string& path, std::vector<std::string>& warnings);
+
+// A one-line progress bar on stderr when it is a terminal.
+class ProgressBar
+{
+public:
+  explicit ProgressBar(bool enabled);
+  void operator()(double f, const std::string& stage);
+
+private:
+  bool enabled_;
+};
+
+// The help text of the DEM read options takeReadOptions parses.
+extern const char* const kReadOptionsHelp;
+
+// --z-unit, --cell, --z-range and --no-sidecar.
+ReadOptions takeReadOptions(CommandLine& cl);
+
+// Reads a DEM and passes on the reader's warnings, one line each.
+Heightfield readDem(const std::string& path,
+  const ReadOptions& options,
+  RasterInfo* info = nullptr);
+
+// The one positional argument (a DEM) of `command`; UsageError if missing or more.
+std::string oneInput(const CommandLine& cl, const char* command);
+
+// A whole-number option from lo to hi, if given (UsageError otherwise).
+std::optional<int> takeCount(CommandLine& cl, const std::string& name, int lo, int hi);
+
+// UsageError unless the folder an output file goes into exists (checked before
+// any work, so a long run never ends in an unwritable path).
+void requireFolder(const std::string& path);
+
+// "WxH" in cells, each side from 1 to kMaxOutputSide (UsageError otherwise).
+GridRequest parseSize(const std::string& text, GridRequest grid);
+
+// A whole number from 0 to 2^64 - 1 (UsageError otherwise).
+std::uint64_t parseSeed(const std::string& text);
+
+} // namespace tsynth::cli

@@ -1,0 +1,211 @@
+#include "HydrologyCommands.h"
+
+#include "CliSupport.h"
+#include "CommandLine.h"
+#include "TerrainFileIO.h"
+
+#include "Core/Error.h"
+#include "Core/HeightfieldIO.h"
+#include "Hydrology/Flow.h"
+#include "Hydrology/PitRemoval.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <optional>
+#include <sstream>
+
+namespace tsynth::cli
+{
+namespace
+{
+
+const char* const kPitsHelp =
+  R"(Usage: tsynth pits DEM -o OUT [--method fill|breach|hybrid] [options]
+
+Removes depressions so that water from every cell runs downhill to an outlet: the border,
+a cell next to nodata, or a sink you keep (--sinks). Prints the pits before and after and
+what changed.
+
+  -o, --output OUT       corrected DEM: .tif, .png (+ sidecar) or .vti
+  --method M             breach (default): carve a one-cell channel from each pit to lower
+                         ground, never raising a cell (Soille 2004; Scott & Dodgson 2021's
+                         choice); fill: raise each depression to its spill level with a tiny
+                         gradient (Barnes et al. 2014); hybrid: breach where the channel stays
+                         within --max-depth and --max-length, fill the rest (Lindsay 2016)
+  --max-depth M          hybrid: deepest cut a breach may make, metres (default %DEPTH%)
+  --max-length N         hybrid: longest channel a breach may cut, cells (default %LENGTH%)
+  --sinks MASK           a raster of the DEM's size, non-zero where water may stay (lakes)
+  --flow ACC.tif         also write the D8 flow accumulation (cells draining through each cell)
+  --streams S.tif        also write the stream network: 1 where at least --stream-area drains
+  --stream-area KM2      contributing area of a stream, km^2 (default 1)
+)";
+
+// Contributing area from which a cell counts as a stream by default: about where
+// channels begin in humid mid-latitude land (order of 1 km^2).
+constexpr double kDefaultStreamAreaKm2 = 1.0;
+constexpr double kSquareMetresPerKm2 = 1.0e6;
+
+struct PitsArguments
+{
+  std::string input;
+  std::string output;
+  std::optional<std::string> sinks;
+  std::optional<std::string> flow;
+  std::optional<std::string> streams;
+  double streamAreaKm2 = kDefaultStreamAreaKm2;
+  PitRemovalOptions options;
+  ReadOptions read;
+};
+
+void requireRasterOutput(const std::string& path, const char* what)
+{
+  if (!isVtiPath(path) && !isHeightfieldWriteExtension(path))
+  {
+    throw UsageError(std::string(what) + " must end in .tif, .png or .vti, not " + path + ".");
+  }
+  requireFolder(path);
+}
+
+PitsArguments parsePitsArguments(std::vector<std::string> args)
+{
+  CommandLine cl(std::move(args));
+  PitsArguments a;
+  a.output = cl.take("--output", "-o").value_or("");
+  if (const auto method = cl.take("--method"))
+  {
+    try
+    {
+      a.options.method = parsePitRemovalMethod(*method);
+    }
+    catch (const Error& e)
+    {
+      throw UsageError(e.what());
+    }
+  }
+  if (const auto depth = cl.takeNumber("--max-depth"))
+  {
+    if (!(*depth > 0.0))
+    {
+      throw UsageError("--max-depth expects a positive number of metres.");
+    }
+    a.options.maxBreachDepth = *depth;
+  }
+  if (const auto length = takeCount(cl, "--max-length", 1, kMaxOutputSide))
+  {
+    a.options.maxBreachLength = *length;
+  }
+  a.sinks = cl.take("--sinks");
+  a.flow = cl.take("--flow");
+  a.streams = cl.take("--streams");
+  if (const auto area = cl.takeNumber("--stream-area"))
+  {
+    if (!(*area > 0.0) || !a.streams)
+    {
+      throw UsageError("--stream-area expects a positive number of km^2, with --streams.");
+    }
+    a.streamAreaKm2 = *area;
+  }
+  a.read = takeReadOptions(cl);
+  a.input = oneInput(cl, "pits");
+  if (a.output.empty())
+  {
+    throw UsageError("tsynth pits needs an output file: -o OUT.tif|.png|.vti.");
+  }
+  requireRasterOutput(a.output, "The output");
+  if (a.flow)
+  {
+    requireRasterOutput(*a.flow, "--flow");
+  }
+  if (a.streams)
+  {
+    requireRasterOutput(*a.streams, "--streams");
+  }
+  return a;
+}
+
+// A grid of the DEM's frame carrying other values (NaN on its invalid cells).
+template<typename Value>
+Heightfield asRaster(const Heightfield& dem, const std::vector<Value>& values)
+{
+  Heightfield out = dem;
+  for (std::size_t k = 0; k < values.size(); ++k)
+  {
+    out.z[k] = dem.isValid(k) ? static_cast<float>(values[k]) : std::nanf("");
+  }
+  out.sourceZUnit = "m";
+  return out;
+}
+
+std::uint32_t streamThreshold(const Heightfield& dem, double areaKm2)
+{
+  const double cells = areaKm2 * kSquareMetresPerKm2 / (dem.cellX * dem.cellY);
+  return static_cast<std::uint32_t>(std::clamp(std::ceil(cells), 1.0, 4294967295.0));
+}
+
+void writeFlowOutputs(const PitsArguments& a, const Heightfield& dem, const Heightfield& drained)
+{
+  if (!a.flow && !a.streams)
+  {
+    return;
+  }
+  const std::vector<std::int8_t> directions = flowDirections(drained);
+  const std::vector<std::uint32_t> accumulation =
+    flowAccumulation(directions, dem.width, dem.height, dem.hasMask() ? &dem.valid : nullptr);
+  if (a.flow)
+  {
+    writeTerrainFile(*a.flow, asRaster(dem, accumulation));
+    std::cout << "Wrote " << *a.flow << " (flow accumulation, cells)\n";
+  }
+  if (a.streams)
+  {
+    const std::uint32_t threshold = streamThreshold(dem, a.streamAreaKm2);
+    writeTerrainFile(*a.streams, asRaster(dem, streamNetwork(accumulation, threshold)));
+    std::cout << "Wrote " << *a.streams << " (streams: " << threshold << " cells or more drain)\n";
+  }
+}
+
+} // namespace
+
+int runPits(std::vector<std::string> args)
+{
+  if (wantsHelp(args))
+  {
+    std::string help = kPitsHelp;
+    const PitRemovalOptions defaults;
+    std::ostringstream depth;
+    depth << defaults.maxBreachDepth;
+    help.replace(help.find("%DEPTH%"), 7, depth.str());
+    help.replace(help.find("%LENGTH%"), 8, std::to_string(defaults.maxBreachLength));
+    std::cout << help << kReadOptionsHelp;
+    return 0;
+  }
+  PitsArguments a = parsePitsArguments(std::move(args));
+  const Heightfield dem = readDem(a.input, a.read);
+  std::vector<std::uint8_t> sinks;
+  if (a.sinks)
+  {
+    ReadOptions plain;
+    plain.useSidecar = false;
+    sinks = sinkMaskFromRaster(readTerrainFile(*a.sinks, plain), dem.width, dem.height);
+    a.options.sinks = &sinks;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const PitRemovalResult r = removePits(dem, a.options);
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  writeTerrainFile(a.output, r.dem);
+  std::cout << std::fixed << std::setprecision(2) << "Pit removal ("
+            << pitRemovalMethodName(a.options.method) << "): " << countPits(dem) << " pits before, "
+            << countPits(r.dem) << " after; " << r.raisedCells << " cells raised (up to "
+            << r.maxRaise << " m), " << r.loweredCells << " lowered (up to " << r.maxLower
+            << " m); " << seconds << " s\n";
+  std::cout << "Wrote " << a.output << "\n";
+  writeFlowOutputs(a, dem, r.dem);
+  return 0;
+}
+
+} // namespace tsynth::cli
