@@ -1,3 +1,6 @@
 # Terrain optimisation (Scott & Dodgson 2021): multi-resolution PatchMatch
 # texture optimisation with pit removal.
-set(TSYNTH_OPTIMISATION_SOURCES)
+set(TSYNTH_OPTIMISATION_SOURCES
+  Optimisation/PatchMatch.cxx
+  Optimisation/Pyramid.cxx
+  Optimisation/TerrainOptimisation.cxx)

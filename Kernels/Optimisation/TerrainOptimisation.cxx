@@ -1,0 +1,364 @@
+#include "TerrainOptimisation.h"
+
+#include "../Core/Error.h"
+#include "../Core/Resample.h"
+#include "../Hydrology/Flow.h"
+#include "PatchMatch.h"
+#include "Pyramid.h"
+
+#include <chrono>
+#include <cmath>
+#include <string>
+
+namespace tsynth
+{
+namespace
+{
+
+using Clock = std::chrono::steady_clock;
+
+// A coarsest source level of at least two patches per side, so that the
+// initial search has more than a handful of distinct patches to choose from.
+constexpr int kMinSourcePatchesPerSide = 2;
+// Cell sizes closer than this (relative) count as equal: no resampling.
+constexpr double kCellSizeTolerance = 1e-6;
+// Random streams: one per (level, EM iteration) for the search, one per level
+// for the up-sampling's fallbacks; kStreamsPerLevel exceeds any iteration count used.
+constexpr std::uint64_t kStreamsPerLevel = 1ULL << 20;
+constexpr std::uint64_t kUpsampleStream = 1ULL << 40;
+
+void checkOptions(const OptimisationOptions& o)
+{
+  if (o.patchSize % 2 == 0 || o.patchSize < kMinPatchSize || o.patchSize > kMaxPatchSize)
+  {
+    throw Error("The patch size must be odd and between " + std::to_string(kMinPatchSize) +
+      " and " + std::to_string(kMaxPatchSize) + " cells, not " + std::to_string(o.patchSize) + ".");
+  }
+  if (!(o.alpha >= 0.0 && o.alpha <= 1.0))
+  {
+    throw Error("The guide weight alpha must be between 0 and 1.");
+  }
+  if (o.iterationsPerLevel < 1 || o.patchMatchIterations < 1)
+  {
+    throw Error("The iterations per level and the PatchMatch iterations must be at least 1.");
+  }
+  if (o.levels < 0)
+  {
+    throw Error("The number of pyramid levels cannot be negative (0 chooses it).");
+  }
+}
+
+bool sameCellSize(double a, double b)
+{
+  return std::abs(a - b) <= kCellSizeTolerance * std::max(std::abs(a), std::abs(b));
+}
+
+// The source on the guide's cell size (bilinear, nodata-aware), or as it is.
+Heightfield sourceOnGuideCells(const Heightfield& source, const Heightfield& guide)
+{
+  if (sameCellSize(source.cellX, guide.cellX) && sameCellSize(source.cellY, guide.cellY))
+  {
+    return source;
+  }
+  return resampleToCellSize(source, guide.cellX, guide.cellY);
+}
+
+int minSide(const Heightfield& hf, int level)
+{
+  return std::min(optim::levelSide(hf.width, level), optim::levelSide(hf.height, level));
+}
+
+bool levelsFit(const Heightfield& source, const Heightfield& guide, int levels, int patch)
+{
+  return minSide(guide, levels) >= patch &&
+    minSide(source, levels) >= kMinSourcePatchesPerSide * patch;
+}
+
+int chooseLevels(const Heightfield& source, const Heightfield& guide, const OptimisationOptions& o)
+{
+  int levels = o.levels;
+  if (levels == 0)
+  {
+    while (minSide(guide, levels + 1) >= kMinCoarsestSide &&
+      minSide(source, levels + 1) >= kMinCoarsestSide)
+    {
+      ++levels;
+    }
+  }
+  if (!levelsFit(source, guide, levels, o.patchSize))
+  {
+    throw Error("With " + std::to_string(levels) + " pyramid levels the coarsest guide (" +
+      std::to_string(minSide(guide, levels)) + " cells) or source (" +
+      std::to_string(minSide(source, levels)) + " cells) is smaller than the patch size " +
+      std::to_string(o.patchSize) + " (guide) or twice it (source) allows: use fewer levels, a " +
+      "smaller patch or larger inputs.");
+  }
+  return levels;
+}
+
+// The exponential schedule w_k = alpha (2^k - 1) / (2^L - 1): alpha at the
+// coarsest level, about halved per finer level, 0 at the finest.
+double guideWeight(double alpha, int k, int levels)
+{
+  if (levels == 0)
+  {
+    return 0.0;
+  }
+  return alpha * (std::ldexp(1.0, k) - 1.0) / (std::ldexp(1.0, levels) - 1.0);
+}
+
+// Progress in units of one PatchMatch iteration on one cell.
+class Progress
+{
+public:
+  Progress(const std::function<bool(double)>& callback, double total)
+    : callback_(callback)
+    , total_(total)
+  {
+  }
+  void add(double work)
+  {
+    done_ += work;
+    report(std::min(1.0, done_ / total_));
+  }
+  void report(double fraction) const
+  {
+    if (callback_ && !callback_(fraction))
+    {
+      throw Cancelled();
+    }
+  }
+
+private:
+  const std::function<bool(double)>& callback_;
+  double total_;
+  double done_ = 0.0;
+};
+
+// The guide of a level as the E-step reads it: heights (invalid cells get the
+// level's valid mean, only used as the coarsest start) and the mask.
+struct GuideLevel
+{
+  int width = 0;
+  int height = 0;
+  std::vector<float> z;
+  std::vector<std::uint8_t> valid; // empty: all valid
+};
+
+GuideLevel guideLevel(const Heightfield& g)
+{
+  GuideLevel out{ g.width, g.height, g.z, g.valid };
+  const double mean = computeHeightRange(g).mean;
+  for (std::size_t k = 0; k < out.z.size(); ++k)
+  {
+    if (!g.isValid(k) || !std::isfinite(out.z[k]))
+    {
+      out.z[k] = static_cast<float>(mean);
+    }
+  }
+  return out;
+}
+
+double meanCost(const std::vector<float>& cost, int width, int height)
+{
+  double total = 0.0;
+  for (int y = 0; y < height; ++y)
+  {
+    double row = 0.0;
+    for (int x = 0; x < width; ++x)
+    {
+      row += cost[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+        static_cast<std::size_t>(x)];
+    }
+    total += row;
+  }
+  return total / (static_cast<double>(width) * static_cast<double>(height));
+}
+
+Heightfield asHeightfield(const optim::TargetGrid& r, const Heightfield& like)
+{
+  Heightfield hf(r.width, r.height);
+  hf.cellX = like.cellX;
+  hf.cellY = like.cellY;
+  hf.cellSizeKnown = like.cellSizeKnown;
+  hf.sourceZUnit = like.sourceZUnit;
+  hf.z = r.z;
+  return hf;
+}
+
+// The state carried from level to level.
+struct Run
+{
+  const OptimisationOptions& options;
+  int levels;
+  std::vector<Heightfield> sources;
+  std::vector<Heightfield> guides;
+  Progress progress;
+  std::vector<optim::Match> map;
+  std::vector<float> cost;
+  optim::TargetGrid terrain;
+
+  optim::PatchMatchSettings search(int k, int iteration, double cellsPerIteration)
+  {
+    optim::PatchMatchSettings s;
+    s.iterations = options.patchMatchIterations;
+    s.seed = options.seed;
+    s.stream =
+      static_cast<std::uint64_t>(k) * kStreamsPerLevel + static_cast<std::uint64_t>(iteration);
+    s.afterIteration = [this, cellsPerIteration](int)
+    {
+      progress.add(cellsPerIteration);
+      return true;
+    };
+    return s;
+  }
+};
+
+double cellsOf(const Heightfield& hf)
+{
+  return static_cast<double>(hf.width) * static_cast<double>(hf.height);
+}
+
+double totalWork(const std::vector<Heightfield>& guides, const OptimisationOptions& o)
+{
+  double work = cellsOf(guides.back()) * o.patchMatchIterations; // the initial M-step
+  for (const Heightfield& g : guides)
+  {
+    work += cellsOf(g) * o.patchMatchIterations * o.iterationsPerLevel;
+  }
+  return work;
+}
+
+// R^L = G^L and C^L from an M-step on it, starting from random matches.
+void initialise(Run& run, const optim::SourceLevel& source)
+{
+  const int k = run.levels;
+  const GuideLevel g = guideLevel(run.guides[static_cast<std::size_t>(k)]);
+  run.terrain = { g.width, g.height, g.z };
+  run.map = optim::randomMatches(source,
+    g.width,
+    g.height,
+    run.options.seed,
+    static_cast<std::uint64_t>(k) * kStreamsPerLevel + kUpsampleStream);
+  optim::patchMatch(source,
+    run.terrain,
+    run.map,
+    run.cost,
+    run.search(k, run.options.iterationsPerLevel, static_cast<double>(g.width) * g.height));
+}
+
+OptimisationLevel optimiseLevel(Run& run, const optim::SourceLevel& source, int k)
+{
+  const auto t0 = Clock::now();
+  const Heightfield& guideHf = run.guides[static_cast<std::size_t>(k)];
+  const GuideLevel g = guideLevel(guideHf);
+  const double w = guideWeight(run.options.alpha, k, run.levels);
+  const double cells = static_cast<double>(g.width) * g.height;
+  OptimisationLevel report;
+  report.level = k;
+  report.width = g.width;
+  report.height = g.height;
+  run.terrain.width = g.width;
+  run.terrain.height = g.height;
+  for (int it = 0; it < run.options.iterationsPerLevel; ++it)
+  {
+    optim::reconstruct(source, run.map, g.width, g.height, g.z, g.valid, w, run.terrain.z);
+    if (run.options.removePits && k > 0)
+    {
+      const Heightfield level = asHeightfield(run.terrain, guideHf);
+      report.pitsBeforeRemoval = countPits(level);
+      run.terrain.z = removePits(level, run.options.pitRemoval).dem.z;
+    }
+    optim::patchMatch(source, run.terrain, run.map, run.cost, run.search(k, it, cells));
+    report.energy.push_back(meanCost(run.cost, g.width, g.height));
+  }
+  if (k > 0)
+  {
+    report.pitsAfter = countPits(asHeightfield(run.terrain, guideHf));
+    if (!(run.options.removePits))
+    {
+      report.pitsBeforeRemoval = report.pitsAfter;
+    }
+  }
+  else
+  {
+    optim::reconstruct(source, run.map, g.width, g.height, g.z, g.valid, w, run.terrain.z);
+    const Heightfield level = asHeightfield(run.terrain, guideHf);
+    report.pitsBeforeRemoval = report.pitsAfter = countPits(level);
+  }
+  report.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return report;
+}
+
+void checkInputs(const Heightfield& source, const Heightfield& guide)
+{
+  if (source.size() == 0 || source.validCount() == 0)
+  {
+    throw Error("The source DEM has no valid cell: give a source with height data.");
+  }
+  if (guide.size() == 0 || guide.validCount() == 0)
+  {
+    throw Error("The guide has no valid cell: give a guide with height data.");
+  }
+}
+
+} // namespace
+
+OptimisationResult optimiseTerrain(const Heightfield& source,
+  const Heightfield& guide,
+  const OptimisationOptions& options)
+{
+  checkOptions(options);
+  checkInputs(source, guide);
+  const Heightfield resampled = sourceOnGuideCells(source, guide);
+  checkInputs(resampled, guide);
+  const int levels = chooseLevels(resampled, guide, options);
+  std::vector<Heightfield> guides = optim::gaussianPyramid(guide, levels);
+  Run run{ options,
+    levels,
+    optim::gaussianPyramid(resampled, levels),
+    guides,
+    Progress(options.progress, totalWork(guides, options)),
+    {},
+    {},
+    {} };
+  run.progress.report(0.0);
+
+  OptimisationResult result;
+  optim::SourceLevel coarser;
+  for (int k = levels; k >= 0; --k)
+  {
+    const auto t0 = Clock::now();
+    optim::SourceLevel level = optim::makeSourceLevel(run.sources[static_cast<std::size_t>(k)],
+      options.patchSize,
+      options.rotations,
+      options.reflections,
+      k);
+    if (k == levels)
+    {
+      initialise(run, level);
+    }
+    else
+    {
+      const Heightfield& g = run.guides[static_cast<std::size_t>(k)];
+      run.map = optim::upsampleMatches(run.map,
+        run.terrain.width,
+        coarser,
+        level,
+        g.width,
+        g.height,
+        options.seed,
+        static_cast<std::uint64_t>(k) * kStreamsPerLevel + kUpsampleStream);
+    }
+    const double setup = std::chrono::duration<double>(Clock::now() - t0).count();
+    result.levels.push_back(optimiseLevel(run, level, k));
+    result.levels.back().seconds += setup;
+    coarser = std::move(level);
+  }
+  result.terrain = asHeightfield(run.terrain, guide);
+  result.terrain.georef = guide.georef;
+  run.progress.report(1.0);
+  return result;
+}
+
+} // namespace tsynth
