@@ -1,4 +1,5 @@
-// tsynth pits: depression removal, flow accumulation and streams.
+// tsynth pits (depression removal, flow accumulation and streams) and tsynth
+// optimise (terrain optimisation, Scott & Dodgson 2021).
 #pragma once
 
 #include <string>
@@ -8,5 +9,6 @@ namespace tsynth::cli
 {
 
 int runPits(std::vector<std::string> args);
+int runOptimise(std::vector<std::string> args); // OptimiseCommand.cxx
 
 } // namespace tsynth::cli

@@ -54,6 +54,7 @@ Commands:
   synth --exemplar DEM --sketch SKETCH -o OUT   synthesise a terrain that follows a sketch
   evaluate TERRAIN --exemplar DEM [--sketch S]  quality figures, with baselines
   pits DEM -o OUT        remove depressions (breach, fill or hybrid); flow accumulation, streams
+  optimise --exemplar DEM --guide GUIDE -o OUT  terrain optimisation (Scott & Dodgson 2021)
 
 Run "tsynth COMMAND --help" for a command's options.
 )";
@@ -594,6 +595,10 @@ int main(int argc, char** argv)
     if (command == "pits")
     {
       return tsynth::cli::runPits(std::move(args));
+    }
+    if (command == "optimise" || command == "optimize")
+    {
+      return tsynth::cli::runOptimise(std::move(args));
     }
     if (command == "evaluate")
     {

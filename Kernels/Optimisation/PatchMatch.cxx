@@ -443,6 +443,35 @@ std::vector<Match> randomMatches(const SourceLevel& s,
   return map;
 }
 
+std::vector<Match> randomRegions(const SourceLevel& s,
+  int width,
+  int height,
+  int block,
+  std::uint64_t seed,
+  std::uint64_t stream)
+{
+  const int blocksX = (width + block - 1) / block;
+  const int blocksY = (height + block - 1) / block;
+  const std::vector<Match> starts = randomMatches(s, blocksX, blocksY, seed, stream);
+  std::vector<Match> map(sz(width) * sz(height));
+#pragma omp parallel for schedule(static)
+  for (int y = 0; y < height; ++y)
+  {
+    for (int x = 0; x < width; ++x)
+    {
+      const Match& start = starts[sz(y / block) * sz(blocksX) + sz(x / block)];
+      Match m = start;
+      m.x += x % block;
+      m.y += y % block;
+      const OrientedCopy& c = s.copies[sz(m.t)];
+      const bool inside = m.x < c.width && m.y < c.height;
+      map[sz(y) * sz(width) + sz(x)] =
+        inside && c.centreOk[sz(m.y) * sz(c.width) + sz(m.x)] != 0 ? m : start;
+    }
+  }
+  return map;
+}
+
 std::vector<Match> upsampleMatches(const std::vector<Match>& coarse,
   int coarseWidth,
   const SourceLevel& coarseSource,
@@ -530,7 +559,7 @@ void reconstruct(const SourceLevel& s,
   int width,
   int height,
   const std::vector<float>& guide,
-  const std::vector<std::uint8_t>& guideValid,
+  const std::vector<float>& guideWeight,
   double weight,
   std::vector<float>& out)
 {
@@ -555,8 +584,8 @@ void reconstruct(const SourceLevel& s,
       }
       const std::size_t p = sz(y) * sz(width) + sz(x);
       const double mean = sum / count;
-      const bool guided = weight > 0.0 && (guideValid.empty() || guideValid[p] != 0);
-      out[p] = static_cast<float>(guided ? weight * guide[p] + (1.0 - weight) * mean : mean);
+      const double w = guideWeight.empty() ? weight : weight * guideWeight[p];
+      out[p] = static_cast<float>(w > 0.0 ? w * guide[p] + (1.0 - w) * mean : mean);
     }
   }
 }

@@ -142,14 +142,27 @@ void matchCosts(const SourceLevel& s,
 
 // Eq. 5: each cell the mean of the overlapping matched patches' values at it
 // (over the patches whose centre is inside the grid), blended with the guide
-// with `weight` where `guideValid` is non-zero (empty: everywhere).
+// with `weight` times the cell's `guideWeight` (0..1; 0 at invalid guide
+// cells; empty: 1 everywhere).
 void reconstruct(const SourceLevel& s,
   const std::vector<Match>& map,
   int width,
   int height,
   const std::vector<float>& guide,
-  const std::vector<std::uint8_t>& guideValid,
+  const std::vector<float>& guideWeight,
   double weight,
   std::vector<float>& out);
+
+// Coherent random matches: the grid cut into blocks of `block` cells, each
+// block a copy of one random region of the source (a random valid centre for
+// the block's first cell, its neighbours following it cell by cell where their
+// centres are valid). The start of free land, where the guide says nothing:
+// the source's own structure at the level's scale, not noise.
+std::vector<Match> randomRegions(const SourceLevel& s,
+  int width,
+  int height,
+  int block,
+  std::uint64_t seed,
+  std::uint64_t stream);
 
 } // namespace tsynth::optim

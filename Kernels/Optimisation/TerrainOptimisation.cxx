@@ -26,6 +26,10 @@ constexpr double kCellSizeTolerance = 1e-6;
 // for the up-sampling's fallbacks; kStreamsPerLevel exceeds any iteration count used.
 constexpr std::uint64_t kStreamsPerLevel = 1ULL << 20;
 constexpr std::uint64_t kUpsampleStream = 1ULL << 40;
+// Free land starts as copies of random source regions this many coarsest cells
+// a side: a quarter of the smallest coarsest level, so several distinct pieces
+// of the source's own structure meet in it.
+constexpr int kFreeLandRegionCells = kMinCoarsestSide / 4;
 
 void checkOptions(const OptimisationOptions& o)
 {
@@ -136,24 +140,34 @@ private:
 };
 
 // The guide of a level as the E-step reads it: heights (invalid cells get the
-// level's valid mean, only used as the coarsest start) and the mask.
+// level's valid mean, only used as the coarsest start) and its weight per cell
+// (the confidence; 0 at invalid cells; empty: 1 everywhere).
 struct GuideLevel
 {
   int width = 0;
   int height = 0;
   std::vector<float> z;
-  std::vector<std::uint8_t> valid; // empty: all valid
+  std::vector<float> weight;
 };
 
-GuideLevel guideLevel(const Heightfield& g)
+GuideLevel guideLevel(const Heightfield& g, const Heightfield* confidence)
 {
-  GuideLevel out{ g.width, g.height, g.z, g.valid };
+  GuideLevel out{ g.width, g.height, g.z, {} };
   const double mean = computeHeightRange(g).mean;
+  if (g.hasMask() || confidence != nullptr)
+  {
+    out.weight.assign(g.size(), 1.0f);
+  }
   for (std::size_t k = 0; k < out.z.size(); ++k)
   {
-    if (!g.isValid(k) || !std::isfinite(out.z[k]))
+    const bool valid = g.isValid(k) && std::isfinite(out.z[k]);
+    if (!valid)
     {
       out.z[k] = static_cast<float>(mean);
+    }
+    if (!out.weight.empty())
+    {
+      out.weight[k] = !valid ? 0.0f : confidence ? std::clamp(confidence->z[k], 0.0f, 1.0f) : 1.0f;
     }
   }
   return out;
@@ -193,8 +207,15 @@ struct Run
   int levels;
   std::vector<Heightfield> sources;
   std::vector<Heightfield> guides;
+  std::vector<Heightfield> confidences; // empty: the guide is trusted everywhere
   Progress progress;
   std::vector<optim::Match> map;
+
+  GuideLevel guide(int k) const
+  {
+    const auto level = static_cast<std::size_t>(k);
+    return guideLevel(guides[level], confidences.empty() ? nullptr : &confidences[level]);
+  }
   std::vector<float> cost;
   optim::TargetGrid terrain;
 
@@ -229,17 +250,25 @@ double totalWork(const std::vector<Heightfield>& guides, const OptimisationOptio
   return work;
 }
 
-// R^L = G^L and C^L from an M-step on it, starting from random matches.
+// R^L = G^L and C^L from an M-step on it, starting from random matches; where
+// the guide is less than fully trusted, R^L starts as the guide blended by its
+// confidence with random regions of the source, which the M-step starts from.
 void initialise(Run& run, const optim::SourceLevel& source)
 {
   const int k = run.levels;
-  const GuideLevel g = guideLevel(run.guides[static_cast<std::size_t>(k)]);
+  const GuideLevel g = run.guide(k);
+  const std::uint64_t stream = static_cast<std::uint64_t>(k) * kStreamsPerLevel + kUpsampleStream;
   run.terrain = { g.width, g.height, g.z };
-  run.map = optim::randomMatches(source,
-    g.width,
-    g.height,
-    run.options.seed,
-    static_cast<std::uint64_t>(k) * kStreamsPerLevel + kUpsampleStream);
+  if (run.confidences.empty())
+  {
+    run.map = optim::randomMatches(source, g.width, g.height, run.options.seed, stream);
+  }
+  else
+  {
+    run.map = optim::randomRegions(
+      source, g.width, g.height, kFreeLandRegionCells, run.options.seed, stream);
+    optim::reconstruct(source, run.map, g.width, g.height, g.z, g.weight, 1.0, run.terrain.z);
+  }
   optim::patchMatch(source,
     run.terrain,
     run.map,
@@ -251,7 +280,7 @@ OptimisationLevel optimiseLevel(Run& run, const optim::SourceLevel& source, int 
 {
   const auto t0 = Clock::now();
   const Heightfield& guideHf = run.guides[static_cast<std::size_t>(k)];
-  const GuideLevel g = guideLevel(guideHf);
+  const GuideLevel g = run.guide(k);
   const double w = guideWeight(run.options.alpha, k, run.levels);
   const double cells = static_cast<double>(g.width) * g.height;
   OptimisationLevel report;
@@ -262,7 +291,7 @@ OptimisationLevel optimiseLevel(Run& run, const optim::SourceLevel& source, int 
   run.terrain.height = g.height;
   for (int it = 0; it < run.options.iterationsPerLevel; ++it)
   {
-    optim::reconstruct(source, run.map, g.width, g.height, g.z, g.valid, w, run.terrain.z);
+    optim::reconstruct(source, run.map, g.width, g.height, g.z, g.weight, w, run.terrain.z);
     if (run.options.removePits && k > 0)
     {
       const Heightfield level = asHeightfield(run.terrain, guideHf);
@@ -282,12 +311,32 @@ OptimisationLevel optimiseLevel(Run& run, const optim::SourceLevel& source, int 
   }
   else
   {
-    optim::reconstruct(source, run.map, g.width, g.height, g.z, g.valid, w, run.terrain.z);
+    optim::reconstruct(source, run.map, g.width, g.height, g.z, g.weight, w, run.terrain.z);
     const Heightfield level = asHeightfield(run.terrain, guideHf);
     report.pitsBeforeRemoval = report.pitsAfter = countPits(level);
   }
   report.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return report;
+}
+
+// The confidence as a grid of the guide's shape, through the same pyramid.
+std::vector<Heightfield> confidencePyramid(const Heightfield& guide,
+  const std::vector<float>& confidence,
+  int levels)
+{
+  if (confidence.empty())
+  {
+    return {};
+  }
+  if (confidence.size() != guide.size())
+  {
+    throw Error("The guide's confidence has " + std::to_string(confidence.size()) +
+      " cells but the guide has " + std::to_string(guide.size()) + ".");
+  }
+  Heightfield c = guide;
+  c.z = confidence;
+  c.valid.clear();
+  return optim::gaussianPyramid(c, levels);
 }
 
 void checkInputs(const Heightfield& source, const Heightfield& guide)
@@ -318,6 +367,7 @@ OptimisationResult optimiseTerrain(const Heightfield& source,
     levels,
     optim::gaussianPyramid(resampled, levels),
     guides,
+    confidencePyramid(guide, options.guideConfidence, levels),
     Progress(options.progress, totalWork(guides, options)),
     {},
     {},

@@ -72,6 +72,13 @@ struct OptimisationOptions
   bool removePits = true;
   PitRemovalOptions pitRemoval; // method defaults to Breach, as the paper chose
   std::uint64_t seed = 0;
+  // How far the guide is to be trusted per guide cell (0..1; empty: 1
+  // everywhere): the guide's weight in every E-step is multiplied by it, and
+  // where it is below 1 the coarsest start blends the guide with random
+  // regions of the source (randomRegions) instead of taking the guide alone.
+  // A stroke sketch's target is confident near the lines only
+  // (SynthesisTarget::weight); the land between them is left to the source.
+  std::vector<float> guideConfidence;
   // Called with the fraction done (0..1); return false to stop (the call then
   // throws tsynth::Cancelled).
   std::function<bool(double)> progress;

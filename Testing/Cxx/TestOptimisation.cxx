@@ -91,11 +91,12 @@ const Heightfield& guide()
   return g;
 }
 
+// The defaults (pit removal by breaching, as the paper chose) on two coarse
+// levels: 128 -> 64 -> 32.
 OptimisationOptions fillOptions()
 {
   OptimisationOptions o;
-  o.pitRemoval.method = PitRemovalMethod::Fill; // breaching is not in this branch yet
-  o.levels = 2;                                 // 128 -> 64 -> 32: two coarse levels to check
+  o.levels = 2;
   return o;
 }
 
@@ -261,6 +262,41 @@ TEST(Optimisation, TheResultFollowsTheGuideAtCoarseScale)
   const double toGuide = coarseRms(r.terrain, guide(), 3);
   const double sourceToGuide = coarseRms(own, guide(), 3);
   EXPECT_LT(toGuide, 0.25 * sourceToGuide) << toGuide << " vs " << sourceToGuide;
+}
+
+// Standard deviation of the heights: relief.
+double spread(const Heightfield& hf)
+{
+  const HeightRange r = computeHeightRange(hf);
+  double sum = 0.0;
+  for (float z : hf.z)
+  {
+    sum += (z - r.mean) * (z - r.mean);
+  }
+  return std::sqrt(sum / double(hf.size()));
+}
+
+TEST(Optimisation, WhereTheGuideIsNotTrustedTheSourceShapesTheLand)
+{
+  // A flat guide at the source's mean height: trusted, the output stays flat;
+  // not trusted, the source's own relief fills the land.
+  Heightfield flat = guide();
+  std::fill(flat.z.begin(), flat.z.end(), static_cast<float>(computeHeightRange(source()).mean));
+  OptimisationOptions o = fillOptions();
+  const double trusted = spread(optimiseTerrain(source(), flat, o).terrain);
+  o.guideConfidence.assign(flat.size(), 0.0f);
+  const OptimisationResult free = optimiseTerrain(source(), flat, o);
+  const double sourceRelief = spread(source());
+  EXPECT_LT(trusted, 0.2 * sourceRelief) << trusted << " vs " << sourceRelief;
+  EXPECT_GT(spread(free.terrain), 0.5 * sourceRelief) << spread(free.terrain);
+  // Half trusted: in between, and the same bits again for the same seed.
+  o.guideConfidence.assign(flat.size(), 0.5f);
+  const OptimisationResult half = optimiseTerrain(source(), flat, o);
+  EXPECT_GT(spread(half.terrain), trusted);
+  EXPECT_LT(spread(half.terrain), spread(free.terrain));
+  EXPECT_EQ(half.terrain.z, optimiseTerrain(source(), flat, o).terrain.z);
+  o.guideConfidence.assign(flat.size() + 1, 0.5f);
+  EXPECT_THROW(optimiseTerrain(source(), flat, o), Error);
 }
 
 TEST(Optimisation, DeterministicForASeedAndAnyThreadCount)

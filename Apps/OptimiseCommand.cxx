@@ -1,0 +1,251 @@
+// tsynth optimise: terrain optimisation (Scott & Dodgson 2021) from a source
+// DEM and a guide.
+#include "HydrologyCommands.h"
+
+#include "CliSupport.h"
+#include "CommandLine.h"
+#include "TerrainFileIO.h"
+
+#include "Core/Error.h"
+#include "Hydrology/PitRemoval.h"
+#include "Optimisation/OptimisationGuide.h"
+#include "Optimisation/TerrainOptimisation.h"
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace tsynth::cli
+{
+namespace
+{
+
+const char* const kOptimiseHelp =
+  R"(Usage: tsynth optimise --exemplar DEM --guide GUIDE -o OUT [options]
+
+Terrain optimisation (Scott & Dodgson, "Example-based terrain synthesis with pit removal",
+2021): the output is rebuilt entirely from small patches of the source DEM so that it looks
+like the source and follows the guide. From the coarsest level of a pyramid to the finest,
+each cell takes the source patch that best matches its neighbourhood (PatchMatch) and
+becomes the average of the overlapping patches, blended with the guide with a weight that
+halves level by level; pits are removed after each step on every level but the finest.
+
+The guide is a DEM, a grey sketch (brighter is higher), a stroke map (red ridges, blue
+valleys) or poly-lines (.vtp), read as tsynth synth reads its --sketch: DEMs and grey maps
+are brought onto the source's heights, strokes become its landforms.
+
+  --exemplar DEM         the source DEM: every height of the output comes from it
+  --guide GUIDE          what the terrain should follow
+  -o, --output OUT       .tif (GeoTIFF float32), .png (16-bit + sidecar) or .vti
+  --size WxH             output size in cells (default: the guide's pixels)
+  --patch N              patch size in cells, odd, 3 to %MAXPATCH% (default %PATCH%)
+  --levels L             pyramid levels above the output (default: %LEVELS%)
+  --alpha A              guide weight at the coarsest level, 0 to 1 (default %ALPHA%)
+  --iterations N         E/M iterations per level (default %MU%, the paper's)
+  --search-iterations N  PatchMatch passes per M-step (default %PM%)
+  --rotations            also use the source's patches turned by 90, 180 and 270 degrees
+  --reflections          also use them mirrored
+  --pits M               pit removal on the coarser levels: breach (default, the paper's),
+                         fill, hybrid or none
+  --seed N               another seed gives another terrain; the same seed the same terrain
+  --no-progress          no progress bar on the terminal
+)";
+
+// Bounds of the counts a user may ask for: beyond them a run would take days or
+// the pyramid would have no cells left; they catch typing errors.
+constexpr int kMaxLevels = 16;
+constexpr int kMaxIterations = 100;
+
+std::atomic<bool> gInterrupted{ false };
+
+extern "C" void onInterrupt(int)
+{
+  gInterrupted = true;
+}
+
+struct OptimiseArguments
+{
+  std::string source;
+  std::string guide;
+  std::string output;
+  GridRequest grid;
+  OptimisationOptions options;
+  bool progress = true;
+};
+
+std::string helpText()
+{
+  const OptimisationOptions d;
+  std::string help = kOptimiseHelp;
+  auto put = [&](const std::string& key, const std::string& value)
+  {
+    const std::size_t at = help.find(key);
+    if (at != std::string::npos)
+    {
+      help.replace(at, key.size(), value);
+    }
+  };
+  std::ostringstream alpha;
+  alpha << d.alpha;
+  put("%MAXPATCH%", std::to_string(kMaxPatchSize));
+  put("%PATCH%", std::to_string(d.patchSize));
+  put("%LEVELS%", d.levels > 0 ? std::to_string(d.levels) : "as many as the source allows");
+  put("%ALPHA%", alpha.str());
+  put("%MU%", std::to_string(d.iterationsPerLevel));
+  put("%PM%", std::to_string(d.patchMatchIterations));
+  return help;
+}
+
+void takeOptimisationOptions(CommandLine& cl, OptimisationOptions& o)
+{
+  if (const auto patch = takeCount(cl, "--patch", 1, kMaxPatchSize))
+  {
+    o.patchSize = *patch; // odd and range checked by the kernel, with its sentence
+  }
+  if (const auto levels = takeCount(cl, "--levels", 0, kMaxLevels))
+  {
+    o.levels = *levels;
+  }
+  if (const auto alpha = cl.takeNumber("--alpha"))
+  {
+    o.alpha = *alpha;
+  }
+  if (const auto mu = takeCount(cl, "--iterations", 1, kMaxIterations))
+  {
+    o.iterationsPerLevel = *mu;
+  }
+  if (const auto pm = takeCount(cl, "--search-iterations", 1, kMaxIterations))
+  {
+    o.patchMatchIterations = *pm;
+  }
+  o.rotations = cl.takeFlag("--rotations");
+  o.reflections = cl.takeFlag("--reflections");
+  if (const auto pits = cl.take("--pits"))
+  {
+    o.removePits = *pits != "none";
+    if (o.removePits)
+    {
+      try
+      {
+        o.pitRemoval.method = parsePitRemovalMethod(*pits);
+      }
+      catch (const Error&)
+      {
+        throw UsageError("--pits must be breach, fill, hybrid or none.");
+      }
+    }
+  }
+  if (const auto seed = cl.take("--seed"))
+  {
+    o.seed = parseSeed(*seed);
+  }
+}
+
+OptimiseArguments parseOptimiseArguments(std::vector<std::string> args)
+{
+  CommandLine cl(std::move(args));
+  OptimiseArguments a;
+  a.source = cl.take("--exemplar").value_or("");
+  a.guide = cl.take("--guide").value_or("");
+  a.output = cl.take("--output", "-o").value_or("");
+  if (const auto size = cl.take("--size"))
+  {
+    a.grid = parseSize(*size, a.grid);
+  }
+  takeOptimisationOptions(cl, a.options);
+  a.progress = !cl.takeFlag("--no-progress");
+  if (!cl.positionals().empty())
+  {
+    throw UsageError("Unexpected argument \"" + cl.positionals().front() + "\".");
+  }
+  if (a.source.empty() || a.guide.empty())
+  {
+    throw UsageError("tsynth optimise needs a source --exemplar DEM and a --guide.");
+  }
+  if (a.output.empty() || (!isVtiPath(a.output) && !isHeightfieldWriteExtension(a.output)))
+  {
+    throw UsageError("tsynth optimise needs an output file: -o OUT.tif|.png|.vti.");
+  }
+  requireFolder(a.output);
+  return a;
+}
+
+void printLevels(const OptimisationResult& r)
+{
+  std::cout << "Level  size         energy (m^2 per patch, each iteration)   pits    s\n";
+  for (const OptimisationLevel& l : r.levels)
+  {
+    std::ostringstream sizes;
+    sizes << l.width << " x " << l.height;
+    std::ostringstream energies;
+    energies << std::setprecision(4);
+    for (double e : l.energy)
+    {
+      energies << e << " ";
+    }
+    std::cout << std::left << std::setw(7) << l.level << std::setw(13) << sizes.str()
+              << std::setw(41) << energies.str() << std::setw(8) << l.pitsAfter << std::fixed
+              << std::setprecision(2) << l.seconds << "\n"
+              << std::defaultfloat;
+  }
+}
+
+} // namespace
+
+int runOptimise(std::vector<std::string> args)
+{
+  if (wantsHelp(args))
+  {
+    std::cout << helpText() << kReadOptionsHelp;
+    return 0;
+  }
+  OptimiseArguments a = parseOptimiseArguments(std::move(args));
+  const Heightfield source = readDem(a.source, {});
+  std::vector<std::string> warnings;
+  const SketchInput sketch = readSketchInput(a.guide, warnings);
+  printWarnings(warnings);
+  SetupOptionNames names;
+  names.size = "--size";
+  names.patch = "the guide's landform scale";
+  const OptimisationGuide guide =
+    buildOptimisationGuide(source, sketch, a.grid, a.options.seed, names);
+  printWarnings(guide.warnings);
+
+  ProgressBar bar(a.progress);
+  gInterrupted = false;
+  const auto previous = std::signal(SIGINT, onInterrupt);
+  a.options.progress = [&](double f)
+  {
+    bar(f, "optimise");
+    return !gInterrupted.load();
+  };
+  a.options.guideConfidence = guide.confidence;
+  const auto t0 = std::chrono::steady_clock::now();
+  OptimisationResult r;
+  try
+  {
+    r = optimiseTerrain(source, guide.field, a.options);
+  }
+  catch (const Cancelled&)
+  {
+    std::signal(SIGINT, previous);
+    std::cerr << "\ntsynth: stopped; nothing was written.\n";
+    return 130;
+  }
+  std::signal(SIGINT, previous);
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  writeTerrainFile(a.output, r.terrain);
+  std::cout << "Optimised " << r.terrain.width << " x " << r.terrain.height
+            << " cells (guide: " << guide.kind << ") in " << std::fixed << std::setprecision(2)
+            << seconds << " s.\n"
+            << std::defaultfloat;
+  printLevels(r);
+  std::cout << "Wrote " << a.output << "\n";
+  return 0;
+}
+
+} // namespace tsynth::cli

@@ -1,0 +1,30 @@
+#include "OptimisationGuide.h"
+
+namespace tsynth
+{
+
+OptimisationGuide buildOptimisationGuide(const Heightfield& source,
+  const SketchInput& sketch,
+  const GridRequest& grid,
+  std::uint64_t seed,
+  const SetupOptionNames& names)
+{
+  SetupInputs in;
+  in.exemplars.push_back(source);
+  in.sketch = sketch;
+  in.grid = grid;
+  in.patchSize = kGuideLandformScale;
+  in.seed = seed;
+  in.names = names;
+  SynthesisSetup setup = prepareSynthesis(std::move(in));
+  OptimisationGuide guide;
+  guide.field = std::move(setup.target.field);
+  guide.confidence = std::move(setup.target.weight);
+  guide.kind = setup.sketchKind;
+  guide.warnings = std::move(setup.warnings);
+  guide.warnings.insert(
+    guide.warnings.end(), setup.target.warnings.begin(), setup.target.warnings.end());
+  return guide;
+}
+
+} // namespace tsynth
