@@ -1,5 +1,6 @@
 #include "vtkTerrainPitRemoval.h"
 
+#include "PipelineRequests.h"
 #include "PropertyEnums.h"
 #include "TerrainImageConversion.h"
 
@@ -66,6 +67,16 @@ int vtkTerrainPitRemoval::FillInputPortInformation(int port, vtkInformation* inf
   {
     info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
   }
+  return 1;
+}
+
+int vtkTerrainPitRemoval::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
+{
+  // The DEM and the sink mask are needed whole, whatever the mask's size (a
+  // wrong size is then refused with its sizes in RequestData).
+  tsynth::requestWholeExtents(inputVector, 2);
   return 1;
 }
 

@@ -269,17 +269,158 @@ class PitRemovalFilterTest(unittest.TestCase):
         self.assertEqual(proxy.StreamThreshold, direct.GetStreamThreshold())
 
     def test_sink_mask_of_the_wrong_size_fails_the_request(self):
-        reader = simple.TerrainReader(FileName=self.colorado)
-        mask = simple.PVTrivialProducer()
+        from vtkmodules.vtkCommonCore import vtkCommand
+        from vtkmodules.util.misc import calldata_type
+        from vtkmodules.util.vtkConstants import VTK_STRING
+
+        sys.path.insert(0, PATHS.python_dir)
+        from terrainsynthesis import vtkTerrainPitRemoval, vtkTerrainReader
+
+        reader = vtkTerrainReader()
+        reader.SetFileName(self.colorado)
         image = vtkImageData()
         image.SetDimensions(10, 10, 1)
         values = numpy_to_vtk(np.ones(100, dtype=np.uint8), deep=1)
         values.SetName("Lakes")
         image.GetPointData().SetScalars(values)
-        mask.GetClientSideObject().SetOutput(image)
-        pits = simple.TerrainPitRemoval(Input=reader, Sinks=mask)
-        pits.UpdatePipeline()
-        self.assertEqual(sm.Fetch(pits).GetNumberOfPoints(), 0)
+        pits = vtkTerrainPitRemoval()
+        pits.SetInputConnection(reader.GetOutputPort())
+        pits.SetInputData(1, image)
+        errors = []
+
+        @calldata_type(VTK_STRING)
+        def on_error(_caller, _event, message):
+            errors.append(message)
+
+        pits.AddObserver(vtkCommand.ErrorEvent, on_error)
+        pits.Update()
+        self.assertEqual(pits.GetOutput().GetNumberOfPoints(), 0)
+        self.assertEqual(len(errors), 1, errors)
+        self.assertIn("10 x 10 cells but the DEM is 648 x 648", errors[0])
+
+
+class OptimiseTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        simple.LoadPlugin(PATHS.plugin, remote=False)
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.colorado = os.path.join(PATHS.bundled_data, "dems", "colorado.png")
+        cls.lambda_grey = os.path.join(PATHS.bundled_data, "sketches", "lambda_circle_grey.png")
+        cls.tree = os.path.join(PATHS.bundled_data, "sketches", "strokes_valley_tree.png")
+        cls.source = read_vti(cls.convert(cls.colorado, "colorado.vti"))
+
+    @classmethod
+    def convert(cls, path, name):
+        out = os.path.join(cls.tmp.name, name)
+        subprocess.run([PATHS.tsynth, "convert", path, "-o", out], check=True, stdout=subprocess.DEVNULL)
+        return out
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def test_command_line_and_filter_give_the_same_terrain(self):
+        out = os.path.join(self.tmp.name, "opt.vti")
+        r = tsynth("optimise", "--exemplar", self.colorado, "--guide", self.lambda_grey, "-o", out,
+                   "--size", "256x256", "--seed", "3", "--no-progress")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        z = read_vti(out)
+        self.assertEqual(z.shape, (256, 256))
+        # Every height is an average of source heights.
+        self.assertGreaterEqual(z.min(), self.source.min() - 1e-3)
+        self.assertLessEqual(z.max(), self.source.max() + 1e-3)
+        # The per-level table: the coarsest level first, the output last, energy falling.
+        rows = [line.split() for line in r.stdout.splitlines() if line[:1].isdigit()]
+        self.assertEqual(rows[-1][1:4], ["256", "x", "256"])
+        energies = [float(v) for v in rows[-1][4:6]]
+        self.assertLess(energies[1], energies[0])
+        source = simple.TerrainReader(FileName=self.colorado)
+        guide = simple.PNGSeriesReader(FileNames=[self.lambda_grey])
+        opt = simple.TerrainOptimisation(Source=source, Guide=guide, OutputSize=[256, 256], Seed=3)
+        data = sm.Fetch(opt)
+        self.assertEqual(data.GetDimensions(), (256, 256, 1))
+        filtered = vtk_to_numpy(data.GetPointData().GetArray("Elevation")).reshape(256, 256)
+        np.testing.assert_array_equal(filtered, z.astype(np.float32))
+
+    def test_a_stroke_sketch_guides_valleys_and_leaves_free_land_to_the_source(self):
+        out = os.path.join(self.tmp.name, "tree.vti")
+        r = tsynth("optimise", "--exemplar", self.colorado, "--guide", self.tree, "-o", out,
+                   "--size", "384x384", "--no-progress")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("guide: stroke map", r.stdout)
+        z = read_vti(out)
+        # The sketched trunk (blue, down the middle of the sketch) lies lower than the
+        # land a quarter of the terrain to either side of it.
+        trunk = z[:, 180:204].mean()
+        sides = 0.5 * (z[:, 60:84].mean() + z[:, 300:324].mean())
+        self.assertLess(trunk, sides - 100.0)
+        # Free land keeps relief of the source's kind (not a flat plain): its spread is
+        # at least a third of the source's.
+        self.assertGreater(z[:, :60].std(), self.source.std() / 3.0)
+
+    def test_abort_stops_the_filter_within_a_second_with_an_empty_output(self):
+        import time
+        sys.path.insert(0, PATHS.python_dir)
+        from terrainsynthesis import vtkTerrainOptimisation, vtkTerrainReader
+
+        source = vtkTerrainReader()
+        source.SetFileName(self.colorado)
+        guide = vtkTerrainReader()
+        guide.SetFileName(os.path.join(PATHS.bundled_data, "dems", "alps-montblanc.png"))
+        opt = vtkTerrainOptimisation()
+        opt.SetSourceConnection(source.GetOutputPort())
+        opt.SetGuideConnection(guide.GetOutputPort())
+        opt.SetOutputSize(1024, 1024)
+        stopped_at = []
+
+        def abort_after_a_fifth(caller, _event):
+            if caller.GetProgress() > 0.2 and not stopped_at:
+                stopped_at.append(time.monotonic())
+                caller.SetAbortExecute(1)
+
+        opt.AddObserver("ProgressEvent", abort_after_a_fifth)
+        opt.Update()
+        self.assertTrue(stopped_at, "no progress was reported")
+        self.assertLess(time.monotonic() - stopped_at[0], 1.0)
+        self.assertEqual(opt.GetOutput().GetNumberOfPoints(), 0)
+
+    def test_ctrl_c_stops_the_command_within_a_second_and_writes_nothing(self):
+        import signal
+        import time
+        out = os.path.join(self.tmp.name, "interrupted.tif")
+        alps = os.path.join(PATHS.bundled_data, "dems", "alps-montblanc.png")
+        p = subprocess.Popen([PATHS.tsynth, "optimise", "--exemplar", self.colorado, "--guide", alps,
+                              "-o", out, "--size", "2048x2048", "--no-progress"],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        time.sleep(1.5)
+        sent = time.monotonic()
+        p.send_signal(signal.SIGINT)
+        _, err = p.communicate(timeout=30)
+        self.assertLess(time.monotonic() - sent, 1.0)
+        self.assertEqual(p.returncode, 130, err)
+        self.assertIn("nothing was written", err)
+        self.assertFalse(os.path.exists(out))
+
+    def test_bad_input_gives_one_sentence_and_writes_nothing(self):
+        out = os.path.join(self.tmp.name, "never.tif")
+        tiny = os.path.join(self.tmp.name, "tiny.vti")
+        write_vti(tiny, np.zeros((20, 20), dtype=np.float32))
+        base = ["optimise", "--exemplar", self.colorado, "-o", out, "--no-progress"]
+        cases = [
+            (["--guide", self.lambda_grey, "--patch", "8"], 1, "odd"),
+            (["--guide", self.lambda_grey, "--alpha", "1.5"], 1, "alpha"),
+            (["--guide", self.lambda_grey, "--pits", "drain"], 2, "--pits must be"),
+            (["--guide", "/nonexistent/guide.png"], 1, "/nonexistent/guide.png"),
+            (["--guide", tiny], 1, "smaller than"),
+            (["--guide", self.lambda_grey, "--size", "0x5"], 2, "--size expects"),
+            ([], 2, "needs a source --exemplar DEM and a --guide"),
+        ]
+        for extra, code, message in cases:
+            r = tsynth(*base, *extra)
+            self.assertEqual(r.returncode, code, (extra, r.stdout, r.stderr))
+            self.assertIn(message, r.stderr, extra)
+            self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+            self.assertFalse(os.path.exists(out))
 
 
 if __name__ == "__main__":
