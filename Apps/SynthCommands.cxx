@@ -64,9 +64,10 @@ writes them: its output works directly as a sketch of the same DEM.
   --backend B            auto (default), opencl or cpu: same result, different speed
   --merge M              new (default), poisson, shepard or cut
   --fill F               best-first (default) or concentric
-  --drainage M           make every cell drain at the end: breach, fill or hybrid depressions
-                         (tsynth pits), from blocks of a quarter patch down to single cells so
-                         the changes are broad and seams stay hidden (default: off)
+  --drainage M           make every cell drain at the end: breach (cut valleys out of closed
+                         basins), fill (raise them to lakes) or hybrid (tsynth pits), on blocks
+                         of a quarter patch down to 2 cells so the changes are broad and seams
+                         stay hidden, the last few-cell pits filled (default: off)
   --seed N               another seed gives another terrain; the same seed the same terrain
   --report FILE.json     per-stage times, counts, costs and quality figures
   --debug-dir DIR        target field, feature trees, patch ids and seams as files

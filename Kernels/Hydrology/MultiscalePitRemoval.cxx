@@ -171,7 +171,9 @@ MultiscalePitRemovalReport removePitsMultiscale(Heightfield& dem,
       ++r.levels;
     }
   }
-  dem = removePits(dem, options.pitRemoval).dem;
+  PitRemovalOptions finest = options.pitRemoval;
+  finest.method = options.finestMethod;
+  dem = removePits(dem, finest).dem;
   ++r.levels;
   r.pitsAfter = countPits(dem);
   summarise(before, dem, r);

@@ -49,9 +49,9 @@ struct SynthesisOptions
   // channel runs along them (Finishing.h).
   bool drainValleys = true;
   // Every cell made to drain at the very end (nullopt: off): pits removed by
-  // this method through a pyramid from a quarter patch down to single cells
-  // (MultiscalePitRemoval.h), so the coarse changes are broad and smooth and
-  // the seams stay hidden.
+  // this method on a pyramid of block means from a quarter patch down to 2
+  // cells, the few-cell pits left then filled (MultiscalePitRemoval.h), so the
+  // changes are broad and smooth and the seams stay hidden.
   std::optional<PitRemovalMethod> drainage;
   // Style regions (Zhou's Middle-earth): a label per output cell (row 0 south;
   // empty = one region) and, per label, the exemplars that may serve it (a

@@ -5,6 +5,7 @@
 #include "Core/HeightfieldIO.h"
 #include "Hydrology/Flow.h"
 #include "Hydrology/MultiscalePitRemoval.h"
+#include "Hydrology/PitRemoval.h"
 #include "TestData.h"
 
 #include <gtest/gtest.h>
@@ -119,6 +120,59 @@ TEST(MultiscalePitRemoval, AWideBasinKeepsItsTextureWhereAPlainFillMakesALake)
   EXPECT_LT(textureNearCentre(plain, 40.0), 0.01 * original);
   // Through the pyramid the basin is raised smoothly and keeps most of its noise.
   EXPECT_GT(textureNearCentre(multiscale, 40.0), 0.5 * original);
+}
+
+// 99.9th percentile of |4-neighbour Laplacian| (metres): where slots show.
+double sharpest(const Heightfield& hf)
+{
+  std::vector<float> l;
+  for (int j = 1; j + 1 < hf.height; ++j)
+  {
+    for (int i = 1; i + 1 < hf.width; ++i)
+    {
+      l.push_back(std::abs(hf.at(i + 1, j) + hf.at(i - 1, j) + hf.at(i, j + 1) + hf.at(i, j - 1) -
+        4.0f * hf.at(i, j)));
+    }
+  }
+  return percentile(l, 0.999);
+}
+
+TEST(MultiscalePitRemoval, BreachingCutsAValleyNotASlotAndFillsTheLastSmallPits)
+{
+  const Heightfield bowl = noisyBowl();
+  // Breaching on the cells alone: a one-cell channel 200 m deep out of the bowl.
+  const Heightfield plain = breachDepressions(bowl);
+  Heightfield multiscale = bowl;
+  MultiscalePitRemovalOptions o;
+  o.pitRemoval.method = PitRemovalMethod::Breach;
+  o.coarsestFactor = 32;
+  const MultiscalePitRemovalReport r = removePitsMultiscale(multiscale, o);
+  EXPECT_TRUE(drainsEverywhere(multiscale, nullptr));
+  EXPECT_EQ(r.pitsAfter, 0u);
+  // The bowl is opened by lowering (a valley), not by raising it to its rim:
+  // what is raised is the noise's own few-cell pits, a few metres at most.
+  EXPECT_GT(r.largestLowering, 150.0);
+  EXPECT_LT(r.largestRaise, 10.0);
+  // No slot: the sharpest curvature stays that of the noise, where the plain
+  // breach's channel walls make it several times sharper.
+  EXPECT_GT(sharpest(plain), 3.0 * sharpest(bowl));
+  EXPECT_LT(sharpest(multiscale), 1.5 * sharpest(bowl));
+}
+
+TEST(MultiscalePitRemoval, TheFineGridIsFilledWhateverTheCoarseLevelsDo)
+{
+  // On the bundled synthesis sketches, breaching the fine grid too doubled the
+  // seam index (one-cell slots); the contract is that it is filled.
+  Heightfield dem = colorado();
+  MultiscalePitRemovalOptions o;
+  o.pitRemoval.method = PitRemovalMethod::Breach;
+  o.coarsestFactor = 1; // the fine grid only
+  removePitsMultiscale(dem, o);
+  EXPECT_EQ(dem.z, fillDepressions(colorado()).z);
+  o.finestMethod = PitRemovalMethod::Breach;
+  dem = colorado();
+  removePitsMultiscale(dem, o);
+  EXPECT_EQ(dem.z, breachDepressions(colorado()).z);
 }
 
 TEST(MultiscalePitRemoval, UserSinksStayLakes)
