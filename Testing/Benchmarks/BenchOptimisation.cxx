@@ -117,7 +117,6 @@ struct Args
 Args parse(int argc, char** argv)
 {
   Args a;
-  a.options.pitRemoval.method = PitRemovalMethod::Fill;
   for (int i = 1; i < argc; ++i)
   {
     const std::string s = argv[i];
