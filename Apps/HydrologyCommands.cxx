@@ -186,6 +186,7 @@ int runPits(std::vector<std::string> args)
   }
   PitsArguments a = parsePitsArguments(std::move(args));
   const Heightfield dem = readDem(a.input, a.read);
+  checkDemToDrain(dem);
   std::vector<std::uint8_t> sinks;
   if (a.sinks)
   {

@@ -96,6 +96,7 @@ int vtkTerrainPitRemoval::RequestData(vtkInformation*,
   {
     const tsynth::Heightfield dem =
       tsynth::imageToHeightfield(input, this->GetInputArrayToProcess(0, inputVector));
+    tsynth::checkDemToDrain(dem);
     std::vector<std::uint8_t> sinks;
     tsynth::PitRemovalOptions options;
     options.method = tsynth::pitRemovalMethodFromProperty(this->Method);

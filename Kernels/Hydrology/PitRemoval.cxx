@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace tsynth
 {
@@ -141,6 +142,22 @@ PitRemovalResult removePits(const Heightfield& dem, const PitRemovalOptions& opt
     }
   }
   return r;
+}
+
+void checkDemToDrain(const Heightfield& dem)
+{
+  const HeightRange range = computeHeightRange(dem);
+  if (range.validCells == 0)
+  {
+    throw Error("The DEM has no valid cell: there is nothing to drain.");
+  }
+  if (range.max == range.min)
+  {
+    std::ostringstream height;
+    height << range.min;
+    throw Error("The DEM is flat (every valid cell at " + height.str() +
+      " m): there is no depression to remove and no slope for water to follow.");
+  }
 }
 
 std::vector<std::uint8_t> sinkMaskFromRaster(const Heightfield& raster, int width, int height)

@@ -92,6 +92,12 @@ Heightfield breachOrFillDepressions(const Heightfield& dem,
 // are not positive.
 PitRemovalResult removePits(const Heightfield& dem, const PitRemovalOptions& options);
 
+// What the front ends (tsynth pits, the Terrain Pit Removal filter) refuse
+// before any work, with one sentence: a DEM without a valid cell, or a flat one
+// (every valid cell at one height: no depression to remove, no slope to follow).
+// removePits itself accepts flat grids (the coarse levels of a pyramid can be).
+void checkDemToDrain(const Heightfield& dem);
+
 // A sink mask from a raster read like a DEM (a file or a ParaView image): 1
 // where the value is finite and non-zero, 0 elsewhere (nodata is no sink).
 // Throws tsynth::Error naming both sizes if it is not width x height.

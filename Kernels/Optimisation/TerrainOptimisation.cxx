@@ -345,6 +345,11 @@ void checkInputs(const Heightfield& source, const Heightfield& guide)
   {
     throw Error("The source DEM has no valid cell: give a source with height data.");
   }
+  const HeightRange relief = computeHeightRange(source);
+  if (relief.max == relief.min)
+  {
+    throw Error("The source DEM is flat: it has no relief to copy; give a real DEM as the source.");
+  }
   if (guide.size() == 0 || guide.validCount() == 0)
   {
     throw Error("The guide has no valid cell: give a guide with height data.");

@@ -227,6 +227,12 @@ class PitsCommandTest(unittest.TestCase):
         self.assertEqual(r.returncode, 1)
         self.assertIn("no valid heights", r.stderr)
         self.assertFalse(os.path.exists(out))
+        flat = os.path.join(self.tmp.name, "flat.vti")
+        write_vti(flat, np.full((10, 12), 250.0, dtype=np.float32))
+        r = tsynth("pits", flat, "-o", out)
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("The DEM is flat (every valid cell at 250 m)", r.stderr)
+        self.assertFalse(os.path.exists(out))
 
 
 class PitRemovalFilterTest(unittest.TestCase):
@@ -415,6 +421,12 @@ class OptimiseTest(unittest.TestCase):
             (["--guide", self.lambda_grey, "--size", "0x5"], 2, "--size expects"),
             ([], 2, "needs a source --exemplar DEM and a --guide"),
         ]
+        flat = os.path.join(self.tmp.name, "flat-source.vti")
+        write_vti(flat, np.full((200, 200), 900.0, dtype=np.float32))
+        r = tsynth("optimise", "--exemplar", flat, "--guide", self.lambda_grey, "-o", out)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertIn("The source DEM is flat", r.stderr)
+        self.assertFalse(os.path.exists(out))
         for extra, code, message in cases:
             r = tsynth(*base, *extra)
             self.assertEqual(r.returncode, code, (extra, r.stdout, r.stderr))
