@@ -50,6 +50,9 @@ are brought onto the source's heights, strokes become its landforms.
   --reflections          also use them mirrored
   --pits M               pit removal on the coarser levels: breach (default, the paper's),
                          fill, hybrid or none
+  --drain                also make the output itself drain (beyond the paper, which leaves
+                         the finest level alone): the --pits method on blocks from the coarsest
+                         level's scale down to 2 cells, the last few-cell pits filled
   --seed N               another seed gives another terrain; the same seed the same terrain
   --no-progress          no progress bar on the terminal
 )";
@@ -122,6 +125,7 @@ void takeOptimisationOptions(CommandLine& cl, OptimisationOptions& o)
     o.patchMatchIterations = *pm;
   }
   o.rotations = cl.takeFlag("--rotations");
+  o.drainOutput = cl.takeFlag("--drain");
   o.reflections = cl.takeFlag("--reflections");
   if (const auto pits = cl.take("--pits"))
   {

@@ -62,6 +62,7 @@ vtkTerrainOptimisation::vtkTerrainOptimisation()
   this->Rotations = defaults.rotations;
   this->Reflections = defaults.reflections;
   this->PitRemoval = defaults.removePits ? BREACH : NO_PIT_REMOVAL;
+  this->DrainOutput = defaults.drainOutput;
 }
 
 int vtkTerrainOptimisation::FillInputPortInformation(int port, vtkInformation* info)
@@ -160,6 +161,7 @@ int vtkTerrainOptimisation::RequestData(vtkInformation*,
       tsynth::drainageFromProperty(this->PitRemoval);
     o.removePits = pits.has_value();
     o.pitRemoval.method = pits.value_or(tsynth::PitRemovalMethod::Breach);
+    o.drainOutput = this->DrainOutput;
     o.seed = static_cast<std::uint64_t>(this->Seed);
     o.guideConfidence = guide.confidence;
     o.progress = [this](double f)
@@ -199,6 +201,7 @@ void vtkTerrainOptimisation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Rotations: " << this->Rotations << "\n";
   os << indent << "Reflections: " << this->Reflections << "\n";
   os << indent << "PitRemoval: " << this->PitRemoval << "\n";
+  os << indent << "DrainOutput: " << this->DrainOutput << "\n";
   os << indent << "OutputSize: " << this->OutputSize[0] << " " << this->OutputSize[1] << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
 }

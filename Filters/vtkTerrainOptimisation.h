@@ -78,6 +78,13 @@ public:
   ///@}
 
   ///@{
+  /// Also make the output itself drain (beyond the paper; default off).
+  vtkSetMacro(DrainOutput, bool);
+  vtkGetMacro(DrainOutput, bool);
+  vtkBooleanMacro(DrainOutput, bool);
+  ///@}
+
+  ///@{
   /// Output size in cells; 0 0 (default): the guide's pixels (or the poly-lines' frame).
   vtkSetVector2Macro(OutputSize, int);
   vtkGetVector2Macro(OutputSize, int);
@@ -109,6 +116,7 @@ protected:
   bool Rotations;
   bool Reflections;
   int PitRemoval;
+  bool DrainOutput;
   int OutputSize[2] = { 0, 0 };
   vtkIdType Seed = 0;
 

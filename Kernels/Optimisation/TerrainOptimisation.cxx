@@ -1,5 +1,7 @@
 #include "TerrainOptimisation.h"
 
+#include "../Hydrology/MultiscalePitRemoval.h"
+
 #include "../Core/Error.h"
 #include "../Core/Resample.h"
 #include "../Hydrology/Flow.h"
@@ -412,6 +414,14 @@ OptimisationResult optimiseTerrain(const Heightfield& source,
   }
   result.terrain = asHeightfield(run.terrain, guide);
   result.terrain.georef = guide.georef;
+  if (options.drainOutput)
+  {
+    MultiscalePitRemovalOptions d;
+    d.pitRemoval = options.pitRemoval;
+    d.coarsestFactor = 1 << levels; // the coarsest level's cells
+    result.pitsBeforeDraining = removePitsMultiscale(result.terrain, d).pitsBefore;
+    result.levels.back().pitsAfter = countPits(result.terrain);
+  }
   run.progress.report(1.0);
   return result;
 }

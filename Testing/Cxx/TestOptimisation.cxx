@@ -299,6 +299,20 @@ TEST(Optimisation, WhereTheGuideIsNotTrustedTheSourceShapesTheLand)
   EXPECT_THROW(optimiseTerrain(source(), flat, o), Error);
 }
 
+TEST(Optimisation, DrainOutputMakesTheOutputItselfDrain)
+{
+  OptimisationOptions o = fillOptions();
+  const OptimisationResult plain = optimiseTerrain(source(), guide(), o);
+  o.drainOutput = true;
+  const OptimisationResult drained = optimiseTerrain(source(), guide(), o);
+  EXPECT_GT(countPits(plain.terrain), 10u);
+  EXPECT_EQ(drained.pitsBeforeDraining, countPits(plain.terrain));
+  EXPECT_EQ(drained.levels.back().pitsAfter, 0u);
+  EXPECT_TRUE(drainsEverywhere(drained.terrain, nullptr));
+  // The change is a correction, not a new terrain: well under the relief.
+  EXPECT_LT(rms(drained.terrain, plain.terrain), 0.05 * spread(plain.terrain));
+}
+
 TEST(Optimisation, DeterministicForASeedAndAnyThreadCount)
 {
   const OptimisationOptions o = fillOptions();

@@ -364,6 +364,18 @@ class OptimiseTest(unittest.TestCase):
         # at least a third of the source's.
         self.assertGreater(z[:, :60].std(), self.source.std() / 3.0)
 
+    def test_drain_makes_the_output_drain_with_a_small_change(self):
+        plain = os.path.join(self.tmp.name, "plain.vti")
+        drained = os.path.join(self.tmp.name, "drained.vti")
+        for out, extra in ((plain, []), (drained, ["--drain"])):
+            r = tsynth("optimise", "--exemplar", self.colorado, "--guide", self.lambda_grey, "-o", out,
+                       "--size", "256x256", "--no-progress", *extra)
+            self.assertEqual(r.returncode, 0, r.stderr)
+        a, b = read_vti(plain), read_vti(drained)
+        self.assertGreater(undrained_cells(a), 10)
+        self.assertEqual(undrained_cells(b), 0)
+        self.assertLess(np.sqrt(np.mean((a - b) ** 2)), 0.05 * a.std())
+
     def test_abort_stops_the_filter_within_a_second_with_an_empty_output(self):
         import time
         sys.path.insert(0, PATHS.python_dir)
