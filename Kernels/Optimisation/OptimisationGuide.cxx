@@ -1,5 +1,9 @@
 #include "OptimisationGuide.h"
 
+#include "../Core/Error.h"
+
+#include <string>
+
 namespace tsynth
 {
 
@@ -9,6 +13,15 @@ OptimisationGuide buildOptimisationGuide(const Heightfield& source,
   std::uint64_t seed,
   const SetupOptionNames& names)
 {
+  const OutputGrid wanted =
+    outputGrid(sketchExtent(sketch), grid, source.cellX, source.cellY, 1, names);
+  if (wanted.width < kGuideLandformScale || wanted.height < kGuideLandformScale)
+  {
+    throw Error("The guide gives an output of " + std::to_string(wanted.width) + " x " +
+      std::to_string(wanted.height) + " cells, smaller than the " +
+      std::to_string(kGuideLandformScale) + " cells its landforms are built at; give a larger " +
+      names.size + ".");
+  }
   SetupInputs in;
   in.exemplars.push_back(source);
   in.sketch = sketch;

@@ -28,7 +28,8 @@ struct OptimisationGuide
 constexpr int kGuideLandformScale = 80;
 
 // `grid` zeros: the sketch's pixels (or the poly-lines' frame) at the source's
-// cell size. Throws tsynth::Error as prepareSynthesis does.
+// cell size. Throws tsynth::Error as prepareSynthesis does, and for an output
+// smaller than kGuideLandformScale a side (naming names.size to change).
 OptimisationGuide buildOptimisationGuide(const Heightfield& source,
   const SketchInput& sketch,
   const GridRequest& grid,

@@ -432,7 +432,8 @@ class OptimiseTest(unittest.TestCase):
             (["--guide", self.lambda_grey, "--alpha", "1.5"], 1, "alpha"),
             (["--guide", self.lambda_grey, "--pits", "drain"], 2, "--pits must be"),
             (["--guide", "/nonexistent/guide.png"], 1, "/nonexistent/guide.png"),
-            (["--guide", tiny], 1, "smaller than"),
+            (["--guide", tiny], 1, "output of 20 x 20 cells, smaller than the 80 cells"),
+            (["--guide", self.lambda_grey, "--levels", "9"], 1, "use fewer levels"),
             (["--guide", self.lambda_grey, "--size", "0x5"], 2, "--size expects"),
             ([], 2, "needs a source --exemplar DEM and a --guide"),
         ]
