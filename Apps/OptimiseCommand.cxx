@@ -177,6 +177,68 @@ OptimiseArguments parseOptimiseArguments(std::vector<std::string> args)
   return a;
 }
 
+// The exit status of a run stopped by Ctrl-C (128 + SIGINT, as shells report it).
+constexpr int kInterruptedExit = 130;
+
+// SIGINT sets a flag for as long as the guard lives (the previous handler comes back after).
+class InterruptGuard
+{
+public:
+  InterruptGuard()
+    : previous_(std::signal(SIGINT, onInterrupt))
+  {
+    gInterrupted = false;
+  }
+  ~InterruptGuard() { std::signal(SIGINT, previous_); }
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+  bool interrupted() const { return gInterrupted.load(); }
+  void check() const
+  {
+    if (interrupted())
+    {
+      throw Cancelled();
+    }
+  }
+
+private:
+  void (*previous_)(int);
+};
+
+// Reads the source and the guide, builds the guide field and optimises, with
+// progress; throws Cancelled as soon as Ctrl-C is seen.
+OptimisationResult optimiseFromFiles(OptimiseArguments& a, const InterruptGuard& interrupt)
+{
+  const Heightfield source = readDem(a.source, {});
+  std::vector<std::string> warnings;
+  const SketchInput sketch = readSketchInput(a.guide, warnings);
+  printWarnings(warnings);
+  interrupt.check();
+  SetupOptionNames names;
+  names.size = "--size";
+  names.patch = "the guide's landform scale";
+  const OptimisationGuide guide =
+    buildOptimisationGuide(source, sketch, a.grid, a.options.seed, names);
+  printWarnings(guide.warnings);
+  interrupt.check();
+  std::cout << "Optimising " << guide.field.width << " x " << guide.field.height
+            << " cells (guide: " << guide.kind << ")" << std::endl;
+  ProgressBar bar(a.progress);
+  a.options.progress = [&](double f)
+  {
+    bar(f, "optimise");
+    return !interrupt.interrupted();
+  };
+  a.options.guideConfidence = guide.confidence;
+  const auto t0 = std::chrono::steady_clock::now();
+  OptimisationResult r = optimiseTerrain(source, guide.field, a.options);
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::cout << "Optimised in " << std::fixed << std::setprecision(2) << seconds << " s.\n"
+            << std::defaultfloat;
+  return r;
+}
+
 void printLevels(const OptimisationResult& r)
 {
   std::cout << "Level  size         energy (m^2 per patch, each iteration)   pits    s\n";
@@ -207,49 +269,20 @@ int runOptimise(std::vector<std::string> args)
     return 0;
   }
   OptimiseArguments a = parseOptimiseArguments(std::move(args));
-  const Heightfield source = readDem(a.source, {});
-  std::vector<std::string> warnings;
-  const SketchInput sketch = readSketchInput(a.guide, warnings);
-  printWarnings(warnings);
-  SetupOptionNames names;
-  names.size = "--size";
-  names.patch = "the guide's landform scale";
-  const OptimisationGuide guide =
-    buildOptimisationGuide(source, sketch, a.grid, a.options.seed, names);
-  printWarnings(guide.warnings);
-
-  ProgressBar bar(a.progress);
-  gInterrupted = false;
-  const auto previous = std::signal(SIGINT, onInterrupt);
-  a.options.progress = [&](double f)
-  {
-    bar(f, "optimise");
-    return !gInterrupted.load();
-  };
-  a.options.guideConfidence = guide.confidence;
-  const auto t0 = std::chrono::steady_clock::now();
-  OptimisationResult r;
+  const InterruptGuard interrupt; // from here on Ctrl-C stops the run cleanly
   try
   {
-    r = optimiseTerrain(source, guide.field, a.options);
+    const OptimisationResult r = optimiseFromFiles(a, interrupt);
+    writeTerrainFile(a.output, r.terrain);
+    printLevels(r);
+    std::cout << "Wrote " << a.output << "\n";
+    return 0;
   }
   catch (const Cancelled&)
   {
-    std::signal(SIGINT, previous);
     std::cerr << "\ntsynth: stopped; nothing was written.\n";
-    return 130;
+    return kInterruptedExit;
   }
-  std::signal(SIGINT, previous);
-  const double seconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  writeTerrainFile(a.output, r.terrain);
-  std::cout << "Optimised " << r.terrain.width << " x " << r.terrain.height
-            << " cells (guide: " << guide.kind << ") in " << std::fixed << std::setprecision(2)
-            << seconds << " s.\n"
-            << std::defaultfloat;
-  printLevels(r);
-  std::cout << "Wrote " << a.output << "\n";
-  return 0;
 }
 
 } // namespace tsynth::cli

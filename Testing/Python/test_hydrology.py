@@ -353,7 +353,7 @@ class OptimiseTest(unittest.TestCase):
         r = tsynth("optimise", "--exemplar", self.colorado, "--guide", self.tree, "-o", out,
                    "--size", "384x384", "--no-progress")
         self.assertEqual(r.returncode, 0, r.stderr)
-        self.assertIn("guide: stroke map", r.stdout)
+        self.assertIn("(guide: stroke map)", r.stdout)
         z = read_vti(out)
         # The sketched trunk (blue, down the middle of the sketch) lies lower than the
         # land a quarter of the terrain to either side of it.
@@ -413,7 +413,9 @@ class OptimiseTest(unittest.TestCase):
         p = subprocess.Popen([PATHS.tsynth, "optimise", "--exemplar", self.colorado, "--guide", alps,
                               "-o", out, "--size", "2048x2048", "--no-progress"],
                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        time.sleep(1.5)
+        # Once it announces the optimisation (the guide is built), and a moment into it.
+        self.assertTrue(p.stdout.readline().startswith("Optimising 2048 x 2048 cells"))
+        time.sleep(0.5)
         sent = time.monotonic()
         p.send_signal(signal.SIGINT)
         _, err = p.communicate(timeout=30)

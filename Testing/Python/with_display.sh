@@ -5,16 +5,19 @@ if [ -z "${DISPLAY:-}" ]; then
   exec xvfb-run -a -s "-screen 0 1280x1024x24" "$@"
 fi
 # Under load the shared Xvfb now and then refuses a connection ("bad X server connection", about
-# one run in several): that one failure, and only it, is retried once after a pause.
+# one run in several, and now and then twice in a row): that failure, and only it, is retried up
+# to three times after growing pauses.
 log="$(mktemp)"
 trap 'rm -f "$log"' EXIT
-"$@" > >(tee "$log") 2> >(tee -a "$log" >&2)
-status=$?
-wait
-if [ "$status" -ne 0 ] && grep -q "bad X server connection" "$log"; then
-  echo "with_display.sh: the X server refused the connection; trying once more" >&2
-  sleep 2
-  "$@"
+for pause in 2 4 8 0; do
+  : > "$log"
+  "$@" > >(tee "$log") 2> >(tee -a "$log" >&2)
   status=$?
-fi
+  wait
+  if [ "$status" -eq 0 ] || ! grep -q "bad X server connection" "$log" || [ "$pause" -eq 0 ]; then
+    break
+  fi
+  echo "with_display.sh: the X server refused the connection; trying again in ${pause} s" >&2
+  sleep "$pause"
+done
 exit "$status"
