@@ -9,8 +9,10 @@
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 
+#include <atomic>
 #include <cctype>
 #include <charconv>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -21,6 +23,13 @@ namespace tsynth::cli
 {
 namespace
 {
+
+std::atomic<bool> gInterrupted{ false };
+
+extern "C" void onInterrupt(int)
+{
+  gInterrupted = true;
+}
 
 // A single-band raster that is not 8-bit (a DEM used as the target)?
 bool isDemRaster(const std::string& path)
@@ -253,6 +262,30 @@ std::optional<int> takeCount(CommandLine& cl, const std::string& name, int lo, i
       std::to_string(hi) + ".");
   }
   return static_cast<int>(*v);
+}
+
+InterruptGuard::InterruptGuard()
+  : previous_(std::signal(SIGINT, onInterrupt))
+{
+  gInterrupted = false;
+}
+
+InterruptGuard::~InterruptGuard()
+{
+  std::signal(SIGINT, previous_);
+}
+
+bool InterruptGuard::interrupted() const
+{
+  return gInterrupted.load();
+}
+
+void InterruptGuard::check() const
+{
+  if (interrupted())
+  {
+    throw Cancelled();
+  }
 }
 
 void requireFolder(const std::string& path)

@@ -60,6 +60,25 @@ std::optional<int> takeCount(CommandLine& cl, const std::string& name, int lo, i
 // any work, so a long run never ends in an unwritable path).
 void requireFolder(const std::string& path);
 
+// The exit status of a run stopped by Ctrl-C (128 + SIGINT, as shells report it).
+constexpr int kInterruptedExit = 130;
+
+// While it lives, Ctrl-C (SIGINT) only sets a flag, which long commands poll
+// (check() throws tsynth::Cancelled); the previous handler comes back after.
+class InterruptGuard
+{
+public:
+  InterruptGuard();
+  ~InterruptGuard();
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+  bool interrupted() const;
+  void check() const;
+
+private:
+  void (*previous_)(int);
+};
+
 // "WxH" in cells, each side from 1 to kMaxOutputSide (UsageError otherwise).
 GridRequest parseSize(const std::string& text, GridRequest grid);
 

@@ -11,9 +11,7 @@
 #include "Optimisation/OptimisationGuide.h"
 #include "Optimisation/TerrainOptimisation.h"
 
-#include <atomic>
 #include <chrono>
-#include <csignal>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -61,13 +59,6 @@ are brought onto the source's heights, strokes become its landforms.
 // the pyramid would have no cells left; they catch typing errors.
 constexpr int kMaxLevels = 16;
 constexpr int kMaxIterations = 100;
-
-std::atomic<bool> gInterrupted{ false };
-
-extern "C" void onInterrupt(int)
-{
-  gInterrupted = true;
-}
 
 struct OptimiseArguments
 {
@@ -176,34 +167,6 @@ OptimiseArguments parseOptimiseArguments(std::vector<std::string> args)
   requireFolder(a.output);
   return a;
 }
-
-// The exit status of a run stopped by Ctrl-C (128 + SIGINT, as shells report it).
-constexpr int kInterruptedExit = 130;
-
-// SIGINT sets a flag for as long as the guard lives (the previous handler comes back after).
-class InterruptGuard
-{
-public:
-  InterruptGuard()
-    : previous_(std::signal(SIGINT, onInterrupt))
-  {
-    gInterrupted = false;
-  }
-  ~InterruptGuard() { std::signal(SIGINT, previous_); }
-  InterruptGuard(const InterruptGuard&) = delete;
-  InterruptGuard& operator=(const InterruptGuard&) = delete;
-  bool interrupted() const { return gInterrupted.load(); }
-  void check() const
-  {
-    if (interrupted())
-    {
-      throw Cancelled();
-    }
-  }
-
-private:
-  void (*previous_)(int);
-};
 
 // Reads the source and the guide, builds the guide field and optimises, with
 // progress; throws Cancelled as soon as Ctrl-C is seen.

@@ -390,7 +390,8 @@ SetupInputs readSynthInputs(const SynthArguments& a)
 
 SynthesisResult runWithProgress(const SynthesisSetup& setup,
   const SynthArguments& a,
-  SynthesisOptions o)
+  SynthesisOptions o,
+  const InterruptGuard& interrupt)
 {
   if (a.regions)
   {
@@ -404,7 +405,11 @@ SynthesisResult runWithProgress(const SynthesisSetup& setup,
       setup.exemplars.size());
   }
   ProgressBar bar(a.progress);
-  o.progress = [&](double f, const std::string& stage) { bar(f, stage); };
+  o.progress = [&](double f, const std::string& stage)
+  {
+    bar(f, stage);
+    interrupt.check(); // Cancelled leaves synthesize() from its serial loop
+  };
   SynthesisResult r = synthesize(setup.target, setup.exemplarPointers(), setup.graphPointers(), o);
   bar(1.0, "done");
   printWarnings(r.warnings);
@@ -604,12 +609,24 @@ int runSynth(std::vector<std::string> args)
     return 0;
   }
   const SynthArguments a = parseSynthArguments(std::move(args));
+  const InterruptGuard interrupt; // from here on Ctrl-C stops the run cleanly
   const auto t0 = std::chrono::steady_clock::now();
-  const SynthesisSetup setup = prepareSynthesis(readSynthInputs(a));
-  printWarnings(setup.warnings);
-  const double prepare =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const SynthesisResult r = runWithProgress(setup, a, a.options);
+  SynthesisSetup setup;
+  SynthesisResult r;
+  double prepare = 0.0; // seconds
+  try
+  {
+    setup = prepareSynthesis(readSynthInputs(a));
+    prepare = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    printWarnings(setup.warnings);
+    interrupt.check();
+    r = runWithProgress(setup, a, a.options, interrupt);
+  }
+  catch (const Cancelled&)
+  {
+    std::cerr << "\ntsynth: stopped; nothing was written.\n";
+    return kInterruptedExit;
+  }
   writeTerrainFile(a.output, r.terrain);
   const TerrainEvaluation quality =
     evaluateTerrain(r.terrain, setup.exemplarPointers(), &setup.target.graph);

@@ -203,7 +203,13 @@ tsynth::SynthesisOptions synthesisOptions(vtkTerrainSynthesis* filter)
   o.drainage = tsynth::drainageFromProperty(filter->GetDrainage());
   o.seed = static_cast<std::uint64_t>(filter->GetSeed());
   o.progress = [filter](double f, const std::string&)
-  { filter->UpdateProgress(kSetupProgress + kSynthesisProgress * f); };
+  {
+    filter->UpdateProgress(kSetupProgress + kSynthesisProgress * f);
+    if (filter->CheckAbort())
+    {
+      throw tsynth::Cancelled(); // from the synthesiser's serial loop, once per placement
+    }
+  };
   return o;
 }
 
@@ -295,6 +301,11 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
     tsynth::heightfieldToImage(r.terrain, output);
     addDiagnosticArrays(r, output);
     fillPlacementTable(r, setup, ex, vtkTable::GetData(outputVector, 1));
+  }
+  catch (const tsynth::Cancelled&)
+  {
+    vtkImageData::GetData(outputVector, 0)->Initialize(); // aborted: an empty output
+    return 1;
   }
   catch (const std::bad_alloc&)
   {

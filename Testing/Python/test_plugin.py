@@ -483,6 +483,33 @@ class PluginTest(unittest.TestCase):
                         checked += 1
         self.assertGreater(checked, 40)
 
+    def test_abort_stops_the_synthesis_within_a_second_with_an_empty_output(self):
+        import time
+        sys.path.insert(0, PATHS.python_dir)
+        from terrainsynthesis import vtkTerrainReader, vtkTerrainSynthesis
+        from vtkmodules.vtkIOImage import vtkPNGReader
+
+        exemplar = vtkTerrainReader()
+        exemplar.SetFileName(os.path.join(PATHS.bundled_data, "dems", "colorado.png"))
+        sketch = vtkPNGReader()
+        sketch.SetFileName(os.path.join(PATHS.bundled_data, "sketches", "strokes_valley_tree.png"))
+        synth = vtkTerrainSynthesis()
+        synth.AddInputConnection(0, exemplar.GetOutputPort())
+        synth.SetSketchConnection(sketch.GetOutputPort())
+        synth.SetOutputSize(1024, 1024)
+        stopped_at = []
+
+        def abort_at_a_quarter(caller, _event):
+            if caller.GetProgress() > 0.25 and not stopped_at:
+                stopped_at.append(time.monotonic())
+                caller.SetAbortExecute(1)
+
+        synth.AddObserver("ProgressEvent", abort_at_a_quarter)
+        synth.Update()
+        self.assertTrue(stopped_at, "no progress was reported")
+        self.assertLess(time.monotonic() - stopped_at[0], 1.0)
+        self.assertEqual(synth.GetTerrain().GetNumberOfPoints(), 0)
+
     def test_missing_file_gives_an_empty_output_not_a_crash(self):
         reader = simple.TerrainReader(FileName="/nonexistent/dem.tif")
         reader.UpdatePipeline()

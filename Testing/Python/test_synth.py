@@ -505,6 +505,25 @@ class SynthTest(unittest.TestCase):
         self.assertEqual(report["size"], [192, 192])
         self.assertIsNotNone(report["landform_quality"]["valley_depth_m"])
 
+    def test_ctrl_c_stops_within_a_second_and_writes_nothing(self):
+        import signal
+        import time
+        out = self.path("interrupted.tif")
+        sketch = os.path.join(PATHS.bundled_data, "sketches", "strokes_valley_tree.png")
+        p = subprocess.Popen([PATHS.tsynth, "synth", "--exemplar", os.path.join(self.dems, "colorado.png"),
+                              "--sketch", sketch, "-o", out, "--size", "1536x1536", "--no-progress",
+                              "--report", out + ".json"],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        time.sleep(3.0)  # into the placements (a 1536^2 synthesis takes about 20 s here)
+        self.assertIsNone(p.poll(), "the synthesis ended before it could be interrupted")
+        sent = time.monotonic()
+        p.send_signal(signal.SIGINT)
+        _, err = p.communicate(timeout=60)
+        self.assertLess(time.monotonic() - sent, 1.0)
+        self.assertEqual(p.returncode, 130, err)
+        self.assertIn("nothing was written", err)
+        self.assertEqual([f for f in os.listdir(self.tmp) if "interrupted" in f], [])
+
     def test_bad_input(self):
         blank = self.path("blank.png")
         write_png(blank, 200, 200, lambda x, y: (255, 255, 255))
