@@ -243,12 +243,20 @@ SynthesisOptions takeSynthesisOptions(CommandLine& cl)
   SynthesisOptions o;
   if (const auto patch = cl.takeNumber("--patch"))
   {
-    if (*patch != std::floor(*patch) || *patch < 16 || *patch > 512 ||
-      static_cast<int>(*patch) % 4 != 0)
+    if (*patch != std::floor(*patch) || *patch < kMinSynthesisPatch || *patch > kMaxSynthesisPatch)
     {
-      throw UsageError("--patch expects a multiple of 4 from 16 to 512.");
+      throw UsageError("--patch expects a whole number from " + std::to_string(kMinSynthesisPatch) +
+        " to " + std::to_string(kMaxSynthesisPatch) + ".");
     }
     o.patchSize = static_cast<int>(*patch);
+    try
+    {
+      checkPatchSize(o.patchSize, "--patch");
+    }
+    catch (const Error& e)
+    {
+      throw UsageError(e.what());
+    }
   }
   if (const auto backend = cl.take("--backend"))
   {

@@ -36,6 +36,9 @@ vtkStandardNewMacro(vtkTerrainSynthesis);
 
 vtkTerrainSynthesis::vtkTerrainSynthesis()
 {
+  const tsynth::SynthesisOptions defaults;
+  this->VerticalOffset = defaults.verticalOffset;
+  this->Repetition = defaults.repetitionPenalty;
   this->SetNumberOfInputPorts(3);
   this->SetNumberOfOutputPorts(2);
 }
@@ -201,6 +204,8 @@ tsynth::SynthesisOptions synthesisOptions(vtkTerrainSynthesis* filter)
   o.merge = tsynth::mergeModeFromProperty(filter->GetMergeMode());
   o.fill = tsynth::fillOrderFromProperty(filter->GetFillOrder());
   o.drainage = tsynth::drainageFromProperty(filter->GetDrainage());
+  o.verticalOffset = filter->GetVerticalOffset();
+  o.repetitionPenalty = filter->GetRepetition();
   o.seed = static_cast<std::uint64_t>(filter->GetSeed());
   o.progress = [filter](double f, const std::string&)
   {
@@ -329,6 +334,8 @@ void vtkTerrainSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MergeMode: " << this->MergeMode << "\n";
   os << indent << "FillOrder: " << this->FillOrder << "\n";
   os << indent << "Drainage: " << this->Drainage << "\n";
+  os << indent << "VerticalOffset: " << this->VerticalOffset << "\n";
+  os << indent << "Repetition: " << this->Repetition << "\n";
   os << indent << "OutputSize: " << this->OutputSize[0] << " x " << this->OutputSize[1] << "\n";
   os << indent << "CellSize: " << this->CellSize << "\n";
   os << indent << "Seed: " << this->Seed << "\n";

@@ -63,7 +63,8 @@ public:
     DRAIN_BY_HYBRID = 3
   };
 
-  /// Patch size in cells (multiple of 4; default 80).
+  /// Patch size in cells (a multiple of 4 from 16 to 512, checked when the
+  /// filter runs; default 80).
   vtkSetClampMacro(PatchSize, int, 16, 512);
   vtkGetMacro(PatchSize, int);
   /// Where the matcher runs (default AUTO); every backend gives the same terrain.
@@ -79,6 +80,15 @@ public:
   /// filled, breached or either, from blocks of a quarter patch down to cells.
   vtkSetClampMacro(Drainage, int, NO_DRAINAGE, DRAIN_BY_HYBRID);
   vtkGetMacro(Drainage, int);
+  /// Shift each patch to fit what it overlaps (default on; off: patches keep
+  /// their own heights).
+  vtkSetMacro(VerticalOffset, bool);
+  vtkGetMacro(VerticalOffset, bool);
+  vtkBooleanMacro(VerticalOffset, bool);
+  /// Seam-cost penalty for taking a source within half a patch of an earlier
+  /// placement's (default 0.5; 0 off): discourages visible repeats.
+  vtkSetClampMacro(Repetition, double, 0.0, 100.0);
+  vtkGetMacro(Repetition, double);
   /// Output size in cells; 0 0 (default) takes the sketch image's pixels, or
   /// the poly-lines' frame (their GridSize x CellSize field data) or extent.
   vtkSetVector2Macro(OutputSize, int);
@@ -136,6 +146,8 @@ protected:
   int MergeMode = NEW;
   int FillOrder = BEST_FIRST;
   int Drainage = NO_DRAINAGE;
+  bool VerticalOffset;
+  double Repetition;
   int OutputSize[2] = { 0, 0 };
   double CellSize = 0.0;
   vtkIdType Seed = 0;

@@ -465,6 +465,17 @@ std::vector<const FeatureGraph*> SynthesisSetup::graphPointers() const
   return out;
 }
 
+void checkPatchSize(int patchSize, const std::string& name)
+{
+  if (patchSize < kMinSynthesisPatch || patchSize > kMaxSynthesisPatch ||
+    patchSize % kPatchSizeStep != 0)
+  {
+    throw Error(name + " must be a multiple of " + std::to_string(kPatchSizeStep) + " from " +
+      std::to_string(kMinSynthesisPatch) + " to " + std::to_string(kMaxSynthesisPatch) +
+      " cells, not " + std::to_string(patchSize) + ".");
+  }
+}
+
 SynthesisSetup prepareSynthesis(SetupInputs in)
 {
   if (in.exemplars.empty())
@@ -477,6 +488,7 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
       number(kMaxLandformRelief) + " times the exemplars' own, not " + number(in.landformRelief) +
       ".");
   }
+  checkPatchSize(in.patchSize, in.names.patch);
   SynthesisSetup s;
   const Heightfield& first = in.exemplars.front();
   s.grid =

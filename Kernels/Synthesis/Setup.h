@@ -137,6 +137,15 @@ struct AnalysedSketch
 // than one patch is refused (tsynth::Error).
 AnalysedSketch analyseSketch(const SketchInput& sketch, const OutputGrid& grid, int patchSize);
 
+// Patch sizes the synthesis takes: multiples of kPatchSizeStep (the dense
+// search compares 4 x 4 blocks first) from kMinSynthesisPatch to
+// kMaxSynthesisPatch cells. checkPatchSize throws tsynth::Error naming `name`
+// (the front end's option) for anything else.
+constexpr int kMinSynthesisPatch = 16;
+constexpr int kMaxSynthesisPatch = 512;
+constexpr int kPatchSizeStep = 4;
+void checkPatchSize(int patchSize, const std::string& name);
+
 // The landform relief a user may ask for, in multiples of the exemplars' own.
 constexpr double kMinLandformRelief = 0.1;
 constexpr double kMaxLandformRelief = 5.0;

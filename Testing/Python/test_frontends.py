@@ -93,6 +93,34 @@ class FrontEndsTest(unittest.TestCase):
         self.assert_same_terrain(sm.Fetch(synth, arg1=None, arg2=None, idx=0),
                                  self.cli(self.colorado, self.strokes, "--size", "160x160"))
 
+    def test_every_option_of_the_command_line_maps_to_the_filter(self):
+        # The options beyond the defaults, in both: the same terrain, unlike the default one.
+        exemplar = simple.TerrainReader(FileName=self.colorado)
+        sketch = simple.PNGSeriesReader(FileNames=[self.strokes])
+        synth = simple.TerrainSynthesis(Exemplars=[exemplar], Sketch=sketch, OutputSize=[160, 160],
+                                        PatchSize=PATCH, Backend=CPU, Seed=SEED, VerticalOffset=0,
+                                        Repetition=0.0, Drainage="Breach", MergeMode="Poisson",
+                                        FillOrder="Concentric", LandformRelief=2.0)
+        synth.UpdatePipeline()
+        filtered = sm.Fetch(synth, arg1=None, arg2=None, idx=0)
+        self.assert_same_terrain(filtered, self.cli(
+            self.colorado, self.strokes, "--size", "160x160", "--no-vertical-offset", "--repetition", "0",
+            "--drainage", "breach", "--merge", "poisson", "--fill", "concentric", "--landform-relief", "2"))
+        default = self.cli(self.colorado, self.strokes, "--size", "160x160")
+        self.assertFalse(np.array_equal(vtk_to_numpy(filtered.GetPointData().GetArray("Elevation")),
+                                        vtk_to_numpy(default.GetPointData().GetArray("Elevation"))))
+
+    def test_a_patch_size_off_the_step_is_refused_by_the_filter_too(self):
+        exemplar = simple.TerrainReader(FileName=self.colorado)
+        sketch = simple.PNGSeriesReader(FileNames=[self.strokes])
+        synth = simple.TerrainSynthesis(Exemplars=[exemplar], Sketch=sketch, PatchSize=42)
+        synth.UpdatePipeline()
+        self.assertEqual(sm.Fetch(synth, arg1=None, arg2=None, idx=0).GetNumberOfPoints(), 0)
+        result = subprocess.run([PATHS.tsynth, "synth", "--exemplar", self.colorado, "--sketch", self.strokes,
+                                 "-o", self.path("x.tif"), "--patch", "42"], capture_output=True, text=True)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("--patch must be a multiple of 4 from 16 to 512 cells, not 42.", result.stderr)
+
     def test_a_polyline_sketch_in_metres_gives_the_same_terrain(self):
         # Metres on colorado's 90 m cells, reaching x = 14310 m (cell 159) and y = 12600 m (cell 140);
         # both carry height constraints.
