@@ -6,8 +6,8 @@
 #include "TerrainImageConversion.h"
 
 #include "Core/Error.h"
-#include "Features/Ppa.h"
 #include "Matching/PatchMatcher.h"
+#include "Matching/SiteMatch.h"
 
 #include <vtkDataObject.h>
 #include <vtkDoubleArray.h>
@@ -26,41 +26,6 @@
 #include <limits>
 
 vtkStandardNewMacro(vtkTerrainPatchMatcher);
-
-namespace
-{
-
-// The patch-sized window of the target around (cx, cy) cells, with its known mask.
-tsynth::DenseQuery windowAround(const tsynth::Heightfield& target,
-  const std::vector<std::uint8_t>& known,
-  double cx,
-  double cy,
-  int size)
-{
-  tsynth::DenseQuery q;
-  q.heights.assign(static_cast<std::size_t>(size * size), 0.0f);
-  q.known.assign(static_cast<std::size_t>(size * size), 0);
-  const int x0 = static_cast<int>(std::lround(cx)) - size / 2;
-  const int y0 = static_cast<int>(std::lround(cy)) - size / 2;
-  for (int j = 0; j < size; ++j)
-  {
-    for (int i = 0; i < size; ++i)
-    {
-      const int x = x0 + i;
-      const int y = y0 + j;
-      if (x < 0 || y < 0 || x >= target.width || y >= target.height || !target.isValid(x, y))
-      {
-        continue;
-      }
-      const std::size_t k = static_cast<std::size_t>(j * size + i);
-      q.heights[k] = target.at(x, y);
-      q.known[k] = known[target.index(x, y)];
-    }
-  }
-  return q;
-}
-
-} // namespace
 
 vtkTerrainPatchMatcher::vtkTerrainPatchMatcher()
 {
@@ -134,15 +99,15 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
   try
   {
     const tsynth::Heightfield target = tsynth::imageToHeightfield(targetImage);
-    if (target.width < this->PatchSize || target.height < this->PatchSize)
-    {
-      throw tsynth::Error("The target is " + std::to_string(target.width) + " x " +
-        std::to_string(target.height) + " cells, smaller than one patch (" +
-        std::to_string(this->PatchSize) + "); use a smaller PatchSize.");
-    }
     std::vector<std::uint8_t> known(target.size(), 1);
     if (vtkDataArray* k = targetImage->GetPointData()->GetArray("Known"))
     {
+      if (k->GetNumberOfTuples() != static_cast<vtkIdType>(target.size()))
+      {
+        throw tsynth::Error("The target's Known array has " +
+          std::to_string(k->GetNumberOfTuples()) + " values for " + std::to_string(target.size()) +
+          " points: give one per point.");
+      }
       for (std::size_t c = 0; c < known.size(); ++c)
       {
         known[c] = k->GetComponent(static_cast<vtkIdType>(c), 0) != 0.0 ? 1 : 0;
@@ -166,53 +131,18 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
     double tx = 0.0;
     double ty = 0.0;
     tsynth::gridOrigin(targetImage, tx, ty);
-    double cx = (this->Site[0] - tx) / target.cellX;
-    double cy = (this->Site[1] - ty) / target.cellY;
-    std::vector<tsynth::PatchCandidate> found;
-    std::vector<float> featureCosts;
-    if (this->Mode == FEATURE)
-    {
-      tsynth::FeatureGraph graph =
-        tsynth::extractFeatures(target, tsynth::FeatureType::Ridge, {}).graph;
-      tsynth::appendGraph(
-        graph, tsynth::extractFeatures(target, tsynth::FeatureType::Valley, {}).graph);
-      const auto sites = tsynth::featureSites(graph, this->PatchSize);
-      const tsynth::FeatureSite* nearest = nullptr;
-      double best = 0.5 * this->PatchSize;
-      for (const auto& s : sites)
-      {
-        const double d = std::hypot(s.centre.x - cx, s.centre.y - cy);
-        if (d <= best)
-        {
-          best = d;
-          nearest = &s;
-        }
-      }
-      if (nearest == nullptr)
-      {
-        vtkWarningMacro(
-          "No target feature within half a patch of the site: matching without features.");
-      }
-      else
-      {
-        cx = nearest->centre.x;
-        cy = nearest->centre.y;
-        const tsynth::NoiseVariance noise(target);
-        const tsynth::FeatureQuery q =
-          tsynth::makeFeatureQuery(*nearest, target, noise, &target, &known, this->PatchSize);
-        const tsynth::DenseQuery window = windowAround(target, known, cx, cy, this->PatchSize);
-        featureCosts = matcher.featureCosts(q);
-        found = matcher.matchFeature(q, &window);
-      }
-    }
-    if (found.empty())
-    {
-      found = matcher.matchDense(windowAround(target, known, cx, cy, this->PatchSize));
-    }
-    for (const auto& w : matcher.warnings())
+    const tsynth::SiteMatchResult match = tsynth::matchAtSite(matcher,
+      target,
+      known,
+      (this->Site[0] - tx) / target.cellX,
+      (this->Site[1] - ty) / target.cellY,
+      this->Mode == FEATURE,
+      this->PatchSize);
+    for (const auto& w : match.warnings)
     {
       vtkWarningMacro(<< w);
     }
+    const std::vector<tsynth::PatchCandidate>& found = match.candidates;
 
     // Table of matches.
     vtkNew<vtkIntArray> rank, exemplar, variantColumn, feature;
@@ -251,62 +181,11 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
     map->SetOrigin(in.originX.front(), in.originY.front(), 0.0);
     vtkNew<vtkFloatArray> costMap;
     costMap->SetName("MatchCost");
-    costMap->SetNumberOfTuples(static_cast<vtkIdType>(first.size()));
-    costMap->Fill(std::numeric_limits<float>::quiet_NaN());
-    float* m = costMap->GetPointer(0);
-    const tsynth::CandidatePool& pool = matcher.pool();
-    if (!featureCosts.empty())
-    {
-      for (std::size_t c = 0; c < featureCosts.size(); ++c)
-      {
-        if (pool.exemplar[c] != 0)
-        {
-          continue;
-        }
-        const int i = static_cast<int>(std::lround(pool.centreX[c]));
-        const int j = static_cast<int>(std::lround(pool.centreY[c]));
-        float& v = m[first.index(i, j)];
-        v = std::isnan(v) ? featureCosts[c] : std::min(v, featureCosts[c]);
-      }
-    }
-    else
-    {
-      // Non-feature: the coarse cost of the unrotated exemplar, block by block.
-      const tsynth::DenseMatcher& dense = matcher.dense();
-      const auto coarse =
-        dense.coarseCosts(dense.coarseQuery(windowAround(target, known, cx, cy, this->PatchSize)));
-      const int f = std::max(1, dense.options().coarseFactor);
-      const auto& oriented = dense.oriented();
-      for (std::size_t r = 0; r < oriented.size(); ++r)
-      {
-        if (oriented[r].exemplar != 0 || oriented[r].variant != 0)
-        {
-          continue;
-        }
-        for (int by = 0; by < oriented[r].offsetsY; ++by)
-        {
-          for (int bx = 0; bx < oriented[r].offsetsX; ++bx)
-          {
-            const float v = coarse[r][static_cast<std::size_t>(by * oriented[r].offsetsX + bx)];
-            for (int j = 0; j < f; ++j)
-            {
-              for (int i = 0; i < f; ++i)
-              {
-                const int ci = bx * f + i + this->PatchSize / 2;
-                const int cj = by * f + j + this->PatchSize / 2;
-                if (ci < first.width && cj < first.height && std::isfinite(v))
-                {
-                  m[first.index(ci, cj)] = v;
-                }
-              }
-            }
-          }
-        }
-      }
-    }
+    costMap->SetNumberOfTuples(static_cast<vtkIdType>(match.costMap.size()));
+    std::copy(match.costMap.begin(), match.costMap.end(), costMap->GetPointer(0));
     map->GetPointData()->SetScalars(costMap);
   }
-  catch (const tsynth::Error& e)
+  catch (const std::exception& e)
   {
     vtkErrorMacro(<< e.what());
     return 0;

@@ -6,6 +6,7 @@ set(TSYNTH_MATCHING_SOURCES
   Matching/NoiseVariance.cxx
   Matching/OpenClMatcher.cxx
   Matching/PatchMatcher.cxx
+  Matching/SiteMatch.cxx
   Matching/Orientation.cxx)
 
 # The OpenCL kernels are embedded in the library as strings.
