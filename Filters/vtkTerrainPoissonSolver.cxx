@@ -5,6 +5,7 @@
 
 #include "Core/Error.h"
 #include "Merging/Poisson.h"
+#include "Merging/PoissonEditing.h"
 
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -53,6 +54,58 @@ int vtkTerrainPoissonSolver::RequestUpdateExtent(vtkInformation*,
   return 1;
 }
 
+namespace
+{
+
+// The image's "Mask" point array as one byte per point (empty if it has none).
+// Throws tsynth::Error if its length is not the image's point count.
+std::vector<std::uint8_t> maskArray(vtkImageData* image)
+{
+  vtkDataArray* m = image->GetPointData()->GetArray("Mask");
+  if (m == nullptr)
+  {
+    return {};
+  }
+  if (m->GetNumberOfTuples() != image->GetNumberOfPoints())
+  {
+    throw tsynth::Error("The Mask array has " + std::to_string(m->GetNumberOfTuples()) +
+      " values for " + std::to_string(image->GetNumberOfPoints()) + " points: give one per point.");
+  }
+  std::vector<std::uint8_t> mask(static_cast<std::size_t>(m->GetNumberOfTuples()));
+  for (vtkIdType k = 0; k < m->GetNumberOfTuples(); ++k)
+  {
+    mask[static_cast<std::size_t>(k)] = m->GetComponent(k, 0) != 0.0 ? 1 : 0;
+  }
+  return mask;
+}
+
+// The image's two-component "Gradient" point array (dz/dx, dz/dy). Throws
+// tsynth::Error if it is missing, has another number of components, or its
+// length is not the image's point count.
+void gradientArray(vtkImageData* image, std::vector<double>& slopeX, std::vector<double>& slopeY)
+{
+  vtkDataArray* g = image->GetPointData()->GetArray("Gradient");
+  if (g == nullptr || g->GetNumberOfComponents() != 2)
+  {
+    throw tsynth::Error(
+      "The guidance field needs a two-component point array \"Gradient\" (dz/dx, dz/dy).");
+  }
+  if (g->GetNumberOfTuples() != image->GetNumberOfPoints())
+  {
+    throw tsynth::Error("The Gradient array has " + std::to_string(g->GetNumberOfTuples()) +
+      " values for " + std::to_string(image->GetNumberOfPoints()) + " points: give one per point.");
+  }
+  slopeX.resize(static_cast<std::size_t>(g->GetNumberOfTuples()));
+  slopeY.resize(slopeX.size());
+  for (vtkIdType k = 0; k < g->GetNumberOfTuples(); ++k)
+  {
+    slopeX[static_cast<std::size_t>(k)] = g->GetComponent(k, 0);
+    slopeY[static_cast<std::size_t>(k)] = g->GetComponent(k, 1);
+  }
+}
+
+} // namespace
+
 int vtkTerrainPoissonSolver::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
@@ -65,129 +118,41 @@ int vtkTerrainPoissonSolver::RequestData(vtkInformation*,
   try
   {
     const tsynth::Heightfield dst = tsynth::imageToHeightfield(destination);
-    const int w = dst.width;
-    const int h = dst.height;
-    const std::size_t n = dst.size();
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    std::vector<double> gx(n, nan);
-    std::vector<double> gy(n, nan);
-    std::vector<std::uint8_t> unknown(n, 0);
-    auto maskOf = [&](vtkImageData* image, std::vector<std::uint8_t>& mask)
-    {
-      if (vtkDataArray* m = image->GetPointData()->GetArray("Mask"))
-      {
-        for (std::size_t k = 0; k < n; ++k)
-        {
-          mask[k] = m->GetComponent(static_cast<vtkIdType>(k), 0) != 0.0 ? 1 : 0;
-        }
-        return true;
-      }
-      return false;
-    };
+    this->UpdateProgress(0.1);
+    tsynth::PoissonEditResult r;
     if (this->Mode == SEAMLESS_CLONE)
     {
       if (source == nullptr)
       {
         throw tsynth::Error("Seamless cloning needs a source heightfield on the second input.");
       }
-      const tsynth::Heightfield src = tsynth::imageToHeightfield(source);
-      if (src.width != w || src.height != h)
-      {
-        throw tsynth::Error("The source must lie on the destination's grid (" + std::to_string(w) +
-          " x " + std::to_string(h) + " cells); resample it first.");
-      }
-      if (!maskOf(source, unknown))
-      {
-        for (std::size_t k = 0; k < n; ++k)
-        {
-          unknown[k] = src.isValid(k) ? 1 : 0;
-        }
-      }
-      for (int j = 0; j < h; ++j)
-      {
-        for (int i = 0; i < w; ++i)
-        {
-          const std::size_t k = dst.index(i, j);
-          if (i + 1 < w && src.isValid(i, j) && src.isValid(i + 1, j))
-          {
-            gx[k] = static_cast<double>(src.at(i + 1, j)) - src.at(i, j);
-          }
-          if (j + 1 < h && src.isValid(i, j) && src.isValid(i, j + 1))
-          {
-            gy[k] = static_cast<double>(src.at(i, j + 1)) - src.at(i, j);
-          }
-        }
-      }
+      const std::vector<std::uint8_t> mask = maskArray(source);
+      r = tsynth::seamlessClone(
+        dst, tsynth::imageToHeightfield(source), mask.empty() ? nullptr : &mask, this->Tolerance);
     }
     else
     {
-      vtkDataArray* g = destination->GetPointData()->GetArray("Gradient");
-      if (g == nullptr || g->GetNumberOfComponents() != 2)
-      {
-        throw tsynth::Error(
-          "The guidance field needs a two-component point array \"Gradient\" (dz/dx, dz/dy).");
-      }
-      if (!maskOf(destination, unknown))
+      const std::vector<std::uint8_t> mask = maskArray(destination);
+      if (mask.empty())
       {
         throw tsynth::Error(
           "The guidance field needs a point array \"Mask\" marking the cells to solve.");
       }
-      // Slopes at cells -> differences along edges (mean of the two ends).
-      for (int j = 0; j < h; ++j)
-      {
-        for (int i = 0; i < w; ++i)
-        {
-          const std::size_t k = dst.index(i, j);
-          if (i + 1 < w)
-          {
-            gx[k] = 0.5 *
-              (g->GetComponent(static_cast<vtkIdType>(k), 0) +
-                g->GetComponent(static_cast<vtkIdType>(dst.index(i + 1, j)), 0)) *
-              dst.cellX;
-          }
-          if (j + 1 < h)
-          {
-            gy[k] = 0.5 *
-              (g->GetComponent(static_cast<vtkIdType>(k), 1) +
-                g->GetComponent(static_cast<vtkIdType>(dst.index(i, j + 1)), 1)) *
-              dst.cellY;
-          }
-        }
-      }
+      std::vector<double> slopeX;
+      std::vector<double> slopeY;
+      gradientArray(destination, slopeX, slopeY);
+      r = tsynth::integrateSlopes(dst, slopeX, slopeY, mask, this->Tolerance);
     }
-    std::vector<double> u(n);
-    std::size_t count = 0;
-    for (std::size_t k = 0; k < n; ++k)
-    {
-      u[k] = dst.isValid(k) ? static_cast<double>(dst.z[k]) : nan;
-      unknown[k] = unknown[k] != 0 && dst.isValid(k) ? 1 : 0;
-      count += unknown[k];
-    }
-    if (count == 0)
+    if (r.solvedCells == 0)
     {
       vtkWarningMacro("The mask is empty: the destination is returned unchanged.");
     }
-    this->UpdateProgress(0.1);
-    tsynth::PoissonOptions options;
-    options.tolerance = this->Tolerance;
-    options.maxIterations = 200;
-    tsynth::MaskedPoissonSolver solver;
-    const tsynth::PoissonStatistics stats = count == 0
-      ? tsynth::PoissonStatistics{}
-      : solver.solveGuided(
-          w, h, dst.cellX, dst.cellY, unknown.data(), gx.data(), gy.data(), u.data(), options);
     this->UpdateProgress(0.9);
+    const tsynth::PoissonStatistics stats = r.statistics;
+    const tsynth::Heightfield& result = r.terrain;
 
     output->ShallowCopy(destination);
     vtkNew<vtkImageData> solved;
-    tsynth::Heightfield result = dst;
-    for (std::size_t k = 0; k < n; ++k)
-    {
-      if (unknown[k] != 0)
-      {
-        result.z[k] = static_cast<float>(u[k]);
-      }
-    }
     tsynth::heightfieldToImage(result, solved);
     output->GetPointData()->AddArray(solved->GetPointData()->GetArray(tsynth::kElevationArray));
     output->GetPointData()->SetActiveScalars(tsynth::kElevationArray);
@@ -201,7 +166,7 @@ int vtkTerrainPoissonSolver::RequestData(vtkInformation*,
       stats.initialResidual > 0 ? stats.finalResidual / stats.initialResidual : 0.0);
     output->GetFieldData()->AddArray(residual);
   }
-  catch (const tsynth::Error& e)
+  catch (const std::exception& e)
   {
     vtkErrorMacro(<< e.what());
     return 0;

@@ -3,6 +3,7 @@ set(TSYNTH_MERGING_SOURCES
   Merging/GridMaxFlow.cxx
   Merging/SeamCut.cxx
   Merging/Poisson.cxx
+  Merging/PoissonEditing.cxx
   Merging/PatchMerger.cxx)
 # The Poisson DST solver runs in double precision.
 pkg_check_modules(FFTW3 REQUIRED IMPORTED_TARGET fftw3)
