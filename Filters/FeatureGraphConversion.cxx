@@ -213,6 +213,16 @@ std::vector<Polyline> polyDataToPolylines(const vtkPolyData* constInput,
   {
     *warning = "The poly-lines have no FeatureType cell array; they are taken as ridges.";
   }
+  if (type != nullptr && type->GetNumberOfTuples() != input->GetNumberOfCells())
+  {
+    throw Error("The FeatureType cell array has " + std::to_string(type->GetNumberOfTuples()) +
+      " values for " + std::to_string(input->GetNumberOfCells()) + " cells: give one per cell.");
+  }
+  if (elevation != nullptr && elevation->GetNumberOfTuples() != input->GetNumberOfPoints())
+  {
+    throw Error("The Elevation point array has " + std::to_string(elevation->GetNumberOfTuples()) +
+      " values for " + std::to_string(input->GetNumberOfPoints()) + " points: give one per point.");
+  }
   // Cell ids of lines follow verts in vtkPolyData's numbering.
   const vtkIdType firstLine = input->GetNumberOfVerts();
   vtkIdType lineIndex = 0;
@@ -251,8 +261,14 @@ PolylineSketch polyDataToPolylineSketch(const vtkPolyData* constInput, std::stri
     cell->GetNumberOfValues() == 2;
   if (framed)
   {
-    sketch.frameWidth = grid->GetComponent(0, 0) * cell->GetComponent(0, 0);
-    sketch.frameHeight = grid->GetComponent(1, 0) * cell->GetComponent(1, 0);
+    // Two values, as one tuple of two components or two tuples of one.
+    auto value = [](vtkDataArray* a, vtkIdType k)
+    {
+      const int nc = a->GetNumberOfComponents();
+      return a->GetComponent(k / nc, static_cast<int>(k % nc));
+    };
+    sketch.frameWidth = value(grid, 0) * value(cell, 0);
+    sketch.frameHeight = value(grid, 1) * value(cell, 1);
   }
   return sketch;
 }

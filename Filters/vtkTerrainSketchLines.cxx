@@ -1,0 +1,79 @@
+#include "vtkTerrainSketchLines.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkFloatArray.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+#include <cmath>
+#include <limits>
+
+vtkStandardNewMacro(vtkTerrainSketchLines);
+
+int vtkTerrainSketchLines::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  if (input == nullptr || output == nullptr)
+  {
+    vtkErrorMacro("Sketch Lines needs poly-lines on its input.");
+    return 0;
+  }
+  if (input->GetNumberOfLines() == 0)
+  {
+    vtkErrorMacro(
+      "The input has no lines: draw a Poly Line or Spline source and apply this to it.");
+    return 0;
+  }
+  // Lines only: points and polygons of the input are not a sketch.
+  output->SetPoints(input->GetPoints());
+  output->SetLines(input->GetLines());
+  vtkNew<vtkIntArray> type;
+  type->SetName("FeatureType");
+  type->SetNumberOfTuples(input->GetNumberOfLines());
+  type->FillValue(this->FeatureType);
+  output->GetCellData()->AddArray(type);
+
+  const vtkIdType n = input->GetNumberOfPoints();
+  vtkNew<vtkFloatArray> elevation;
+  elevation->SetName("Elevation");
+  elevation->SetNumberOfTuples(n);
+  elevation->Fill(std::numeric_limits<float>::quiet_NaN());
+  if (this->ElevationMode == CONSTANT_ELEVATION)
+  {
+    elevation->Fill(static_cast<float>(this->Elevation));
+  }
+  else if (this->ElevationMode == ELEVATION_FROM_Z)
+  {
+    // Heights from z, and the lines laid flat on the raster plane.
+    vtkNew<vtkPoints> flat;
+    flat->SetNumberOfPoints(n);
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      double p[3];
+      input->GetPoint(k, p);
+      elevation->SetValue(k, static_cast<float>(p[2]));
+      flat->SetPoint(k, p[0], p[1], 0.0);
+    }
+    output->SetPoints(flat);
+  }
+  output->GetPointData()->AddArray(elevation);
+  return 1;
+}
+
+void vtkTerrainSketchLines::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FeatureType: " << (this->FeatureType == RIDGE ? "ridge" : "valley") << "\n";
+  os << indent << "ElevationMode: " << this->ElevationMode << "\n";
+  os << indent << "Elevation: " << this->Elevation << "\n";
+}

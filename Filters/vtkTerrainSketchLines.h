@@ -1,0 +1,69 @@
+/**
+ * @class vtkTerrainSketchLines
+ * @brief Marks drawn poly-lines as sketched ridges or valleys, with optional
+ * heights, so they can be the sketch of the Terrain Synthesis filter.
+ *
+ * Input: poly-lines in metres in the raster frame of the terrain to make (as
+ * ParaView's Poly Line or Spline source draws them over a DEM read at origin 0).
+ * Output: the same lines with the cell array "FeatureType" (+1 ridge, -1
+ * valley) and the point array "Elevation" (metres; NaN where the line has no
+ * height): none, each point's z coordinate (then set to 0), or one constant
+ * height. Several marked sources are combined with Append Geometry.
+ */
+#pragma once
+
+#include "TerrainSynthesisFiltersModule.h"
+
+#include <vtkPolyDataAlgorithm.h>
+
+class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainSketchLines : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkTerrainSketchLines* New();
+  vtkTypeMacro(vtkTerrainSketchLines, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum FeatureTypes
+  {
+    VALLEY = -1,
+    RIDGE = 1
+  };
+  enum ElevationModes
+  {
+    NO_ELEVATION = 0, // the synthesis chooses the heights
+    ELEVATION_FROM_Z = 1,
+    CONSTANT_ELEVATION = 2
+  };
+
+  ///@{
+  /// RIDGE (default) or VALLEY.
+  vtkSetClampMacro(FeatureType, int, VALLEY, RIDGE);
+  vtkGetMacro(FeatureType, int);
+  ///@}
+
+  ///@{
+  /// Where the lines' heights come from (default NO_ELEVATION).
+  vtkSetClampMacro(ElevationMode, int, NO_ELEVATION, CONSTANT_ELEVATION);
+  vtkGetMacro(ElevationMode, int);
+  ///@}
+
+  ///@{
+  /// The height in metres of CONSTANT_ELEVATION (default 0).
+  vtkSetClampMacro(Elevation, double, -11000.0, 9000.0);
+  vtkGetMacro(Elevation, double);
+  ///@}
+
+protected:
+  vtkTerrainSketchLines() = default;
+  ~vtkTerrainSketchLines() override = default;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int FeatureType = RIDGE;
+  int ElevationMode = NO_ELEVATION;
+  double Elevation = 0.0;
+
+private:
+  vtkTerrainSketchLines(const vtkTerrainSketchLines&) = delete;
+  void operator=(const vtkTerrainSketchLines&) = delete;
+};
