@@ -70,6 +70,13 @@ void fixSmallScaling(std::vector<float>& table, float floor)
   table = std::move(fixed);
 }
 
+std::string number(double v)
+{
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
 std::string rowName(const std::string& source, int line)
 {
   return source + " line " + std::to_string(line);
@@ -156,12 +163,12 @@ std::vector<MonotoneProfile> profilesFromRows(const std::vector<ProfileRow>& row
     {
       if (!d.empty() && !(row->distance > d.back()))
       {
-        throw Error(rowName(source, row->line) + ": distance " + std::to_string(row->distance) +
+        throw Error(rowName(source, row->line) + ": distance " + number(row->distance) +
           " does not increase along profile " + std::to_string(id) + ".");
       }
       if (!h.empty() && row->height > h.back())
       {
-        throw Error(rowName(source, row->line) + ": height " + std::to_string(row->height) +
+        throw Error(rowName(source, row->line) + ": height " + number(row->height) +
           " rises along profile " + std::to_string(id) +
           "; profiles must fall monotonically away from the crest.");
       }

@@ -463,10 +463,12 @@ void requirePrecision(double largestCost, double smallestStep)
 }
 
 // Dendritic ridges (§4.1): random reached cells traced back along the least-cost
-// path to their generator; the path joins that generator's feature.
+// path to their generator; the path joins that generator's feature. Cells inside
+// regions are not started from, so crater bowls keep their own profile's shape.
 std::size_t traceRidges(const DistanceOptions& o,
   const Field& approx,
   const std::vector<Source>& flat,
+  const std::vector<std::int32_t>& regionOf,
   std::vector<std::vector<Source>>& perFeature,
   std::vector<std::vector<std::int32_t>>& ridges)
 {
@@ -484,7 +486,7 @@ std::size_t traceRidges(const DistanceOptions& o,
   {
     const auto start = std::min(n - 1,
       static_cast<std::size_t>(seededUniform(o.seed, kRidgeStream, a) * static_cast<double>(n)));
-    if (approx.cost[start] == kUnreached || isGenerator[start])
+    if (approx.cost[start] == kUnreached || isGenerator[start] || regionOf[start] != kNone)
     {
       continue;
     }
@@ -697,7 +699,7 @@ DistanceTerrain synthesiseByDistance(const DistanceInputs& in, const DistanceOpt
   reportProgress(o, kProgressApproximate);
   if (o.ridgeCount > 0)
   {
-    out.ridgeNodes = traceRidges(o, approx, flat, perFeature, out.ridges);
+    out.ridgeNodes = traceRidges(o, approx, flat, regionOf, perFeature, out.ridges);
     flat = flatten(perFeature, begin);
     approx.reset();
     approximatePass();

@@ -57,9 +57,9 @@ struct DistanceOptions
   double roughness = 0.75;    // r in [0, mu_w): roughness (the mountain range's 0.75 mu_w)
   bool sqrt2Diagonals = true; // the thesis is silent; sqrt(2) makes round, not square, features
   // Sea level and blending.
-  double seaLevelScale = 1.1;        // s >= 0: c_s = s c_max (eq. 3.1); the running example's 1.1
-  double blendBias = 4.0;            // b in [0, 64]: 0 the mean, large the maximum (eq. 3.7)
-  double seaLevelEpsilon = 0.5;      // eps_s: a feature's search stops within eps_s of c_s
+  double seaLevelScale = 2.0;   // s >= 0: c_s = s c_max (eq. 3.1); 2 as the valleys, canyon, cone
+  double blendBias = 4.0;       // b in [0, 64]: 0 the mean, large the maximum (eq. 3.7)
+  double seaLevelEpsilon = 0.5; // eps_s: a feature's search stops within eps_s of c_s
   double approximateFraction = 0.05; // p_f: ... or where it is below p_f of the approximate height
   double minScaling = 0.001;         // min t_s: the least cost-scaling value kept as it is
   // Profiles.
