@@ -243,17 +243,21 @@ void propagate(const Search& s,
     const float ws = s.scalingAt(u, c, g);
     const int col = static_cast<int>(u % static_cast<std::size_t>(w));
     const int row = static_cast<int>(u / static_cast<std::size_t>(w));
-    for (int d = 0; d < kDirectionCount; ++d)
+    const bool interior = col > 0 && row > 0 && col + 1 < w && row + 1 < h;
+    const float* weights = s.lattice.weights(u);
+    for (std::size_t d = 0; d < kDirectionCount; ++d)
     {
-      const int nc = col + dx[static_cast<std::size_t>(d)];
-      const int nr = row + dy[static_cast<std::size_t>(d)];
-      if (nc < 0 || nr < 0 || nc >= w || nr >= h)
+      if (!interior)
       {
-        continue;
+        const int nc = col + dx[d];
+        const int nr = row + dy[d];
+        if (nc < 0 || nr < 0 || nc >= w || nr >= h)
+        {
+          continue;
+        }
       }
-      const auto v = static_cast<std::size_t>(
-        static_cast<std::ptrdiff_t>(u) + offset[static_cast<std::size_t>(d)]);
-      const float next = c + s.lattice.weight(u, static_cast<Direction>(d)) * ws;
+      const auto v = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(u) + offset[d]);
+      const float next = c + weights[d] * ws;
       if (next < s.seaCost && next < f.cost[v] && !s.blocked(v, g.feature))
       {
         improve(v, next, source, static_cast<std::int32_t>(u));

@@ -52,14 +52,32 @@ Lattice Lattice::random(int width, int height, const LatticeOptions& options)
   lattice.height_ = height;
   lattice.meanWeight_ = mu;
   lattice.minWeight_ = mu - r;
-  lattice.factor_ = directionFactors(options.sqrt2Diagonals);
-  lattice.edges_.resize(4 * lattice.size());
-  const std::size_t n = lattice.edges_.size();
-#pragma omp parallel for schedule(static)
-  for (std::size_t e = 0; e < n; ++e)
+  const std::array<float, kDirectionCount> factor = directionFactors(options.sqrt2Diagonals);
+  const auto n = static_cast<std::ptrdiff_t>(lattice.size());
+  const auto w = static_cast<std::ptrdiff_t>(width);
+  // Edge e = 4 * (its southern/western node) + slot (E, N, NE, NW): the weight
+  // of an undirected edge depends only on (seed, e), whichever way it is read.
+  auto edgeWeight = [&](std::ptrdiff_t owner, int slot)
   {
+    const auto e = static_cast<std::uint64_t>(4 * owner + slot);
     const double v = 2.0 * seededUniform(options.seed, kEdgeStream, e) - 1.0; // [-1, 1)
-    lattice.edges_[e] = static_cast<float>(mu + r * v);
+    return static_cast<float>(mu + r * v);
+  };
+  const std::array<std::ptrdiff_t, kDirectionCount> owner = { 0, -1, 0, -w, 0, -w - 1, 0, -w + 1 };
+  const std::array<int, kDirectionCount> slot = { 0, 0, 1, 1, 2, 2, 3, 3 };
+  lattice.weights_.assign(kDirectionCount * lattice.size(), 0.0f);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t k = 0; k < n; ++k)
+  {
+    for (std::size_t d = 0; d < kDirectionCount; ++d)
+    {
+      const std::ptrdiff_t o = k + owner[d];
+      if (o >= 0 && o < n) // edges off the grid are never read
+      {
+        lattice.weights_[kDirectionCount * static_cast<std::size_t>(k) + d] =
+          edgeWeight(o, slot[d]) * factor[d];
+      }
+    }
   }
   return lattice;
 }
@@ -90,8 +108,15 @@ Lattice Lattice::fromNodeWeights(int width,
   }
   lattice.meanWeight_ = sum / static_cast<double>(weights.size());
   lattice.minWeight_ = lowest;
-  lattice.nodeWeights_ = std::move(weights);
-  lattice.factor_ = directionFactors(sqrt2Diagonals);
+  const std::array<float, kDirectionCount> factor = directionFactors(sqrt2Diagonals);
+  lattice.weights_.resize(kDirectionCount * weights.size());
+  for (std::size_t k = 0; k < weights.size(); ++k)
+  {
+    for (std::size_t d = 0; d < kDirectionCount; ++d)
+    {
+      lattice.weights_[kDirectionCount * k + d] = weights[k] * factor[d];
+    }
+  }
   return lattice;
 }
 

@@ -34,9 +34,9 @@ struct LatticeOptions
 };
 
 // Edge weights of a width x height lattice (row 0 south, as Heightfield).
-// Random lattices store each undirected edge once (E, N, NE, NW of its
-// southern/western node); image lattices store one weight per node, used on
-// all its outgoing edges (thesis §4.4: the graph is then directed).
+// Random lattices give both directions of an edge one weight; image lattices
+// give one weight per node to all its outgoing edges (thesis §4.4: the graph
+// is then directed).
 class Lattice
 {
 public:
@@ -61,42 +61,19 @@ public:
   // Weight of the edge from `node` in direction `d`; the neighbour must exist.
   float weight(std::size_t node, Direction d) const
   {
-    const auto k = static_cast<std::size_t>(d);
-    if (!nodeWeights_.empty())
-    {
-      return nodeWeights_[node] * factor_[k];
-    }
-    const std::size_t w = static_cast<std::size_t>(width_);
-    static constexpr std::array<int, kDirectionCount> kSlot = { 0, 0, 1, 1, 2, 2, 3, 3 };
-    std::size_t owner = node;
-    switch (d)
-    {
-      case Direction::West:
-        owner = node - 1;
-        break;
-      case Direction::South:
-        owner = node - w;
-        break;
-      case Direction::SouthWest:
-        owner = node - w - 1;
-        break;
-      case Direction::SouthEast:
-        owner = node - w + 1;
-        break;
-      default:
-        break;
-    }
-    return edges_[4 * owner + static_cast<std::size_t>(kSlot[k])] * factor_[k];
+    return weights_[kDirectionCount * node + static_cast<std::size_t>(d)];
   }
+  // The eight weights of a node's outgoing edges, in Direction order.
+  const float* weights(std::size_t node) const { return weights_.data() + kDirectionCount * node; }
 
 private:
   int width_ = 0;
   int height_ = 0;
   double meanWeight_ = 1.0;
   double minWeight_ = 1.0;
-  std::vector<float> edges_;       // 4 per node: E, N, NE, NW
-  std::vector<float> nodeWeights_; // image lattices
-  std::array<float, kDirectionCount> factor_{};
+  // Eight outgoing weights per node, diagonal factor applied: a search reads one
+  // node's edges from one cache line (an undirected edge is stored twice).
+  std::vector<float> weights_;
 };
 
 // Grey values (0.3 R + 0.59 G + 0.11 B, eq. 4.4) of an image's pixels, rows
