@@ -6,6 +6,31 @@
 // one bounded search per feature, halted by the sea-level and approximate-
 // terrain thresholds, gives that feature's heights; the features are blended
 // by h = sum h_i^(b+1) / sum h_i^b (eq. 3.7).
+//
+// Choices the thesis leaves open (digest §10), each an option or stated here:
+// - diagonals: sqrt(2) by default (round features; the literal lattice gives
+//   square cones at small r), sqrt2Diagonals = false for the thesis's lattice;
+// - profile x-scale: one profile distance unit per lattice step, profileScale;
+// - w_s tables: profileBins equal cost bins over [0, c_s], each the mean slope
+//   over the bin (several slopes at one cost are averaged), read by linear
+//   interpolation; bins below min t_s interpolated from their neighbours;
+// - fBm: improved Perlin noise with a seeded permutation, sampled at cell
+//   centres, octaves = the number of terms, normalised to [0, 1] over the grid
+//   and mapped by eq. 4.1 (FbmOptions::low, high) onto [0, scale];
+// - halting: a halted node keeps its cost (if below c_s) but is not expanded;
+//   the approximate search stops at c_s; cells no feature reaches are sea level;
+// - blending: heights are divided by c_s before the powers (b <= 64), summed in
+//   feature order, so any thread count gives the same bits;
+// - ridges: random reached cells outside regions, traced back to the first
+//   generator on their least-cost path; cost by RidgeCost (ScaledRise default:
+//   the literal f C_a puts a dimple at every peak);
+// - regions: a search from a region cell uses the region's profile; no other
+//   feature's search enters it (so it neither blends nor passes through), and
+//   other features' generators inside it are not used;
+// - image edge weights: a node's weight on all its outgoing edges (directed,
+//   as the thesis says), and w_s divides by the image's mean weight;
+// - generators costing c_s or more are dropped with a warning (s < 1, §3.5);
+//   negative costs are allowed (the thesis's crater rings use them).
 #pragma once
 
 #include "../Core/Heightfield.h"
