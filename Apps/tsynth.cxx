@@ -2,6 +2,7 @@
 // 1 with one sentence on bad input or failure, 2 on wrong usage.
 #include "CliSupport.h"
 #include "CommandLine.h"
+#include "DistanceCommand.h"
 #include "HydrologyCommands.h"
 #include "Render3D.h"
 #include "SynthCommands.h"
@@ -55,6 +56,7 @@ Commands:
   evaluate TERRAIN --exemplar DEM [--sketch S]  quality figures, with baselines
   pits DEM -o OUT        remove depressions (breach, fill or hybrid); flow accumulation, streams
   optimise --exemplar DEM --guide GUIDE -o OUT  terrain optimisation (Scott & Dodgson 2021)
+  distance --generators STROKES -o OUT  distance-based synthesis, no exemplar (Rusnell 2009)
 
 Run "tsynth COMMAND --help" for a command's options.
 )";
@@ -599,6 +601,10 @@ int main(int argc, char** argv)
     if (command == "optimise" || command == "optimize")
     {
       return tsynth::cli::runOptimise(std::move(args));
+    }
+    if (command == "distance")
+    {
+      return tsynth::cli::runDistance(std::move(args));
     }
     if (command == "evaluate")
     {

@@ -446,6 +446,53 @@ class PluginTest(unittest.TestCase):
         self.assertEqual(set(exemplar[column + 40 < 118].tolist()), {1})
         self.assertEqual(set(exemplar[column + 40 > 138].tolist()), {0})
 
+    # Distance-based synthesis ----------------------------------------------------------------
+
+    def test_distance_source_matches_tsynth_distance(self):
+        examples = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Examples", "distance")
+        strokes = os.path.join(examples, "valley_pair_strokes.png")
+        profiles = os.path.join(examples, "valley_v_profile.csv")
+        sketch = simple.PNGSeriesReader(FileNames=[strokes])
+        table = simple.CSVReader(FileName=[profiles])
+        source = simple.TerrainDistanceSource(Generators=sketch, Profiles=table, BlendBias=15.0,
+                                              Seed=5)
+        source.UpdatePipeline()
+        terrain = sm.Fetch(source)
+        self.assertEqual(terrain.GetDimensions(), (512, 512, 1))
+        self.assertEqual(terrain.GetSpacing()[0], 10.0)
+        z = point_array(terrain, "Elevation").reshape(512, 512)
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "v.tif")
+            subprocess.run([PATHS.tsynth, "distance", "--generators", strokes, "--profiles", profiles,
+                            "--b", "15", "--seed", "5", "-o", out, "--no-progress"],
+                           check=True, capture_output=True)
+            cli = point_array(sm.Fetch(simple.TerrainReader(FileName=out)), "Elevation").reshape(512, 512)
+        np.testing.assert_array_equal(z, cli)  # the same kernel behind both front ends
+        # The middle stroke (x = 250 of 512, row 256 from the top) stands above the V between.
+        row = 511 - 256
+        self.assertGreater(z[row, 245:256].max(), z[row, 150:170].min() + 50.0)
+        # The file name property gives the same terrain as the table.
+        by_file = simple.TerrainDistanceSource(Generators=sketch, ProfileFileName=profiles,
+                                               BlendBias=15.0, Seed=5)
+        by_file.UpdatePipeline()
+        np.testing.assert_array_equal(point_array(sm.Fetch(by_file), "Elevation").reshape(512, 512), z)
+        # Both at once is refused rather than one silently ignored.
+        source.ProfileFileName = profiles
+        source.UpdatePipeline()
+        self.assertEqual(sm.Fetch(source).GetNumberOfPoints(), 0)
+
+    def test_distance_source_reports_bad_profiles(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            bad = os.path.join(tmp, "bad.csv")
+            with open(bad, "w") as f:
+                f.write("0,1\n5,0.5\n7,0.8\n")
+            sketch = simple.PNGSeriesReader(FileNames=[os.path.join(
+                os.path.dirname(os.path.abspath(__file__)), "..", "..", "Examples", "distance",
+                "valley_pair_strokes.png")])
+            source = simple.TerrainDistanceSource(Generators=sketch, ProfileFileName=bad)
+            source.UpdatePipeline()
+            self.assertEqual(sm.Fetch(source).GetNumberOfPoints(), 0)
+
     def test_every_xml_property_has_its_setter_getter_and_default(self):
         """A typo in a command, or an XML default that drifted from the class's, fails here."""
         import glob

@@ -1,0 +1,750 @@
+#include "DistanceSynthesis.h"
+
+#include "../Core/Error.h"
+#include "../Core/Random.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <queue>
+#include <sstream>
+
+namespace tsynth
+{
+namespace
+{
+
+constexpr float kUnreached = std::numeric_limits<float>::infinity();
+constexpr std::int32_t kNone = -1;
+// Above this bias the powers of small heights underflow double precision.
+constexpr double kMaxBlendBias = 64.0;
+constexpr int kMaxProfileBins = 1 << 20;
+constexpr std::uint64_t kRidgeStream = 0x5249444745534545ULL;
+// Random cells tried per requested ridge before giving up (unreached cells are skipped).
+constexpr int kRidgeAttemptsPerRidge = 8;
+// Features searched in parallel between two deterministic blends (bounds memory).
+constexpr std::size_t kFeaturesPerBatch = 128;
+constexpr std::uint16_t kMaxContributors = std::numeric_limits<std::uint16_t>::max();
+// Progress shares of the stages.
+constexpr double kProgressApproximate = 0.1;
+constexpr double kProgressRidges = 0.2;
+
+// A generator node with its feature, in one flat array (each feature a run).
+struct Source
+{
+  std::int32_t cell = 0;
+  float cost = 0.0f;
+  std::int32_t profile = kNoProfile;
+  std::int32_t feature = 0;
+};
+
+// Float costs as unsigned keys of the same order (negative costs included).
+std::uint32_t floatKey(float f)
+{
+  std::uint32_t b = 0;
+  std::memcpy(&b, &f, sizeof b);
+  return (b & 0x80000000u) != 0 ? ~b : (b | 0x80000000u);
+}
+
+float keyFloat(std::uint32_t k)
+{
+  const std::uint32_t b = (k & 0x80000000u) != 0 ? (k & 0x7fffffffu) : ~k;
+  float f = 0.0f;
+  std::memcpy(&f, &b, sizeof f);
+  return f;
+}
+
+// A monotone radix heap (Ahuja et al. 1990) on 32-bit keys: each element moves
+// down at most 32 buckets, so a push and a pop cost O(1) amortised plus a scan.
+class RadixHeap
+{
+public:
+  bool empty() const { return size_ == 0; }
+  void push(float cost, std::uint32_t node)
+  {
+    const std::uint32_t key = floatKey(cost);
+    buckets_[bucket(key)].push_back({ key, node });
+    ++size_;
+  }
+  std::pair<float, std::uint32_t> pop()
+  {
+    if (buckets_[0].empty())
+    {
+      std::size_t i = 1;
+      while (buckets_[i].empty())
+      {
+        ++i;
+      }
+      std::uint32_t least = buckets_[i].front().first;
+      for (const auto& e : buckets_[i])
+      {
+        least = std::min(least, e.first);
+      }
+      last_ = least;
+      for (const auto& e : buckets_[i])
+      {
+        buckets_[bucket(e.first)].push_back(e);
+      }
+      buckets_[i].clear();
+    }
+    const auto e = buckets_[0].back();
+    buckets_[0].pop_back();
+    --size_;
+    return { keyFloat(e.first), e.second };
+  }
+
+private:
+  std::size_t bucket(std::uint32_t key) const
+  {
+    return key == last_ ? 0 : static_cast<std::size_t>(32 - __builtin_clz(key ^ last_));
+  }
+  std::array<std::vector<std::pair<std::uint32_t, std::uint32_t>>, 33> buckets_;
+  std::uint32_t last_ = 0;
+  std::size_t size_ = 0;
+};
+
+class BinaryHeap
+{
+public:
+  bool empty() const { return heap_.empty(); }
+  void push(float cost, std::uint32_t node) { heap_.push({ cost, node }); }
+  std::pair<float, std::uint32_t> pop()
+  {
+    const auto e = heap_.top();
+    heap_.pop();
+    return e;
+  }
+
+private:
+  using Entry = std::pair<float, std::uint32_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap_;
+};
+
+// What every search reads.
+struct Search
+{
+  const Lattice& lattice;
+  const std::vector<ScalingFunction>& scaling; // by profile id
+  const std::vector<Source>& sources;
+  const std::vector<std::int32_t>& regionOf; // region index per cell, or kNone
+  const std::vector<DistanceRegion>& regions;
+  float seaCost = 0.0f;
+
+  bool blocked(std::size_t cell, std::int32_t feature) const
+  {
+    const std::int32_t r = regionOf[cell];
+    return r != kNone && regions[static_cast<std::size_t>(r)].feature != feature;
+  }
+  // w_s at a settled node: its region's profile inside a region, else its
+  // generator's, evaluated at the modified cost of eq. 3.6.
+  float scalingAt(std::size_t cell, float cost, const Source& g) const
+  {
+    const std::int32_t r = regionOf[cell];
+    const std::int32_t profile =
+      r != kNone ? regions[static_cast<std::size_t>(r)].profile : g.profile;
+    if (profile == kNoProfile)
+    {
+      return 1.0f;
+    }
+    const float modified = (cost - g.cost) / (seaCost - g.cost) * seaCost;
+    return scaling[static_cast<std::size_t>(profile)](modified);
+  }
+};
+
+// One search's per-cell state; cells it touched are listed so that it can be
+// reset in time proportional to its footprint.
+struct Field
+{
+  std::vector<float> cost;
+  std::vector<std::int32_t> source;
+  std::vector<std::int32_t> pred; // empty unless wanted
+  std::vector<std::uint32_t> touched;
+
+  explicit Field(std::size_t n, bool withPred)
+    : cost(n, kUnreached)
+    , source(n, kNone)
+    , pred(withPred ? n : 0, kNone)
+  {
+  }
+  void reset()
+  {
+    for (const std::uint32_t k : touched)
+    {
+      cost[k] = kUnreached;
+    }
+    touched.clear();
+  }
+};
+
+// Label-setting propagation of eq. 3.4 from sources[first, last): pops the
+// cheapest node, reports it (settle), and unless halt says so relaxes its eight
+// edges with c + w_e w_s(c_m). Only costs below c_s are kept.
+template<class Queue, class Halt, class Settle>
+void propagate(const Search& s,
+  std::size_t first,
+  std::size_t last,
+  Field& f,
+  Halt halt,
+  Settle settle)
+{
+  Queue queue;
+  const bool withPred = !f.pred.empty();
+  auto improve = [&](std::size_t k, float c, std::int32_t source, std::int32_t from)
+  {
+    if (f.cost[k] == kUnreached)
+    {
+      f.touched.push_back(static_cast<std::uint32_t>(k));
+    }
+    f.cost[k] = c;
+    f.source[k] = source;
+    if (withPred)
+    {
+      f.pred[k] = from;
+    }
+    queue.push(c, static_cast<std::uint32_t>(k));
+  };
+  for (std::size_t i = first; i < last; ++i)
+  {
+    const Source& g = s.sources[i];
+    const auto k = static_cast<std::size_t>(g.cell);
+    if (!s.blocked(k, g.feature) && g.cost < f.cost[k])
+    {
+      improve(k, g.cost, static_cast<std::int32_t>(i), kNone);
+    }
+  }
+  const int w = s.lattice.width();
+  const int h = s.lattice.height();
+  const auto sw = static_cast<std::ptrdiff_t>(w);
+  const std::array<std::ptrdiff_t, kDirectionCount> offset = {
+    1, -1, sw, -sw, sw + 1, -sw - 1, sw - 1, -sw + 1
+  };
+  const std::array<int, kDirectionCount> dx = { 1, -1, 0, 0, 1, -1, -1, 1 };
+  const std::array<int, kDirectionCount> dy = { 0, 0, 1, -1, 1, -1, 1, -1 };
+  while (!queue.empty())
+  {
+    const auto [c, node] = queue.pop();
+    const std::size_t u = node;
+    if (c != f.cost[u])
+    {
+      continue; // superseded by a cheaper path
+    }
+    settle(u, c);
+    if (halt(u, c))
+    {
+      continue;
+    }
+    const std::int32_t source = f.source[u];
+    const Source& g = s.sources[static_cast<std::size_t>(source)];
+    const float ws = s.scalingAt(u, c, g);
+    const int col = static_cast<int>(u % static_cast<std::size_t>(w));
+    const int row = static_cast<int>(u / static_cast<std::size_t>(w));
+    const bool interior = col > 0 && row > 0 && col + 1 < w && row + 1 < h;
+    const float* weights = s.lattice.weights(u);
+    for (std::size_t d = 0; d < kDirectionCount; ++d)
+    {
+      if (!interior)
+      {
+        const int nc = col + dx[d];
+        const int nr = row + dy[d];
+        if (nc < 0 || nr < 0 || nc >= w || nr >= h)
+        {
+          continue;
+        }
+      }
+      const auto v = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(u) + offset[d]);
+      const float next = c + weights[d] * ws;
+      if (next < s.seaCost && next < f.cost[v] && !s.blocked(v, g.feature))
+      {
+        improve(v, next, source, static_cast<std::int32_t>(u));
+      }
+    }
+  }
+}
+
+template<class Halt, class Settle>
+void run(DijkstraQueue queue,
+  const Search& s,
+  std::size_t first,
+  std::size_t last,
+  Field& f,
+  Halt halt,
+  Settle settle)
+{
+  if (queue == DijkstraQueue::Radix)
+  {
+    propagate<RadixHeap>(s, first, last, f, halt, settle);
+  }
+  else
+  {
+    propagate<BinaryHeap>(s, first, last, f, halt, settle);
+  }
+}
+
+void require(bool ok, const std::string& message)
+{
+  if (!ok)
+  {
+    throw Error(message);
+  }
+}
+
+std::string number(double v)
+{
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+void validateOptions(const DistanceOptions& o)
+{
+  require(std::isfinite(o.seaLevelScale) && o.seaLevelScale >= 0.0,
+    "The sea-level scale s must be a number >= 0 (got " + number(o.seaLevelScale) + ").");
+  require(o.blendBias >= 0.0 && o.blendBias <= kMaxBlendBias,
+    "The blending bias b must be from 0 to 64 (got " + number(o.blendBias) + ").");
+  require(o.seaLevelEpsilon >= 0.0 && std::isfinite(o.seaLevelEpsilon),
+    "The sea-level threshold eps_s must be >= 0.");
+  require(o.approximateFraction >= 0.0 && o.approximateFraction <= 1.0,
+    "The approximate-terrain threshold p_f must be from 0 to 1.");
+  require(o.minScaling > 0.0 && std::isfinite(o.minScaling),
+    "The minimum scaling min t_s must be positive, so that every step raises the cost.");
+  require(o.profileBins >= 2 && o.profileBins <= kMaxProfileBins,
+    "The profile table needs from 2 to 2^20 bins.");
+  require(o.profileScale > 0.0 && std::isfinite(o.profileScale),
+    "The profile scale (cells per profile unit) must be positive.");
+  require(o.ridgeCount >= 0, "The ridge count must be 0 or more.");
+  require(
+    o.ridgeFraction > 0.0 && o.ridgeFraction <= 1.0, "The ridge cost fraction must be in (0, 1].");
+  require(o.cellSize > 0.0 && std::isfinite(o.cellSize), "The cell size must be positive metres.");
+  require(o.heightScale > 0.0 && std::isfinite(o.heightScale),
+    "The height scale must be positive metres per cost unit.");
+}
+
+// Every generator node with its feature, costs filled from fBm where NaN.
+std::vector<std::vector<Source>> gatherSources(const DistanceInputs& in, const DistanceOptions& o)
+{
+  const std::size_t n = static_cast<std::size_t>(in.width) * static_cast<std::size_t>(in.height);
+  bool needFbm = false;
+  std::size_t count = 0;
+  for (std::size_t f = 0; f < in.features.size(); ++f)
+  {
+    for (const GeneratorNode& node : in.features[f].nodes)
+    {
+      require(node.cell >= 0 && static_cast<std::size_t>(node.cell) < n,
+        "Feature " + std::to_string(f) + " has a generator outside the " +
+          std::to_string(in.width) + "x" + std::to_string(in.height) + " grid.");
+      require(node.profile == kNoProfile ||
+          (node.profile >= 0 && static_cast<std::size_t>(node.profile) < in.profiles.size()),
+        "Feature " + std::to_string(f) + " asks for profile " + std::to_string(node.profile) +
+          " but there are " + std::to_string(in.profiles.size()) + " profiles.");
+      require(!std::isinf(node.cost),
+        "Feature " + std::to_string(f) + " has an infinite generator cost; give finite costs.");
+      needFbm = needFbm || std::isnan(node.cost);
+      ++count;
+    }
+  }
+  require(
+    count > 0, "There are no generators: draw at least one ridge stroke, poly-line or point.");
+  const std::vector<float> fbm =
+    needFbm ? fbmCosts(in.width, in.height, o.fbm, o.seed) : std::vector<float>();
+  std::vector<std::vector<Source>> sources(in.features.size());
+  for (std::size_t f = 0; f < in.features.size(); ++f)
+  {
+    for (const GeneratorNode& node : in.features[f].nodes)
+    {
+      const float cost =
+        std::isnan(node.cost) ? fbm[static_cast<std::size_t>(node.cell)] : node.cost;
+      sources[f].push_back({ node.cell, cost, node.profile, static_cast<std::int32_t>(f) });
+    }
+  }
+  return sources;
+}
+
+// Region index per cell: the smallest region wins where they nest.
+std::vector<std::int32_t> regionMap(const DistanceInputs& in)
+{
+  const std::size_t n = static_cast<std::size_t>(in.width) * static_cast<std::size_t>(in.height);
+  std::vector<std::int32_t> regionOf(n, kNone);
+  std::vector<std::size_t> order(in.regions.size());
+  for (std::size_t r = 0; r < order.size(); ++r)
+  {
+    const DistanceRegion& region = in.regions[r];
+    require(region.feature >= 0 && static_cast<std::size_t>(region.feature) < in.features.size(),
+      "Region " + std::to_string(r) + " belongs to feature " + std::to_string(region.feature) +
+        ", which does not exist.");
+    require(region.profile == kNoProfile ||
+        (region.profile >= 0 && static_cast<std::size_t>(region.profile) < in.profiles.size()),
+      "Region " + std::to_string(r) + " asks for profile " + std::to_string(region.profile) +
+        " but there are " + std::to_string(in.profiles.size()) + " profiles.");
+    order[r] = r;
+  }
+  std::stable_sort(order.begin(),
+    order.end(),
+    [&](std::size_t a, std::size_t b)
+    { return in.regions[a].cells.size() > in.regions[b].cells.size(); });
+  for (const std::size_t r : order) // largest first, so smaller ones overwrite
+  {
+    for (const std::int32_t k : in.regions[r].cells)
+    {
+      require(k >= 0 && static_cast<std::size_t>(k) < n,
+        "Region " + std::to_string(r) + " has a cell outside the grid.");
+      regionOf[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(r);
+    }
+  }
+  return regionOf;
+}
+
+std::vector<Source> flatten(const std::vector<std::vector<Source>>& perFeature,
+  std::vector<std::size_t>& begin)
+{
+  std::vector<Source> flat;
+  begin.assign(1, 0);
+  for (const auto& feature : perFeature)
+  {
+    flat.insert(flat.end(), feature.begin(), feature.end());
+    begin.push_back(flat.size());
+  }
+  return flat;
+}
+
+void reportProgress(const DistanceOptions& o, double fraction)
+{
+  if (o.progress && !o.progress(fraction))
+  {
+    throw Cancelled();
+  }
+}
+
+Lattice buildLattice(const DistanceInputs& in, const DistanceOptions& o)
+{
+  if (!in.nodeWeights.empty())
+  {
+    require(in.nodeWeights.size() ==
+        static_cast<std::size_t>(in.width) * static_cast<std::size_t>(in.height),
+      "The edge-weight image has " + std::to_string(in.nodeWeights.size()) +
+        " cells but the generators' grid is " + std::to_string(in.width) + "x" +
+        std::to_string(in.height) + "; give an image of the same size.");
+    return Lattice::fromNodeWeights(in.width, in.height, in.nodeWeights, o.sqrt2Diagonals);
+  }
+  LatticeOptions lo;
+  lo.meanWeight = o.meanWeight;
+  lo.roughness = o.roughness;
+  lo.sqrt2Diagonals = o.sqrt2Diagonals;
+  lo.seed = o.seed;
+  return Lattice::random(in.width, in.height, lo);
+}
+
+// Drops generators at or above c_s (s < 1 clips them, §3.5); returns how many.
+std::size_t clipGenerators(std::vector<std::vector<Source>>& sources, float seaCost)
+{
+  std::size_t clipped = 0;
+  for (auto& feature : sources)
+  {
+    const std::size_t before = feature.size();
+    feature.erase(
+      std::remove_if(
+        feature.begin(), feature.end(), [&](const Source& g) { return !(g.cost < seaCost); }),
+      feature.end());
+    clipped += before - feature.size();
+  }
+  return clipped;
+}
+
+// The smallest step a search can take must survive float rounding at the
+// largest cost magnitude, or costs stop growing and flat sheets spread.
+void requirePrecision(double largestCost, double smallestStep)
+{
+  if (!(largestCost * FLT_EPSILON < smallestStep) || !(largestCost < FLT_MAX))
+  {
+    throw Error("Costs up to " + number(largestCost) + " would swallow the smallest edge step " +
+      number(smallestStep) +
+      " in float precision; lower the generator costs or s, or raise mu_w - r or min t_s.");
+  }
+}
+
+// Dendritic ridges (§4.1): random reached cells traced back along the least-cost
+// path to their generator; the path joins that generator's feature. Cells inside
+// regions are not started from, so crater bowls keep their own profile's shape.
+std::size_t traceRidges(const DistanceOptions& o,
+  const Field& approx,
+  const std::vector<Source>& flat,
+  const std::vector<std::int32_t>& regionOf,
+  std::vector<std::vector<Source>>& perFeature,
+  std::vector<std::vector<std::int32_t>>& ridges)
+{
+  const std::size_t n = approx.cost.size();
+  std::vector<std::uint8_t> isGenerator(n, 0);
+  for (const Source& g : flat)
+  {
+    isGenerator[static_cast<std::size_t>(g.cell)] = 1;
+  }
+  std::size_t added = 0;
+  int traced = 0;
+  const auto attempts = static_cast<std::uint64_t>(o.ridgeCount) * kRidgeAttemptsPerRidge;
+  const auto fraction = static_cast<float>(o.ridgeFraction);
+  for (std::uint64_t a = 0; a < attempts && traced < o.ridgeCount; ++a)
+  {
+    const auto start = std::min(n - 1,
+      static_cast<std::size_t>(seededUniform(o.seed, kRidgeStream, a) * static_cast<double>(n)));
+    if (approx.cost[start] == kUnreached || isGenerator[start] || regionOf[start] != kNone)
+    {
+      continue;
+    }
+    ++traced;
+    ridges.emplace_back();
+    const Source& g = flat[static_cast<std::size_t>(approx.source[start])];
+    std::vector<Source>& feature = perFeature[static_cast<std::size_t>(g.feature)];
+    for (std::int32_t k = static_cast<std::int32_t>(start);
+         k != kNone && !isGenerator[static_cast<std::size_t>(k)];
+         k = approx.pred[static_cast<std::size_t>(k)])
+    {
+      const float ca = approx.cost[static_cast<std::size_t>(k)];
+      const float cost =
+        o.ridgeCost == RidgeCost::ScaledRise ? g.cost + fraction * (ca - g.cost) : fraction * ca;
+      feature.push_back({ k, cost, g.profile, g.feature });
+      isGenerator[static_cast<std::size_t>(k)] = 1;
+      ridges.back().push_back(k);
+      ++added;
+    }
+  }
+  return added;
+}
+
+// x^b by squaring when b is a whole number (the thesis's 3, 4, 8, 15), else pow.
+double biasPower(double x, double b)
+{
+  if (b != std::floor(b))
+  {
+    return std::pow(x, b);
+  }
+  double result = 1.0;
+  for (auto e = static_cast<unsigned>(b); e != 0; e >>= 1)
+  {
+    if ((e & 1u) != 0)
+    {
+      result *= x;
+    }
+    x *= x;
+  }
+  return result;
+}
+
+struct Blend
+{
+  std::vector<double> num;
+  std::vector<double> den;
+  std::vector<std::uint16_t> contributors;
+};
+
+struct Visit
+{
+  std::uint32_t cell;
+  float height; // (c_s - c) / c_s
+  double power; // height^b
+};
+
+// One feature's bounded search (step 7a): halted within eps_s of c_s, or where
+// the feature's height is below p_f of the approximate height.
+void featurePass(const Search& s,
+  const DistanceOptions& o,
+  const std::vector<float>& approxHeight,
+  std::size_t first,
+  std::size_t last,
+  Field& field,
+  std::vector<Visit>& visits)
+{
+  const float sea = s.seaCost;
+  const auto haltCost = static_cast<float>(sea - o.seaLevelEpsilon);
+  const auto pf = static_cast<float>(o.approximateFraction);
+  const double b = o.blendBias;
+  visits.clear();
+  auto halt = [&](std::size_t u, float c)
+  { return c >= haltCost || (sea - c) < pf * approxHeight[u]; };
+  auto settle = [&](std::size_t u, float c)
+  {
+    const double hn = (static_cast<double>(sea) - c) / sea;
+    visits.push_back({ static_cast<std::uint32_t>(u), static_cast<float>(hn), biasPower(hn, b) });
+  };
+  run(o.queue, s, first, last, field, halt, settle);
+  field.reset();
+}
+
+void blendFeatures(const Search& s,
+  const DistanceOptions& o,
+  const std::vector<float>& approxHeight,
+  const std::vector<std::size_t>& begin,
+  Blend& blend,
+  std::size_t& visitsTotal)
+{
+  const std::size_t features = begin.size() - 1;
+  const std::size_t n = approxHeight.size();
+  const int threads = omp_get_max_threads();
+  std::vector<Field> fields;
+  for (int t = 0; t < threads; ++t)
+  {
+    fields.emplace_back(n, false);
+  }
+  std::vector<std::vector<Visit>> visits(std::min(features, kFeaturesPerBatch));
+  for (std::size_t batch = 0; batch < features; batch += kFeaturesPerBatch)
+  {
+    const std::size_t count = std::min(kFeaturesPerBatch, features - batch);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      const std::size_t f = batch + i;
+      featurePass(s,
+        o,
+        approxHeight,
+        begin[f],
+        begin[f + 1],
+        fields[static_cast<std::size_t>(omp_get_thread_num())],
+        visits[i]);
+    }
+    for (std::size_t i = 0; i < count; ++i) // in feature order: the same sums on any thread count
+    {
+      for (const Visit& v : visits[i])
+      {
+        blend.num[v.cell] += v.power * v.height;
+        blend.den[v.cell] += v.power;
+        blend.contributors[v.cell] = static_cast<std::uint16_t>(
+          std::min<int>(blend.contributors[v.cell] + 1, kMaxContributors));
+      }
+      visitsTotal += visits[i].size();
+    }
+    reportProgress(o,
+      kProgressRidges +
+        (1.0 - kProgressRidges) * static_cast<double>(batch + count) /
+          static_cast<double>(features));
+  }
+}
+
+Heightfield makeField(int width, int height, const DistanceOptions& o)
+{
+  Heightfield hf(width, height, 0.0f);
+  hf.cellX = o.cellSize;
+  hf.cellY = o.cellSize;
+  hf.cellSizeKnown = true;
+  return hf;
+}
+
+} // namespace
+
+DistanceTerrain synthesiseByDistance(const DistanceInputs& in, const DistanceOptions& o)
+{
+  validateOptions(o);
+  require(in.width >= 1 && in.height >= 1, "The generators' grid must have at least one cell.");
+  const Lattice lattice = buildLattice(in, o);
+  std::vector<std::vector<Source>> perFeature = gatherSources(in, o);
+  const std::vector<std::int32_t> regionOf = regionMap(in);
+
+  DistanceTerrain out;
+  float maxCost = -std::numeric_limits<float>::infinity();
+  float minCost = std::numeric_limits<float>::infinity();
+  for (const auto& feature : perFeature)
+  {
+    for (const Source& g : feature)
+    {
+      maxCost = std::max(maxCost, g.cost);
+      minCost = std::min(minCost, g.cost);
+    }
+  }
+  const double seaCost = o.seaLevelScale * maxCost; // eq. 3.1
+  require(seaCost > 0.0,
+    "The sea-level cost c_s = s * c_max is " + number(seaCost) +
+      "; it must be positive: raise s or give some generator a positive cost.");
+  out.seaLevelCost = seaCost;
+  out.maxGeneratorCost = maxCost;
+  const std::size_t clipped = clipGenerators(perFeature, static_cast<float>(seaCost));
+  if (clipped > 0)
+  {
+    out.warnings.push_back(std::to_string(clipped) +
+      " generator nodes cost c_s or more and are clipped (s < 1 hides them, thesis §3.5).");
+  }
+
+  std::vector<ScalingFunction> scaling;
+  double smallestScaling = 1.0;
+  for (std::size_t p = 0; p < in.profiles.size(); ++p)
+  {
+    try
+    {
+      scaling.push_back(ScalingFunction::fromProfile(in.profiles[p],
+        seaCost,
+        lattice.meanWeight(),
+        o.minScaling,
+        o.profileBins,
+        o.profileScale));
+    }
+    catch (const Error& e)
+    {
+      throw Error("Profile " + std::to_string(p) + ": " + e.what());
+    }
+    smallestScaling = std::min(smallestScaling, static_cast<double>(scaling.back().smallest()));
+  }
+  requirePrecision(std::max(seaCost, std::fabs(static_cast<double>(minCost))),
+    lattice.minWeight() * smallestScaling);
+  reportProgress(o, 0.0);
+
+  std::vector<std::size_t> begin;
+  std::vector<Source> flat = flatten(perFeature, begin);
+  const std::size_t n = lattice.size();
+  Field approx(n, o.ridgeCount > 0);
+  auto never = [](std::size_t, float) { return false; };
+  auto ignore = [](std::size_t, float) {};
+  auto approximatePass = [&]()
+  {
+    const Search s{ lattice, scaling, flat, regionOf, in.regions, static_cast<float>(seaCost) };
+    run(o.queue, s, 0, flat.size(), approx, never, ignore);
+  };
+  approximatePass();
+  reportProgress(o, kProgressApproximate);
+  if (o.ridgeCount > 0)
+  {
+    out.ridgeNodes = traceRidges(o, approx, flat, regionOf, perFeature, out.ridges);
+    flat = flatten(perFeature, begin);
+    approx.reset();
+    approximatePass();
+  }
+  reportProgress(o, kProgressRidges);
+  for (std::size_t f = 0; f + 1 < begin.size(); ++f)
+  {
+    out.features += begin[f + 1] > begin[f] ? 1 : 0;
+  }
+  require(
+    out.features > 0, "Every generator costs c_s or more, so nothing is above sea level; raise s.");
+  out.generators = flat.size();
+
+  std::vector<float> approxHeight(n, 0.0f); // c_s - C_a, 0 where unreached
+  out.approximate = makeField(in.width, in.height, o);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    approxHeight[k] =
+      approx.cost[k] == kUnreached ? 0.0f : static_cast<float>(seaCost) - approx.cost[k];
+    out.approximate.z[k] = static_cast<float>(approxHeight[k] * o.heightScale);
+  }
+  out.heights = makeField(in.width, in.height, o);
+  if (o.approximateOnly)
+  {
+    out.heights.z = out.approximate.z;
+    out.contributors.assign(n, 0);
+    reportProgress(o, 1.0);
+    return out;
+  }
+  Blend blend{
+    std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), std::vector<std::uint16_t>(n, 0)
+  };
+  const Search s{ lattice, scaling, flat, regionOf, in.regions, static_cast<float>(seaCost) };
+  blendFeatures(s, o, approxHeight, begin, blend, out.featureVisits);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const double h = blend.den[k] > 0.0 ? blend.num[k] / blend.den[k] * seaCost : 0.0; // eq. 3.7
+    out.heights.z[k] = static_cast<float>(h * o.heightScale);
+  }
+  out.contributors = std::move(blend.contributors);
+  return out;
+}
+
+} // namespace tsynth
