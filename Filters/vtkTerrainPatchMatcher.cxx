@@ -66,6 +66,8 @@ vtkTerrainPatchMatcher::vtkTerrainPatchMatcher()
 {
   this->SetNumberOfInputPorts(3);
   this->SetNumberOfOutputPorts(2);
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
 }
 
 int vtkTerrainPatchMatcher::FillInputPortInformation(int port, vtkInformation* info)
@@ -133,7 +135,8 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
   vtkImageData* map = vtkImageData::GetData(outputVector, 1);
   try
   {
-    const tsynth::Heightfield target = tsynth::imageToHeightfield(targetImage);
+    const tsynth::Heightfield target =
+      tsynth::imageToHeightfield(targetImage, this->GetInputArrayToProcess(0, inputVector));
     if (target.width < this->PatchSize || target.height < this->PatchSize)
     {
       throw tsynth::Error("The target is " + std::to_string(target.width) + " x " +

@@ -24,6 +24,10 @@ vtkStandardNewMacro(vtkTerrainPoissonSolver);
 vtkTerrainPoissonSolver::vtkTerrainPoissonSolver()
 {
   this->SetNumberOfInputPorts(2);
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
+  this->SetInputArrayToProcess(
+    1, 1, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
 }
 
 int vtkTerrainPoissonSolver::FillInputPortInformation(int port, vtkInformation* info)
@@ -64,7 +68,8 @@ int vtkTerrainPoissonSolver::RequestData(vtkInformation*,
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   try
   {
-    const tsynth::Heightfield dst = tsynth::imageToHeightfield(destination);
+    const tsynth::Heightfield dst =
+      tsynth::imageToHeightfield(destination, this->GetInputArrayToProcess(0, inputVector));
     const int w = dst.width;
     const int h = dst.height;
     const std::size_t n = dst.size();
@@ -90,7 +95,8 @@ int vtkTerrainPoissonSolver::RequestData(vtkInformation*,
       {
         throw tsynth::Error("Seamless cloning needs a source heightfield on the second input.");
       }
-      const tsynth::Heightfield src = tsynth::imageToHeightfield(source);
+      const tsynth::Heightfield src =
+        tsynth::imageToHeightfield(source, this->GetInputArrayToProcess(1, inputVector));
       if (src.width != w || src.height != h)
       {
         throw tsynth::Error("The source must lie on the destination's grid (" + std::to_string(w) +
