@@ -26,8 +26,9 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// Patch size in cells (default 80, for 90 m data).
-  vtkSetClampMacro(PatchSize, int, 8, 1024);
+  /// Patch size in cells (default 80, for 90 m data), 16 to 512 as the synthesis
+  /// takes; any size in that range works (the synthesis also asks a multiple of 4).
+  vtkSetClampMacro(PatchSize, int, 16, 512);
   vtkGetMacro(PatchSize, int);
   ///@}
 

@@ -59,9 +59,9 @@ public:
   ///@}
   ///@{
   /// The lattice: mean weight mu_w, deviation r (< mu_w, checked when run), sqrt(2) diagonals.
-  vtkSetClampMacro(MeanWeight, double, 1e-9, VTK_DOUBLE_MAX);
+  vtkSetClampMacro(MeanWeight, double, 0.001, 100.0);
   vtkGetMacro(MeanWeight, double);
-  vtkSetClampMacro(Roughness, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetClampMacro(Roughness, double, 0.0, 100.0);
   vtkGetMacro(Roughness, double);
   vtkSetMacro(Sqrt2Diagonals, bool);
   vtkGetMacro(Sqrt2Diagonals, bool);
@@ -69,7 +69,7 @@ public:
   ///@}
   ///@{
   /// Sea level scale s and blending bias b.
-  vtkSetClampMacro(SeaLevelScale, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetClampMacro(SeaLevelScale, double, 0.0, 10.0);
   vtkGetMacro(SeaLevelScale, double);
   vtkSetClampMacro(BlendBias, double, 0.0, 64.0);
   vtkGetMacro(BlendBias, double);
@@ -98,7 +98,7 @@ public:
   ///@}
   ///@{
   /// fBm generator costs: H, lacunarity, octaves, domain, scale and range (eq. 4.1).
-  vtkSetMacro(FbmH, double);
+  vtkSetClampMacro(FbmH, double, 0.0, 10.0);
   vtkGetMacro(FbmH, double);
   vtkSetClampMacro(FbmLacunarity, double, 1.0, VTK_DOUBLE_MAX);
   vtkGetMacro(FbmLacunarity, double);
@@ -113,9 +113,9 @@ public:
   ///@}
   ///@{
   /// Dendritic ridges: count, cost fraction and rule.
-  vtkSetClampMacro(RidgeCount, int, 0, VTK_INT_MAX);
+  vtkSetClampMacro(RidgeCount, int, 0, 100000);
   vtkGetMacro(RidgeCount, int);
-  vtkSetClampMacro(RidgeFraction, double, 1e-9, 1.0);
+  vtkSetClampMacro(RidgeFraction, double, 0.001, 1.0);
   vtkGetMacro(RidgeFraction, double);
   vtkSetClampMacro(RidgeCost, int, SCALED_RISE, SCALED_COST);
   vtkGetMacro(RidgeCost, int);

@@ -50,6 +50,10 @@ std::vector<std::uint8_t> byteArray(vtkImageData* image,
 vtkTerrainGraphCutMerger::vtkTerrainGraphCutMerger()
 {
   this->SetNumberOfInputPorts(2);
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
+  this->SetInputArrayToProcess(
+    1, 1, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
 }
 
 int vtkTerrainGraphCutMerger::FillInputPortInformation(int, vtkInformation* info)
@@ -89,8 +93,10 @@ int vtkTerrainGraphCutMerger::RequestData(vtkInformation*,
   }
   try
   {
-    tsynth::Heightfield terrain = tsynth::imageToHeightfield(terrainImage);
-    const tsynth::Heightfield patch = tsynth::imageToHeightfield(patchImage);
+    tsynth::Heightfield terrain =
+      tsynth::imageToHeightfield(terrainImage, this->GetInputArrayToProcess(0, inputVector));
+    const tsynth::Heightfield patch =
+      tsynth::imageToHeightfield(patchImage, this->GetInputArrayToProcess(1, inputVector));
     std::vector<std::uint8_t> filled = byteArray(terrainImage, "Filled", terrain.size(), 1);
     for (std::size_t k = 0; k < filled.size(); ++k)
     {

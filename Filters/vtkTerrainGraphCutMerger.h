@@ -55,8 +55,9 @@ public:
   /// Shepard radius of influence in cells (default 20).
   vtkSetClampMacro(ShepardRadius, double, 1.0, 10000.0);
   vtkGetMacro(ShepardRadius, double);
-  /// Value written to PatchId where the patch is taken (default 1).
-  vtkSetMacro(PatchIdValue, int);
+  /// Value written to PatchId where the patch is taken (default 1); at least 1, since
+  /// 0 marks cells no merge has taken.
+  vtkSetClampMacro(PatchIdValue, int, 1, VTK_INT_MAX);
   vtkGetMacro(PatchIdValue, int);
 
   /// Sets the patch (port 1).

@@ -31,6 +31,8 @@ vtkTerrainPatchMatcher::vtkTerrainPatchMatcher()
 {
   this->SetNumberOfInputPorts(3);
   this->SetNumberOfOutputPorts(2);
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
 }
 
 int vtkTerrainPatchMatcher::FillInputPortInformation(int port, vtkInformation* info)
@@ -98,7 +100,8 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
   vtkImageData* map = vtkImageData::GetData(outputVector, 1);
   try
   {
-    const tsynth::Heightfield target = tsynth::imageToHeightfield(targetImage);
+    const tsynth::Heightfield target =
+      tsynth::imageToHeightfield(targetImage, this->GetInputArrayToProcess(0, inputVector));
     std::vector<std::uint8_t> known(target.size(), 1);
     if (vtkDataArray* k = targetImage->GetPointData()->GetArray("Known"))
     {

@@ -49,8 +49,10 @@ public:
   vtkGetMacro(Mode, int);
   vtkSetClampMacro(Backend, int, AUTO, CPU);
   vtkGetMacro(Backend, int);
-  /// Patch size in cells (default 80; a multiple of 4 for the dense search).
-  vtkSetClampMacro(PatchSize, int, 8, 1024);
+  /// Patch size in cells (default 80), 16 to 512 as the synthesis takes. A multiple
+  /// of 4 gets the dense search's 4 x 4 coarse pass; other sizes are searched
+  /// exhaustively (slower, same ranking).
+  vtkSetClampMacro(PatchSize, int, 16, 512);
   vtkGetMacro(PatchSize, int);
   /// Candidates kept per exemplar (default 8).
   vtkSetClampMacro(K, int, 1, 1000);
@@ -59,14 +61,15 @@ public:
   vtkSetVector2Macro(Site, double);
   vtkGetVector2Macro(Site, double);
   ///@{
-  /// Cost weights a_f, a_a, a_n, a_o (defaults 5, 2, 0.001, 1).
-  vtkSetMacro(FeatureWeight, double);
+  /// Cost weights a_f, a_a, a_n, a_o (defaults 5, 2, 0.001, 1), 0 to 1e6: a negative
+  /// weight would reward a mismatch.
+  vtkSetClampMacro(FeatureWeight, double, 0.0, 1.0e6);
   vtkGetMacro(FeatureWeight, double);
-  vtkSetMacro(AngleWeight, double);
+  vtkSetClampMacro(AngleWeight, double, 0.0, 1.0e6);
   vtkGetMacro(AngleWeight, double);
-  vtkSetMacro(NoiseWeight, double);
+  vtkSetClampMacro(NoiseWeight, double, 0.0, 1.0e6);
   vtkGetMacro(NoiseWeight, double);
-  vtkSetMacro(OverlapWeight, double);
+  vtkSetClampMacro(OverlapWeight, double, 0.0, 1.0e6);
   vtkGetMacro(OverlapWeight, double);
   ///@}
   /// Compare overlaps up to a vertical offset (default off).

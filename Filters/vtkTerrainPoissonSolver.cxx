@@ -25,6 +25,10 @@ vtkStandardNewMacro(vtkTerrainPoissonSolver);
 vtkTerrainPoissonSolver::vtkTerrainPoissonSolver()
 {
   this->SetNumberOfInputPorts(2);
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
+  this->SetInputArrayToProcess(
+    1, 1, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
 }
 
 int vtkTerrainPoissonSolver::FillInputPortInformation(int port, vtkInformation* info)
@@ -117,7 +121,8 @@ int vtkTerrainPoissonSolver::RequestData(vtkInformation*,
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   try
   {
-    const tsynth::Heightfield dst = tsynth::imageToHeightfield(destination);
+    const tsynth::Heightfield dst =
+      tsynth::imageToHeightfield(destination, this->GetInputArrayToProcess(0, inputVector));
     this->UpdateProgress(0.1);
     tsynth::PoissonEditResult r;
     if (this->Mode == SEAMLESS_CLONE)
@@ -127,8 +132,10 @@ int vtkTerrainPoissonSolver::RequestData(vtkInformation*,
         throw tsynth::Error("Seamless cloning needs a source heightfield on the second input.");
       }
       const std::vector<std::uint8_t> mask = maskArray(source);
-      r = tsynth::seamlessClone(
-        dst, tsynth::imageToHeightfield(source), mask.empty() ? nullptr : &mask, this->Tolerance);
+      r = tsynth::seamlessClone(dst,
+        tsynth::imageToHeightfield(source, this->GetInputArrayToProcess(1, inputVector)),
+        mask.empty() ? nullptr : &mask,
+        this->Tolerance);
     }
     else
     {

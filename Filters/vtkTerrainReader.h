@@ -60,9 +60,10 @@ public:
   vtkSetMacro(UseNormalisedRange, bool);
   vtkGetMacro(UseNormalisedRange, bool);
   vtkBooleanMacro(UseNormalisedRange, bool);
-  vtkSetMacro(ZMin, double);
+  /// Both within +-1e6 (metres or feet): beyond any height on Earth.
+  vtkSetClampMacro(ZMin, double, -1.0e6, 1.0e6);
   vtkGetMacro(ZMin, double);
-  vtkSetMacro(ZMax, double);
+  vtkSetClampMacro(ZMax, double, -1.0e6, 1.0e6);
   vtkGetMacro(ZMax, double);
   ///@}
 

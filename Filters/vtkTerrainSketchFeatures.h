@@ -28,8 +28,9 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// Patch size in cells (default 80): a sketch image smaller than one patch is refused.
-  vtkSetClampMacro(PatchSize, int, 8, 4096);
+  /// Patch size in cells (default 80), 16 to 512 as the synthesis takes: a sketch
+  /// image smaller than one patch is refused.
+  vtkSetClampMacro(PatchSize, int, 16, 512);
   vtkGetMacro(PatchSize, int);
   ///@}
 

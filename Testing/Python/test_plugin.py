@@ -530,6 +530,54 @@ class PluginTest(unittest.TestCase):
                         checked += 1
         self.assertGreater(checked, 40)
 
+    def test_every_xml_documents_its_filter_and_bounds_its_numbers(self):
+        """Help with a cited year, a domain on every numeric property, and each range enforced by
+        the class too: a value past either end comes back as that end."""
+        import glob
+        import re
+        import xml.etree.ElementTree as ET
+
+        sys.path.insert(0, PATHS.python_dir)
+        import terrainsynthesis
+
+        plugin_dir = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Plugin")
+        domains = ("IntRangeDomain", "DoubleRangeDomain", "BooleanDomain", "EnumerationDomain",
+                   "BoundsDomain", "FileListDomain", "ArrayListDomain")
+        clamped = 0
+        for path in sorted(glob.glob(os.path.join(plugin_dir, "*.xml"))):
+            for proxy in ET.parse(path).getroot().iter("SourceProxy"):
+                name = os.path.basename(path)
+                doc = proxy.find("Documentation")
+                self.assertIsNotNone(doc, name)
+                self.assertTrue(doc.get("short_help") and doc.get("long_help"), name)
+                if proxy.get("class") != "vtkTerrainReader":  # the only one without a paper
+                    self.assertRegex(doc.get("long_help") + doc.text, r"(19|20)\d\d", name)
+                obj = getattr(terrainsynthesis, proxy.get("class"))()
+                for prop in proxy:
+                    if prop.tag not in ("IntVectorProperty", "DoubleVectorProperty"):
+                        continue
+                    with self.subTest(xml=name, property=prop.get("name")):
+                        found = [d for d in prop if d.tag in domains]
+                        self.assertTrue(found, "no domain")
+                        if prop.get("name") == "PatchSize" and proxy.get("name") != "TerrainOptimisation":
+                            self.assertEqual((found[0].get("min"), found[0].get("max")), ("16", "512"))
+                        domain = found[0]
+                        if (domain.tag not in ("IntRangeDomain", "DoubleRangeDomain")
+                                or prop.get("number_of_elements") != "1"
+                                or domain.get("min") is None or domain.get("max") is None):
+                            continue
+                        lo, hi = float(domain.get("min")), float(domain.get("max"))
+                        setter = getattr(obj, prop.get("command"))
+                        getter = getattr(obj, "Get" + prop.get("command")[3:])
+                        cast = int if domain.tag == "IntRangeDomain" else float
+                        if hi < 2147483647:
+                            setter(cast(hi + 1))
+                            self.assertAlmostEqual(getter(), hi, places=6)
+                        setter(cast(lo - 1))
+                        self.assertAlmostEqual(getter(), lo, places=6)
+                        clamped += 1
+        self.assertGreater(clamped, 40)
+
     def test_abort_stops_the_synthesis_within_a_second_with_an_empty_output(self):
         import time
         sys.path.insert(0, PATHS.python_dir)
