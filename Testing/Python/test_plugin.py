@@ -605,6 +605,37 @@ class PluginTest(unittest.TestCase):
         self.assertLess(time.monotonic() - stopped_at[0], 1.0)
         self.assertEqual(synth.GetTerrain().GetNumberOfPoints(), 0)
 
+    def test_sketch_lines_mark_drawn_lines_for_the_synthesis(self):
+        ridge = simple.PolyLineSource(Points=[900.0, 900.0, 3500.0, 9000.0, 9000.0, 3900.0])
+        marked = sm.Fetch(simple.TerrainSketchLines(Input=ridge, ElevationMode="From Z"))
+        self.assertEqual(marked.GetNumberOfLines(), 1)
+        np.testing.assert_array_equal(vtk_to_numpy(marked.GetCellData().GetArray("FeatureType")), [1])
+        elevation = point_array(marked, "Elevation")
+        self.assertEqual(elevation[0], 3500.0)
+        self.assertEqual(elevation[-1], 3900.0)
+        z = vtk_to_numpy(marked.GetPoints().GetData())[:, 2]
+        self.assertTrue(np.all(z == 0.0))  # laid flat on the raster plane
+        valley = sm.Fetch(simple.TerrainSketchLines(Input=ridge, FeatureType="Valley",
+                                                    ElevationMode="Constant", Elevation=1200.0))
+        np.testing.assert_array_equal(vtk_to_numpy(valley.GetCellData().GetArray("FeatureType")), [-1])
+        self.assertTrue(np.all(point_array(valley, "Elevation") == 1200.0))
+        free = sm.Fetch(simple.TerrainSketchLines(Input=ridge))
+        self.assertTrue(np.all(np.isnan(point_array(free, "Elevation"))))
+        # The synthesis meets the drawn crest's heights where they are set.
+        colorado = simple.TerrainReader(FileName=os.path.join(PATHS.bundled_data, "dems", "colorado.png"))
+        synth = simple.TerrainSynthesis(Exemplars=[colorado], OutputSize=[128, 128], Backend="CPU",
+                                        Sketch=simple.TerrainSketchLines(Input=ridge, ElevationMode="From Z"))
+        synth.UpdatePipeline()
+        terrain = sm.Fetch(synth, arg1=None, arg2=None, idx=0)
+        heights = point_array(terrain, "Elevation").reshape(128, 128)
+        self.assertAlmostEqual(float(heights[10, 10]), 3500.0, delta=25.0)  # (900 m, 900 m): cell 10
+        self.assertAlmostEqual(float(heights[100, 100]), 3900.0, delta=25.0)
+        # Nothing to mark: the request fails.
+        points_only = simple.PointSource(NumberOfPoints=5)
+        empty = simple.TerrainSketchLines(Input=points_only)
+        empty.UpdatePipeline()
+        self.assertEqual(sm.Fetch(empty).GetNumberOfPoints(), 0)
+
     def test_missing_file_gives_an_empty_output_not_a_crash(self):
         reader = simple.TerrainReader(FileName="/nonexistent/dem.tif")
         reader.UpdatePipeline()
