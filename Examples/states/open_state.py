@@ -3,6 +3,8 @@
     pvpython Examples/states/open_state.py [STATE.pvsm] [OUT.png]
     paraview --script=Examples/states/open_state.py          # TSYNTH_STATE=... for another state
 
+(run from the repository's root: the GUI does not tell the script where it is).
+
 The state names its data files relative to the repository (Data/dems/colorado.png); ParaView's
 LoadState(..., data_directory=<repo>/Data) finds them under the repository's Data folder
 wherever it is. Without arguments the synthesis state is opened; with OUT.png pvpython saves
@@ -14,12 +16,15 @@ import sys
 
 from paraview import simple
 
-STATES = os.path.dirname(os.path.abspath(__file__))
+try:
+    STATES = os.path.dirname(os.path.abspath(__file__))
+except NameError:  # the GUI's --script runs the text without a file name: start it in the repository
+    STATES = os.path.join(os.getcwd(), "Examples", "states")
 ROOT = os.path.dirname(os.path.dirname(STATES))
 PLUGIN = os.environ.get(
     "TSYNTH_PLUGIN",
     os.path.join(ROOT, "build", "lib", "paraview-plugins", "TerrainSynthesis", "TerrainSynthesis.so"))
-args = [a for a in sys.argv[1:] if a]  # the GUI's --script passes no arguments
+args = [a for a in getattr(sys, "argv", [])[1:] if a]  # the GUI's --script passes none
 state = args[0] if args else os.environ.get("TSYNTH_STATE", os.path.join(STATES, "synthesis.pvsm"))
 
 simple.LoadPlugin(PLUGIN, remote=False)
