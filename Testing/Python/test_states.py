@@ -165,7 +165,7 @@ class SynthesisState(unittest.TestCase):
         mask = point_array(terrain, "SeamMask")
         print("seams: %d seam points, %d threshold cells" % (int(mask.sum()), seams.GetNumberOfCells()))
         self.assertGreater(seams.GetNumberOfCells(), MIN_SEAM_CELLS)
-        self.assertTrue(np.all(point_array(seams, "SeamMask").max() == 1))
+        self.assertEqual(int(point_array(seams, "SeamMask").max()), 1)  # every drawn cell touches a seam
 
     def test_standard_view_matches_the_baseline(self):
         picture = render_standard_view(os.path.join(STATE_ARGS.out_dir, "synthesis_view.png"))
