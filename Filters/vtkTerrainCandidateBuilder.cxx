@@ -15,6 +15,8 @@
 #include <vtkObjectFactory.h>
 #include <vtkTable.h>
 
+#include <new>
+
 #include <cmath>
 
 vtkStandardNewMacro(vtkTerrainCandidateBuilder);
@@ -124,7 +126,12 @@ int vtkTerrainCandidateBuilder::RequestData(vtkInformation*,
     scale->InsertNextValue(pool.heightScale);
     table->GetFieldData()->AddArray(scale);
   }
-  catch (const tsynth::Error& e)
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro("Out of memory: give a smaller input.");
+    return 0;
+  }
+  catch (const std::exception& e)
   {
     vtkErrorMacro(<< e.what());
     return 0;

@@ -13,6 +13,8 @@
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
 
+#include <new>
+
 vtkStandardNewMacro(vtkTerrainFeatureExtractor);
 
 vtkTerrainFeatureExtractor::vtkTerrainFeatureExtractor()
@@ -87,7 +89,12 @@ int vtkTerrainFeatureExtractor::RequestData(vtkInformation*,
     tsynth::featureGraphToPolyData(graph, tree, ox, oy);
     tsynth::controlPointsToPolyData(graph, controls, ox, oy);
   }
-  catch (const tsynth::Error& e)
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro("Out of memory: give a smaller input.");
+    return 0;
+  }
+  catch (const std::exception& e)
   {
     vtkErrorMacro(<< e.what());
     return 0;

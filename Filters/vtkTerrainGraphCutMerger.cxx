@@ -19,6 +19,8 @@
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkUnsignedCharArray.h>
 
+#include <new>
+
 #include <cmath>
 
 vtkStandardNewMacro(vtkTerrainGraphCutMerger);
@@ -184,7 +186,12 @@ int vtkTerrainGraphCutMerger::RequestData(vtkInformation*,
     fieldValue("CutEdges", r.cutEdges);
     fieldValue("NormalisedCutCost", r.normalisedCost);
   }
-  catch (const tsynth::Error& e)
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro("Out of memory: give a smaller input.");
+    return 0;
+  }
+  catch (const std::exception& e)
   {
     vtkErrorMacro(<< e.what());
     return 0;

@@ -14,6 +14,8 @@
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 
+#include <new>
+
 vtkStandardNewMacro(vtkTerrainHillshade);
 
 vtkTerrainHillshade::vtkTerrainHillshade()
@@ -51,7 +53,12 @@ int vtkTerrainHillshade::RequestData(vtkInformation*,
     tsynth::addPointArray(output, "Hillshade", relief.shade.data());
     output->GetPointData()->SetActiveScalars("Hillshade");
   }
-  catch (const tsynth::Error& e)
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro("Out of memory: give a smaller input.");
+    return 0;
+  }
+  catch (const std::exception& e)
   {
     vtkErrorMacro(<< e.what());
     return 0;

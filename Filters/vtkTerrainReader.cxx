@@ -12,6 +12,8 @@
 #include <vtkObjectFactory.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
+#include <new>
+
 vtkStandardNewMacro(vtkTerrainReader);
 
 namespace
@@ -69,7 +71,7 @@ int vtkTerrainReader::CanReadFile(const char* fileName)
     }
     return 1;
   }
-  catch (const tsynth::Error&)
+  catch (const std::exception&)
   {
     return 0;
   }
@@ -109,7 +111,12 @@ int vtkTerrainReader::RequestInformation(vtkInformation*,
     cell[0] = info.cellX;
     cell[1] = info.cellY;
   }
-  catch (const tsynth::Error& e)
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro("Out of memory: give a smaller input.");
+    return 0;
+  }
+  catch (const std::exception& e)
   {
     vtkErrorMacro(<< e.what());
     return 0;
@@ -144,7 +151,12 @@ int vtkTerrainReader::RequestData(vtkInformation*,
     tsynth::heightfieldToImage(hf, output);
     this->UpdateProgress(1.0);
   }
-  catch (const tsynth::Error& e)
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro("Out of memory: give a smaller input.");
+    return 0;
+  }
+  catch (const std::exception& e)
   {
     vtkErrorMacro(<< e.what());
     output->Initialize();

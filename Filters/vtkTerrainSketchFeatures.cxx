@@ -14,6 +14,8 @@
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 
+#include <new>
+
 #include <algorithm>
 #include <cmath>
 
@@ -117,7 +119,12 @@ int vtkTerrainSketchFeatures::RequestData(vtkInformation*,
     tsynth::featureGraphToPolyData(graph, tree, ox, oy);
     tsynth::controlPointsToPolyData(graph, controls, ox, oy);
   }
-  catch (const tsynth::Error& e)
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro("Out of memory: give a smaller input.");
+    return 0;
+  }
+  catch (const std::exception& e)
   {
     vtkErrorMacro(<< e.what());
     return 0;
