@@ -12,7 +12,7 @@ from harness import PATHS  # noqa: E402
 import numpy as np  # noqa: E402
 from paraview import servermanager as sm  # noqa: E402
 from paraview import simple  # noqa: E402
-from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy  # noqa: E402
 
 
 def point_array(data, name):
@@ -395,6 +395,43 @@ class PluginTest(unittest.TestCase):
         # No step at the edge: the 2000 m offset is gone next to the boundary.
         ring = (mask == 1) & ((xx - 100) ** 2 + (yy - 100) ** 2 > 58 ** 2)
         self.assertLess(abs(float(np.mean(out[ring] - dst_z[ring]))), 100.0)
+
+    def test_arrays_of_the_wrong_length_fail_the_request_with_a_sentence(self):
+        from vtkmodules.vtkCommonCore import vtkCommand
+        from vtkmodules.util.misc import calldata_type
+        from vtkmodules.util.vtkConstants import VTK_STRING
+
+        sys.path.insert(0, PATHS.python_dir)
+        from terrainsynthesis import vtkTerrainPoissonSolver
+
+        z = np.full((50, 60), 100.0)
+        short = numpy_to_vtk(np.ones(10, dtype=np.uint8), deep=1)
+        short.SetName("Mask")
+        destination = image_from(z, (90.0, 90.0))
+        source = image_from(z + 5.0, (90.0, 90.0))
+        source.GetPointData().AddArray(short)
+        gradient = numpy_to_vtk(np.zeros((10, 2)), deep=1)
+        gradient.SetName("Gradient")
+        guided = image_from(z, (90.0, 90.0), arrays={"Mask": np.ones(z.shape, dtype=np.uint8)})
+        guided.GetPointData().AddArray(gradient)
+        cases = [(0, destination, source, "The Mask array has 10 values for 3000 points"),
+                 (1, guided, None, "The Gradient array has 10 values for 3000 points")]
+        for mode, dst, src, message in cases:
+            solver = vtkTerrainPoissonSolver()
+            solver.SetMode(mode)
+            solver.SetInputData(0, dst)
+            if src is not None:
+                solver.SetInputData(1, src)
+            errors = []
+
+            @calldata_type(VTK_STRING)
+            def on_error(_caller, _event, text):
+                errors.append(text)
+
+            solver.AddObserver(vtkCommand.ErrorEvent, on_error)
+            solver.Update()
+            self.assertEqual(solver.GetOutput().GetNumberOfPoints(), 0, message)
+            self.assertTrue(any(message in e for e in errors), errors)
 
     def test_patch_matcher_refuses_a_target_smaller_than_a_patch(self):
         z, spacing = dem_array(self.alps)
