@@ -673,6 +673,46 @@ class PluginTest(unittest.TestCase):
         empty.UpdatePipeline()
         self.assertEqual(sm.Fetch(empty).GetNumberOfPoints(), 0)
 
+    def test_distance_command_takes_polylines_with_costs(self):
+        # A .vtp ridge along y = 2000 m (cells of 10 m: row 200) with a cheaper (higher)
+        # west end: heights peak on the line, fall away from it, and the west end is higher.
+        from vtkmodules.vtkCommonCore import vtkFloatArray, vtkPoints
+        from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+        from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLPolyDataWriter
+
+        points = vtkPoints()
+        cost = vtkFloatArray()
+        cost.SetName("Cost")
+        line = vtkCellArray()
+        line.InsertNextCell(9)
+        for k in range(9):
+            points.InsertNextPoint(500.0 + 375.0 * k, 2000.0, 0.0)
+            cost.InsertNextValue(2.0 + 2.0 * k)
+            line.InsertCellPoint(k)
+        poly = vtkPolyData()
+        poly.SetPoints(points)
+        poly.SetLines(line)
+        poly.GetPointData().AddArray(cost)
+        with tempfile.TemporaryDirectory() as tmp:
+            vtp = os.path.join(tmp, "ridge.vtp")
+            writer = vtkXMLPolyDataWriter()
+            writer.SetFileName(vtp)
+            writer.SetInputData(poly)
+            writer.Write()
+            out = os.path.join(tmp, "ridge.vti")
+            r = subprocess.run([PATHS.tsynth, "distance", "--generators", vtp, "-o", out, "--size", "400x400"],
+                               capture_output=True, text=True, timeout=120)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            reader = vtkXMLImageDataReader()
+            reader.SetFileName(out)
+            reader.Update()
+            z = point_array(reader.GetOutput(), "Elevation").reshape(400, 400)
+        profile = z[:, 200]  # across the line at x = 2000 m
+        self.assertEqual(int(np.argmax(profile)), 200)
+        self.assertGreater(profile[200] - profile[100], 50.0)
+        self.assertGreater(profile[200] - profile[300], 50.0)
+        self.assertGreater(z[200, 60], z[200, 340])  # the cheap west end stands higher
+
     def test_missing_file_gives_an_empty_output_not_a_crash(self):
         reader = simple.TerrainReader(FileName="/nonexistent/dem.tif")
         reader.UpdatePipeline()
