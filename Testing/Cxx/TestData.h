@@ -1,9 +1,11 @@
 // Paths to test data and scratch files shared by the C++ tests.
 #pragma once
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 namespace tsynth::test
 {
@@ -21,6 +23,30 @@ inline std::filesystem::path bundledData()
 inline std::string sharedDem(const std::string& name)
 {
   return (sharedData() / "dems" / name).string();
+}
+
+// Every real DEM of the project (.png and .tif, sorted): the bundled ones, which
+// must exist, and the shared ones, skipped when ../shared is absent.
+inline std::vector<std::string> realDems()
+{
+  std::vector<std::string> out;
+  for (const std::filesystem::path& dir : { bundledData() / "dems", sharedData() / "dems" })
+  {
+    if (!std::filesystem::is_directory(dir))
+    {
+      continue;
+    }
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+    {
+      const std::string ext = entry.path().extension().string();
+      if (ext == ".png" || ext == ".tif")
+      {
+        out.push_back(entry.path().string());
+      }
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 // A fresh scratch folder per test process, removed by the caller's fixture or left in /tmp.

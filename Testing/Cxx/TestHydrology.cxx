@@ -101,24 +101,6 @@ std::size_t epsilonFillErrors(const Heightfield& dem,
   return errors;
 }
 
-std::vector<std::string> realDems()
-{
-  std::vector<std::string> out;
-  for (const fs::path& dir : { test::bundledData() / "dems", test::sharedData() / "dems" })
-  {
-    for (const auto& entry : fs::directory_iterator(dir))
-    {
-      const std::string ext = entry.path().extension().string();
-      if (ext == ".png" || ext == ".tif")
-      {
-        out.push_back(entry.path().string());
-      }
-    }
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 const Heightfield& colorado()
 {
   static const Heightfield hf = readHeightfield(test::bundledData() / "dems" / "colorado.png");
@@ -282,7 +264,7 @@ TEST(Hydrology, FillIsIdempotentAndDeterministic)
 
 TEST(Hydrology, EveryRealDemDrainsAfterFillAndNotBefore)
 {
-  const auto dems = realDems();
+  const auto dems = test::realDems();
   ASSERT_GE(dems.size(), 12u) << "expected the bundled and shared DEMs";
   for (const std::string& path : dems)
   {

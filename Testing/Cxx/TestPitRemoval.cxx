@@ -129,29 +129,6 @@ Heightfield referenceBreach(const Heightfield& dem)
   return t;
 }
 
-// Bundled DEMs (must exist) and shared ones (skipped if absent).
-std::vector<std::string> realDems()
-{
-  std::vector<std::string> out;
-  for (const fs::path& dir : { test::bundledData() / "dems", test::sharedData() / "dems" })
-  {
-    if (!fs::is_directory(dir))
-    {
-      continue;
-    }
-    for (const auto& entry : fs::directory_iterator(dir))
-    {
-      const std::string ext = entry.path().extension().string();
-      if (ext == ".png" || ext == ".tif")
-      {
-        out.push_back(entry.path().string());
-      }
-    }
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 const Heightfield& colorado()
 {
   static const Heightfield hf = readHeightfield(test::bundledData() / "dems" / "colorado.png");
@@ -278,7 +255,7 @@ TEST(PitRemoval, BreachCarvesTheKnownChannelOfACorridor)
 
 TEST(PitRemoval, BreachEqualsAPlainPriorityQueueBreachOnEveryRealDem)
 {
-  const auto dems = realDems();
+  const auto dems = test::realDems();
   ASSERT_GE(dems.size(), 3u) << "the bundled DEMs are missing";
   for (const std::string& path : dems)
   {
@@ -293,7 +270,7 @@ TEST(PitRemoval, BreachEqualsAPlainPriorityQueueBreachOnEveryRealDem)
 
 TEST(PitRemoval, EveryRealDemDrainsAfterEachMethod)
 {
-  for (const std::string& path : realDems())
+  for (const std::string& path : test::realDems())
   {
     SCOPED_TRACE(path);
     const Heightfield dem = readHeightfield(path);
