@@ -1,0 +1,41 @@
+# The ParaView plugin, declared by the top-level paraview.plugin. paraview_plugin_build adds the
+# descriptor's folder (the repository's top) as a subdirectory, and the top-level CMakeLists.txt
+# sends that second entry here. Two callers:
+#  - this project's own build (CMakeLists.txt), which has already built the filters' VTK module
+#    and its Python wrapping: the plugin only adds the server-manager XML;
+#  - a ParaView build given this repository in PARAVIEW_EXTERNAL_PLUGIN_DIRS: nothing of ours is
+#    built yet, so the kernels and the module are built here, inside the plugin.
+set(tsynth_plugin_xmls
+  Plugin/TerrainReader.xml
+  Plugin/TerrainHillshade.xml
+  Plugin/TerrainFeatureExtractor.xml
+  Plugin/TerrainSketchFeatures.xml
+  Plugin/TerrainSketchLines.xml
+  Plugin/TerrainCandidateBuilder.xml
+  Plugin/TerrainPatchMatcher.xml
+  Plugin/TerrainGraphCutMerger.xml
+  Plugin/TerrainPoissonSolver.xml
+  Plugin/TerrainPitRemoval.xml
+  Plugin/TerrainOptimisation.xml
+  Plugin/TerrainDistanceSource.xml
+  Plugin/TerrainSynthesis.xml)
+
+if (TARGET TerrainSynthesis::Filters)
+  paraview_add_plugin(TerrainSynthesis
+    VERSION "${TSYNTH_VERSION}"
+    MODULES TerrainSynthesis::Filters
+    SERVER_MANAGER_XML ${tsynth_plugin_xmls})
+else ()
+  message(STATUS "TerrainSynthesis ${TSYNTH_VERSION}: built as an external plugin of this ParaView")
+  set(CMAKE_CXX_STANDARD 17)
+  set(CMAKE_CXX_STANDARD_REQUIRED ON)
+  set(CMAKE_CXX_EXTENSIONS OFF)
+  include(GNUInstallDirs)
+  include("${CMAKE_CURRENT_LIST_DIR}/Dependencies.cmake")
+  add_subdirectory("${CMAKE_CURRENT_LIST_DIR}/../Kernels" "${CMAKE_CURRENT_BINARY_DIR}/Kernels")
+  paraview_add_plugin(TerrainSynthesis
+    VERSION "${TSYNTH_VERSION}"
+    MODULES TerrainSynthesis::Filters
+    MODULE_FILES "${CMAKE_CURRENT_LIST_DIR}/../Filters/vtk.module"
+    SERVER_MANAGER_XML ${tsynth_plugin_xmls})
+endif ()
