@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <vector>
 
@@ -49,6 +50,30 @@ std::vector<double> discreteLaplacian(const std::vector<double>& u,
   return f;
 }
 
+// A surface with the relief of real terrain (about 1 km from valley to peak over 30 km), so an
+// error in metres reads against what a user would see.
+double terrainSurface(double x, double y)
+{
+  return 1500.0 + 300.0 * std::sin(0.013 * x + 0.4) * std::cos(0.021 * y) +
+    400.0 * std::sin(x / 4700.0) * std::cos(y / 6100.0) + 0.01 * (x - y);
+}
+
+// Largest difference in metres on the cells the solver had to find (the border is given).
+double maxInteriorError(const std::vector<double>& u,
+  const std::vector<double>& exact,
+  int w,
+  int h)
+{
+  double err = 0.0;
+  for (int j = 1; j + 1 < h; ++j)
+    for (int i = 1; i + 1 < w; ++i)
+    {
+      const std::size_t k = static_cast<std::size_t>(j) * w + i;
+      err = std::max(err, std::abs(u[k] - exact[k]));
+    }
+  return err;
+}
+
 double maxRelativeError(const std::vector<double>& a, const std::vector<double>& b)
 {
   double err = 0.0, scale = 0.0;
@@ -59,6 +84,9 @@ double maxRelativeError(const std::vector<double>& a, const std::vector<double>&
   }
   return err / scale;
 }
+
+// A millimetre: far below a DEM's vertical resolution, a thousand times what the solver reaches.
+constexpr double kWholeTerrainToleranceMetres = 1e-3;
 
 } // namespace
 
@@ -77,8 +105,9 @@ TEST(Poisson, DstManufacturedSolutionOnRectangle)
     DstPoissonSolver solver(false);
     solver.solve(w, h, cx, cy, f.data(), u.data());
     EXPECT_LT(maxRelativeError(u, exact), 1e-9) << w << "x" << h;
-    // A wrong interior would be off by the full surface amplitude.
-    EXPECT_GT(maxRelativeError(std::vector<double>(u.size(), 0.0), exact), 0.5);
+    // The border was given exactly, so measure where the solver worked: within a millimetre
+    // on a surface spanning 1e6 m.
+    EXPECT_LT(maxInteriorError(u, exact, w, h), 1e-3) << w << "x" << h;
   }
 }
 
@@ -245,10 +274,14 @@ TEST(Poisson, UnanchoredComponentsKeepTheirValues)
 
 TEST(Poisson, WholeTerrain1024)
 {
-  // The whole-terrain case: 1024 x 1024, Dirichlet frame, manufactured.
+  // The whole-terrain case: 1024 x 1024 cells of 30 m, Dirichlet frame, manufactured from a
+  // surface with a kilometre of relief, so the tolerance is in metres of terrain.
   const int n = 1024;
   const double c = 30.0;
-  const std::vector<double> exact = sampled(n, n, c, c);
+  std::vector<double> exact(static_cast<std::size_t>(n) * n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      exact[static_cast<std::size_t>(j) * n + i] = terrainSurface(i * c, j * c);
   const std::vector<double> f = discreteLaplacian(exact, n, n, c, c);
   std::vector<std::uint8_t> unknown(exact.size(), 0);
   std::vector<double> u(exact);
@@ -261,7 +294,9 @@ TEST(Poisson, WholeTerrain1024)
   MaskedPoissonSolver solver;
   const PoissonStatistics stats =
     solver.solveLaplacian(n, n, c, c, unknown.data(), f.data(), u.data());
-  EXPECT_LT(maxRelativeError(u, exact), 1e-5);
+  const double err = maxInteriorError(u, exact, n, n);
+  std::printf("WholeTerrain1024: max error %.3g m after %d iterations\n", err, stats.iterations);
+  EXPECT_LT(err, kWholeTerrainToleranceMetres);
   EXPECT_LT(stats.iterations, 40);
 }
 
