@@ -20,10 +20,19 @@ inline std::filesystem::path bundledData()
   return std::filesystem::path(TSYNTH_BUNDLED_DATA);
 }
 
-inline std::string sharedDem(const std::string& name)
+// A real DEM by file name: the bundled copy in Data/dems when there is one, else the one in
+// ../shared/data/dems (which a clone without ../shared lacks: see TSYNTH_SKIP_WITHOUT).
+inline std::string realDem(const std::string& name)
 {
-  return (sharedData() / "dems" / name).string();
+  const std::filesystem::path bundled = bundledData() / "dems" / name;
+  return (std::filesystem::exists(bundled) ? bundled : sharedData() / "dems" / name).string();
 }
+
+// Skips the running test when a file only ../shared has is absent, so that a clone without
+// ../shared beside it still passes the tests that need nothing from there.
+#define TSYNTH_SKIP_WITHOUT(path)                                                                  \
+  if (!std::filesystem::exists(path))                                                              \
+  GTEST_SKIP() << (path) << " is absent: ../shared/data is not beside the checkout"
 
 // Every real DEM of the project (.png and .tif, sorted): the bundled ones, which
 // must exist, and the shared ones, skipped when ../shared is absent.

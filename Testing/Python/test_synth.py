@@ -145,7 +145,7 @@ class BundledSketchTest(unittest.TestCase):
         key = (exemplar, sketch, seed)
         if key not in self.runs:
             dem = os.path.join(PATHS.bundled_data, "dems", exemplar)
-            drawing = os.path.join(PATHS.shared_data, "sketches", sketch)
+            drawing = os.path.join(PATHS.bundled_data, "sketches", sketch)
             out = os.path.join(self.tmp, "%s-%s-%s.tif" % (exemplar, sketch, seed))
             report, _ = synthesise(self, dem, drawing, out, *(() if seed is None else ("--seed", str(seed))))
             self.runs[key] = (out, report, evaluate(self, out, dem, drawing))
@@ -257,7 +257,7 @@ class SynthTest(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.mkdtemp(prefix="tsynth-synth-")
         self.dems = os.path.join(PATHS.bundled_data, "dems")
-        self.sketches = os.path.join(PATHS.shared_data, "sketches")
+        self.sketches = os.path.join(PATHS.bundled_data, "sketches")
 
     def tearDown(self):
         shutil.rmtree(self.tmp)
