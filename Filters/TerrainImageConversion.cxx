@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace tsynth
 {
@@ -205,6 +206,40 @@ void addPointArray(vtkImageData* image, const char* name, const float* values)
   array->SetNumberOfTuples(image->GetNumberOfPoints());
   std::copy(values, values + image->GetNumberOfPoints(), array->GetPointer(0));
   image->GetPointData()->AddArray(array);
+}
+
+vtkDataArray* chosenPointArray(vtkImageData* image,
+  const char* name,
+  const char* defaultName,
+  int components)
+{
+  if (name == nullptr || *name == '\0')
+  {
+    return nullptr;
+  }
+  vtkDataArray* array = image->GetPointData()->GetArray(name);
+  if (array == nullptr)
+  {
+    if (defaultName != nullptr && std::string(name) == defaultName)
+    {
+      return nullptr;
+    }
+    throw Error(std::string("The input has no point array named \"") + name +
+      "\": choose one of its arrays, or leave the name empty for none.");
+  }
+  if (array->GetNumberOfTuples() != image->GetNumberOfPoints())
+  {
+    throw Error(std::string("The ") + name + " array has " +
+      std::to_string(array->GetNumberOfTuples()) + " values for " +
+      std::to_string(image->GetNumberOfPoints()) + " points: give one per point.");
+  }
+  if (components > 0 && array->GetNumberOfComponents() != components)
+  {
+    throw Error(std::string("The ") + name + " array has " +
+      std::to_string(array->GetNumberOfComponents()) + " components; it needs " +
+      std::to_string(components) + ".");
+  }
+  return array;
 }
 
 } // namespace tsynth

@@ -24,6 +24,17 @@ void heightfieldToImage(const Heightfield& hf, vtkImageData* image);
 // image is not 2D in x-y or has no usable height array.
 Heightfield imageToHeightfield(vtkImageData* image, vtkDataArray* heights = nullptr);
 
+// The image's point array chosen by name for a filter's optional input array (a mask, known
+// cells, a gradient). An empty name means none: nullptr. A name the image lacks is nullptr when
+// it is the filter's default name (the input simply does not carry that array), and otherwise
+// a tsynth::Error naming it, so a mistyped choice is never silently ignored. A present array
+// must have one tuple per point and the given number of components (0: any), else
+// tsynth::Error with both counts.
+vtkDataArray* chosenPointArray(vtkImageData* image,
+  const char* name,
+  const char* defaultName,
+  int components = 0);
+
 // An image's pixels as a sketch image (top row first): unsigned-char scalars
 // with 1-4 components as they are, other types scaled onto 0..255 (one channel).
 ColourImage imageToColourImage(vtkImageData* image);

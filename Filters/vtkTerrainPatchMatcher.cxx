@@ -33,6 +33,12 @@ vtkTerrainPatchMatcher::vtkTerrainPatchMatcher()
   this->SetNumberOfOutputPorts(2);
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
+  this->SetKnownArray(kDefaultKnownArray);
+}
+
+vtkTerrainPatchMatcher::~vtkTerrainPatchMatcher()
+{
+  this->SetKnownArray(nullptr);
 }
 
 int vtkTerrainPatchMatcher::FillInputPortInformation(int port, vtkInformation* info)
@@ -103,14 +109,9 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
     const tsynth::Heightfield target =
       tsynth::imageToHeightfield(targetImage, this->GetInputArrayToProcess(0, inputVector));
     std::vector<std::uint8_t> known(target.size(), 1);
-    if (vtkDataArray* k = targetImage->GetPointData()->GetArray("Known"))
+    if (vtkDataArray* k =
+          tsynth::chosenPointArray(targetImage, this->KnownArray, kDefaultKnownArray))
     {
-      if (k->GetNumberOfTuples() != static_cast<vtkIdType>(target.size()))
-      {
-        throw tsynth::Error("The target's Known array has " +
-          std::to_string(k->GetNumberOfTuples()) + " values for " + std::to_string(target.size()) +
-          " points: give one per point.");
-      }
       for (std::size_t c = 0; c < known.size(); ++c)
       {
         known[c] = k->GetComponent(static_cast<vtkIdType>(c), 0) != 0.0 ? 1 : 0;
@@ -207,4 +208,5 @@ void vtkTerrainPatchMatcher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Weights: " << this->FeatureWeight << ", " << this->AngleWeight << ", "
      << this->NoiseWeight << ", " << this->OverlapWeight << "\n";
   os << indent << "VerticalOffset: " << this->VerticalOffset << "\n";
+  os << indent << "KnownArray: " << (this->KnownArray ? this->KnownArray : "(none)") << "\n";
 }

@@ -2,9 +2,9 @@
  * @class vtkTerrainPatchMatcher
  * @brief The best exemplar patches for one place of a target, with a cost map.
  *
- * Input port 0: the target heightfield ("Elevation"; an optional uint8 point
- * array "Known" marks cells already synthesised, whose heights the overlap
- * term compares; without it every cell counts as known). Input port 1: one or
+ * Input port 0: the target heightfield ("Elevation"; an optional point array,
+ * KnownArray, "Known" by default, is non-zero on cells already synthesised, whose
+ * heights the overlap term compares; without it every cell counts as known). Input port 1: one or
  * more exemplar heightfields; port 2 (optional): their feature trees.
  * Feature mode takes the target's feature site (PPA ridges and valleys, end and
  * branch nodes and path points) nearest to (SiteX, SiteY) and scores every
@@ -84,6 +84,12 @@ public:
   void RemoveAllExemplars() { this->RemoveAllInputConnections(1); }
   void RemoveAllFeatureTrees() { this->RemoveAllInputConnections(2); }
 
+  /// The target's point array marking known cells (default "Known"; empty: every cell is
+  /// known; a name the target lacks is an error unless it is the default).
+  static constexpr const char* kDefaultKnownArray = "Known";
+  vtkSetStringMacro(KnownArray);
+  vtkGetStringMacro(KnownArray);
+
   vtkTable* GetMatches();
   vtkImageData* GetCostMap();
   vtkTypeBool ProcessRequest(vtkInformation*,
@@ -92,7 +98,7 @@ public:
 
 protected:
   vtkTerrainPatchMatcher();
-  ~vtkTerrainPatchMatcher() override = default;
+  ~vtkTerrainPatchMatcher() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
@@ -108,6 +114,7 @@ protected:
   double NoiseWeight = 0.001;
   double OverlapWeight = 1.0;
   bool VerticalOffset = false;
+  char* KnownArray = nullptr;
   std::string BackendUsed;
 
 private:

@@ -24,11 +24,19 @@ vtkStandardNewMacro(vtkTerrainPoissonSolver);
 
 vtkTerrainPoissonSolver::vtkTerrainPoissonSolver()
 {
+  this->SetMaskArray(kDefaultMaskArray);
+  this->SetGradientArray(kDefaultGradientArray);
   this->SetNumberOfInputPorts(2);
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
   this->SetInputArrayToProcess(
     1, 1, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
+}
+
+vtkTerrainPoissonSolver::~vtkTerrainPoissonSolver()
+{
+  this->SetMaskArray(nullptr);
+  this->SetGradientArray(nullptr);
 }
 
 int vtkTerrainPoissonSolver::FillInputPortInformation(int port, vtkInformation* info)
@@ -61,50 +69,45 @@ int vtkTerrainPoissonSolver::RequestUpdateExtent(vtkInformation*,
 namespace
 {
 
-// The image's "Mask" point array as one byte per point (empty if it has none).
-// Throws tsynth::Error if its length is not the image's point count.
-std::vector<std::uint8_t> maskArray(vtkImageData* image)
+// The chosen mask array as one byte per point, non-zero where it is non-zero (empty if the
+// image has none).
+std::vector<std::uint8_t> maskArray(vtkImageData* image, const char* name)
 {
-  vtkDataArray* m = image->GetPointData()->GetArray("Mask");
+  vtkDataArray* m =
+    tsynth::chosenPointArray(image, name, vtkTerrainPoissonSolver::kDefaultMaskArray);
   if (m == nullptr)
   {
     return {};
   }
-  if (m->GetNumberOfTuples() != image->GetNumberOfPoints())
-  {
-    throw tsynth::Error("The Mask array has " + std::to_string(m->GetNumberOfTuples()) +
-      " values for " + std::to_string(image->GetNumberOfPoints()) + " points: give one per point.");
-  }
   std::vector<std::uint8_t> mask(static_cast<std::size_t>(m->GetNumberOfTuples()));
-  for (vtkIdType k = 0; k < m->GetNumberOfTuples(); ++k)
+  for (std::size_t k = 0; k < mask.size(); ++k)
   {
-    mask[static_cast<std::size_t>(k)] = m->GetComponent(k, 0) != 0.0 ? 1 : 0;
+    mask[k] = m->GetComponent(static_cast<vtkIdType>(k), 0) != 0.0 ? 1 : 0;
   }
   return mask;
 }
 
-// The image's two-component "Gradient" point array (dz/dx, dz/dy). Throws
-// tsynth::Error if it is missing, has another number of components, or its
-// length is not the image's point count.
-void gradientArray(vtkImageData* image, std::vector<double>& slopeX, std::vector<double>& slopeY)
+// The chosen two-component gradient array (dz/dx, dz/dy). Throws tsynth::Error if it is
+// missing, has another number of components, or its length is not the image's point count.
+void gradientArray(vtkImageData* image,
+  const char* name,
+  std::vector<double>& slopeX,
+  std::vector<double>& slopeY)
 {
-  vtkDataArray* g = image->GetPointData()->GetArray("Gradient");
-  if (g == nullptr || g->GetNumberOfComponents() != 2)
+  constexpr int kSlopeComponents = 2; // dz/dx and dz/dy
+  vtkDataArray* g = tsynth::chosenPointArray(
+    image, name, vtkTerrainPoissonSolver::kDefaultGradientArray, kSlopeComponents);
+  if (g == nullptr)
   {
-    throw tsynth::Error(
-      "The guidance field needs a two-component point array \"Gradient\" (dz/dx, dz/dy).");
-  }
-  if (g->GetNumberOfTuples() != image->GetNumberOfPoints())
-  {
-    throw tsynth::Error("The Gradient array has " + std::to_string(g->GetNumberOfTuples()) +
-      " values for " + std::to_string(image->GetNumberOfPoints()) + " points: give one per point.");
+    throw tsynth::Error("The guidance field needs a two-component point array of slopes "
+                        "(dz/dx, dz/dy): name it in GradientArray.");
   }
   slopeX.resize(static_cast<std::size_t>(g->GetNumberOfTuples()));
   slopeY.resize(slopeX.size());
-  for (vtkIdType k = 0; k < g->GetNumberOfTuples(); ++k)
+  for (std::size_t k = 0; k < slopeX.size(); ++k)
   {
-    slopeX[static_cast<std::size_t>(k)] = g->GetComponent(k, 0);
-    slopeY[static_cast<std::size_t>(k)] = g->GetComponent(k, 1);
+    slopeX[k] = g->GetComponent(static_cast<vtkIdType>(k), 0);
+    slopeY[k] = g->GetComponent(static_cast<vtkIdType>(k), 1);
   }
 }
 
@@ -131,7 +134,7 @@ int vtkTerrainPoissonSolver::RequestData(vtkInformation*,
       {
         throw tsynth::Error("Seamless cloning needs a source heightfield on the second input.");
       }
-      const std::vector<std::uint8_t> mask = maskArray(source);
+      const std::vector<std::uint8_t> mask = maskArray(source, this->MaskArray);
       r = tsynth::seamlessClone(dst,
         tsynth::imageToHeightfield(source, this->GetInputArrayToProcess(1, inputVector)),
         mask.empty() ? nullptr : &mask,
@@ -139,15 +142,15 @@ int vtkTerrainPoissonSolver::RequestData(vtkInformation*,
     }
     else
     {
-      const std::vector<std::uint8_t> mask = maskArray(destination);
+      const std::vector<std::uint8_t> mask = maskArray(destination, this->MaskArray);
       if (mask.empty())
       {
-        throw tsynth::Error(
-          "The guidance field needs a point array \"Mask\" marking the cells to solve.");
+        throw tsynth::Error("The guidance field needs a point array marking the cells to solve: "
+                            "name it in MaskArray.");
       }
       std::vector<double> slopeX;
       std::vector<double> slopeY;
-      gradientArray(destination, slopeX, slopeY);
+      gradientArray(destination, this->GradientArray, slopeX, slopeY);
       r = tsynth::integrateSlopes(dst, slopeX, slopeY, mask, this->Tolerance);
     }
     if (r.solvedCells == 0)
@@ -186,4 +189,7 @@ void vtkTerrainPoissonSolver::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Mode: " << this->Mode << "\n";
   os << indent << "Tolerance: " << this->Tolerance << "\n";
+  os << indent << "MaskArray: " << (this->MaskArray ? this->MaskArray : "(none)") << "\n";
+  os << indent << "GradientArray: " << (this->GradientArray ? this->GradientArray : "(none)")
+     << "\n";
 }

@@ -39,12 +39,23 @@ public:
   vtkSetClampMacro(Tolerance, double, 1e-14, 1e-1);
   vtkGetMacro(Tolerance, double);
 
+  /// The point array, non-zero on the cells to solve: on the source for SeamlessClone (none:
+  /// the whole source), on the input for GuidanceField (required). Default "Mask"; an empty
+  /// name means none, and a name the input lacks is an error unless it is the default.
+  static constexpr const char* kDefaultMaskArray = "Mask";
+  vtkSetStringMacro(MaskArray);
+  vtkGetStringMacro(MaskArray);
+  /// The input's two-component point array of slopes (dz/dx, dz/dy) for GuidanceField.
+  static constexpr const char* kDefaultGradientArray = "Gradient";
+  vtkSetStringMacro(GradientArray);
+  vtkGetStringMacro(GradientArray);
+
   /// Sets the source heightfield (port 1) for SeamlessClone.
   void SetSourceConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
 
 protected:
   vtkTerrainPoissonSolver();
-  ~vtkTerrainPoissonSolver() override = default;
+  ~vtkTerrainPoissonSolver() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -53,6 +64,8 @@ protected:
 
   int Mode = SEAMLESS_CLONE;
   double Tolerance = 1e-8;
+  char* MaskArray = nullptr;
+  char* GradientArray = nullptr;
 
 private:
   vtkTerrainPoissonSolver(const vtkTerrainPoissonSolver&) = delete;

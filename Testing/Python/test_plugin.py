@@ -396,6 +396,50 @@ class PluginTest(unittest.TestCase):
         ring = (mask == 1) & ((xx - 100) ** 2 + (yy - 100) ** 2 > 58 ** 2)
         self.assertLess(abs(float(np.mean(out[ring] - dst_z[ring]))), 100.0)
 
+    def test_mask_and_known_arrays_are_chosen_by_name(self):
+        full, spacing = dem_array(self.alps)
+        z = full[200:328, 200:328]
+        exemplar = producer(image_from(full[350:550, 350:550], spacing))
+        yy, xx = np.mgrid[0:128, 0:128]
+        disc = ((xx - 64) ** 2 + (yy - 64) ** 2 < 30 ** 2).astype(np.uint8)
+        destination = producer(image_from(z, spacing))
+        lifted = full[350:478, 350:478] + 500.0  # other relief, so where it lands shows
+
+        def clone(arrays, **properties):
+            source = producer(image_from(lifted, spacing, arrays=arrays))
+            solver = simple.TerrainPoissonSolver(Input=destination, Source=source, Mode=0,
+                                                 **properties)
+            solver.UpdatePipeline()
+            return point_array(sm.Fetch(solver), "Elevation").copy()
+
+        by_default = clone({"Mask": disc})
+        renamed = clone({"Region": disc, "Mask": np.ones_like(disc)}, MaskArray="Region")
+        np.testing.assert_array_equal(renamed, by_default)
+        whole = clone({"Region": disc})  # the default "Mask" is absent: the whole source
+        self.assertGreater(int(np.count_nonzero(whole != by_default)), 1000)
+        mistyped = simple.TerrainPoissonSolver(
+            Input=destination, Source=producer(image_from(lifted, spacing, arrays={"Region": disc})),
+            Mode=0, MaskArray="Regoin")
+        mistyped.UpdatePipeline()
+        self.assertEqual(sm.Fetch(mistyped).GetNumberOfPoints(), 0)
+
+        site = [64 * spacing[0], 64 * spacing[1]]
+
+        def best_cost(arrays, **properties):
+            target = producer(image_from(z, spacing, arrays=arrays))
+            matcher = simple.TerrainPatchMatcher(Input=target, Exemplars=[exemplar], Mode=1,
+                                                 Site=site, PatchSize=32, K=1, **properties)
+            matcher.UpdatePipeline()
+            table = sm.Fetch(matcher, arg1=None, arg2=None, idx=0)
+            return float(table.GetColumnByName("Cost").GetValue(0)) if table.GetNumberOfRows() else None
+
+        half = (xx < 64).astype(np.uint8)
+        known = best_cost({"Known": half})
+        chosen = best_cost({"Done": half, "Known": np.ones_like(half)}, KnownArray="Done")
+        self.assertEqual(chosen, known)
+        self.assertNotEqual(best_cost({"Known": np.ones_like(half)}), known)  # the choice counts
+        self.assertIsNone(best_cost({"Done": half}, KnownArray="Dnoe"))
+
     def test_arrays_of_the_wrong_length_fail_the_request_with_a_sentence(self):
         from vtkmodules.vtkCommonCore import vtkCommand
         from vtkmodules.util.misc import calldata_type
