@@ -1,5 +1,6 @@
 #include "TerrainImageConversion.h"
 
+#include "Core/Cancellation.h"
 #include "Core/Error.h"
 
 #include <vtkDataArray.h>
@@ -104,6 +105,7 @@ Heightfield imageToHeightfield(vtkImageData* image, vtkDataArray* heights)
   }
   for (vtkIdType k = 0; k < heights->GetNumberOfTuples(); ++k)
   {
+    pollCancellation(); // a whole DEM's copy is a good part of a second under a filter's abort
     hf.z[static_cast<std::size_t>(k)] = static_cast<float>(heights->GetComponent(k, 0));
   }
   if (auto* valid = image->GetPointData()->GetArray(kValidArray))

@@ -1,4 +1,5 @@
 #include "vtkTerrainCandidateBuilder.h"
+#include "PipelineRequests.h"
 
 #include "MatchingInputs.h"
 
@@ -46,6 +47,7 @@ int vtkTerrainCandidateBuilder::RequestData(vtkInformation*,
   vtkTable* table = vtkTable::GetData(outputVector, 0);
   try
   {
+    const tsynth::AbortScope abortScope(this);
     const tsynth::ExemplarInputs in = tsynth::gatherExemplars(inputVector[0], inputVector[1]);
     this->UpdateProgress(0.3);
     tsynth::PoolOptions o;
@@ -125,6 +127,11 @@ int vtkTerrainCandidateBuilder::RequestData(vtkInformation*,
     scale->SetName("HeightScale");
     scale->InsertNextValue(pool.heightScale);
     table->GetFieldData()->AddArray(scale);
+  }
+  catch (const tsynth::Cancelled&)
+  {
+    table->Initialize(); // aborted: empty outputs
+    return 1;
   }
   catch (const std::bad_alloc&)
   {

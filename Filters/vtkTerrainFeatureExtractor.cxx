@@ -1,4 +1,5 @@
 #include "vtkTerrainFeatureExtractor.h"
+#include "PipelineRequests.h"
 
 #include "FeatureGraphConversion.h"
 #include "TerrainImageConversion.h"
@@ -39,6 +40,7 @@ int vtkTerrainFeatureExtractor::RequestData(vtkInformation*,
   vtkPolyData* controls = vtkPolyData::GetData(outputVector, 1);
   try
   {
+    const tsynth::AbortScope abortScope(this);
     const tsynth::Heightfield hf =
       tsynth::imageToHeightfield(input, this->GetInputArrayToProcess(0, inputVector));
     tsynth::PpaOptions o;
@@ -88,6 +90,12 @@ int vtkTerrainFeatureExtractor::RequestData(vtkInformation*,
     tsynth::gridOrigin(input, ox, oy);
     tsynth::featureGraphToPolyData(graph, tree, ox, oy);
     tsynth::controlPointsToPolyData(graph, controls, ox, oy);
+  }
+  catch (const tsynth::Cancelled&)
+  {
+    tree->Initialize();
+    controls->Initialize(); // aborted: empty outputs
+    return 1;
   }
   catch (const std::bad_alloc&)
   {

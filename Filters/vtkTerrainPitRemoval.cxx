@@ -94,6 +94,7 @@ int vtkTerrainPitRemoval::RequestData(vtkInformation*,
   }
   try
   {
+    const tsynth::AbortScope abortScope(this);
     const tsynth::Heightfield dem =
       tsynth::imageToHeightfield(input, this->GetInputArrayToProcess(0, inputVector));
     tsynth::checkDemToDrain(dem);
@@ -131,6 +132,11 @@ int vtkTerrainPitRemoval::RequestData(vtkInformation*,
         "Streams",
         tsynth::streamNetwork(accumulation, static_cast<std::uint32_t>(this->StreamThreshold)));
     }
+  }
+  catch (const tsynth::Cancelled&)
+  {
+    output->Initialize(); // aborted: empty outputs
+    return 1;
   }
   catch (const std::bad_alloc&)
   {

@@ -82,6 +82,7 @@ std::vector<std::uint8_t> maskArray(vtkImageData* image, const char* name)
   std::vector<std::uint8_t> mask(static_cast<std::size_t>(m->GetNumberOfTuples()));
   for (std::size_t k = 0; k < mask.size(); ++k)
   {
+    tsynth::pollCancellation(); // a whole terrain's copy takes a good part of a second
     mask[k] = m->GetComponent(static_cast<vtkIdType>(k), 0) != 0.0 ? 1 : 0;
   }
   return mask;
@@ -106,6 +107,7 @@ void gradientArray(vtkImageData* image,
   slopeY.resize(slopeX.size());
   for (std::size_t k = 0; k < slopeX.size(); ++k)
   {
+    tsynth::pollCancellation();
     slopeX[k] = g->GetComponent(static_cast<vtkIdType>(k), 0);
     slopeY[k] = g->GetComponent(static_cast<vtkIdType>(k), 1);
   }
@@ -124,6 +126,7 @@ int vtkTerrainPoissonSolver::RequestData(vtkInformation*,
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   try
   {
+    const tsynth::AbortScope abortScope(this);
     const tsynth::Heightfield dst =
       tsynth::imageToHeightfield(destination, this->GetInputArrayToProcess(0, inputVector));
     this->UpdateProgress(0.1);
@@ -175,6 +178,11 @@ int vtkTerrainPoissonSolver::RequestData(vtkInformation*,
     residual->InsertNextValue(
       stats.initialResidual > 0 ? stats.finalResidual / stats.initialResidual : 0.0);
     output->GetFieldData()->AddArray(residual);
+  }
+  catch (const tsynth::Cancelled&)
+  {
+    output->Initialize(); // aborted: empty outputs
+    return 1;
   }
   catch (const std::exception& e)
   {

@@ -1,4 +1,5 @@
 #include "vtkTerrainSketchFeatures.h"
+#include "PipelineRequests.h"
 
 #include "FeatureGraphConversion.h"
 #include "TerrainImageConversion.h"
@@ -54,6 +55,7 @@ int vtkTerrainSketchFeatures::RequestData(vtkInformation*,
   const double radius = this->ControlRadius > 0.0 ? this->ControlRadius : 0.5 * this->PatchSize;
   try
   {
+    const tsynth::AbortScope abortScope(this);
     tsynth::FeatureGraph graph;
     double ox = 0.0;
     double oy = 0.0;
@@ -118,6 +120,12 @@ int vtkTerrainSketchFeatures::RequestData(vtkInformation*,
     }
     tsynth::featureGraphToPolyData(graph, tree, ox, oy);
     tsynth::controlPointsToPolyData(graph, controls, ox, oy);
+  }
+  catch (const tsynth::Cancelled&)
+  {
+    tree->Initialize();
+    controls->Initialize(); // aborted: empty outputs
+    return 1;
   }
   catch (const std::bad_alloc&)
   {

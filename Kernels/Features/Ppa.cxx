@@ -1,5 +1,6 @@
 #include "Ppa.h"
 
+#include "../Core/Cancellation.h"
 #include "../Core/Error.h"
 
 #include <boost/pending/disjoint_sets.hpp>
@@ -95,47 +96,47 @@ Heightfield gaussianSmooth(const Heightfield& hf, double sigma)
   std::vector<float> pass(hf.size());
   std::vector<float> weight(hf.size());
   // Horizontal pass: weighted sums and weights of valid cells.
-#pragma omp parallel for schedule(static)
-  for (int j = 0; j < h; ++j)
-  {
-    for (int i = 0; i < w; ++i)
+  forRowBands(h,
+    [&](int j)
     {
-      double s = 0.0;
-      double ws = 0.0;
-      for (int t = std::max(-r, -i); t <= std::min(r, w - 1 - i); ++t)
+      for (int i = 0; i < w; ++i)
       {
-        if (hf.isValid(i + t, j))
+        double s = 0.0;
+        double ws = 0.0;
+        for (int t = std::max(-r, -i); t <= std::min(r, w - 1 - i); ++t)
+        {
+          if (hf.isValid(i + t, j))
+          {
+            const double k = kernel[static_cast<std::size_t>(t + r)];
+            s += k * hf.at(i + t, j);
+            ws += k;
+          }
+        }
+        pass[hf.index(i, j)] = static_cast<float>(s);
+        weight[hf.index(i, j)] = static_cast<float>(ws);
+      }
+    });
+  Heightfield out = hf;
+  forRowBands(h,
+    [&](int j)
+    {
+      for (int i = 0; i < w; ++i)
+      {
+        if (!hf.isValid(i, j))
+        {
+          continue;
+        }
+        double s = 0.0;
+        double ws = 0.0;
+        for (int t = std::max(-r, -j); t <= std::min(r, h - 1 - j); ++t)
         {
           const double k = kernel[static_cast<std::size_t>(t + r)];
-          s += k * hf.at(i + t, j);
-          ws += k;
+          s += k * pass[hf.index(i, j + t)];
+          ws += k * weight[hf.index(i, j + t)];
         }
+        out.at(i, j) = static_cast<float>(s / ws);
       }
-      pass[hf.index(i, j)] = static_cast<float>(s);
-      weight[hf.index(i, j)] = static_cast<float>(ws);
-    }
-  }
-  Heightfield out = hf;
-#pragma omp parallel for schedule(static)
-  for (int j = 0; j < h; ++j)
-  {
-    for (int i = 0; i < w; ++i)
-    {
-      if (!hf.isValid(i, j))
-      {
-        continue;
-      }
-      double s = 0.0;
-      double ws = 0.0;
-      for (int t = std::max(-r, -j); t <= std::min(r, h - 1 - j); ++t)
-      {
-        const double k = kernel[static_cast<std::size_t>(t + r)];
-        s += k * pass[hf.index(i, j + t)];
-        ws += k * weight[hf.index(i, j + t)];
-      }
-      out.at(i, j) = static_cast<float>(s / ws);
-    }
-  }
+    });
   return out;
 }
 
@@ -148,50 +149,50 @@ std::vector<std::uint8_t> profileTargets(const Heightfield& hf,
   const int h = hf.height;
   const int len = std::max(1, halfProfileLength);
   std::vector<std::uint8_t> targets(hf.size(), 0);
-#pragma omp parallel for schedule(static)
-  for (int j = 0; j < h; ++j)
-  {
-    for (int i = 0; i < w; ++i)
+  forRowBands(h,
+    [&](int j)
     {
-      if (!hf.isValid(i, j))
+      for (int i = 0; i < w; ++i)
       {
-        continue;
-      }
-      const float centre = hf.at(i, j);
-      // Deepest dip (centre minus lowest valid height) within len cells one way,
-      // and the largest height difference seen, for the relative threshold.
-      float relief = 0.0f;
-      auto dipAlong = [&](int dx, int dy)
-      {
-        float dip = 0.0f;
-        for (int t = 1; t <= len; ++t)
+        if (!hf.isValid(i, j))
         {
-          const int ii = i + t * dx;
-          const int jj = j + t * dy;
-          if (ii < 0 || jj < 0 || ii >= w || jj >= h)
-          {
-            break;
-          }
-          if (hf.isValid(ii, jj))
-          {
-            const float d = centre - hf.at(ii, jj);
-            dip = std::max(dip, d);
-            relief = std::max(relief, std::abs(d));
-          }
+          continue;
         }
-        return dip;
-      };
-      float best = 0.0f;
-      for (const auto& a : kAxes)
-      {
-        best = std::max(best, std::min(dipAlong(a[0], a[1]), dipAlong(-a[0], -a[1])));
+        const float centre = hf.at(i, j);
+        // Deepest dip (centre minus lowest valid height) within len cells one way,
+        // and the largest height difference seen, for the relative threshold.
+        float relief = 0.0f;
+        auto dipAlong = [&](int dx, int dy)
+        {
+          float dip = 0.0f;
+          for (int t = 1; t <= len; ++t)
+          {
+            const int ii = i + t * dx;
+            const int jj = j + t * dy;
+            if (ii < 0 || jj < 0 || ii >= w || jj >= h)
+            {
+              break;
+            }
+            if (hf.isValid(ii, jj))
+            {
+              const float d = centre - hf.at(ii, jj);
+              dip = std::max(dip, d);
+              relief = std::max(relief, std::abs(d));
+            }
+          }
+          return dip;
+        };
+        float best = 0.0f;
+        for (const auto& a : kAxes)
+        {
+          best = std::max(best, std::min(dipAlong(a[0], a[1]), dipAlong(-a[0], -a[1])));
+        }
+        if (best > 0.0f && best > minDip && best >= relativeDip * relief)
+        {
+          targets[hf.index(i, j)] = 1;
+        }
       }
-      if (best > 0.0f && best > minDip && best >= relativeDip * relief)
-      {
-        targets[hf.index(i, j)] = 1;
-      }
-    }
-  }
+    });
   return targets;
 }
 
@@ -350,19 +351,25 @@ std::size_t clearInsignificant(const Heightfield& hf,
   float drop)
 {
   std::size_t removed = 0;
-  // Each cell reads heights only and writes its own target flag: rows are independent.
-#pragma omp parallel for schedule(dynamic, 16) reduction(+ : removed)
-  for (int j = 0; j < hf.height; ++j)
+  // Each cell reads heights only and writes its own target flag: rows are independent. Rows
+  // cost very different amounts (targets are sparse), hence the dynamic schedule per band.
+  for (int first = 0; first < hf.height; first += kCancellationBandRows)
   {
-    for (int i = 0; i < hf.width; ++i)
+    const int last = std::min(hf.height, first + kCancellationBandRows);
+#pragma omp parallel for schedule(dynamic, 16) reduction(+ : removed)
+    for (int j = first; j < last; ++j)
     {
-      std::uint8_t& target = targets[hf.index(i, j)];
-      if (target != 0 && !isSignificant<Masked>(hf, i, j, len, drop))
+      for (int i = 0; i < hf.width; ++i)
       {
-        target = 0;
-        ++removed;
+        std::uint8_t& target = targets[hf.index(i, j)];
+        if (target != 0 && !isSignificant<Masked>(hf, i, j, len, drop))
+        {
+          target = 0;
+          ++removed;
+        }
       }
     }
+    checkCancellation();
   }
   return removed;
 }
@@ -389,48 +396,48 @@ std::vector<CellEdge> connectTargets(const Heightfield& hf,
   { return i >= 0 && j >= 0 && i < w && j < h && targets[hf.index(i, j)] != 0; };
   auto weight = [&](std::size_t a, std::size_t b) { return hf.z[a] + hf.z[b]; };
   std::vector<std::vector<CellEdge>> perRow(static_cast<std::size_t>(h));
-#pragma omp parallel for schedule(static)
-  for (int j = 0; j < h; ++j)
-  {
-    auto& row = perRow[static_cast<std::size_t>(j)];
-    for (int i = 0; i < w; ++i)
+  forRowBands(h,
+    [&](int j)
     {
-      const std::size_t a = hf.index(i, j);
-      const bool ta = targets[a] != 0;
-      if (ta && isTarget(i + 1, j))
+      auto& row = perRow[static_cast<std::size_t>(j)];
+      for (int i = 0; i < w; ++i)
       {
-        const std::size_t b = hf.index(i + 1, j);
-        row.push_back(
-          { static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), weight(a, b) });
+        const std::size_t a = hf.index(i, j);
+        const bool ta = targets[a] != 0;
+        if (ta && isTarget(i + 1, j))
+        {
+          const std::size_t b = hf.index(i + 1, j);
+          row.push_back(
+            { static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), weight(a, b) });
+        }
+        if (ta && isTarget(i, j + 1))
+        {
+          const std::size_t b = hf.index(i, j + 1);
+          row.push_back(
+            { static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), weight(a, b) });
+        }
+        // The 2x2 block with lower-left (i, j): its two diagonals cross.
+        const bool ne = ta && isTarget(i + 1, j + 1);
+        const bool nw = isTarget(i + 1, j) && isTarget(i, j + 1);
+        if (!ne && !nw)
+        {
+          continue;
+        }
+        const std::size_t neB = ne ? hf.index(i + 1, j + 1) : 0;
+        const std::size_t nwA = nw ? hf.index(i + 1, j) : 0;
+        const std::size_t nwB = nw ? hf.index(i, j + 1) : 0;
+        const float wne = ne ? weight(a, neB) : -std::numeric_limits<float>::infinity();
+        const float wnw = nw ? weight(nwA, nwB) : -std::numeric_limits<float>::infinity();
+        if (ne && wne >= wnw)
+        {
+          row.push_back({ static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(neB), wne });
+        }
+        else if (nw)
+        {
+          row.push_back({ static_cast<std::uint32_t>(nwA), static_cast<std::uint32_t>(nwB), wnw });
+        }
       }
-      if (ta && isTarget(i, j + 1))
-      {
-        const std::size_t b = hf.index(i, j + 1);
-        row.push_back(
-          { static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), weight(a, b) });
-      }
-      // The 2x2 block with lower-left (i, j): its two diagonals cross.
-      const bool ne = ta && isTarget(i + 1, j + 1);
-      const bool nw = isTarget(i + 1, j) && isTarget(i, j + 1);
-      if (!ne && !nw)
-      {
-        continue;
-      }
-      const std::size_t neB = ne ? hf.index(i + 1, j + 1) : 0;
-      const std::size_t nwA = nw ? hf.index(i + 1, j) : 0;
-      const std::size_t nwB = nw ? hf.index(i, j + 1) : 0;
-      const float wne = ne ? weight(a, neB) : -std::numeric_limits<float>::infinity();
-      const float wnw = nw ? weight(nwA, nwB) : -std::numeric_limits<float>::infinity();
-      if (ne && wne >= wnw)
-      {
-        row.push_back({ static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(neB), wne });
-      }
-      else if (nw)
-      {
-        row.push_back({ static_cast<std::uint32_t>(nwA), static_cast<std::uint32_t>(nwB), wnw });
-      }
-    }
-  }
+    });
   std::size_t total = 0;
   for (const auto& row : perRow)
   {
@@ -463,6 +470,7 @@ PixelGraph maximumSpanningForest(int width, int height, const std::vector<CellEd
   boost::disjoint_sets<int*, std::uint32_t*> sets(rank.data(), parent.data());
   for (std::uint64_t key : keys)
   {
+    pollCancellation();
     const CellEdge& e = edges[static_cast<std::size_t>(key & 0xffffffffU)];
     const std::uint32_t ra = sets.find_set(e.a);
     const std::uint32_t rb = sets.find_set(e.b);
@@ -499,6 +507,7 @@ FeatureExtraction extractFeatures(const Heightfield& hf, FeatureType type, const
   {
     throw Error("The PPA significance noise factor must not be negative.");
   }
+  checkCancellation();
   FeatureExtraction result;
   const auto t0 = Clock::now();
   // Valleys are the ridges of the negated field.
@@ -513,11 +522,13 @@ FeatureExtraction extractFeatures(const Heightfield& hf, FeatureType type, const
   work = gaussianSmooth(work, o.presmoothSigma);
   result.timings.presmooth = secondsSince(t0);
 
+  checkCancellation();
   auto t = Clock::now();
   std::vector<std::uint8_t> targets =
     profileTargets(work, o.halfProfileLength, o.minDip, o.relativeDip);
   result.timings.profile = secondsSince(t);
 
+  checkCancellation();
   t = Clock::now();
   if (o.significance > 0.0)
   {
@@ -535,16 +546,19 @@ FeatureExtraction extractFeatures(const Heightfield& hf, FeatureType type, const
   result.statistics.targets =
     static_cast<std::size_t>(std::count(targets.begin(), targets.end(), std::uint8_t{ 1 }));
 
+  checkCancellation();
   t = Clock::now();
   const std::vector<CellEdge> edges = connectTargets(work, targets);
   result.timings.connect = secondsSince(t);
   result.statistics.candidateEdges = edges.size();
 
+  checkCancellation();
   t = Clock::now();
   result.pixels = maximumSpanningForest(hf.width, hf.height, edges);
   result.timings.spanningForest = secondsSince(t);
   result.statistics.forestEdges = result.pixels.edgeCount();
 
+  checkCancellation();
   t = Clock::now();
   result.pixels.removeEndSegments(o.endReductions);
   result.pixels.pruneShortBranches(o.minBranchLength);
@@ -552,6 +566,7 @@ FeatureExtraction extractFeatures(const Heightfield& hf, FeatureType type, const
   result.timings.pruning = secondsSince(t);
   result.statistics.prunedCells = result.pixels.nodeCount();
 
+  checkCancellation();
   t = Clock::now();
   result.graph = buildFeatureGraph(result.pixels, type, &hf, hf.cellX, hf.cellY);
   smoothChains(result.graph, o.smoothingPasses);

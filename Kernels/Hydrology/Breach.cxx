@@ -1,5 +1,6 @@
 #include "Breach.h"
 
+#include "../Core/Cancellation.h"
 #include "../Core/Error.h"
 #include "FloodKeys.h"
 #include "Flow.h"
@@ -99,6 +100,7 @@ public:
   {
     for (;;)
     {
+      pollCancellation();
       std::uint64_t key = 0;
       if (!pit_.empty())
       {

@@ -1,5 +1,6 @@
 #include "Flow.h"
 
+#include "../Core/Cancellation.h"
 #include "../Core/Error.h"
 #include "FloodKeys.h"
 #include "RadixHeap.h"
@@ -133,6 +134,7 @@ public:
   {
     for (;;)
     {
+      pollCancellation();
       std::uint32_t cell = 0;
       if (pitHead_ < pit_.size())
       {
@@ -375,6 +377,7 @@ void routeAcrossFlats(const Heightfield& dem,
   }
   for (std::size_t head = 0; head < queue.size(); ++head)
   {
+    pollCancellation();
     const std::size_t k = queue[head];
     const int i = static_cast<int>(k % static_cast<std::size_t>(dem.width));
     const int j = static_cast<int>(k / static_cast<std::size_t>(dem.width));
@@ -505,6 +508,7 @@ std::vector<std::uint32_t> flowAccumulation(const std::vector<std::int8_t>& dire
   std::size_t done = 0;
   while (!ready.empty())
   {
+    pollCancellation();
     const std::uint32_t k = ready.back();
     ready.pop_back();
     ++done;

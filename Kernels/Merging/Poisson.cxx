@@ -1,5 +1,6 @@
 #include "Poisson.h"
 
+#include "../Core/Cancellation.h"
 #include "../Core/Error.h"
 
 #include <Eigen/Dense>
@@ -288,6 +289,15 @@ struct Level
 // so results do not depend on the thread count.
 constexpr long ParallelCells = 32768;
 
+// Serial passes over a whole terrain's rows check for cancellation once a band of rows.
+void pollRow(int j)
+{
+  if (j % kCancellationBandRows == 0)
+  {
+    checkCancellation();
+  }
+}
+
 bool parallel(const Level& L)
 {
   return static_cast<long>(L.w) * L.h > ParallelCells;
@@ -468,7 +478,7 @@ struct MaskedPoissonSolver::Impl
   std::vector<Level> levels;
   std::size_t depth = 0; // levels in use
   std::vector<double> delta, res, dir, q, z;
-  std::vector<int> stack;
+  std::vector<std::size_t> stack; // cells of the component being labelled
   std::vector<int> component;
   std::vector<std::size_t> members;
   std::vector<std::uint8_t> present;
@@ -554,6 +564,7 @@ struct MaskedPoissonSolver::Impl
   // Approximately solves A x = b on level l (x and b in the split arrays).
   void vcycle(std::size_t l, int sweeps)
   {
+    checkCancellation(); // a fine level of a whole terrain is a good part of a second
     Level& L = levels[l];
     if (l + 1 == depth)
     {
@@ -649,6 +660,7 @@ struct MaskedPoissonSolver::Impl
     present.assign(F.unknown.size(), 0);
     for (int j = 0; j < height; ++j)
     {
+      pollRow(j);
       const std::size_t g0 = static_cast<std::size_t>(j) * width;
       for (int i = 0; i < width; ++i)
       {
@@ -662,6 +674,7 @@ struct MaskedPoissonSolver::Impl
     const std::size_t s = F.stride;
     for (int j = 0; j < height; ++j)
     {
+      pollRow(j);
       for (int i = 0; i < width; ++i)
       {
         const std::size_t k = F.pad(i, j);
@@ -693,11 +706,12 @@ struct MaskedPoissonSolver::Impl
         continue;
       members.clear();
       bool anchored = false;
-      stack.assign(1, static_cast<int>(seed));
+      stack.assign(1, seed);
       component[seed] = 1;
       while (!stack.empty())
       {
-        const std::size_t k = static_cast<std::size_t>(stack.back());
+        pollCancellation();
+        const std::size_t k = stack.back();
         stack.pop_back();
         members.push_back(k);
         const double coupling = F.wE[k] + F.wE[k - 1] + F.wN[k] + F.wN[k - s];
@@ -709,7 +723,7 @@ struct MaskedPoissonSolver::Impl
           if (wt[d] > 0.0 && component[nb[d]] < 0)
           {
             component[nb[d]] = 1;
-            stack.push_back(static_cast<int>(nb[d]));
+            stack.push_back(nb[d]);
           }
         }
       }
@@ -739,6 +753,7 @@ struct MaskedPoissonSolver::Impl
     {
       if (levels.size() == depth)
         levels.emplace_back();
+      checkCancellation();
       buildCoarse(levels[depth - 1], levels[depth]);
       ++depth;
     }
@@ -820,6 +835,7 @@ struct MaskedPoissonSolver::Impl
     dir = z;
     for (int it = 1; it <= options.maxIterations; ++it)
     {
+      checkCancellation();
       applyOperator(F, dir.data(), q.data());
       const double alpha = rz / dot(dir, q);
       double rr = 0.0;
@@ -909,6 +925,7 @@ PoissonStatistics MaskedPoissonSolver::solveGuided(int width,
   m.res.assign(F.unknown.size(), 0.0);
   for (int j = 0; j < height; ++j)
   {
+    pollRow(j);
     for (int i = 0; i < width; ++i)
     {
       const std::size_t k = F.pad(i, j);
@@ -966,6 +983,7 @@ PoissonStatistics MaskedPoissonSolver::solveLaplacian(int width,
   m.res.assign(F.unknown.size(), 0.0);
   for (int j = 0; j < height; ++j)
   {
+    pollRow(j);
     for (int i = 0; i < width; ++i)
     {
       const std::size_t k = F.pad(i, j);

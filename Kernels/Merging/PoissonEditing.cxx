@@ -1,5 +1,7 @@
 #include "PoissonEditing.h"
 
+#include "Core/Cancellation.h"
+
 #include "../Core/Error.h"
 
 #include <limits>
@@ -96,6 +98,10 @@ PoissonEditResult seamlessClone(const Heightfield& destination,
   std::vector<double> gy(destination.size(), kNaN);
   for (int j = 0; j < h; ++j)
   {
+    if (j % kCancellationBandRows == 0)
+    {
+      checkCancellation();
+    }
     for (int i = 0; i < w; ++i)
     {
       const std::size_t k = destination.index(i, j);
@@ -127,6 +133,10 @@ PoissonEditResult integrateSlopes(const Heightfield& destination,
   std::vector<double> gy(destination.size(), kNaN);
   for (int j = 0; j < h; ++j)
   {
+    if (j % kCancellationBandRows == 0)
+    {
+      checkCancellation();
+    }
     for (int i = 0; i < w; ++i)
     {
       const std::size_t k = destination.index(i, j);

@@ -686,6 +686,47 @@ class PluginTest(unittest.TestCase):
         self.assertLess(time.monotonic() - stopped_at[0], 1.0)
         self.assertEqual(synth.GetTerrain().GetNumberOfPoints(), 0)
 
+    def test_abort_stops_the_long_filters_within_a_second_with_an_empty_output(self):
+        import time
+        sys.path.insert(0, PATHS.python_dir)
+        from terrainsynthesis import (vtkTerrainFeatureExtractor, vtkTerrainPitRemoval,
+                                      vtkTerrainPoissonSolver)
+
+        # Colorado mirrored 8 x 8 times (5184^2 cells): each filter takes seconds on it.
+        z, spacing = dem_array(os.path.join(PATHS.bundled_data, "dems", "colorado.png"))
+        tile = np.block([[z, z[:, ::-1]], [z[::-1, :], z[::-1, ::-1]]])
+        for _ in range(2):
+            tile = np.block([[tile, tile[:, ::-1]], [tile[::-1, :], tile[::-1, ::-1]]])
+        big = image_from(tile, spacing, arrays={"Mask": np.ones(tile.shape, dtype=np.uint8)})
+        gradient = numpy_to_vtk(np.zeros((tile.size, 2)), deep=1)
+        gradient.SetName("Gradient")
+        big.GetPointData().AddArray(gradient)
+        pits = vtkTerrainPitRemoval()
+        features = vtkTerrainFeatureExtractor()
+        poisson = vtkTerrainPoissonSolver()
+        poisson.SetMode(1)  # integrate the (flat) slopes over the whole terrain
+        poisson.SetTolerance(1e-12)
+        for name, filter_, start in (("pit removal", pits, 0.1), ("features", features, 0.0),
+                                     ("poisson", poisson, 0.1)):
+            with self.subTest(filter=name):
+                filter_.SetInputData(big)
+                stopped_at = []
+
+                def abort_once(caller, _event, start=start, stopped_at=stopped_at):
+                    if caller.GetProgress() >= start and not stopped_at:
+                        stopped_at.append(time.monotonic())
+                        caller.SetAbortExecute(1)
+
+                errors = []
+                filter_.AddObserver("ProgressEvent", abort_once)
+                filter_.AddObserver("ErrorEvent", lambda *_args, errors=errors: errors.append(1))
+                filter_.Update()
+                self.assertEqual(errors, [], "the filter failed instead of stopping")
+                self.assertTrue(stopped_at, "no progress was reported")
+                print("%s stopped %.3f s after the abort" % (name, time.monotonic() - stopped_at[0]))
+                self.assertLess(time.monotonic() - stopped_at[0], 1.0)
+                self.assertEqual(filter_.GetOutputDataObject(0).GetNumberOfPoints(), 0)
+
     def test_sketch_lines_mark_drawn_lines_for_the_synthesis(self):
         ridge = simple.PolyLineSource(Points=[900.0, 900.0, 3500.0, 9000.0, 9000.0, 3900.0])
         marked = sm.Fetch(simple.TerrainSketchLines(Input=ridge, ElevationMode="From Z"))
