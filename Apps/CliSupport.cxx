@@ -1,5 +1,7 @@
 #include "CliSupport.h"
 
+#include "Core/OutputFile.h"
+
 #include "FeatureGraphConversion.h"
 #include "TerrainFileIO.h"
 
@@ -264,8 +266,25 @@ std::optional<int> takeCount(CommandLine& cl, const std::string& name, int lo, i
   return static_cast<int>(*v);
 }
 
+namespace
+{
+extern "C" void onFatalSignal(int sig)
+{
+  OutputFile::removeLiveTemporaries();
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+} // namespace
+
+void removePartialFilesOnSignals()
+{
+  std::signal(SIGINT, onFatalSignal);
+  std::signal(SIGTERM, onFatalSignal);
+}
+
 InterruptGuard::InterruptGuard()
   : previous_(std::signal(SIGINT, onInterrupt))
+  , scope_([] { return gInterrupted.load(); })
 {
   gInterrupted = false;
 }

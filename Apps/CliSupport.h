@@ -4,6 +4,7 @@
 
 #include "CommandLine.h"
 
+#include "Core/Cancellation.h"
 #include "Core/HeightfieldIO.h"
 #include "Synthesis/Setup.h"
 
@@ -63,8 +64,14 @@ void requireFolder(const std::string& path);
 // The exit status of a run stopped by Ctrl-C (128 + SIGINT, as shells report it).
 constexpr int kInterruptedExit = 130;
 
+// For the whole run of a command: Ctrl-C (SIGINT) or SIGTERM outside an InterruptGuard
+// removes the temporaries of the files being written (OutputFile) and ends the process as the
+// signal would, so no partial file is left behind.
+void removePartialFilesOnSignals();
+
 // While it lives, Ctrl-C (SIGINT) only sets a flag, which long commands poll
-// (check() throws tsynth::Cancelled); the previous handler comes back after.
+// (check() throws tsynth::Cancelled), and so do the kernels' own long loops through the
+// cancellation scope it opens (Core/Cancellation.h); the previous handler comes back after.
 class InterruptGuard
 {
 public:
@@ -77,6 +84,7 @@ public:
 
 private:
   void (*previous_)(int);
+  CancellationScope scope_;
 };
 
 // "WxH" in cells, each side from 1 to kMaxOutputSide (UsageError otherwise).

@@ -146,26 +146,53 @@ std::uint32_t streamThreshold(const Heightfield& dem, double areaKm2)
   return static_cast<std::uint32_t>(std::clamp(std::ceil(cells), 1.0, 4294967295.0));
 }
 
-void writeFlowOutputs(const PitsArguments& a, const Heightfield& dem, const Heightfield& drained)
+// What `tsynth pits` writes, all computed before the first file is written.
+struct PitsOutputs
 {
-  // Flow ends at the sinks the removal kept.
-  if (!a.flow && !a.streams)
+  PitRemovalResult removal;
+  double seconds = 0.0;
+  std::vector<std::uint32_t> accumulation; // when --flow or --streams
+  std::uint32_t streamThreshold = 0;
+};
+
+PitsOutputs computePits(const PitsArguments& a, const Heightfield& dem)
+{
+  PitsOutputs out;
+  const auto t0 = std::chrono::steady_clock::now();
+  out.removal = removePits(dem, a.options);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (a.flow || a.streams)
   {
-    return;
+    // Flow ends at the sinks the removal kept.
+    const std::vector<std::int8_t> directions = flowDirections(out.removal.dem, a.options.sinks);
+    out.accumulation =
+      flowAccumulation(directions, dem.width, dem.height, dem.hasMask() ? &dem.valid : nullptr);
+    out.streamThreshold = streamThreshold(dem, a.streamAreaKm2);
   }
-  const std::vector<std::int8_t> directions = flowDirections(drained, a.options.sinks);
-  const std::vector<std::uint32_t> accumulation =
-    flowAccumulation(directions, dem.width, dem.height, dem.hasMask() ? &dem.valid : nullptr);
+  return out;
+}
+
+void writePits(const PitsArguments& a, const Heightfield& dem, const PitsOutputs& out)
+{
+  const PitRemovalResult& r = out.removal;
+  writeTerrainFile(a.output, r.dem);
+  std::cout << std::fixed << std::setprecision(2) << "Pit removal ("
+            << pitRemovalMethodName(a.options.method) << "): " << countPits(dem) << " pits before, "
+            << countPits(r.dem) << " after; " << r.raisedCells << " cells raised (up to "
+            << r.maxRaise << " m), " << r.loweredCells << " lowered (up to " << r.maxLower
+            << " m); " << out.seconds << " s\n";
+  std::cout << "Wrote " << a.output << "\n";
   if (a.flow)
   {
-    writeTerrainFile(*a.flow, asRaster(dem, accumulation));
+    writeTerrainFile(*a.flow, asRaster(dem, out.accumulation));
     std::cout << "Wrote " << *a.flow << " (flow accumulation, cells)\n";
   }
   if (a.streams)
   {
-    const std::uint32_t threshold = streamThreshold(dem, a.streamAreaKm2);
-    writeTerrainFile(*a.streams, asRaster(dem, streamNetwork(accumulation, threshold)));
-    std::cout << "Wrote " << *a.streams << " (streams: " << threshold << " cells or more drain)\n";
+    writeTerrainFile(
+      *a.streams, asRaster(dem, streamNetwork(out.accumulation, out.streamThreshold)));
+    std::cout << "Wrote " << *a.streams << " (streams: " << out.streamThreshold
+              << " cells or more drain)\n";
   }
 }
 
@@ -195,18 +222,10 @@ int runPits(std::vector<std::string> args)
     sinks = sinkMaskFromRaster(readTerrainFile(*a.sinks, plain), dem.width, dem.height);
     a.options.sinks = &sinks;
   }
-  const auto t0 = std::chrono::steady_clock::now();
-  const PitRemovalResult r = removePits(dem, a.options);
-  const double seconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  writeTerrainFile(a.output, r.dem);
-  std::cout << std::fixed << std::setprecision(2) << "Pit removal ("
-            << pitRemovalMethodName(a.options.method) << "): " << countPits(dem) << " pits before, "
-            << countPits(r.dem) << " after; " << r.raisedCells << " cells raised (up to "
-            << r.maxRaise << " m), " << r.loweredCells << " lowered (up to " << r.maxLower
-            << " m); " << seconds << " s\n";
-  std::cout << "Wrote " << a.output << "\n";
-  writeFlowOutputs(a, dem, r.dem);
+  // Ctrl-C stops the computation, before anything is written; once writing has begun it only
+  // sets the flag, so no file is left half-written.
+  const InterruptGuard interrupt;
+  writePits(a, dem, computePits(a, dem));
   return 0;
 }
 

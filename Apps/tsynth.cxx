@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <unistd.h>
@@ -462,6 +463,9 @@ int runFeatures(std::vector<std::string> args)
     throw UsageError("Give --valleys or --both, not both.");
   }
 
+  // Ctrl-C stops the extraction (tsynth::Cancelled) before anything is written; once writing
+  // has begun it only sets the flag, so no file is left half-written.
+  const tsynth::cli::InterruptGuard interrupt;
   const auto t0 = std::chrono::steady_clock::now();
   tsynth::FeatureGraph graph;
   std::vector<std::string> warnings;
@@ -571,6 +575,7 @@ int main(int argc, char** argv)
   }
   const std::string command = args[0];
   args.erase(args.begin());
+  tsynth::cli::removePartialFilesOnSignals();
   try
   {
     if (command == "info")
@@ -619,6 +624,11 @@ int main(int argc, char** argv)
         (command.rfind('-', 0) == 0 ? std::string("--help") : command + " --help")
               << "\".\n";
     return 2;
+  }
+  catch (const tsynth::Cancelled&)
+  {
+    std::cerr << "\ntsynth: stopped; nothing was written.\n";
+    return tsynth::cli::kInterruptedExit;
   }
   catch (const tsynth::Error& e)
   {

@@ -2,6 +2,9 @@
 
 #include "Error.h"
 
+#include <atomic>
+#include <climits>
+#include <cstring>
 #include <filesystem>
 #include <system_error>
 #include <unistd.h>
@@ -10,6 +13,64 @@ namespace fs = std::filesystem;
 
 namespace tsynth
 {
+
+namespace
+{
+
+// The temporaries being written, as fixed buffers a signal handler may read. A command writes
+// one to three files at a time; a temporary beyond this many is still removed by its
+// destructor, only not by a signal.
+constexpr int kMaxLiveTemporaries = 16;
+
+struct LiveTemporary
+{
+  std::atomic<bool> used{ false };
+  std::atomic<bool> ready{ false }; // path complete, safe for a signal handler to read
+  char path[PATH_MAX] = {};
+};
+
+LiveTemporary liveTemporaries[kMaxLiveTemporaries];
+
+int registerTemporary(const std::string& path)
+{
+  if (path.size() >= PATH_MAX)
+  {
+    return -1;
+  }
+  for (int s = 0; s < kMaxLiveTemporaries; ++s)
+  {
+    bool expected = false;
+    if (liveTemporaries[s].used.compare_exchange_strong(expected, true))
+    {
+      std::memcpy(liveTemporaries[s].path, path.c_str(), path.size() + 1);
+      liveTemporaries[s].ready.store(true);
+      return s;
+    }
+  }
+  return -1;
+}
+
+void releaseTemporary(int slot)
+{
+  if (slot >= 0)
+  {
+    liveTemporaries[slot].ready.store(false);
+    liveTemporaries[slot].used.store(false);
+  }
+}
+
+} // namespace
+
+void OutputFile::removeLiveTemporaries()
+{
+  for (LiveTemporary& t : liveTemporaries)
+  {
+    if (t.ready.load())
+    {
+      ::unlink(t.path);
+    }
+  }
+}
 
 OutputFile::OutputFile(std::string target)
   : target_(std::move(target))
@@ -23,6 +84,7 @@ OutputFile::OutputFile(std::string target)
   }
   temporary_ =
     (dir / ("." + p.filename().string() + ".tmp-" + std::to_string(::getpid()))).string();
+  slot_ = registerTemporary(temporary_);
 }
 
 OutputFile::~OutputFile()
@@ -32,6 +94,7 @@ OutputFile::~OutputFile()
     std::error_code ec;
     fs::remove(temporary_, ec);
   }
+  releaseTemporary(slot_);
 }
 
 void OutputFile::commit()
@@ -47,6 +110,9 @@ void OutputFile::commit()
     throw Error("Cannot write " + target_ + ": " + ec.message() + ".");
   }
   committed_ = true;
+  // Released after the rename: a signal in between unlinks a name that no longer exists.
+  releaseTemporary(slot_);
+  slot_ = -1;
 }
 
 } // namespace tsynth

@@ -23,10 +23,16 @@ public:
   // Renames the temporary onto the target. Throws tsynth::Error on failure.
   void commit();
 
+  // Removes the temporaries of every OutputFile alive now. Async-signal-safe (only unlink), so
+  // a signal handler can call it before the process dies: a killed command leaves no partial
+  // file behind.
+  static void removeLiveTemporaries();
+
 private:
   std::string target_;
   std::string temporary_;
   bool committed_ = false;
+  int slot_ = -1; // this temporary's place in the live list, -1 if it did not fit
 };
 
 } // namespace tsynth

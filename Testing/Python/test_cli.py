@@ -88,6 +88,45 @@ class CliTest(unittest.TestCase):
         leftovers = [n for n in os.listdir(self.tmp) if ".tmp-" in n]
         self.assertEqual(leftovers, [])
 
+    # Interruption -------------------------------------------------------------------------
+
+    def test_ctrl_c_stops_long_commands_and_leaves_no_file(self):
+        """pits and features stop within a second with exit 130; render dies by the signal.
+        None leaves its output or a temporary behind."""
+        import signal
+        import time
+        from osgeo import gdal
+        import numpy as np
+        z = gdal.Open(os.path.join(PATHS.bundled_data, "dems", "colorado.png")).ReadAsArray()
+        tile = np.block([[z, z[:, ::-1]], [z[::-1, :], z[::-1, ::-1]]]).astype(np.float32)
+        for _ in range(2):
+            tile = np.block([[tile, tile[:, ::-1]], [tile[::-1, :], tile[::-1, ::-1]]])
+        big = self.path("big.tif")  # 5184^2 cells: each command below takes seconds on it
+        ds = gdal.GetDriverByName("GTiff").Create(big, tile.shape[1], tile.shape[0], 1,
+                                                  gdal.GDT_Float32)
+        ds.SetGeoTransform((0.0, 30.0, 0.0, 0.0, 0.0, -30.0))
+        ds.GetRasterBand(1).WriteArray(tile)
+        ds = None
+        cases = [("pits", ["pits", big, "-o", self.path("out.tif"), "--flow",
+                           self.path("flow.tif")], 130),
+                 ("features", ["features", big, "-o", self.path("out.vtp")], 130),
+                 ("render", ["render", big, "-o", self.path("out.png")], -signal.SIGINT)]
+        for name, args, code in cases:
+            with self.subTest(command=name):
+                p = subprocess.Popen([PATHS.tsynth] + args, stdout=subprocess.PIPE,
+                                     stderr=subprocess.PIPE, text=True)
+                time.sleep(2.0)  # past reading the DEM, into the computation
+                self.assertIsNone(p.poll(), "%s ended before it could be interrupted" % name)
+                sent = time.monotonic()
+                p.send_signal(signal.SIGINT)
+                _, err = p.communicate(timeout=60)
+                print("%s stopped %.3f s after Ctrl-C" % (name, time.monotonic() - sent))
+                self.assertLess(time.monotonic() - sent, 1.0)
+                self.assertEqual(p.returncode, code, err)
+                if code == 130:
+                    self.assertIn("nothing was written", err)
+                self.assertEqual(sorted(n for n in os.listdir(self.tmp) if n != "big.tif"), [])
+
     # Values -------------------------------------------------------------------------------
 
     def test_info_reads_units_and_cell_sizes(self):
