@@ -7,8 +7,11 @@
 #include "Features/Ppa.h"
 #include "Features/Sketch.h"
 
+#include <vtkDataObject.h>
 #include <vtkImageData.h>
+#include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkPointData.h>
 #include <vtkPolyData.h>
 
 namespace tsynth
@@ -34,7 +37,20 @@ std::vector<const FeatureGraph*> ExemplarInputs::graphPointers() const
   return out;
 }
 
-ExemplarInputs gatherExemplarImages(vtkInformationVector* images)
+ExemplarHeights exemplarHeightsNamed(vtkInformation* chosen, vtkInformationVector* images)
+{
+  const std::string name = chosen != nullptr && chosen->Has(vtkDataObject::FIELD_NAME())
+    ? chosen->Get(vtkDataObject::FIELD_NAME())
+    : "";
+  return [name, images](int connection) -> vtkDataArray*
+  {
+    vtkImageData* image = vtkImageData::GetData(images, connection);
+    return name.empty() || image == nullptr ? nullptr
+                                            : image->GetPointData()->GetArray(name.c_str());
+  };
+}
+
+ExemplarInputs gatherExemplarImages(vtkInformationVector* images, const ExemplarHeights& heights)
 {
   ExemplarInputs in;
   const int n = images != nullptr ? images->GetNumberOfInformationObjects() : 0;
@@ -48,16 +64,18 @@ ExemplarInputs gatherExemplarImages(vtkInformationVector* images)
     double ox = 0.0;
     double oy = 0.0;
     gridOrigin(image, ox, oy);
-    in.heights.push_back(imageToHeightfield(image));
+    in.heights.push_back(imageToHeightfield(image, heights ? heights(e) : nullptr));
     in.originX.push_back(ox);
     in.originY.push_back(oy);
   }
   return in;
 }
 
-ExemplarInputs gatherExemplars(vtkInformationVector* images, vtkInformationVector* trees)
+ExemplarInputs gatherExemplars(vtkInformationVector* images,
+  vtkInformationVector* trees,
+  const ExemplarHeights& heights)
 {
-  ExemplarInputs in = gatherExemplarImages(images);
+  ExemplarInputs in = gatherExemplarImages(images, heights);
   const int n = static_cast<int>(in.heights.size());
   const int t = trees != nullptr ? trees->GetNumberOfInformationObjects() : 0;
   if (t != 0 && t != n)

@@ -2,10 +2,12 @@
 #include "PipelineRequests.h"
 
 #include "MatchingInputs.h"
+#include "TerrainImageConversion.h"
 
 #include "Core/Error.h"
 #include "Matching/CandidatePool.h"
 
+#include <vtkDataObject.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
@@ -22,9 +24,16 @@
 
 vtkStandardNewMacro(vtkTerrainCandidateBuilder);
 
+namespace
+{
+constexpr int kExemplarHeights = 0; // SetInputArrayToProcess index of the exemplars' heights
+} // namespace
+
 vtkTerrainCandidateBuilder::vtkTerrainCandidateBuilder()
 {
   this->SetNumberOfInputPorts(2);
+  this->SetInputArrayToProcess(
+    kExemplarHeights, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
 }
 
 int vtkTerrainCandidateBuilder::FillInputPortInformation(int port, vtkInformation* info)
@@ -48,7 +57,10 @@ int vtkTerrainCandidateBuilder::RequestData(vtkInformation*,
   try
   {
     const tsynth::AbortScope abortScope(this);
-    const tsynth::ExemplarInputs in = tsynth::gatherExemplars(inputVector[0], inputVector[1]);
+    const tsynth::ExemplarInputs in = tsynth::gatherExemplars(inputVector[0],
+      inputVector[1],
+      tsynth::exemplarHeightsNamed(
+        this->GetInputArrayInformation(kExemplarHeights), inputVector[0]));
     this->UpdateProgress(0.3);
     tsynth::PoolOptions o;
     o.patchSize = this->PatchSize;

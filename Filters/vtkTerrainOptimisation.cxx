@@ -53,6 +53,8 @@ tsynth::GridRequest gridRequest(const int* size)
 vtkTerrainOptimisation::vtkTerrainOptimisation()
 {
   this->SetNumberOfInputPorts(2);
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
   const tsynth::OptimisationOptions defaults;
   this->PatchSize = defaults.patchSize;
   this->Levels = defaults.levels;
@@ -136,7 +138,8 @@ int vtkTerrainOptimisation::RequestData(vtkInformation*,
   }
   try
   {
-    const tsynth::Heightfield dem = tsynth::imageToHeightfield(source);
+    const tsynth::Heightfield dem =
+      tsynth::imageToHeightfield(source, this->GetInputArrayToProcess(0, inputVector));
     std::vector<std::string> warnings;
     const tsynth::SketchInput sketch = tsynth::sketchInput(guideData, warnings);
     const tsynth::OptimisationGuide guide = tsynth::buildOptimisationGuide(dem,

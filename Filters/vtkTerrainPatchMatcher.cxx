@@ -27,10 +27,17 @@
 
 vtkStandardNewMacro(vtkTerrainPatchMatcher);
 
+namespace
+{
+constexpr int kExemplarHeights = 1; // SetInputArrayToProcess index of the exemplars' heights
+} // namespace
+
 vtkTerrainPatchMatcher::vtkTerrainPatchMatcher()
 {
   this->SetNumberOfInputPorts(3);
   this->SetNumberOfOutputPorts(2);
+  this->SetInputArrayToProcess(
+    kExemplarHeights, 1, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
   this->SetKnownArray(kDefaultKnownArray);
@@ -117,7 +124,10 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
         known[c] = k->GetComponent(static_cast<vtkIdType>(c), 0) != 0.0 ? 1 : 0;
       }
     }
-    const tsynth::ExemplarInputs in = tsynth::gatherExemplars(inputVector[1], inputVector[2]);
+    const tsynth::ExemplarInputs in = tsynth::gatherExemplars(inputVector[1],
+      inputVector[2],
+      tsynth::exemplarHeightsNamed(
+        this->GetInputArrayInformation(kExemplarHeights), inputVector[1]));
     this->UpdateProgress(0.2);
     tsynth::MatcherOptions o;
     o.patchSize = this->PatchSize;

@@ -34,8 +34,15 @@
 
 vtkStandardNewMacro(vtkTerrainSynthesis);
 
+namespace
+{
+constexpr int kExemplarHeights = 0; // SetInputArrayToProcess index of the exemplars' heights
+} // namespace
+
 vtkTerrainSynthesis::vtkTerrainSynthesis()
 {
+  this->SetInputArrayToProcess(
+    kExemplarHeights, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
   const tsynth::SynthesisOptions defaults;
   this->VerticalOffset = defaults.verticalOffset;
   this->Repetition = defaults.repetitionPenalty;
@@ -266,7 +273,9 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
 {
   try
   {
-    tsynth::ExemplarInputs ex = tsynth::gatherExemplarImages(inputVector[0]);
+    tsynth::ExemplarInputs ex = tsynth::gatherExemplarImages(inputVector[0],
+      tsynth::exemplarHeightsNamed(
+        this->GetInputArrayInformation(kExemplarHeights), inputVector[0]));
     tsynth::SetupInputs in;
     in.exemplars = std::move(ex.heights);
     in.sketch = tsynth::sketchInput(vtkDataObject::GetData(inputVector[1], 0), ex.warnings);

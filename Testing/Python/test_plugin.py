@@ -440,6 +440,29 @@ class PluginTest(unittest.TestCase):
         self.assertNotEqual(best_cost({"Known": np.ones_like(half)}), known)  # the choice counts
         self.assertIsNone(best_cost({"Done": half}, KnownArray="Dnoe"))
 
+    def test_exemplar_heights_are_chosen_by_name(self):
+        full, spacing = dem_array(self.alps)
+        a, b = full[:256, :256], full[300:556, 300:556]
+        both = producer(image_from(a, spacing, arrays={"Other": b.astype(np.float32)}))
+        only_b = producer(image_from(b, spacing))
+
+        def table(exemplar, **properties):
+            builder = simple.TerrainCandidateBuilder(Input=[exemplar], PatchSize=64, **properties)
+            builder.UpdatePipeline()
+            t = sm.Fetch(builder)
+            return {t.GetColumnName(c): vtk_to_numpy(t.GetColumn(c)).copy()
+                    for c in range(t.GetNumberOfColumns())}
+
+        chosen = table(both, ExemplarHeights=["POINTS", "Other"])
+        reference = table(only_b)
+        self.assertEqual(sorted(chosen), sorted(reference))
+        for name in reference:
+            np.testing.assert_array_equal(chosen[name], reference[name], err_msg=name)
+        default = table(both)
+        self.assertNotEqual(len(default["X"]), 0)
+        self.assertFalse(len(default["X"]) == len(reference["X"]) and
+                         np.array_equal(default["X"], reference["X"]), "the choice changed nothing")
+
     def test_arrays_of_the_wrong_length_fail_the_request_with_a_sentence(self):
         from vtkmodules.vtkCommonCore import vtkCommand
         from vtkmodules.util.misc import calldata_type
