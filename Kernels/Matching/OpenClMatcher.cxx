@@ -7,7 +7,9 @@
 #include <CL/cl.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace tsynth
@@ -24,17 +26,30 @@ void check(cl_int status, const char* what)
   }
 }
 
+// The smallest buffer made: OpenCL refuses empty ones, and a few bytes cost nothing.
+constexpr std::size_t kMinBufferBytes = 16;
+
 // A cl_mem released when it goes.
 class DeviceBuffer
 {
 public:
   DeviceBuffer() = default;
+  // With host data, the buffer starts as a copy of its `bytes` bytes.
   DeviceBuffer(cl_context context, cl_mem_flags flags, std::size_t bytes, const void* host)
   {
+    // CL_MEM_COPY_HOST_PTR copies the whole (padded) buffer from the host pointer:
+    // fewer bytes than that go through a zeroed block of the padded size, so the
+    // driver never reads past the caller's data.
+    std::array<unsigned char, kMinBufferBytes> padded{};
+    if (host != nullptr && bytes > 0 && bytes < kMinBufferBytes)
+    {
+      std::memcpy(padded.data(), host, bytes);
+      host = padded.data();
+    }
     cl_int status = CL_SUCCESS;
     mem_ = clCreateBuffer(context,
-      flags | (host != nullptr ? CL_MEM_COPY_HOST_PTR : 0),
-      std::max<std::size_t>(bytes, 16),
+      flags | (host != nullptr && bytes > 0 ? CL_MEM_COPY_HOST_PTR : 0),
+      std::max(bytes, kMinBufferBytes),
       host != nullptr && bytes > 0 ? const_cast<void*>(host) : nullptr,
       &status);
     check(status, "allocate device memory");

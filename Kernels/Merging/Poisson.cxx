@@ -21,34 +21,53 @@ namespace tsynth
 namespace
 {
 
-std::mutex& planMutex()
-{
-  static std::mutex m;
-  return m;
-}
-
 // Plans live for the whole process: sizes are few, planning is the expensive part.
+// The cache destroys them at exit, so that nothing FFTW allocated is left behind.
+class PlanCache
+{
+public:
+  PlanCache() = default;
+  PlanCache(const PlanCache&) = delete;
+  PlanCache& operator=(const PlanCache&) = delete;
+  ~PlanCache()
+  {
+    for (const auto& entry : plans_)
+    {
+      fftw_destroy_plan(entry.second);
+    }
+  }
+
+  fftw_plan get(int nx, int ny, bool measure)
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto key = std::make_tuple(nx, ny, measure);
+    auto it = plans_.find(key);
+    if (it != plans_.end())
+    {
+      return it->second;
+    }
+    double* scratch = fftw_alloc_real(static_cast<std::size_t>(nx) * ny);
+    fftw_plan plan = fftw_plan_r2r_2d(
+      ny, nx, scratch, scratch, FFTW_RODFT00, FFTW_RODFT00, measure ? FFTW_MEASURE : FFTW_ESTIMATE);
+    fftw_free(scratch);
+    if (!plan)
+    {
+      throw Error("FFTW could not plan a sine transform of " + std::to_string(nx) + " x " +
+        std::to_string(ny) + " values.");
+    }
+    plans_.emplace(key, plan);
+    return plan;
+  }
+
+private:
+  std::mutex mutex_;
+  std::map<std::tuple<int, int, bool>, fftw_plan> plans_;
+};
+
 fftw_plan dstPlan(int nx, int ny, bool measure)
 {
-  static std::map<std::tuple<int, int, bool>, fftw_plan> plans;
-  std::lock_guard<std::mutex> lock(planMutex());
-  const auto key = std::make_tuple(nx, ny, measure);
-  auto it = plans.find(key);
-  if (it != plans.end())
-  {
-    return it->second;
-  }
-  double* scratch = fftw_alloc_real(static_cast<std::size_t>(nx) * ny);
-  fftw_plan plan = fftw_plan_r2r_2d(
-    ny, nx, scratch, scratch, FFTW_RODFT00, FFTW_RODFT00, measure ? FFTW_MEASURE : FFTW_ESTIMATE);
-  fftw_free(scratch);
-  if (!plan)
-  {
-    throw Error("FFTW could not plan a sine transform of " + std::to_string(nx) + " x " +
-      std::to_string(ny) + " values.");
-  }
-  plans.emplace(key, plan);
-  return plan;
+  static PlanCache cache;
+  return cache.get(nx, ny, measure);
 }
 
 } // namespace

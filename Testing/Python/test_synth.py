@@ -44,8 +44,10 @@ def crop_dem(tmp, name, window):
     return crop
 
 
-def tsynth(*args):
-    return subprocess.run([PATHS.tsynth, *args], capture_output=True, text=True, timeout=600)
+def tsynth(*args, threads=None):
+    """tsynth with its output captured; threads: OMP_NUM_THREADS for the run (None: the default)."""
+    env = None if threads is None else dict(os.environ, OMP_NUM_THREADS=str(threads))
+    return subprocess.run([PATHS.tsynth, *args], capture_output=True, text=True, timeout=600, env=env)
 
 
 def synthesise(test, exemplar, sketch, out, *extra):
@@ -265,10 +267,10 @@ class SynthTest(unittest.TestCase):
     def path(self, name):
         return os.path.join(self.tmp, name)
 
-    def synth(self, exemplar, sketch, out, *extra):
+    def synth(self, exemplar, sketch, out, *extra, threads=None):
         report = out + ".json"
         result = tsynth("synth", "--exemplar", os.path.join(self.dems, exemplar), "--sketch", sketch,
-                        "-o", out, "--report", report, "--no-progress", *extra)
+                        "-o", out, "--report", report, "--no-progress", *extra, threads=threads)
         self.assertEqual(result.returncode, 0, result.stderr)
         with open(report) as f:
             return json.load(f)
@@ -276,9 +278,9 @@ class SynthTest(unittest.TestCase):
     def test_same_seed_gives_the_same_bits_on_opencl_and_cpu_and_another_seed_another_terrain(self):
         sketch = os.path.join(self.sketches, "strokes_y_ridges.png")
 
-        def run(name, backend, *seed):
+        def run(name, backend, *seed, threads=None):
             return self.synth("colorado.png", sketch, self.path(name), "--backend", backend, "--size", "320x320",
-                              *seed)
+                              *seed, threads=threads)
 
         for tag, seed in (("default", ()), ("5", ("--seed", "5"))):
             with self.subTest(seed=tag):
@@ -291,6 +293,13 @@ class SynthTest(unittest.TestCase):
                                             shallow=False))
         again = run("cpu-5-again.tif", "cpu", "--seed", "5")
         self.assertTrue(filecmp.cmp(self.path("cpu-5.tif"), self.path("cpu-5-again.tif"), shallow=False))
+        # The thread count (OpenMP's, which both backends use on the host) changes nothing either: one
+        # thread, and three (the work split unevenly on two cores), against the default.
+        for backend, threads in (("cpu", 1), ("cpu", 3), ("opencl", 1)):
+            with self.subTest(backend=backend, threads=threads):
+                name = "%s-5-threads%d.tif" % (backend, threads)
+                run(name, backend, "--seed", "5", threads=threads)
+                self.assertTrue(filecmp.cmp(self.path("cpu-5.tif"), self.path(name), shallow=False))
         with open(self.path("cpu-default.tif.json")) as f:
             first = json.load(f)
         self.assertEqual((first["seed"], again["seed"]), (0, 5))
