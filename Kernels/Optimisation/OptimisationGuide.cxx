@@ -1,6 +1,7 @@
 #include "OptimisationGuide.h"
 
 #include "../Core/Error.h"
+#include "TerrainOptimisation.h"
 
 #include <string>
 
@@ -13,6 +14,7 @@ OptimisationGuide buildOptimisationGuide(const Heightfield& source,
   std::uint64_t seed,
   const SetupOptionNames& names)
 {
+  checkOptimisationSource(source); // before the guide's work on a source that cannot serve
   const OutputGrid wanted =
     outputGrid(sketchExtent(sketch), grid, source.cellX, source.cellY, 1, names);
   if (wanted.width < kGuideLandformScale || wanted.height < kGuideLandformScale)

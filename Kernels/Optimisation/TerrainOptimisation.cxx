@@ -343,6 +343,17 @@ std::vector<Heightfield> confidencePyramid(const Heightfield& guide,
 
 void checkInputs(const Heightfield& source, const Heightfield& guide)
 {
+  checkOptimisationSource(source);
+  if (guide.size() == 0 || guide.validCount() == 0)
+  {
+    throw Error("The guide has no valid cell: give a guide with height data.");
+  }
+}
+
+} // namespace
+
+void checkOptimisationSource(const Heightfield& source)
+{
   if (source.size() == 0 || source.validCount() == 0)
   {
     throw Error("The source DEM has no valid cell: give a source with height data.");
@@ -352,13 +363,7 @@ void checkInputs(const Heightfield& source, const Heightfield& guide)
   {
     throw Error("The source DEM is flat: it has no relief to copy; give a real DEM as the source.");
   }
-  if (guide.size() == 0 || guide.validCount() == 0)
-  {
-    throw Error("The guide has no valid cell: give a guide with height data.");
-  }
 }
-
-} // namespace
 
 OptimisationResult optimiseTerrain(const Heightfield& source,
   const Heightfield& guide,

@@ -121,6 +121,10 @@ struct OptimisationResult
   std::size_t pitsBeforeDraining = 0;    // with drainOutput: the output's pits before it
 };
 
+// Throws tsynth::Error (one sentence) for a source without a valid cell or a
+// flat one (nothing to copy); what the front ends check before building a guide.
+void checkOptimisationSource(const Heightfield& source);
+
 // Throws tsynth::Error (one sentence) for: a source or guide without valid
 // cells, a patch size that is even or outside 3..kMaxPatchSize, a guide or
 // source too small for the pyramid asked for, alpha outside 0..1, iteration

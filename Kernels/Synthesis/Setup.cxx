@@ -225,6 +225,12 @@ void prepareExemplars(SetupInputs& in, SynthesisSetup& s)
         " cells; resampled to the output's " + cellText(g.cellX, g.cellY) + ".");
       hf = resampleToCellSize(hf, g.cellX, g.cellY);
     }
+    if (hf.width < in.patchSize || hf.height < in.patchSize)
+    {
+      throw Error(exemplarName(in, e) + " is " + sizeText(hf.width, hf.height) + " cells of " +
+        cellText(g.cellX, g.cellY) + ", smaller than one patch (" + std::to_string(in.patchSize) +
+        " cells); give a larger exemplar or a smaller " + in.names.patch + ".");
+    }
     s.graphs.push_back(ridgesAndValleys(hf, exemplarPpaOptions()));
     s.exemplars.push_back(std::move(hf));
   }
@@ -292,6 +298,35 @@ AnalysedSketch analysePolylines(const PolylineSketch& sketch, const OutputGrid& 
   a.height = g.height;
   a.kind = "poly-lines";
   return a;
+}
+
+// A sketch that gives the synthesis nothing to follow: no feature line and no
+// relief (a blank image, a flat DEM, poly-lines without a segment inside).
+void refuseEmptySketch(const AnalysedSketch& sketch)
+{
+  const bool lines = !sketch.graph.chains.empty();
+  bool relief = false;
+  if (sketch.hasHeights)
+  {
+    const HeightRange r = computeHeightRange(sketch.heights);
+    relief = r.validCells > 0 && r.max > r.min;
+  }
+  if (lines || relief)
+  {
+    return;
+  }
+  if (sketch.kind == "DEM")
+  {
+    throw Error("The DEM used as the sketch is flat: it has no landform to follow; give a DEM "
+                "with relief or a drawn sketch.");
+  }
+  if (sketch.kind == "poly-lines")
+  {
+    throw Error("The poly-lines draw nothing on the " + sizeText(sketch.width, sketch.height) +
+      "-cell output (no segment longer than a cell lies inside it).");
+  }
+  throw Error("The sketch has nothing drawn (a single shade of grey): draw red ridge or blue "
+              "valley strokes, or shade a grey sketch map.");
 }
 
 } // namespace
@@ -467,6 +502,7 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
     outputGrid(sketchExtent(in.sketch), in.grid, first.cellX, first.cellY, in.patchSize, in.names);
   checkMemory(in, s.grid, s);
   AnalysedSketch sketch = analyseSketch(in.sketch, s.grid, in.patchSize);
+  refuseEmptySketch(sketch);
   s.sketchKind = sketch.kind;
   s.warnings = std::move(sketch.warnings);
   prepareExemplars(in, s);

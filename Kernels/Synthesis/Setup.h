@@ -186,7 +186,9 @@ struct SynthesisSetup
 // The whole set-up. Throws tsynth::Error, one sentence saying what was found and
 // what to change: no exemplar, a bad grid (see outputGrid), a sketch smaller
 // than a patch, a synthesis estimated above the memory budget (before any
-// exemplar is resampled or analysed).
+// exemplar is resampled or analysed), a sketch with nothing drawn (no feature
+// line and no relief: a blank image, a flat DEM), an exemplar smaller than a
+// patch at the output's cell size.
 SynthesisSetup prepareSynthesis(SetupInputs inputs);
 
 } // namespace tsynth
