@@ -49,6 +49,7 @@ ExemplarInputs gatherExemplarImages(vtkInformationVector* images)
     double oy = 0.0;
     gridOrigin(image, ox, oy);
     in.heights.push_back(imageToHeightfield(image));
+    requireValidHeights(in.heights.back());
     in.originX.push_back(ox);
     in.originY.push_back(oy);
   }
