@@ -180,6 +180,21 @@ GridRequest parseSize(const std::string& text, GridRequest grid)
   return grid;
 }
 
+double takeMemoryBudget(CommandLine& cl)
+{
+  constexpr double kBytesPerGB = 1.0e9;
+  const std::optional<double> budget = cl.takeNumber(kMemoryOption);
+  if (!budget)
+  {
+    return 0.0;
+  }
+  if (!(*budget > 0.0))
+  {
+    throw UsageError(std::string(kMemoryOption) + " expects a positive number of GB.");
+  }
+  return *budget * kBytesPerGB;
+}
+
 // A whole number from 0 to 2^64 - 1.
 std::uint64_t parseSeed(const std::string& text)
 {

@@ -85,6 +85,12 @@ private:
   void (*previous_)(int);
 };
 
+// --max-memory GB, in bytes (0 if not given: the kernels' default budget, 80% of
+// this machine's memory); UsageError unless a positive finite number.
+double takeMemoryBudget(CommandLine& cl);
+// The option's name, as the kernels' refusals name it.
+constexpr const char* kMemoryOption = "--max-memory";
+
 // "WxH" as two whole numbers of digits only (no sign, no spaces, nothing after);
 // a side too large for an int comes back as INT_MAX, beyond any range. nullopt
 // for anything else.

@@ -354,14 +354,7 @@ void takeGridOptions(CommandLine& cl, SynthArguments& a)
     }
     a.landformRelief = *relief;
   }
-  if (const auto budget = cl.takeNumber("--max-memory"))
-  {
-    if (!(*budget > 0.0) || !std::isfinite(*budget))
-    {
-      throw UsageError("--max-memory expects a positive number of GB.");
-    }
-    a.memoryBudget = *budget * kBytesPerGB;
-  }
+  a.memoryBudget = takeMemoryBudget(cl);
 }
 
 SynthArguments parseSynthArguments(std::vector<std::string> args)
@@ -408,7 +401,7 @@ SetupInputs readSynthInputs(const SynthArguments& a)
   in.names.size = "--size";
   in.names.cell = "--cell";
   in.names.patch = "--patch";
-  in.names.memory = "--max-memory";
+  in.names.memory = kMemoryOption;
   return in;
 }
 
