@@ -7,6 +7,7 @@
 
 #include "Core/Error.h"
 #include "Core/HeightfieldIO.h"
+#include "Core/OutputFile.h"
 
 #include <vtkNew.h>
 #include <vtkPolyData.h>
@@ -131,34 +132,69 @@ void ProgressBar::operator()(double f, const std::string& stage)
   }
 }
 
-// "WxH" in cells, each side from 1 to kMaxOutputSide.
-GridRequest parseSize(const std::string& text, GridRequest grid)
+std::optional<std::pair<int, int>> parseSides(const std::string& text)
 {
   const std::size_t x = text.find('x');
-  auto side = [&](std::size_t from, std::size_t to)
+  if (x == std::string::npos)
+  {
+    return std::nullopt;
+  }
+  auto side = [&](std::size_t from, std::size_t to) -> std::optional<int>
   {
     int v = 0;
     const char* end = text.data() + to;
     const auto r = std::from_chars(text.data() + from, end, v);
-    const bool digits = x != std::string::npos && from != to && r.ptr == end;
-    if (digits && r.ec == std::errc::result_out_of_range)
+    const bool digits = from < to && std::isdigit(static_cast<unsigned char>(text[from])) != 0;
+    if (!digits || r.ptr != end)
     {
-      v = std::numeric_limits<int>::max(); // refused below as too large
+      return std::nullopt;
     }
-    else if (!digits || r.ec != std::errc() || v < 1)
+    if (r.ec == std::errc::result_out_of_range)
     {
-      throw UsageError("--size expects WxH in cells, e.g. 1024x1024, not \"" + text + "\".");
+      return std::numeric_limits<int>::max(); // too large for any range
     }
-    if (v > kMaxOutputSide)
-    {
-      throw UsageError("--size " + text + " is beyond any machine: at most " +
-        std::to_string(kMaxOutputSide) + " cells a side.");
-    }
-    return v;
+    return r.ec == std::errc() ? std::optional<int>(v) : std::nullopt;
   };
-  grid.width = side(0, x == std::string::npos ? text.size() : x);
-  grid.height = side(x + 1, text.size());
+  const std::optional<int> w = side(0, x);
+  const std::optional<int> h = side(x + 1, text.size());
+  if (!w || !h)
+  {
+    return std::nullopt;
+  }
+  return std::make_pair(*w, *h);
+}
+
+// "WxH" in cells, each side from 1 to kMaxOutputSide.
+GridRequest parseSize(const std::string& text, GridRequest grid)
+{
+  const std::optional<std::pair<int, int>> sides = parseSides(text);
+  if (!sides || sides->first < 1 || sides->second < 1)
+  {
+    throw UsageError("--size expects WxH in cells, e.g. 1024x1024, not \"" + text + "\".");
+  }
+  if (sides->first > kMaxOutputSide || sides->second > kMaxOutputSide)
+  {
+    throw UsageError("--size " + text + " is beyond any machine: at most " +
+      std::to_string(kMaxOutputSide) + " cells a side.");
+  }
+  grid.width = sides->first;
+  grid.height = sides->second;
   return grid;
+}
+
+double takeMemoryBudget(CommandLine& cl)
+{
+  constexpr double kBytesPerGB = 1.0e9;
+  const std::optional<double> budget = cl.takeNumber(kMemoryOption);
+  if (!budget)
+  {
+    return 0.0;
+  }
+  if (!(*budget > 0.0))
+  {
+    throw UsageError(std::string(kMemoryOption) + " expects a positive number of GB.");
+  }
+  return *budget * kBytesPerGB;
 }
 
 // A whole number from 0 to 2^64 - 1.
@@ -309,13 +345,27 @@ void InterruptGuard::check() const
 
 void requireFolder(const std::string& path)
 {
-  const std::filesystem::path p(path);
-  const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : ".";
+  checkOutputPath(path);
+}
+
+void requireCreatableFolder(const std::string& path)
+{
+  std::filesystem::path existing(path);
   std::error_code ec;
-  if (!std::filesystem::is_directory(dir, ec))
+  while (!existing.empty() && !std::filesystem::exists(existing, ec))
   {
-    throw UsageError("Cannot write " + path + ": folder " + dir.string() + " does not exist.");
+    existing = existing.parent_path();
   }
+  if (existing.empty())
+  {
+    existing = ".";
+  }
+  if (!std::filesystem::is_directory(existing, ec))
+  {
+    throw Error(
+      "Cannot create the folder " + path + ": " + existing.string() + " is a file, not a folder.");
+  }
+  checkOutputPath((existing / ".tsynth-folder-probe").string());
 }
 
 } // namespace tsynth::cli

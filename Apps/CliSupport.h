@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tsynth::cli
@@ -57,9 +58,14 @@ std::string oneInput(const CommandLine& cl, const char* command);
 // A whole-number option from lo to hi, if given (UsageError otherwise).
 std::optional<int> takeCount(CommandLine& cl, const std::string& name, int lo, int hi);
 
-// UsageError unless the folder an output file goes into exists (checked before
-// any work, so a long run never ends in an unwritable path).
+// tsynth::Error unless a file can be written at `path` (checkOutputPath: its
+// folder exists and takes a new file), checked before any work, so that a long
+// run never ends in an unwritable path.
 void requireFolder(const std::string& path);
+
+// tsynth::Error unless the folder `path` exists or can be created (its nearest
+// existing ancestor is a writable folder), checked before any work.
+void requireCreatableFolder(const std::string& path);
 
 // The exit status of a run stopped by Ctrl-C (128 + SIGINT, as shells report it).
 constexpr int kInterruptedExit = 130;
@@ -86,6 +92,17 @@ private:
   void (*previous_)(int);
   CancellationScope scope_;
 };
+
+// --max-memory GB, in bytes (0 if not given: the kernels' default budget, 80% of
+// this machine's memory); UsageError unless a positive finite number.
+double takeMemoryBudget(CommandLine& cl);
+// The option's name, as the kernels' refusals name it.
+constexpr const char* kMemoryOption = "--max-memory";
+
+// "WxH" as two whole numbers of digits only (no sign, no spaces, nothing after);
+// a side too large for an int comes back as INT_MAX, beyond any range. nullopt
+// for anything else.
+std::optional<std::pair<int, int>> parseSides(const std::string& text);
 
 // "WxH" in cells, each side from 1 to kMaxOutputSide (UsageError otherwise).
 GridRequest parseSize(const std::string& text, GridRequest grid);

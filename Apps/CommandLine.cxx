@@ -1,5 +1,6 @@
 #include "CommandLine.h"
 
+#include <cmath>
 #include <cstdlib>
 
 namespace tsynth::cli
@@ -96,7 +97,9 @@ std::optional<double> parseNumber(const std::string& text)
   }
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
-  if (end == nullptr || *end != '\0')
+  // "nan", "inf" and overflowing values are no option's number: every range
+  // check downstream would let NaN through.
+  if (end == nullptr || *end != '\0' || !std::isfinite(v))
   {
     return std::nullopt;
   }

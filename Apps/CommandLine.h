@@ -39,7 +39,7 @@ private:
   std::vector<bool> used_;
 };
 
-// Parses "123.5" strictly (the whole text must be a number).
+// Parses "123.5" strictly (the whole text must be a finite number).
 std::optional<double> parseNumber(const std::string& text);
 
 } // namespace tsynth::cli

@@ -121,6 +121,8 @@ Expert
   --min-ts T             least cost-scaling value kept as it is (default )"
     << d.minScaling << R"()
   --approximate          the one multi-source search only: a fast preview with seams
+  --max-memory GB        refuse a run estimated to need more, before any work (default: 80%
+                         of the machine's memory)
   --no-progress          no progress bar on the terminal
 )";
   return h.str();
@@ -241,6 +243,9 @@ DistanceArguments parseDistanceArguments(std::vector<std::string> args)
   }
   takeLatticeOptions(cl, a.options);
   takeCostOptions(cl, a.options);
+  a.options.memoryBudget = takeMemoryBudget(cl);
+  a.options.memoryOption = kMemoryOption;
+  a.options.sizeOption = hasExtension(a.generators, ".vtp") ? "--size" : "stroke map";
   a.progress = !cl.takeFlag("--no-progress");
   if (!cl.positionals().empty())
   {

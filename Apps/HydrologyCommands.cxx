@@ -42,6 +42,8 @@ what changed.
   --flow ACC.tif         also write the D8 flow accumulation (cells draining through each cell)
   --streams S.tif        also write the stream network: 1 where at least --stream-area drains
   --stream-area KM2      contributing area of a stream, km^2 (default 1)
+  --max-memory GB        refuse a run estimated to need more, before any work (default: 80%
+                         of the machine's memory)
 )";
 
 // Contributing area from which a cell counts as a stream by default: about where
@@ -109,6 +111,8 @@ PitsArguments parsePitsArguments(std::vector<std::string> args)
     }
     a.streamAreaKm2 = *area;
   }
+  a.options.memoryBudget = takeMemoryBudget(cl);
+  a.options.memoryOption = kMemoryOption;
   a.read = takeReadOptions(cl);
   a.input = oneInput(cl, "pits");
   if (a.output.empty())
@@ -213,7 +217,7 @@ int runPits(std::vector<std::string> args)
   }
   PitsArguments a = parsePitsArguments(std::move(args));
   const Heightfield dem = readDem(a.input, a.read);
-  checkDemToDrain(dem);
+  checkDemToDrain(dem, a.options, a.flow || a.streams);
   std::vector<std::uint8_t> sinks;
   if (a.sinks)
   {

@@ -52,6 +52,8 @@ are brought onto the source's heights, strokes become its landforms.
                          the finest level alone): the --pits method on blocks from the coarsest
                          level's scale down to 2 cells, the last few-cell pits filled
   --seed N               another seed gives another terrain; the same seed the same terrain
+  --max-memory GB        refuse a run estimated to need more, before any work (default: 80%
+                         of the machine's memory)
   --no-progress          no progress bar on the terminal
 )";
 
@@ -137,6 +139,9 @@ void takeOptimisationOptions(CommandLine& cl, OptimisationOptions& o)
   {
     o.seed = parseSeed(*seed);
   }
+  o.memoryBudget = takeMemoryBudget(cl);
+  o.memoryOption = kMemoryOption;
+  o.sizeOption = "--size";
 }
 
 OptimiseArguments parseOptimiseArguments(std::vector<std::string> args)
@@ -180,8 +185,7 @@ OptimisationResult optimiseFromFiles(OptimiseArguments& a, const InterruptGuard&
   SetupOptionNames names;
   names.size = "--size";
   names.patch = "the guide's landform scale";
-  const OptimisationGuide guide =
-    buildOptimisationGuide(source, sketch, a.grid, a.options.seed, names);
+  const OptimisationGuide guide = buildOptimisationGuide(source, sketch, a.grid, a.options, names);
   printWarnings(guide.warnings);
   interrupt.check();
   std::cout << "Optimising " << guide.field.width << " x " << guide.field.height

@@ -139,12 +139,18 @@ std::vector<std::string> takeRepeated(std::vector<std::string>& args, const std:
 
 nlohmann::json evaluationJson(const TerrainEvaluation& e)
 {
-  // nlohmann writes NaN (a figure that does not apply) as null.
+  nlohmann::json notes = nlohmann::json::object();
+  for (const auto& [field, why] : e.notes)
+  {
+    notes[field] = why;
+  }
+  // nlohmann writes NaN (a figure that does not apply) as null; notes say why.
   return { { "ridge_fidelity", e.ridgeFidelity },
     { "valley_fidelity", e.valleyFidelity },
     { "seam_index", e.seamIndex },
     { "slope_distance", e.slopeDistance },
-    { "pit_density", e.pitDensity } };
+    { "pit_density", e.pitDensity },
+    { "notes", notes } };
 }
 
 nlohmann::json landformJson(const LandformMeasures& m)
@@ -184,8 +190,8 @@ void printEvaluation(const char* name, const TerrainEvaluation& e)
 {
   auto f = [](double v)
   {
-    return v < 0 ? std::string("  -  ")
-                 : (std::ostringstream() << std::fixed << std::setprecision(3) << v).str();
+    return std::isnan(v) ? std::string("  -  ")
+                         : (std::ostringstream() << std::fixed << std::setprecision(3) << v).str();
   };
   std::cout << std::left << std::setw(22) << name << " fidelity ridge " << f(e.ridgeFidelity)
             << " valley " << f(e.valleyFidelity) << "  seam " << f(e.seamIndex) << "  slope "
@@ -234,6 +240,16 @@ void checkPaths(const SynthArguments& a)
   if (!a.regions && !a.regionMaps.empty())
   {
     throw UsageError("--region needs --regions LABELS.");
+  }
+  // Every output is written after the run: refuse unwritable places before it.
+  requireFolder(a.output);
+  if (a.report)
+  {
+    requireFolder(*a.report);
+  }
+  if (a.debugDir)
+  {
+    requireCreatableFolder(*a.debugDir);
   }
 }
 
@@ -338,14 +354,7 @@ void takeGridOptions(CommandLine& cl, SynthArguments& a)
     }
     a.landformRelief = *relief;
   }
-  if (const auto budget = cl.takeNumber("--max-memory"))
-  {
-    if (!(*budget > 0.0) || !std::isfinite(*budget))
-    {
-      throw UsageError("--max-memory expects a positive number of GB.");
-    }
-    a.memoryBudget = *budget * kBytesPerGB;
-  }
+  a.memoryBudget = takeMemoryBudget(cl);
 }
 
 SynthArguments parseSynthArguments(std::vector<std::string> args)
@@ -392,7 +401,7 @@ SetupInputs readSynthInputs(const SynthArguments& a)
   in.names.size = "--size";
   in.names.cell = "--cell";
   in.names.patch = "--patch";
-  in.names.memory = "--max-memory";
+  in.names.memory = kMemoryOption;
   return in;
 }
 
@@ -543,7 +552,9 @@ void writeReport(const std::string& path,
     { "placement_list", list } };
   OutputFile file(path);
   std::ofstream out(file.temporaryPath());
-  out << report.dump(2) << "\n";
+  // Paths are escaped by nlohmann; bytes that are not UTF-8 are replaced rather
+  // than throwing after the terrain was written.
+  out << report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   out.close();
   if (!out)
   {
@@ -600,7 +611,18 @@ FeatureGraph sketchOnTerrain(const std::string& path, const Heightfield& terrain
   std::vector<std::string> warnings;
   const SketchInput input = readSketchInput(path, warnings);
   printWarnings(warnings);
-  const OutputGrid grid{ terrain.width, terrain.height, terrain.cellX, terrain.cellY };
+  // The synthesis' checks of a sketch for a grid of the terrain's size (poly-lines
+  // outside it or in the wrong unit are refused), then its analysis.
+  GridRequest request;
+  request.width = terrain.width;
+  request.height = terrain.height;
+  request.cellX = terrain.cellX;
+  request.cellY = terrain.cellY;
+  SetupOptionNames names;
+  names.size = "the terrain's size";
+  names.cell = "cell size";
+  const OutputGrid grid =
+    outputGrid(sketchExtent(input), request, terrain.cellX, terrain.cellY, 1, names);
   const AnalysedSketch s = analyseSketch(input, grid, kEvaluationPatch);
   printWarnings(s.warnings);
   return scaleGraph(
@@ -733,7 +755,7 @@ int runEvaluate(std::vector<std::string> args)
       figures["tiled_exemplar"]["landforms"] = landformJson(lt);
       figures["random_patches"]["landforms"] = landformJson(lr);
     }
-    std::cout << figures.dump() << "\n";
+    std::cout << figures.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     return 0;
   }
   printEvaluation(rest[0].c_str(), e);

@@ -15,7 +15,9 @@
 #include "FeatureGraphConversion.h"
 #include "Features/Ppa.h"
 #include "Features/Sketch.h"
+#include "Synthesis/Setup.h"
 
+#include <nlohmann/json.hpp>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 
@@ -43,6 +45,11 @@ using tsynth::cli::takeCount;
 using tsynth::cli::takeReadOptions;
 using tsynth::cli::UsageError;
 using tsynth::cli::wantsHelp;
+
+// The 3D view's picture size: smaller shows nothing; larger than most
+// OpenGL implementations' largest framebuffer.
+constexpr int kMinPictureSide = 16;
+constexpr int kMaxPictureSide = 8192;
 
 const char* const kMainHelp = R"(tsynth: example-based terrain synthesis from real DEMs.
 
@@ -120,38 +127,6 @@ metres: .tif GeoTIFF float32 (georeference kept), .png 16-bit with a NAME.json
 sidecar recording the range and cell size, or .vti (opens in ParaView).
 )";
 
-std::string jsonString(const std::string& s)
-{
-  std::ostringstream o;
-  o << '"';
-  for (char c : s)
-  {
-    switch (c)
-    {
-      case '"':
-        o << "\\\"";
-        break;
-      case '\\':
-        o << "\\\\";
-        break;
-      case '\n':
-        o << "\\n";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20)
-        {
-          o << ' ';
-        }
-        else
-        {
-          o << c;
-        }
-    }
-  }
-  o << '"';
-  return o.str();
-}
-
 int runInfo(std::vector<std::string> args)
 {
   if (wantsHelp(args))
@@ -173,25 +148,26 @@ int runInfo(std::vector<std::string> args)
 
   if (json)
   {
-    std::cout << std::setprecision(10) << "{\n"
-              << "  \"file\": " << jsonString(path) << ",\n"
-              << "  \"format\": " << jsonString(info.driver) << ",\n"
-              << "  \"data_type\": " << jsonString(info.dataType) << ",\n"
-              << "  \"width\": " << hf.width << ",\n"
-              << "  \"height\": " << hf.height << ",\n"
-              << "  \"cell_size_m\": [" << hf.cellX << ", " << hf.cellY << "],\n"
-              << "  \"cell_size_source\": " << jsonString(info.cellSizeSource) << ",\n"
-              << "  \"z_min_m\": " << range.min << ",\n"
-              << "  \"z_max_m\": " << range.max << ",\n"
-              << "  \"z_mean_m\": " << range.mean << ",\n"
-              << "  \"source_z_unit\": " << jsonString(tsynth::zUnitName(info.zUnit)) << ",\n"
-              << "  \"z_unit_source\": " << jsonString(info.zUnitSource) << ",\n"
-              << "  \"normalised\": " << (info.normalised ? "true" : "false") << ",\n"
-              << "  \"nodata_cells\": " << invalid << ",\n"
-              << "  \"crs\": " << jsonString(crs) << ",\n"
-              << "  \"geographic\": " << (info.georef.isGeographic ? "true" : "false") << ",\n"
-              << "  \"sidecar\": " << jsonString(info.sidecarPath) << "\n"
-              << "}\n";
+    // nlohmann escapes quotes, backslashes and control characters in paths and
+    // replaces bytes that are not UTF-8, so the output is always valid JSON.
+    const nlohmann::ordered_json doc = { { "file", path },
+      { "format", info.driver },
+      { "data_type", info.dataType },
+      { "width", hf.width },
+      { "height", hf.height },
+      { "cell_size_m", { hf.cellX, hf.cellY } },
+      { "cell_size_source", info.cellSizeSource },
+      { "z_min_m", range.min },
+      { "z_max_m", range.max },
+      { "z_mean_m", range.mean },
+      { "source_z_unit", tsynth::zUnitName(info.zUnit) },
+      { "z_unit_source", info.zUnitSource },
+      { "normalised", info.normalised },
+      { "nodata_cells", invalid },
+      { "crs", crs },
+      { "geographic", info.georef.isGeographic },
+      { "sidecar", info.sidecarPath } };
+    std::cout << doc.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     return 0;
   }
   std::cout << std::fixed;
@@ -315,20 +291,28 @@ int runRender(std::vector<std::string> args, int argc, char** argv)
   {
     throw UsageError("--altitude must be between 0 and 90 degrees.");
   }
+  if (size && !threeD)
+  {
+    throw UsageError("--size applies to the 3D view (--3d); the map has one pixel per cell.");
+  }
+  if ((altitude || azimuth) && threeD)
+  {
+    throw UsageError("--altitude and --azimuth light the map; the 3D view has its own lights.");
+  }
   tsynth::Render3DOptions view;
   if (size)
   {
-    int w = 0;
-    int h = 0;
-    char tail = 0;
-    if (std::sscanf(size->c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 16 || h < 16 || w > 8192 ||
-      h > 8192)
+    const auto sides = tsynth::cli::parseSides(*size);
+    const auto inRange = [](int v) { return v >= kMinPictureSide && v <= kMaxPictureSide; };
+    if (!sides || !inRange(sides->first) || !inRange(sides->second))
     {
-      throw UsageError("--size expects WxH between 16 and 8192 pixels, e.g. 1600x1000.");
+      throw UsageError("--size expects WxH between " + std::to_string(kMinPictureSide) + " and " +
+        std::to_string(kMaxPictureSide) + " pixels, e.g. 1600x1000, not \"" + *size + "\".");
     }
-    view.width = w;
-    view.height = h;
+    view.width = sides->first;
+    view.height = sides->second;
   }
+  tsynth::cli::requireFolder(*output);
 
   const tsynth::Heightfield hf = readDem(path, options);
   if (threeD)
@@ -373,6 +357,7 @@ int runConvert(std::vector<std::string> args)
   {
     throw UsageError("The output must end in .tif, .png or .vti, not " + *output + ".");
   }
+  tsynth::cli::requireFolder(*output);
   const tsynth::Heightfield hf = readDem(path, options);
   tsynth::writeTerrainFile(*output, hf);
   std::cout << "Wrote " << *output << "\n";
@@ -433,6 +418,33 @@ tsynth::PpaOptions takePpaOptions(CommandLine& cl, int patch)
   return ppa;
 }
 
+// The feature tree of a .vtp sketch in metres, on the grid of `cell` metres its
+// lines reach (or their GridSize frame): the synthesis' own checks refuse
+// coordinates that are not finite, lie west or south of the frame, or reach
+// beyond any grid.
+tsynth::FeatureGraph polylineSketchFeatures(const std::string& path,
+  double cell,
+  int patch,
+  std::vector<std::string>& warnings)
+{
+  vtkNew<vtkPolyData> lines;
+  tsynth::readPolyDataFile(path, lines);
+  std::string warning;
+  const tsynth::PolylineSketch sketch = tsynth::polyDataToPolylineSketch(lines, &warning);
+  if (!warning.empty())
+  {
+    warnings.push_back(warning);
+  }
+  tsynth::SetupOptionNames names;
+  names.cell = "--cell";
+  names.patch = "--patch";
+  const tsynth::OutputGrid grid =
+    tsynth::outputGrid(tsynth::polylineExtent(sketch), {}, cell, cell, patch, names);
+  tsynth::AnalysedSketch analysed = tsynth::analyseSketch(sketch, grid, patch);
+  warnings.insert(warnings.end(), analysed.warnings.begin(), analysed.warnings.end());
+  return std::move(analysed.graph);
+}
+
 int runFeatures(std::vector<std::string> args)
 {
   if (wantsHelp(args))
@@ -462,6 +474,11 @@ int runFeatures(std::vector<std::string> args)
   {
     throw UsageError("Give --valleys or --both, not both.");
   }
+  tsynth::cli::requireFolder(*output);
+  if (controlOutput)
+  {
+    tsynth::cli::requireFolder(*controlOutput);
+  }
 
   // Ctrl-C stops the extraction (tsynth::Cancelled) before anything is written; once writing
   // has begun it only sets the flag, so no file is left half-written.
@@ -472,24 +489,8 @@ int runFeatures(std::vector<std::string> args)
   tsynth::PpaStatistics significance;
   if (sketch && hasExtension(path, ".vtp"))
   {
-    const double cell = options.cellX > 0.0 ? options.cellX : 1.0;
-    vtkNew<vtkPolyData> lines;
-    tsynth::readPolyDataFile(path, lines);
-    std::string warning;
-    const auto polylines = tsynth::polyDataToPolylines(lines, cell, cell, 0.0, 0.0, &warning);
-    if (!warning.empty())
-    {
-      warnings.push_back(warning);
-    }
-    double bounds[6];
-    lines->GetBounds(bounds);
-    graph = tsynth::polylineFeatures(polylines,
-      static_cast<int>(std::ceil(bounds[1] / cell)) + 1,
-      static_cast<int>(std::ceil(bounds[3] / cell)) + 1,
-      cell,
-      cell,
-      1.0,
-      ppa.controlRadius);
+    graph =
+      polylineSketchFeatures(path, options.cellX > 0.0 ? options.cellX : 1.0, patch, warnings);
   }
   else if (sketch)
   {
@@ -576,6 +577,7 @@ int main(int argc, char** argv)
   const std::string command = args[0];
   args.erase(args.begin());
   tsynth::cli::removePartialFilesOnSignals();
+  bool knownCommand = true; // until no command matched: then the help to see is the main one
   try
   {
     if (command == "info")
@@ -615,13 +617,13 @@ int main(int argc, char** argv)
     {
       return tsynth::cli::runEvaluate(std::move(args));
     }
+    knownCommand = false;
     throw UsageError("Unknown command \"" + command + "\".");
   }
   catch (const UsageError& e)
   {
     std::cerr << "tsynth: " << e.what()
-              << " See \"tsynth " +
-        (command.rfind('-', 0) == 0 ? std::string("--help") : command + " --help")
+              << " See \"tsynth " + (knownCommand ? command + " --help" : std::string("--help"))
               << "\".\n";
     return 2;
   }

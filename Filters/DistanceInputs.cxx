@@ -103,6 +103,12 @@ DistanceInputs assembleDistanceInputs(const DistanceSources& s, std::vector<std:
   }
   else if (s.lines != nullptr)
   {
+    if (s.width < 1 || s.height < 1)
+    {
+      throw Error("Poly-line generators need a grid of two positive numbers of cells (OutputSize, "
+                  "--size), not " +
+        std::to_string(s.width) + " x " + std::to_string(s.height) + ".");
+    }
     in.width = s.width;
     in.height = s.height;
     in.features = generatorsFromLines(*s.lines, s.width, s.height, profileCount);

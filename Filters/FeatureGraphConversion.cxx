@@ -3,6 +3,7 @@
 #include "Core/Error.h"
 #include "Core/OutputFile.h"
 #include "VtkErrorObserver.h"
+#include "XmlDataFiles.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -281,14 +282,8 @@ void readPolyDataFile(const std::string& path, vtkPolyData* out)
     throw Error("No such file: " + path + ".");
   }
   vtkNew<vtkXMLPolyDataReader> reader;
-  VtkErrorObserver observer;
-  reader->AddObserver(vtkCommand::ErrorEvent, observer.callback);
   reader->SetFileName(path.c_str());
-  reader->Update();
-  if (observer.failed || reader->GetOutput() == nullptr)
-  {
-    throw Error(path + " is not a VTK poly-data file that can be read.");
-  }
+  readXmlDataFile(reader, path, "poly-data");
   out->ShallowCopy(reader->GetOutput());
 }
 

@@ -65,6 +65,7 @@ ExemplarInputs gatherExemplarImages(vtkInformationVector* images, const Exemplar
     double oy = 0.0;
     gridOrigin(image, ox, oy);
     in.heights.push_back(imageToHeightfield(image, heights ? heights(e) : nullptr));
+    requireValidHeights(in.heights.back());
     in.originX.push_back(ox);
     in.originY.push_back(oy);
   }

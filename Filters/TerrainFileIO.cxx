@@ -2,6 +2,7 @@
 
 #include "TerrainImageConversion.h"
 #include "VtkErrorObserver.h"
+#include "XmlDataFiles.h"
 
 #include "Core/Error.h"
 #include "Core/OutputFile.h"
@@ -44,12 +45,10 @@ Heightfield readTerrainFile(const std::string& path, const ReadOptions& options,
     throw Error("No such file: " + path + ".");
   }
   vtkNew<vtkXMLImageDataReader> reader;
-  VtkErrorObserver catcher;
-  reader->AddObserver(vtkCommand::ErrorEvent, catcher.callback);
   reader->SetFileName(path.c_str());
-  reader->Update();
+  readXmlDataFile(reader, path, "image");
   vtkImageData* image = reader->GetOutput();
-  if (catcher.failed || image == nullptr || image->GetNumberOfPoints() == 0)
+  if (image == nullptr || image->GetNumberOfPoints() == 0)
   {
     throw Error(path + " is not a VTK image file that can be read.");
   }

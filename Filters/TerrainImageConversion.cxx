@@ -88,9 +88,13 @@ Heightfield imageToHeightfield(vtkImageData* image, vtkDataArray* heights)
   {
     throw Error("The input image has no single-component height array (\"Elevation\").");
   }
-  if (heights->GetNumberOfTuples() != static_cast<vtkIdType>(w) * h)
+  const vtkIdType points = static_cast<vtkIdType>(w) * h;
+  if (heights->GetNumberOfTuples() != points)
   {
-    throw Error("The height array does not match the image size.");
+    throw Error(std::string("The height array \"") +
+      (heights->GetName() != nullptr ? heights->GetName() : "") + "\" has " +
+      std::to_string(heights->GetNumberOfTuples()) + " values for " + std::to_string(points) +
+      " points: give one per point.");
   }
 
   Heightfield hf(w, h);
@@ -99,27 +103,22 @@ Heightfield imageToHeightfield(vtkImageData* image, vtkDataArray* heights)
   hf.cellX = std::abs(spacing[0]);
   hf.cellY = std::abs(spacing[1]);
   hf.cellSizeKnown = true;
-  if (!(hf.cellX > 0.0) || !(hf.cellY > 0.0))
+  if (!(hf.cellX > 0.0) || !(hf.cellY > 0.0) || !std::isfinite(hf.cellX) ||
+    !std::isfinite(hf.cellY))
   {
-    throw Error("The input image has a zero spacing; the cell size must be positive.");
+    throw Error("The input image's spacing must be finite and positive (the cell size in metres).");
   }
   for (vtkIdType k = 0; k < heights->GetNumberOfTuples(); ++k)
   {
     pollCancellation(); // a whole DEM's copy is a good part of a second under a filter's abort
     hf.z[static_cast<std::size_t>(k)] = static_cast<float>(heights->GetComponent(k, 0));
   }
-  if (auto* valid = image->GetPointData()->GetArray(kValidArray))
+  if (image->GetPointData()->GetArray(kValidArray) != nullptr)
   {
-    if (valid->GetNumberOfTuples() == heights->GetNumberOfTuples())
-    {
-      hf.valid.resize(hf.size());
-      for (vtkIdType k = 0; k < valid->GetNumberOfTuples(); ++k)
-      {
-        hf.valid[static_cast<std::size_t>(k)] = valid->GetComponent(k, 0) != 0.0 ? 1 : 0;
-      }
-    }
+    hf.valid = pointFlags(image, kValidArray, 1);
   }
   normaliseMask(hf);
+  checkPlausibleHeights(hf, "The input image");
 
   if (auto* crs = vtkStringArray::SafeDownCast(image->GetFieldData()->GetAbstractArray("CRS")))
   {
@@ -242,6 +241,36 @@ vtkDataArray* chosenPointArray(vtkImageData* image,
       std::to_string(components) + ".");
   }
   return array;
+}
+
+void requireValidHeights(const Heightfield& hf)
+{
+  if (hf.validCount() == 0)
+  {
+    throw Error("The input image holds no valid heights (every cell is nodata).");
+  }
+}
+
+std::vector<std::uint8_t> pointFlags(vtkImageData* image, const char* name, std::uint8_t fallback)
+{
+  const auto n = static_cast<std::size_t>(image->GetNumberOfPoints());
+  std::vector<std::uint8_t> out(n, fallback);
+  vtkDataArray* a = image->GetPointData()->GetArray(name);
+  if (a == nullptr)
+  {
+    return out;
+  }
+  if (static_cast<std::size_t>(a->GetNumberOfTuples()) != n)
+  {
+    throw Error(std::string("The ") + name + " array has " +
+      std::to_string(a->GetNumberOfTuples()) + " values for " + std::to_string(n) +
+      " points: give one per point.");
+  }
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    out[k] = a->GetComponent(static_cast<vtkIdType>(k), 0) != 0.0 ? 1 : 0;
+  }
+  return out;
 }
 
 } // namespace tsynth

@@ -4,6 +4,9 @@
 #include "Core/Heightfield.h"
 #include "Core/HeightfieldIO.h"
 
+#include <cstdint>
+#include <vector>
+
 class vtkDataArray;
 class vtkImageData;
 
@@ -21,7 +24,9 @@ void heightfieldToImage(const Heightfield& hf, vtkImageData* image);
 
 // Reads a 2D image's heights (the given array, or "Elevation", or the active
 // scalars) and its "Valid" mask and georeference. Throws tsynth::Error if the
-// image is not 2D in x-y or has no usable height array.
+// image is not 2D in x-y, has no usable height array, a height or Valid array
+// of another length than its points, a spacing that is not finite and
+// positive, or heights checkPlausibleHeights refuses.
 Heightfield imageToHeightfield(vtkImageData* image, vtkDataArray* heights = nullptr);
 
 // The image's point array chosen by name for a filter's optional input array (a mask, known
@@ -34,6 +39,16 @@ vtkDataArray* chosenPointArray(vtkImageData* image,
   const char* name,
   const char* defaultName,
   int components = 0);
+
+// Throws tsynth::Error ("The input image holds no valid heights ...") if no cell
+// of `hf` is valid: what filters that need heights refuse (a target being
+// synthesised may well be all unknown, so imageToHeightfield allows it).
+void requireValidHeights(const Heightfield& hf);
+
+// The image's point array `name` as one byte per point (1 where non-zero), or
+// `fallback` everywhere if it has none. Throws tsynth::Error naming both counts
+// if its length is not the image's point count.
+std::vector<std::uint8_t> pointFlags(vtkImageData* image, const char* name, std::uint8_t fallback);
 
 // An image's pixels as a sketch image (top row first): unsigned-char scalars
 // with 1-4 components as they are, other types scaled onto 0..255 (one channel).

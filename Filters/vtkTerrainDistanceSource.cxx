@@ -28,6 +28,7 @@ namespace
 
 constexpr int kGeneratorsPort = 0;
 constexpr int kProfilesPort = 1;
+constexpr double kBytesPerGB = 1.0e9;
 
 std::string lowerCase(std::string s)
 {
@@ -237,6 +238,9 @@ int vtkTerrainDistanceSource::RequestData(vtkInformation*,
     o.ridgeCost = this->RidgeCost == SCALED_COST ? tsynth::RidgeCost::ScaledCost
                                                  : tsynth::RidgeCost::ScaledRise;
     o.approximateOnly = this->ApproximateOnly;
+    o.memoryBudget = this->MemoryBudget * kBytesPerGB;
+    o.memoryOption = "MemoryBudget";
+    o.sizeOption = sources.strokes != nullptr ? "stroke map" : "OutputSize";
     o.progress = [this](double f)
     {
       this->UpdateProgress(f);
@@ -294,4 +298,5 @@ void vtkTerrainDistanceSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Ridges: " << this->RidgeCount << ", fraction " << this->RidgeFraction
      << ", cost " << this->RidgeCost << "\n";
   os << indent << "ApproximateOnly: " << this->ApproximateOnly << "\n";
+  os << indent << "MemoryBudget: " << this->MemoryBudget << " GB\n";
 }

@@ -126,6 +126,13 @@ public:
   vtkGetMacro(ApproximateOnly, bool);
   vtkBooleanMacro(ApproximateOnly, bool);
   ///@}
+  ///@{
+  /// A synthesis estimated to need more memory than this (GB) is refused before
+  /// it starts, with the estimate; 0 (default) allows 80% of the machine's
+  /// physical memory (tsynth::distanceMemoryEstimate).
+  vtkSetClampMacro(MemoryBudget, double, 0.0, 1.0e6);
+  vtkGetMacro(MemoryBudget, double);
+  ///@}
 
   void SetGeneratorsConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(0, output); }
   void SetProfilesConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
@@ -166,6 +173,7 @@ protected:
   double RidgeFraction;
   int RidgeCost;
   bool ApproximateOnly;
+  double MemoryBudget = 0.0; // GB
 
 private:
   vtkTerrainDistanceSource(const vtkTerrainDistanceSource&) = delete;

@@ -43,6 +43,7 @@ int vtkTerrainFeatureExtractor::RequestData(vtkInformation*,
     const tsynth::AbortScope abortScope(this);
     const tsynth::Heightfield hf =
       tsynth::imageToHeightfield(input, this->GetInputArrayToProcess(0, inputVector));
+    tsynth::requireValidHeights(hf);
     tsynth::PpaOptions o;
     o.halfProfileLength = this->HalfProfileLength;
     o.minDip = this->MinimumDip;

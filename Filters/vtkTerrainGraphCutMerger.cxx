@@ -20,34 +20,11 @@
 #include <vtkUnsignedCharArray.h>
 
 #include <new>
+#include <sstream>
 
 #include <cmath>
 
 vtkStandardNewMacro(vtkTerrainGraphCutMerger);
-
-namespace
-{
-
-std::vector<std::uint8_t> byteArray(vtkImageData* image,
-  const char* name,
-  std::size_t n,
-  std::uint8_t fallback)
-{
-  std::vector<std::uint8_t> out(n, fallback);
-  if (vtkDataArray* a = image->GetPointData()->GetArray(name))
-  {
-    if (static_cast<std::size_t>(a->GetNumberOfTuples()) == n)
-    {
-      for (std::size_t k = 0; k < n; ++k)
-      {
-        out[k] = a->GetComponent(static_cast<vtkIdType>(k), 0) != 0.0 ? 1 : 0;
-      }
-    }
-  }
-  return out;
-}
-
-} // namespace
 
 vtkTerrainGraphCutMerger::vtkTerrainGraphCutMerger()
 {
@@ -99,12 +76,12 @@ int vtkTerrainGraphCutMerger::RequestData(vtkInformation*,
       tsynth::imageToHeightfield(terrainImage, this->GetInputArrayToProcess(0, inputVector));
     const tsynth::Heightfield patch =
       tsynth::imageToHeightfield(patchImage, this->GetInputArrayToProcess(1, inputVector));
-    std::vector<std::uint8_t> filled = byteArray(terrainImage, "Filled", terrain.size(), 1);
+    std::vector<std::uint8_t> filled = tsynth::pointFlags(terrainImage, "Filled", 1);
     for (std::size_t k = 0; k < filled.size(); ++k)
     {
       filled[k] = filled[k] != 0 && terrain.isValid(k) ? 1 : 0;
     }
-    const std::vector<std::uint8_t> core = byteArray(patchImage, "Core", patch.size(), 0);
+    const std::vector<std::uint8_t> core = tsynth::pointFlags(patchImage, "Core", 0);
     int x0 = this->PatchCell[0];
     int y0 = this->PatchCell[1];
     if (this->UsePatchOrigin)
@@ -115,8 +92,20 @@ int vtkTerrainGraphCutMerger::RequestData(vtkInformation*,
       double py = 0.0;
       tsynth::gridOrigin(terrainImage, tx, ty);
       tsynth::gridOrigin(patchImage, px, py);
-      x0 = static_cast<int>(std::lround((px - tx) / terrain.cellX));
-      y0 = static_cast<int>(std::lround((py - ty) / terrain.cellY));
+      const double cx = (px - tx) / terrain.cellX;
+      const double cy = (py - ty) / terrain.cellY;
+      // Beyond this many cells from the terrain no patch overlaps it (and the
+      // cell would not fit an int).
+      constexpr double kFarthestCell = 1.0e9;
+      if (!(std::abs(cx) < kFarthestCell && std::abs(cy) < kFarthestCell))
+      {
+        std::ostringstream where;
+        where << cx << ", " << cy;
+        throw tsynth::Error("The patch's origin lies " + where.str() +
+          " cells from the terrain's: it cannot overlap it.");
+      }
+      x0 = static_cast<int>(std::lround(cx));
+      y0 = static_cast<int>(std::lround(cy));
     }
     tsynth::MergeOptions options;
     options.mode = tsynth::mergeModeFromProperty(this->Mode);

@@ -39,6 +39,7 @@ int vtkTerrainHillshade::RequestData(vtkInformation*,
   try
   {
     const tsynth::Heightfield hf = tsynth::imageToHeightfield(input, heights);
+    tsynth::requireValidHeights(hf);
     this->UpdateProgress(0.1);
     tsynth::HillshadeOptions options;
     options.altitudeDeg = this->Altitude;

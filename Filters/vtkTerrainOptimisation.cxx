@@ -28,6 +28,7 @@ constexpr int kSourcePort = 0;
 constexpr int kGuidePort = 1;
 // Share of the progress bar taken by the guide (the source's features for a sketch).
 constexpr double kGuideProgress = 0.05;
+constexpr double kBytesPerGB = 1.0e9;
 
 tsynth::SetupOptionNames propertyNames()
 {
@@ -46,6 +47,29 @@ tsynth::GridRequest gridRequest(const int* size)
     request.height = size[1];
   }
   return request;
+}
+
+// The properties as the kernel's options (progress and confidence come later).
+tsynth::OptimisationOptions optimisationOptions(vtkTerrainOptimisation* f)
+{
+  tsynth::OptimisationOptions o;
+  o.patchSize = f->GetPatchSize();
+  o.levels = f->GetLevels();
+  o.alpha = f->GetAlpha();
+  o.iterationsPerLevel = f->GetIterationsPerLevel();
+  o.patchMatchIterations = f->GetSearchIterations();
+  o.rotations = f->GetRotations();
+  o.reflections = f->GetReflections();
+  const std::optional<tsynth::PitRemovalMethod> pits =
+    tsynth::drainageFromProperty(f->GetPitRemoval());
+  o.removePits = pits.has_value();
+  o.pitRemoval.method = pits.value_or(tsynth::PitRemovalMethod::Breach);
+  o.drainOutput = f->GetDrainOutput();
+  o.seed = static_cast<std::uint64_t>(f->GetSeed());
+  o.memoryBudget = f->GetMemoryBudget() * kBytesPerGB;
+  o.memoryOption = "MemoryBudget";
+  o.sizeOption = "OutputSize";
+  return o;
 }
 
 } // namespace
@@ -142,30 +166,14 @@ int vtkTerrainOptimisation::RequestData(vtkInformation*,
       tsynth::imageToHeightfield(source, this->GetInputArrayToProcess(0, inputVector));
     std::vector<std::string> warnings;
     const tsynth::SketchInput sketch = tsynth::sketchInput(guideData, warnings);
-    const tsynth::OptimisationGuide guide = tsynth::buildOptimisationGuide(dem,
-      sketch,
-      gridRequest(this->OutputSize),
-      static_cast<std::uint64_t>(this->Seed),
-      propertyNames());
+    tsynth::OptimisationOptions o = optimisationOptions(this);
+    const tsynth::OptimisationGuide guide = tsynth::buildOptimisationGuide(
+      dem, sketch, gridRequest(this->OutputSize), o, propertyNames());
     for (const std::string& w : guide.warnings)
     {
       vtkWarningMacro(<< w);
     }
     this->UpdateProgress(kGuideProgress);
-    tsynth::OptimisationOptions o;
-    o.patchSize = this->PatchSize;
-    o.levels = this->Levels;
-    o.alpha = this->Alpha;
-    o.iterationsPerLevel = this->IterationsPerLevel;
-    o.patchMatchIterations = this->SearchIterations;
-    o.rotations = this->Rotations;
-    o.reflections = this->Reflections;
-    const std::optional<tsynth::PitRemovalMethod> pits =
-      tsynth::drainageFromProperty(this->PitRemoval);
-    o.removePits = pits.has_value();
-    o.pitRemoval.method = pits.value_or(tsynth::PitRemovalMethod::Breach);
-    o.drainOutput = this->DrainOutput;
-    o.seed = static_cast<std::uint64_t>(this->Seed);
     o.guideConfidence = guide.confidence;
     o.progress = [this](double f)
     {
@@ -207,4 +215,5 @@ void vtkTerrainOptimisation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DrainOutput: " << this->DrainOutput << "\n";
   os << indent << "OutputSize: " << this->OutputSize[0] << " " << this->OutputSize[1] << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "MemoryBudget: " << this->MemoryBudget << " GB\n";
 }

@@ -96,6 +96,14 @@ public:
   vtkGetMacro(Seed, vtkIdType);
   ///@}
 
+  ///@{
+  /// An optimisation estimated to need more memory than this (GB) is refused
+  /// before it starts, with the estimate; 0 (default) allows 80% of the
+  /// machine's physical memory (tsynth::optimisationMemoryEstimate).
+  vtkSetClampMacro(MemoryBudget, double, 0.0, 1.0e6);
+  vtkGetMacro(MemoryBudget, double);
+  ///@}
+
   void SetSourceConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(0, output); }
   void SetGuideConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
 
@@ -119,6 +127,7 @@ protected:
   bool DrainOutput;
   int OutputSize[2] = { 0, 0 };
   vtkIdType Seed = 0;
+  double MemoryBudget = 0.0; // GB
 
 private:
   vtkTerrainOptimisation(const vtkTerrainOptimisation&) = delete;

@@ -31,6 +31,7 @@ namespace
 {
 
 constexpr int kSinksPort = 1;
+constexpr double kBytesPerGB = 1.0e9;
 constexpr int kSinksArrayIndex = 1; // SetInputArrayToProcess index of the sink array
 
 template<typename ArrayType, typename Value>
@@ -97,12 +98,14 @@ int vtkTerrainPitRemoval::RequestData(vtkInformation*,
     const tsynth::AbortScope abortScope(this);
     const tsynth::Heightfield dem =
       tsynth::imageToHeightfield(input, this->GetInputArrayToProcess(0, inputVector));
-    tsynth::checkDemToDrain(dem);
     std::vector<std::uint8_t> sinks;
     tsynth::PitRemovalOptions options;
     options.method = tsynth::pitRemovalMethodFromProperty(this->Method);
     options.maxBreachDepth = this->MaxBreachDepth;
     options.maxBreachLength = this->MaxBreachLength;
+    options.memoryBudget = this->MemoryBudget * kBytesPerGB;
+    options.memoryOption = "MemoryBudget";
+    tsynth::checkDemToDrain(dem, options, true); // the flow arrays are always made
     if (sinkImage != nullptr)
     {
       const tsynth::Heightfield mask = tsynth::imageToHeightfield(
@@ -159,4 +162,5 @@ void vtkTerrainPitRemoval::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxBreachDepth: " << this->MaxBreachDepth << "\n";
   os << indent << "MaxBreachLength: " << this->MaxBreachLength << "\n";
   os << indent << "StreamThreshold: " << this->StreamThreshold << "\n";
+  os << indent << "MemoryBudget: " << this->MemoryBudget << " GB\n";
 }

@@ -60,6 +60,14 @@ public:
   vtkGetMacro(StreamThreshold, int);
   ///@}
 
+  ///@{
+  /// A removal (with its flow routing) estimated to need more memory than this
+  /// (GB) is refused before it starts, with the estimate; 0 (default) allows 80%
+  /// of the machine's physical memory (tsynth::pitRemovalMemoryEstimate).
+  vtkSetClampMacro(MemoryBudget, double, 0.0, 1.0e6);
+  vtkGetMacro(MemoryBudget, double);
+  ///@}
+
   /// The optional sink mask (same dimensions as the DEM).
   void SetSinksConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
 
@@ -75,6 +83,7 @@ protected:
   double MaxBreachDepth;
   int MaxBreachLength;
   int StreamThreshold = 0;
+  double MemoryBudget = 0.0; // GB
 
 private:
   vtkTerrainPitRemoval(const vtkTerrainPitRemoval&) = delete;

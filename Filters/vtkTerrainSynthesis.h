@@ -100,12 +100,12 @@ public:
   /// seed the same terrain (default 0).
   vtkSetClampMacro(Seed, vtkIdType, 0, VTK_ID_MAX);
   vtkGetMacro(Seed, vtkIdType);
-  /// A synthesis estimated to need more memory than this (GB) is refused before
-  /// it starts; 0 (default) allows 80% of the machine's physical memory.
   /// Sketched ridges and valleys get this times the relief of the exemplars'
   /// own major ones (1: like them; above 1 for bolder landforms).
   vtkSetClampMacro(LandformRelief, double, 0.1, 5.0);
   vtkGetMacro(LandformRelief, double);
+  /// A synthesis estimated to need more memory than this (GB) is refused before
+  /// it starts; 0 (default) allows 80% of the machine's physical memory.
   vtkSetClampMacro(MemoryBudget, double, 0.0, 1.0e6);
   vtkGetMacro(MemoryBudget, double);
 

@@ -1,9 +1,12 @@
 #include "Heightfield.h"
 
-#include <algorithm>
+#include "Error.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 
 namespace tsynth
 {
@@ -93,6 +96,31 @@ double percentile(std::vector<float> values, double p)
     values.size() - 1, static_cast<std::size_t>(p * static_cast<double>(values.size() - 1)));
   std::nth_element(values.begin(), values.begin() + static_cast<long>(k), values.end());
   return values[k];
+}
+
+void checkPlausibleHeights(const Heightfield& hf, const std::string& name)
+{
+  std::size_t beyond = 0;
+  float example = 0.0f;
+  for (std::size_t k = 0; k < hf.size(); ++k)
+  {
+    if (hf.isValid(k) && std::abs(hf.z[k]) > kMaxPlausibleHeight)
+    {
+      example = beyond == 0 ? hf.z[k] : example;
+      ++beyond;
+    }
+  }
+  if (beyond == 0)
+  {
+    return;
+  }
+  std::ostringstream value; // exact, so that the sidecar's value matches the cells
+  value << std::setprecision(std::numeric_limits<float>::max_digits10) << example;
+  std::ostringstream o;
+  o << name << " has " << beyond << " heights beyond +-" << kMaxPlausibleHeight << " m (such as "
+    << value.str() << "), probably an undeclared nodata value: declare it in the file or in a "
+    << "sidecar (\"nodata\": " << value.str() << ").";
+  throw Error(o.str());
 }
 
 } // namespace tsynth

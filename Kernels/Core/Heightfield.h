@@ -71,4 +71,14 @@ double percentile(std::vector<float> values, double p);
 // Marks NaN and infinite heights invalid; drops the mask if every cell is valid.
 void normaliseMask(Heightfield& hf);
 
+// Heights no terrain has in any unit (the Earth's radius is 6.4e9 mm), and far
+// enough below float's range that squared differences summed over a million
+// million cells stay finite. Values beyond are an undeclared nodata value
+// (float rasters often use -3.4e38).
+constexpr double kMaxPlausibleHeight = 1.0e12;
+
+// Throws tsynth::Error naming `name` (a file, an input) if a valid height lies
+// beyond +-kMaxPlausibleHeight, saying how many and how to declare the nodata.
+void checkPlausibleHeights(const Heightfield& hf, const std::string& name);
+
 } // namespace tsynth

@@ -2,6 +2,7 @@
 
 #include "Error.h"
 #include "Geodesy.h"
+#include "Memory.h"
 #include "OutputFile.h"
 
 #include <cpl_conv.h>
@@ -64,6 +65,10 @@ struct DatasetCloser
 };
 using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 
+// What reading a DEM holds per cell at its peak: the float32 values and mask
+// byte GDAL fills, and the heightfield's float and validity byte.
+constexpr double kBytesPerReadCell = 2.0 * (sizeof(float) + sizeof(std::uint8_t));
+
 void checkReadable(const std::string& path)
 {
   std::error_code ec;
@@ -75,6 +80,11 @@ void checkReadable(const std::string& path)
   if (fs::is_directory(st))
   {
     throw Error(path + " is a directory, not a raster file.");
+  }
+  if (!fs::is_regular_file(st))
+  {
+    // GDAL would wait forever on a pipe and read a device without end.
+    throw Error(path + " is not a regular file (a pipe or a device?); give a raster file.");
   }
   if (::access(path.c_str(), R_OK) != 0)
   {
@@ -502,6 +512,7 @@ Heightfield readHeightfield(const std::string& path, const ReadOptions& options,
 
   const int w = info.width;
   const int h = info.height;
+  checkReadFits(path, w, h, kBytesPerReadCell);
   const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
   std::vector<float> raw(n);
   std::vector<std::uint8_t> mask(n, 255);
@@ -563,6 +574,7 @@ Heightfield readHeightfield(const std::string& path, const ReadOptions& options,
   {
     throw Error(path + " holds no valid heights (every cell is nodata).");
   }
+  checkPlausibleHeights(hf, path);
   if (out != nullptr)
   {
     *out = std::move(info);
@@ -593,6 +605,8 @@ ColourImage readColourImage(const std::string& path)
   {
     img.channels = 3; // expand a palette image to RGB
   }
+  // The pixels, and one 16-bit band at a time on the way.
+  checkReadFits(path, img.width, img.height, img.channels + sizeof(std::uint16_t));
   const std::size_t n = static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height);
   img.data.assign(n * static_cast<std::size_t>(img.channels), 0);
   QuietGdal quiet;

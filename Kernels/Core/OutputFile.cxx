@@ -3,8 +3,10 @@
 #include "Error.h"
 
 #include <atomic>
+#include <cerrno>
 #include <climits>
 #include <cstring>
+#include <fcntl.h>
 #include <filesystem>
 #include <system_error>
 #include <unistd.h>
@@ -16,6 +18,17 @@ namespace tsynth
 
 namespace
 {
+
+fs::path folderOf(const fs::path& target)
+{
+  return target.has_parent_path() ? target.parent_path() : fs::path(".");
+}
+
+fs::path temporaryFor(const fs::path& target)
+{
+  return folderOf(target) /
+    ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
+}
 
 // The temporaries being written, as fixed buffers a signal handler may read. A command writes
 // one to three files at a time; a temporary beyond this many is still removed by its
@@ -72,18 +85,42 @@ void OutputFile::removeLiveTemporaries()
   }
 }
 
+void checkOutputPath(const std::string& target)
+{
+  const fs::path p(target);
+  const fs::path dir = folderOf(p);
+  std::error_code ec;
+  if (!fs::exists(dir, ec))
+  {
+    throw Error("Cannot write " + target + ": folder " + dir.string() + " does not exist.");
+  }
+  if (!fs::is_directory(dir, ec))
+  {
+    throw Error("Cannot write " + target + ": " + dir.string() + " is a file, not a folder.");
+  }
+  if (fs::is_directory(p, ec))
+  {
+    throw Error("Cannot write " + target + ": it is a folder; give a file name.");
+  }
+  const std::string probe = temporaryFor(p).string();
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd < 0)
+  {
+    if (errno == EEXIST)
+    {
+      return; // this process's own temporary of a write under way
+    }
+    throw Error("Cannot write " + target + ": " + std::strerror(errno) + ".");
+  }
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
 OutputFile::OutputFile(std::string target)
   : target_(std::move(target))
 {
-  const fs::path p(target_);
-  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec))
-  {
-    throw Error("Cannot write " + target_ + ": folder " + dir.string() + " does not exist.");
-  }
-  temporary_ =
-    (dir / ("." + p.filename().string() + ".tmp-" + std::to_string(::getpid()))).string();
+  checkOutputPath(target_);
+  temporary_ = temporaryFor(fs::path(target_)).string();
   slot_ = registerTemporary(temporary_);
 }
 

@@ -7,10 +7,16 @@
 namespace tsynth
 {
 
+// Throws tsynth::Error, one sentence naming the path, unless a file can be
+// written at `target`: its folder exists and is a folder, the target is not a
+// folder, and a file can be created beside it (tried, then removed). Front ends
+// call it before long work, so that a run never ends in an unwritable path.
+void checkOutputPath(const std::string& target);
+
 class OutputFile
 {
 public:
-  // Throws tsynth::Error if the target's folder does not exist.
+  // Throws tsynth::Error as checkOutputPath does.
   explicit OutputFile(std::string target);
   // Removes the temporary if commit() was not reached (an error on the way).
   ~OutputFile();

@@ -81,6 +81,12 @@ double number(const nlohmann::json& v, const std::string& key, const std::string
 
 Sidecar readSidecar(const std::string& path)
 {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+  {
+    // A folder opens as a stream and fails only when read, with a library message.
+    throw Error("Cannot read sidecar " + path + ": it is not a file; remove it.");
+  }
   std::ifstream in(path);
   if (!in)
   {

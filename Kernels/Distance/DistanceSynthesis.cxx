@@ -2,6 +2,7 @@
 
 #include "../Core/Error.h"
 #include "../Core/Random.h"
+#include "DistanceMemory.h"
 
 #include <omp.h>
 
@@ -637,6 +638,7 @@ DistanceTerrain synthesiseByDistance(const DistanceInputs& in, const DistanceOpt
 {
   validateOptions(o);
   require(in.width >= 1 && in.height >= 1, "The generators' grid must have at least one cell.");
+  checkDistanceMemory(in, o);
   const Lattice lattice = buildLattice(in, o);
   std::vector<std::vector<Source>> perFeature = gatherSources(in, o);
   const std::vector<std::int32_t> regionOf = regionMap(in);

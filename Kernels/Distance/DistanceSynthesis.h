@@ -104,6 +104,12 @@ struct DistanceOptions
   DijkstraQueue queue = DijkstraQueue::Radix;
   // Called with the fraction done; returning false stops with tsynth::Cancelled.
   std::function<bool(double)> progress;
+  // A synthesis whose distanceMemoryEstimate (DistanceMemory.h) is above this
+  // many bytes (0: defaultMemoryBudget()) is refused before any work, naming the
+  // front end's options.
+  double memoryBudget = 0.0;
+  std::string memoryOption = "the memory budget";
+  std::string sizeOption = "grid";
 };
 
 struct DistanceTerrain
@@ -122,7 +128,8 @@ struct DistanceTerrain
   std::vector<std::string> warnings;
 };
 
-// Throws tsynth::Error with one sentence for bad input: no generators, a
+// Throws tsynth::Error with one sentence for bad input: a run estimated above
+// options.memoryBudget (checkDistanceMemory, before any work), no generators, a
 // parameter out of range, profiles that do not fall, a profile or region id out
 // of range, images (node weights) of the wrong size, costs that are not finite
 // or so large that float costs would swallow the smallest edge step; throws

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <utility>
 
 namespace tsynth
 {
@@ -239,6 +240,64 @@ StrokeGenerators generatorsFromStrokes(const ColourImage& strokes,
   return out;
 }
 
+namespace
+{
+
+// Cells reach half a cell beyond the first and last cell centres.
+constexpr double kCellHalf = 0.5;
+
+bool insideGrid(double x, double y, int width, int height)
+{
+  return x >= -kCellHalf && y >= -kCellHalf && x <= width - kCellHalf && y <= height - kCellHalf;
+}
+
+void requireFinitePoints(const GeneratorLine& line, std::size_t index)
+{
+  for (const Point2& p : line.points)
+  {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y))
+    {
+      throw Error("A point of poly-line " + std::to_string(index) +
+        " is not a finite number; the generators are damaged.");
+    }
+  }
+}
+
+// The parameter range [t0, t1] of a + t (b - a) on the grid (Liang-Barsky);
+// t0 > t1 when the segment misses it.
+std::pair<double, double> partOnGrid(const Point2& a, const Point2& b, int width, int height)
+{
+  double t0 = 0.0;
+  double t1 = 1.0;
+  const double p[4] = { -(b.x - a.x), b.x - a.x, -(b.y - a.y), b.y - a.y };
+  const double q[4] = {
+    a.x + kCellHalf, width - kCellHalf - a.x, a.y + kCellHalf, height - kCellHalf - a.y
+  };
+  for (int k = 0; k < 4; ++k)
+  {
+    if (p[k] == 0.0)
+    {
+      if (q[k] < 0.0)
+      {
+        return { 1.0, 0.0 };
+      }
+      continue;
+    }
+    const double t = q[k] / p[k];
+    if (p[k] < 0.0)
+    {
+      t0 = std::max(t0, t);
+    }
+    else
+    {
+      t1 = std::min(t1, t);
+    }
+  }
+  return { t0, t1 };
+}
+
+} // namespace
+
 std::vector<DistanceFeature> generatorsFromLines(const std::vector<GeneratorLine>& lines,
   int width,
   int height,
@@ -266,6 +325,10 @@ std::vector<DistanceFeature> generatorsFromLines(const std::vector<GeneratorLine
     DistanceFeature feature;
     auto add = [&](double x, double y, float cost)
     {
+      if (!insideGrid(x, y, width, height))
+      {
+        return; // also keeps lround within int
+      }
       const int col = static_cast<int>(std::lround(x));
       const int row = static_cast<int>(std::lround(y));
       if (col < 0 || row < 0 || col >= width || row >= height)
@@ -280,6 +343,7 @@ std::vector<DistanceFeature> generatorsFromLines(const std::vector<GeneratorLine
     };
     const auto costAt = [&](std::size_t i)
     { return line.costs.empty() ? std::numeric_limits<float>::quiet_NaN() : line.costs[i]; };
+    requireFinitePoints(line, f);
     for (std::size_t i = 0; i < line.points.size(); ++i)
     {
       const Point2 a = line.points[i];
@@ -289,11 +353,15 @@ std::vector<DistanceFeature> generatorsFromLines(const std::vector<GeneratorLine
         break;
       }
       const Point2 b = line.points[i + 1];
-      const double length = std::hypot(b.x - a.x, b.y - a.y);
-      const int steps = std::max(1, static_cast<int>(std::ceil(length * kLineSamplesPerCell)));
+      // Only the part on the grid is sampled: a segment of any length costs at
+      // most the grid's diagonal.
+      const auto [t0, t1] = partOnGrid(a, b, width, height);
+      const double length = std::hypot(b.x - a.x, b.y - a.y) * (t1 - t0);
+      const int steps =
+        t1 < t0 ? 0 : std::max(1, static_cast<int>(std::ceil(length * kLineSamplesPerCell)));
       for (int s = 0; s < steps; ++s)
       {
-        const double t = static_cast<double>(s) / steps;
+        const double t = t0 + (t1 - t0) * static_cast<double>(s) / steps;
         const float cost = costAt(i) + static_cast<float>(t) * (costAt(i + 1) - costAt(i));
         add(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), cost);
       }

@@ -80,7 +80,9 @@ struct GeneratorLine
 
 // Each line becomes a feature: its cells sampled at most half a cell apart,
 // costs interpolated along segments; cells outside the grid are dropped.
-// Throws tsynth::Error for a profile id out of range or costs of the wrong count.
+// Lines of any length or position cost no more than the grid's own size (only
+// the part on the grid is sampled). Throws tsynth::Error for a profile id out of
+// range, costs of the wrong count, or a point that is not a finite number.
 std::vector<DistanceFeature> generatorsFromLines(const std::vector<GeneratorLine>& lines,
   int width,
   int height,

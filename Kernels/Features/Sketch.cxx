@@ -5,6 +5,7 @@
 #include "Ppa.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -432,7 +433,140 @@ void thinMask(std::vector<std::uint8_t>& m, int w, int h)
   }
 }
 
-FeatureGraph polylineFeatures(const std::vector<Polyline>& lines,
+namespace
+{
+
+// The grid's cells reach half a cell beyond the first and last cell centres.
+constexpr double kCellHalf = 0.5;
+
+// Liang-Barsky: the part [t0, t1] of the segment a + t (b - a), 0 <= t <= 1,
+// inside the box [x0, x1] x [y0, y1]; false if none of it is.
+bool clipSegment(const Point2& a,
+  const Point2& b,
+  const std::array<double, 4>& box,
+  double& t0,
+  double& t1)
+{
+  t0 = 0.0;
+  t1 = 1.0;
+  const double dx = b.x - a.x;
+  const double dy = b.y - a.y;
+  const std::array<double, 4> p{ -dx, dx, -dy, dy };
+  const std::array<double, 4> q{ a.x - box[0], box[1] - a.x, a.y - box[2], box[3] - a.y };
+  for (std::size_t k = 0; k < p.size(); ++k)
+  {
+    if (p[k] == 0.0)
+    {
+      if (q[k] < 0.0)
+      {
+        return false; // parallel to this side and outside it
+      }
+      continue;
+    }
+    const double t = q[k] / p[k];
+    if (p[k] < 0.0)
+    {
+      t0 = std::max(t0, t);
+    }
+    else
+    {
+      t1 = std::min(t1, t);
+    }
+  }
+  return t0 <= t1;
+}
+
+// A height constraint at t along a segment (NaN if either end has none).
+float constraintAt(const Polyline& line, std::size_t k, double t)
+{
+  if (line.elevation.size() <= k + 1)
+  {
+    return k < line.elevation.size() && t == 0.0 ? line.elevation[k]
+                                                 : std::numeric_limits<float>::quiet_NaN();
+  }
+  const float a = line.elevation[k];
+  const float b = line.elevation[k + 1];
+  return t == 0.0 ? a : t == 1.0 ? b : static_cast<float>(a + t * (b - a));
+}
+
+// The parts of the lines inside the grid (cells -0.5 to width - 0.5): a line
+// that leaves and comes back becomes two pieces; lines wholly inside are kept
+// as they are. Refuses points that are not finite numbers.
+std::vector<Polyline> clipToGrid(const std::vector<Polyline>& lines, int width, int height)
+{
+  const std::array<double, 4> box{ -kCellHalf, width - kCellHalf, -kCellHalf, height - kCellHalf };
+  std::vector<Polyline> out;
+  for (const Polyline& line : lines)
+  {
+    Polyline piece;
+    piece.type = line.type;
+    auto flush = [&]()
+    {
+      if (!piece.points.empty())
+      {
+        out.push_back(std::move(piece));
+      }
+      piece = Polyline{};
+      piece.type = line.type;
+    };
+    auto add = [&](const Point2& p, float constraint)
+    {
+      piece.points.push_back(p);
+      piece.elevation.push_back(constraint);
+    };
+    for (const Point2& p : line.points)
+    {
+      if (!std::isfinite(p.x) || !std::isfinite(p.y))
+      {
+        throw Error("A poly-line point is not a finite number; the sketch is damaged.");
+      }
+    }
+    if (line.points.size() == 1)
+    {
+      const Point2& p = line.points.front();
+      if (p.x >= box[0] && p.x <= box[1] && p.y >= box[2] && p.y <= box[3])
+      {
+        add(p, constraintAt(line, 0, 0.0));
+      }
+    }
+    for (std::size_t k = 0; k + 1 < line.points.size(); ++k)
+    {
+      const Point2& a = line.points[k];
+      const Point2& b = line.points[k + 1];
+      double t0 = 0.0;
+      double t1 = 1.0;
+      if (!clipSegment(a, b, box, t0, t1))
+      {
+        flush();
+        continue;
+      }
+      const auto at = [&](double t) {
+        return t == 0.0 ? a : t == 1.0 ? b : Point2{ a.x + t * (b.x - a.x), a.y + t * (b.y - a.y) };
+      };
+      const Point2 from = at(t0);
+      if (!piece.points.empty() &&
+        (piece.points.back().x != from.x || piece.points.back().y != from.y))
+      {
+        flush(); // came back in elsewhere
+      }
+      if (piece.points.empty())
+      {
+        add(from, constraintAt(line, k, t0));
+      }
+      add(at(t1), constraintAt(line, k, t1));
+      if (t1 < 1.0)
+      {
+        flush(); // leaves the grid here
+      }
+    }
+    flush();
+  }
+  return out;
+}
+
+} // namespace
+
+FeatureGraph polylineFeatures(const std::vector<Polyline>& drawn,
   int width,
   int height,
   double cellX,
@@ -440,6 +574,9 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& lines,
   double snapTolerance,
   double controlRadius)
 {
+  // Beyond the grid nothing is sketched, and lines of any length or position
+  // cost no more than the grid's own size.
+  const std::vector<Polyline> lines = clipToGrid(drawn, width, height);
   struct Vertex
   {
     Point2 p;

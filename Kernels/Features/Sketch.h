@@ -63,7 +63,10 @@ struct Polyline
 
 // Builds a graph from poly-lines as drawn: end points and shared vertices within
 // `snapTolerance` cells are merged; vertices where three or more pieces meet
-// become branch nodes; a closed poly-line becomes a loop.
+// become branch nodes; a closed poly-line becomes a loop. Only what lies on the
+// grid (cell coordinates -0.5 to width - 0.5, likewise in y) is kept: a line
+// is cut where it leaves the grid (height constraints interpolated there).
+// Throws tsynth::Error for a point that is not a finite number.
 FeatureGraph polylineFeatures(const std::vector<Polyline>& lines,
   int width,
   int height,

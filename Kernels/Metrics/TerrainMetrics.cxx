@@ -3,9 +3,9 @@
 #include "../Features/Profiles.h"
 
 #include <algorithm>
-#include <utility>
 #include <cmath>
 #include <random>
+#include <utility>
 
 namespace tsynth
 {
@@ -60,6 +60,52 @@ double featureFidelity(const Heightfield& t, const FeatureGraph& g, FeatureType 
 
 namespace
 {
+
+// The seam index compares the tails of the curvature distributions.
+constexpr double kSeamPercentile = 0.999;
+
+// True if every valid height of every exemplar is the same.
+bool flat(const std::vector<const Heightfield*>& exemplars)
+{
+  bool any = false;
+  float lo = 0.0f;
+  float hi = 0.0f;
+  for (const Heightfield* x : exemplars)
+  {
+    const HeightRange r = computeHeightRange(*x);
+    if (r.validCells == 0)
+    {
+      continue;
+    }
+    lo = any ? std::min(lo, r.min) : r.min;
+    hi = any ? std::max(hi, r.max) : r.max;
+    any = true;
+  }
+  return !any || lo == hi;
+}
+
+// Ridge and valley fidelity, NaN with a note where nothing of the kind is sketched.
+void fidelities(const Heightfield& output, const FeatureGraph* sketch, TerrainEvaluation& e)
+{
+  const std::pair<FeatureType, double*> kinds[] = { { FeatureType::Ridge, &e.ridgeFidelity },
+    { FeatureType::Valley, &e.valleyFidelity } };
+  for (const auto& [type, field] : kinds)
+  {
+    const bool ridge = type == FeatureType::Ridge;
+    const std::string name = ridge ? "ridgeFidelity" : "valleyFidelity";
+    const double f = sketch != nullptr ? featureFidelity(output, *sketch, type) : -1.0;
+    if (f >= 0.0)
+    {
+      *field = f;
+    }
+    else
+    {
+      e.notes[name] = sketch == nullptr ? "no sketch given"
+                                        : std::string("no ") + (ridge ? "ridge" : "valley") +
+          " is sketched far enough from the edges";
+    }
+  }
+}
 
 // |Laplacian| (cell-size aware, 1/m) at every cell whose four neighbours are valid.
 void appendLaplacians(const Heightfield& hf, std::vector<float>& v)
@@ -121,8 +167,18 @@ double seamIndex(const Heightfield& output, const std::vector<const Heightfield*
   {
     appendLaplacians(*e, v);
   }
-  const double reference = percentile(std::move(v), 0.999);
-  return reference > 0 ? laplacianPercentile(output) / reference : 0.0;
+  if (v.empty())
+  {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  const double reference = percentile(std::move(v), kSeamPercentile);
+  std::vector<float> own;
+  appendLaplacians(output, own);
+  if (!(reference > 0.0) || own.empty())
+  {
+    return std::numeric_limits<double>::quiet_NaN(); // a flat exemplar: no scale
+  }
+  return percentile(std::move(own), kSeamPercentile) / reference;
 }
 
 double seamIndex(const Heightfield& output, const Heightfield& exemplar)
@@ -141,7 +197,7 @@ double slopeDistance(const Heightfield& output, const std::vector<const Heightfi
   }
   if (no == 0.0 || ne == 0.0)
   {
-    return 0.0;
+    return std::numeric_limits<double>::quiet_NaN();
   }
   // W1 = integral of |CDF_o - CDF_e|.
   double co = 0.0;
@@ -154,7 +210,7 @@ double slopeDistance(const Heightfield& output, const std::vector<const Heightfi
     w1 += std::abs(co - ce) * 0.1;
   }
   const double mean = se / ne;
-  return mean > 0 ? w1 / mean : 0.0;
+  return mean > 0 ? w1 / mean : std::numeric_limits<double>::quiet_NaN();
 }
 
 double slopeDistance(const Heightfield& output, const Heightfield& exemplar)
@@ -191,7 +247,8 @@ double pitDensity(const Heightfield& hf)
       pits += pit ? 1 : 0;
     }
   }
-  return cells > 0 ? 1000.0 * static_cast<double>(pits) / static_cast<double>(cells) : 0.0;
+  return cells > 0 ? 1000.0 * static_cast<double>(pits) / static_cast<double>(cells)
+                   : std::numeric_limits<double>::quiet_NaN();
 }
 
 TerrainEvaluation evaluateTerrain(const Heightfield& output,
@@ -199,24 +256,37 @@ TerrainEvaluation evaluateTerrain(const Heightfield& output,
   const FeatureGraph* sketch)
 {
   TerrainEvaluation e;
-  if (sketch != nullptr)
-  {
-    e.ridgeFidelity = featureFidelity(output, *sketch, FeatureType::Ridge);
-    e.valleyFidelity = featureFidelity(output, *sketch, FeatureType::Valley);
-  }
+  fidelities(output, sketch, e);
   e.seamIndex = seamIndex(output, exemplars);
+  if (std::isnan(e.seamIndex))
+  {
+    e.notes["seamIndex"] = flat(exemplars)
+      ? "the exemplars are flat: no curvature to compare the seams with"
+      : "no cell with four valid neighbours to measure curvature on";
+  }
   e.slopeDistance = slopeDistance(output, exemplars);
+  if (std::isnan(e.slopeDistance))
+  {
+    e.notes["slopeDistance"] = flat(exemplars)
+      ? "the exemplars are flat: no mean slope to compare with"
+      : "no cell with valid neighbours to measure a slope on";
+  }
   e.pitDensity = pitDensity(output);
+  if (std::isnan(e.pitDensity))
+  {
+    e.notes["pitDensity"] = "no valid interior cell";
+  }
   // Pits per 1000 cells over all exemplars together.
   double pits = 0.0;
   double cells = 0.0;
   for (const Heightfield* x : exemplars)
   {
+    const double density = pitDensity(*x);
     const double n = static_cast<double>(x->validCount());
-    pits += pitDensity(*x) * n;
-    cells += n;
+    pits += std::isnan(density) ? 0.0 : density * n;
+    cells += std::isnan(density) ? 0.0 : n;
   }
-  e.exemplarPitDensity = cells > 0 ? pits / cells : 0.0;
+  e.exemplarPitDensity = cells > 0 ? pits / cells : TerrainEvaluation::kNaN;
   return e;
 }
 

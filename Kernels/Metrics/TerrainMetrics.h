@@ -5,6 +5,8 @@
 #include "../Core/Heightfield.h"
 #include "../Features/FeatureGraph.h"
 
+#include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -21,26 +23,36 @@ double laplacianPercentile(const Heightfield& hf, double fraction = 0.999);
 
 // Seam index: laplacianPercentile(output) / laplacianPercentile(exemplar).
 // With several exemplars the reference is the percentile over all their cells
-// together (each exemplar counts by its area), as for slopeDistance.
+// together (each exemplar counts by its area), as for slopeDistance. NaN when
+// there is nothing to compare with: the exemplars have no curvature (flat) or
+// no cell with four valid neighbours, or the output has no such cell.
 double seamIndex(const Heightfield& output, const Heightfield& exemplar);
 double seamIndex(const Heightfield& output, const std::vector<const Heightfield*>& exemplars);
 
 // Wasserstein-1 distance between the slope-angle distributions (degrees) of
-// output and exemplar, divided by the exemplar's mean slope.
+// output and exemplar, divided by the exemplar's mean slope. NaN when the
+// exemplars are flat (no mean slope to scale by) or either side has no slope.
 double slopeDistance(const Heightfield& output, const Heightfield& exemplar);
 double slopeDistance(const Heightfield& output, const std::vector<const Heightfield*>& exemplars);
 
-// Strict local minima (8 neighbours, interior cells) per 1000 valid cells.
+// Strict local minima (8 neighbours, interior cells) per 1000 valid cells; NaN
+// without a valid interior cell.
 double pitDensity(const Heightfield& hf);
 
+// A figure that does not apply is NaN (JSON null), never a number that reads as
+// a score (0 would read as perfect seams or slopes), with its reason in notes.
 struct TerrainEvaluation
 {
-  double ridgeFidelity = -1.0;
-  double valleyFidelity = -1.0;
-  double seamIndex = 0.0;
-  double slopeDistance = 0.0;
-  double pitDensity = 0.0;
-  double exemplarPitDensity = 0.0;
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+  double ridgeFidelity = kNaN; // featureFidelity; NaN when no ridge is sketched
+  double valleyFidelity = kNaN;
+  double seamIndex = kNaN;
+  double slopeDistance = kNaN;
+  double pitDensity = kNaN;
+  double exemplarPitDensity = kNaN;
+  // Why a field is NaN, keyed by the field's name (e.g. "seamIndex").
+  std::map<std::string, std::string> notes;
 };
 
 TerrainEvaluation evaluateTerrain(const Heightfield& output,

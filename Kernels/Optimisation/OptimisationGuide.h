@@ -7,6 +7,7 @@
 
 #include "../Core/Heightfield.h"
 #include "../Synthesis/Setup.h"
+#include "TerrainOptimisation.h"
 
 #include <cstdint>
 #include <string>
@@ -28,12 +29,15 @@ struct OptimisationGuide
 constexpr int kGuideLandformScale = 80;
 
 // `grid` zeros: the sketch's pixels (or the poly-lines' frame) at the source's
-// cell size. Throws tsynth::Error as prepareSynthesis does, and for an output
-// smaller than kGuideLandformScale a side (naming names.size to change).
+// cell size; the guide's ties are broken by run.seed. Throws tsynth::Error as
+// prepareSynthesis does, for a source checkOptimisationSource refuses, for an
+// output smaller than kGuideLandformScale a side (naming names.size to change),
+// and before any work for an optimisation (`run`) estimated above
+// run.memoryBudget (checkOptimisationMemory).
 OptimisationGuide buildOptimisationGuide(const Heightfield& source,
   const SketchInput& sketch,
   const GridRequest& grid,
-  std::uint64_t seed,
+  const OptimisationOptions& run,
   const SetupOptionNames& names = {});
 
 } // namespace tsynth

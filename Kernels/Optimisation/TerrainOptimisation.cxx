@@ -3,6 +3,7 @@
 #include "../Hydrology/MultiscalePitRemoval.h"
 
 #include "../Core/Error.h"
+#include "../Core/Memory.h"
 #include "../Core/Resample.h"
 #include "../Hydrology/Flow.h"
 #include "PatchMatch.h"
@@ -28,6 +29,20 @@ constexpr double kCellSizeTolerance = 1e-6;
 // for the up-sampling's fallbacks; kStreamsPerLevel exceeds any iteration count used.
 constexpr std::uint64_t kStreamsPerLevel = 1ULL << 20;
 constexpr std::uint64_t kUpsampleStream = 1ULL << 40;
+// Peak resident memory of `tsynth optimise` measured with /usr/bin/time -v (guide
+// lambda_circle_grey, defaults but for what is named): source colorado (648^2
+// cells) 127 / 189 / 443 MB at 512^2 / 1024^2 / 2048^2 output cells; at 1024^2
+// with --rotations --reflections 222 MB; source 2048^2 cells (30 m) 347 MB, with
+// both (8 orientations) 639 MB; colorado with a stroke guide and --drain 206 MB.
+// That is 81 bytes per output cell, 31 per source cell plus 10 per source cell
+// and orientation, and 86 MB before any (program, libraries); --drain adds
+// under 20 per output cell. Rounded up for a margin (the estimate is 1.3 to 1.4
+// times each of these peaks):
+constexpr double kOptimiseBaseBytes = 128.0e6;
+constexpr double kBytesPerOutputCell = 100.0;
+constexpr double kDrainBytesPerOutputCell = 25.0;
+constexpr double kBytesPerSourceCell = 40.0;
+constexpr double kBytesPerOrientedSourceCell = 14.0;
 // Free land starts as copies of random source regions this many coarsest cells
 // a side: a quarter of the smallest coarsest level, so several distinct pieces
 // of the source's own structure meet in it.
@@ -67,6 +82,13 @@ Heightfield sourceOnGuideCells(const Heightfield& source, const Heightfield& gui
     return source;
   }
   return resampleToCellSize(source, guide.cellX, guide.cellY);
+}
+
+// The cells the source will have on the guide's cell size.
+std::size_t sourceCellsOnGuide(const Heightfield& source, const Heightfield& guide)
+{
+  const double scale = (source.cellX / guide.cellX) * (source.cellY / guide.cellY);
+  return static_cast<std::size_t>(static_cast<double>(source.size()) * scale);
 }
 
 int minSide(const Heightfield& hf, int level)
@@ -343,6 +365,43 @@ std::vector<Heightfield> confidencePyramid(const Heightfield& guide,
 
 void checkInputs(const Heightfield& source, const Heightfield& guide)
 {
+  checkOptimisationSource(source);
+  if (guide.size() == 0 || guide.validCount() == 0)
+  {
+    throw Error("The guide has no valid cell: give a guide with height data.");
+  }
+}
+
+} // namespace
+
+double optimisationMemoryEstimate(int width,
+  int height,
+  std::size_t sourceCells,
+  const OptimisationOptions& o)
+{
+  const double orientations = (o.rotations ? 4.0 : 1.0) * (o.reflections ? 2.0 : 1.0);
+  const double output = static_cast<double>(width) * static_cast<double>(height);
+  const double source = static_cast<double>(sourceCells);
+  return kOptimiseBaseBytes +
+    output * (kBytesPerOutputCell + (o.drainOutput ? kDrainBytesPerOutputCell : 0.0)) +
+    source * (kBytesPerSourceCell + orientations * kBytesPerOrientedSourceCell);
+}
+
+void checkOptimisationMemory(int width,
+  int height,
+  std::size_t sourceCells,
+  const OptimisationOptions& o)
+{
+  checkMemoryBudget(optimisationMemoryEstimate(width, height, sourceCells, o),
+    o.memoryBudget,
+    "This optimisation of " + std::to_string(width) + " x " + std::to_string(height) +
+      " cells from a source of " + std::to_string(sourceCells) + " cells",
+    "give a smaller " + o.sizeOption + " or source, drop rotations and reflections",
+    o.memoryOption);
+}
+
+void checkOptimisationSource(const Heightfield& source)
+{
   if (source.size() == 0 || source.validCount() == 0)
   {
     throw Error("The source DEM has no valid cell: give a source with height data.");
@@ -352,13 +411,7 @@ void checkInputs(const Heightfield& source, const Heightfield& guide)
   {
     throw Error("The source DEM is flat: it has no relief to copy; give a real DEM as the source.");
   }
-  if (guide.size() == 0 || guide.validCount() == 0)
-  {
-    throw Error("The guide has no valid cell: give a guide with height data.");
-  }
 }
-
-} // namespace
 
 OptimisationResult optimiseTerrain(const Heightfield& source,
   const Heightfield& guide,
@@ -366,6 +419,7 @@ OptimisationResult optimiseTerrain(const Heightfield& source,
 {
   checkOptions(options);
   checkInputs(source, guide);
+  checkOptimisationMemory(guide.width, guide.height, sourceCellsOnGuide(source, guide), options);
   const Heightfield resampled = sourceOnGuideCells(source, guide);
   checkInputs(resampled, guide);
   const int levels = chooseLevels(resampled, guide, options);

@@ -90,7 +90,34 @@ struct OptimisationOptions
   // Called with the fraction done (0..1); return false to stop (the call then
   // throws tsynth::Cancelled).
   std::function<bool(double)> progress;
+  // A run whose optimisationMemoryEstimate is above this many bytes (0:
+  // defaultMemoryBudget()) is refused before any work (by buildOptimisationGuide
+  // and optimiseTerrain), naming the front end's options to change.
+  double memoryBudget = 0.0;
+  std::string memoryOption = "the memory budget";
+  std::string sizeOption = "the output size";
 };
+
+// Peak memory in bytes of an optimisation of a width x height output from a
+// source of sourceCells cells (at the output's cell size), as `tsynth optimise`
+// and the Terrain Optimisation filter run it: per output cell the guide (built
+// like a synthesis target) and its pyramid, the correspondence map, costs and
+// terrain of a level, the E-step's sums and the coarse levels' pit removal; per
+// source cell the read DEM, its pyramid and features, and one oriented copy
+// (heights, valid centres) per orientation (quarter turns x mirrors); and the
+// program itself. Measured (TerrainOptimisation.cxx) and rounded up: 1.2 to
+// 1.4 times the measured peak from 512^2 outputs on.
+double optimisationMemoryEstimate(int width,
+  int height,
+  std::size_t sourceCells,
+  const OptimisationOptions& options);
+
+// Throws tsynth::Error (checkMemoryBudget's sentence, with the estimate) if the
+// run exceeds options.memoryBudget.
+void checkOptimisationMemory(int width,
+  int height,
+  std::size_t sourceCells,
+  const OptimisationOptions& options);
 
 struct OptimisationLevel
 {
@@ -120,6 +147,10 @@ struct OptimisationResult
   std::vector<OptimisationLevel> levels; // coarsest first
   std::size_t pitsBeforeDraining = 0;    // with drainOutput: the output's pits before it
 };
+
+// Throws tsynth::Error (one sentence) for a source without a valid cell or a
+// flat one (nothing to copy); what the front ends check before building a guide.
+void checkOptimisationSource(const Heightfield& source);
 
 // Throws tsynth::Error (one sentence) for: a source or guide without valid
 // cells, a patch size that is even or outside 3..kMaxPatchSize, a guide or

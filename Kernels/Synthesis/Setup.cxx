@@ -9,7 +9,6 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
-#include <unistd.h>
 
 namespace tsynth
 {
@@ -30,35 +29,21 @@ constexpr double kBaseBytes = 128.0e6;
 constexpr double kResampleTolerance = 0.01;
 // Poly-line vertices within this many cells of each other are one vertex.
 constexpr double kPolylineSnapCells = 1.0;
-constexpr double kBytesPerGB = 1.0e9;
 
-// Four significant digits, and whole metres from 1000 up (no exponents).
+// Beyond this, whole metres would print hundreds of digits: an exponent instead.
+constexpr double kLargestPlainNumber = 1.0e9;
+
+// Four significant digits, whole metres from 1000 up, an exponent from 1e9.
 std::string number(double v)
 {
   std::ostringstream o;
-  if (std::abs(v) >= 1000.0)
+  if (std::abs(v) >= 1000.0 && std::abs(v) < kLargestPlainNumber)
   {
     o << std::fixed << std::setprecision(0) << v;
   }
   else
   {
     o << std::setprecision(4) << v;
-  }
-  return o.str();
-}
-
-std::string bytesText(double bytes)
-{
-  std::ostringstream o;
-  if (bytes >= kBytesPerGB)
-  {
-    // One decimal is noise above 100 GB.
-    o << std::fixed << std::setprecision(bytes < 100.0 * kBytesPerGB ? 1 : 0) << bytes / kBytesPerGB
-      << " GB";
-  }
-  else
-  {
-    o << std::fixed << std::setprecision(0) << bytes / 1.0e6 << " MB";
   }
   return o.str();
 }
@@ -194,19 +179,13 @@ void checkMemory(const SetupInputs& in, const OutputGrid& g, SynthesisSetup& s)
     cells.push_back(cellsAtOutputSize(hf, g));
   }
   s.memoryEstimate = synthesisMemoryEstimate(g.width, g.height, cells);
-  s.memoryBudget = in.memoryBudget > 0.0 ? in.memoryBudget : defaultMemoryBudget();
-  if (s.memoryEstimate <= s.memoryBudget)
-  {
-    return;
-  }
-  throw Error("This synthesis of " + sizeText(g.width, g.height) + " cells from " +
-    std::to_string(in.exemplars.size()) + " exemplar(s) needs about " +
-    bytesText(s.memoryEstimate) + " but the memory budget is " + bytesText(s.memoryBudget) +
-    (in.memoryBudget > 0.0
-        ? ""
-        : " (" + number(100.0 * kDefaultMemoryFraction) + "% of this machine's memory)") +
-    "; give a smaller " + in.names.size + " or a larger " + in.names.cell +
-    ", fewer or smaller exemplars, or raise " + in.names.memory + ".");
+  s.memoryBudget = checkMemoryBudget(s.memoryEstimate,
+    in.memoryBudget,
+    "This synthesis of " + sizeText(g.width, g.height) + " cells from " +
+      std::to_string(in.exemplars.size()) + " exemplar(s)",
+    "give a smaller " + in.names.size + " or a larger " + in.names.cell +
+      ", fewer or smaller exemplars",
+    in.names.memory);
 }
 
 std::string exemplarName(const SetupInputs& in, std::size_t e)
@@ -245,6 +224,12 @@ void prepareExemplars(SetupInputs& in, SynthesisSetup& s)
       s.warnings.push_back(exemplarName(in, e) + " has " + cellText(hf.cellX, hf.cellY) +
         " cells; resampled to the output's " + cellText(g.cellX, g.cellY) + ".");
       hf = resampleToCellSize(hf, g.cellX, g.cellY);
+    }
+    if (hf.width < in.patchSize || hf.height < in.patchSize)
+    {
+      throw Error(exemplarName(in, e) + " is " + sizeText(hf.width, hf.height) + " cells of " +
+        cellText(g.cellX, g.cellY) + ", smaller than one patch (" + std::to_string(in.patchSize) +
+        " cells); give a larger exemplar or a smaller " + in.names.patch + ".");
     }
     s.graphs.push_back(ridgesAndValleys(hf, exemplarPpaOptions()));
     s.exemplars.push_back(std::move(hf));
@@ -313,6 +298,35 @@ AnalysedSketch analysePolylines(const PolylineSketch& sketch, const OutputGrid& 
   a.height = g.height;
   a.kind = "poly-lines";
   return a;
+}
+
+// A sketch that gives the synthesis nothing to follow: no feature line and no
+// relief (a blank image, a flat DEM, poly-lines without a segment inside).
+void refuseEmptySketch(const AnalysedSketch& sketch)
+{
+  const bool lines = !sketch.graph.chains.empty();
+  bool relief = false;
+  if (sketch.hasHeights)
+  {
+    const HeightRange r = computeHeightRange(sketch.heights);
+    relief = r.validCells > 0 && r.max > r.min;
+  }
+  if (lines || relief)
+  {
+    return;
+  }
+  if (sketch.kind == "DEM")
+  {
+    throw Error("The DEM used as the sketch is flat: it has no landform to follow; give a DEM "
+                "with relief or a drawn sketch.");
+  }
+  if (sketch.kind == "poly-lines")
+  {
+    throw Error("The poly-lines draw nothing on the " + sizeText(sketch.width, sketch.height) +
+      "-cell output (no segment longer than a cell lies inside it).");
+  }
+  throw Error("The sketch has nothing drawn (a single shade of grey): draw red ridge or blue "
+              "valley strokes, or shade a grey sketch map.");
 }
 
 } // namespace
@@ -425,13 +439,6 @@ double synthesisMemoryEstimate(int width, int height, const std::vector<std::siz
   return bytes;
 }
 
-double defaultMemoryBudget()
-{
-  const double physical =
-    static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
-  return kDefaultMemoryFraction * physical;
-}
-
 AnalysedSketch analyseSketch(const SketchInput& sketch, const OutputGrid& grid, int patchSize)
 {
   if (const auto* image = std::get_if<ColourImage>(&sketch))
@@ -495,6 +502,7 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
     outputGrid(sketchExtent(in.sketch), in.grid, first.cellX, first.cellY, in.patchSize, in.names);
   checkMemory(in, s.grid, s);
   AnalysedSketch sketch = analyseSketch(in.sketch, s.grid, in.patchSize);
+  refuseEmptySketch(sketch);
   s.sketchKind = sketch.kind;
   s.warnings = std::move(sketch.warnings);
   prepareExemplars(in, s);

@@ -8,6 +8,7 @@
 
 #include "../Core/Heightfield.h"
 #include "../Core/HeightfieldIO.h"
+#include "../Core/Memory.h"
 #include "../Features/FeatureGraph.h"
 #include "../Features/Sketch.h"
 #include "Target.h"
@@ -114,9 +115,7 @@ double synthesisMemoryEstimate(int width,
   int height,
   const std::vector<std::size_t>& exemplarCells);
 
-// kDefaultMemoryFraction of this machine's physical memory, in bytes.
-double defaultMemoryBudget();
-constexpr double kDefaultMemoryFraction = 0.8; // leaves room for the system and the caller
+// defaultMemoryBudget() and kDefaultMemoryFraction: Core/Memory.h.
 
 // A sketch analysed on its own terms: its feature graph in its own pixels (a
 // raster sketch) or on the output grid (poly-lines), and its heights for a grey
@@ -187,7 +186,9 @@ struct SynthesisSetup
 // The whole set-up. Throws tsynth::Error, one sentence saying what was found and
 // what to change: no exemplar, a bad grid (see outputGrid), a sketch smaller
 // than a patch, a synthesis estimated above the memory budget (before any
-// exemplar is resampled or analysed).
+// exemplar is resampled or analysed), a sketch with nothing drawn (no feature
+// line and no relief: a blank image, a flat DEM), an exemplar smaller than a
+// patch at the output's cell size.
 SynthesisSetup prepareSynthesis(SetupInputs inputs);
 
 } // namespace tsynth

@@ -214,7 +214,7 @@ class PitsCommandTest(unittest.TestCase):
             (["--sinks", small], 1, "give a mask of the DEM's size"),
             (["--max-depth", "-3"], 2, "--max-depth expects a positive number"),
             (["--max-length", "0"], 2, "--max-length expects a whole number"),
-            (["--flow", "/nonexistent/acc.tif"], 2, "folder /nonexistent does not exist"),
+            (["--flow", "/nonexistent/acc.tif"], 1, "folder /nonexistent does not exist"),
             (["--stream-area", "1"], 2, "with --streams"),
         ]
         for extra, code, message in cases:

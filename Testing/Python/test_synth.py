@@ -538,9 +538,10 @@ class SynthTest(unittest.TestCase):
         write_png(blank, 200, 200, lambda x, y: (255, 255, 255))
         result = tsynth("synth", "--exemplar", os.path.join(self.dems, "colorado.png"), "--sketch", blank,
                         "-o", self.path("blank.tif"), "--no-progress")
-        self.assertEqual(result.returncode, 0, result.stderr)
-        self.assertIn("no features", result.stderr)
-        self.assertTrue(os.path.exists(self.path("blank.tif")))
+        # Nothing drawn is refused (issue 14) rather than a terrain that ignores the sketch.
+        self.assertEqual(result.returncode, 1, result.stderr)
+        self.assertIn("The sketch has nothing drawn", result.stderr)
+        self.assertFalse(os.path.exists(self.path("blank.tif")))
 
         small = self.path("small.asc")
         with open(small, "w") as f:

@@ -1,0 +1,180 @@
+#include "XmlDataFiles.h"
+
+#include "VtkErrorObserver.h"
+
+#include "Core/Error.h"
+
+#include <vtkCommand.h>
+#include <vtkDataArray.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLDataParser.h>
+#include <vtkXMLReader.h>
+
+#include <array>
+#include <cstring>
+#include <fstream>
+#include <vector>
+
+namespace tsynth
+{
+namespace
+{
+
+// While it lives, VTK prints no error or warning (they still reach observers).
+class QuietVtk
+{
+public:
+  QuietVtk()
+    : previous_(vtkObject::GetGlobalWarningDisplay())
+  {
+    vtkObject::GlobalWarningDisplayOff();
+  }
+  ~QuietVtk() { vtkObject::SetGlobalWarningDisplay(previous_); }
+  QuietVtk(const QuietVtk&) = delete;
+  QuietVtk& operator=(const QuietVtk&) = delete;
+
+private:
+  int previous_;
+};
+
+vtkIdType countAttribute(vtkXMLDataElement* piece, const char* name)
+{
+  vtkIdType n = 0;
+  return piece->GetScalarAttribute(name, n) != 0 && n > 0 ? n : 0;
+}
+
+// Points and cells of a piece: unstructured counts, or an image's extent.
+std::array<vtkIdType, 2> pieceSize(vtkXMLDataElement* piece)
+{
+  std::array<int, 6> e{};
+  if (piece->GetVectorAttribute("Extent", 6, e.data()) == 6)
+  {
+    vtkIdType points = 1;
+    vtkIdType cells = 1;
+    for (int d = 0; d < 3; ++d)
+    {
+      const vtkIdType span = e[2 * d + 1] - e[2 * d];
+      points *= span >= 0 ? span + 1 : 0;
+      cells *= span > 0 ? span : 1;
+    }
+    return { points, cells };
+  }
+  const vtkIdType cells = countAttribute(piece, "NumberOfVerts") +
+    countAttribute(piece, "NumberOfLines") + countAttribute(piece, "NumberOfStrips") +
+    countAttribute(piece, "NumberOfPolys") + countAttribute(piece, "NumberOfCells");
+  return { countAttribute(piece, "NumberOfPoints"), cells };
+}
+
+// The values the parser finds for a DataArray element, up to `wanted`.
+std::size_t valuesFound(vtkXMLDataParser* parser, vtkXMLDataElement* array, std::size_t wanted)
+{
+  int type = 0;
+  if (array->GetWordTypeAttribute("type", type) == 0)
+  {
+    return 0;
+  }
+  const int size = vtkDataArray::GetDataTypeSize(type);
+  if (size <= 0 || wanted == 0)
+  {
+    return wanted;
+  }
+  std::vector<char> buffer(wanted * static_cast<std::size_t>(size));
+  const char* format = array->GetAttribute("format");
+  if (format != nullptr && std::strcmp(format, "appended") == 0)
+  {
+    vtkTypeInt64 offset = 0;
+    if (array->GetScalarAttribute("offset", offset) == 0)
+    {
+      return 0;
+    }
+    return parser->ReadAppendedData(offset, buffer.data(), 0, wanted, type);
+  }
+  const int ascii = format != nullptr && std::strcmp(format, "ascii") == 0 ? 1 : 0;
+  return parser->ReadInlineData(array, ascii, buffer.data(), 0, wanted, type);
+}
+
+// Throws tsynth::Error for the first array of `group` (PointData, CellData,
+// Points) with fewer than `tuples` tuples.
+void checkGroup(vtkXMLDataParser* parser,
+  vtkXMLDataElement* group,
+  vtkIdType tuples,
+  const std::string& path,
+  const char* of)
+{
+  for (int k = 0; group != nullptr && k < group->GetNumberOfNestedElements(); ++k)
+  {
+    vtkXMLDataElement* array = group->GetNestedElement(k);
+    if (std::strcmp(array->GetName(), "DataArray") != 0)
+    {
+      continue;
+    }
+    int components = 1;
+    array->GetScalarAttribute("NumberOfComponents", components);
+    const std::size_t wanted =
+      static_cast<std::size_t>(tuples) * static_cast<std::size_t>(std::max(1, components));
+    if (valuesFound(parser, array, wanted) < wanted)
+    {
+      const char* name = array->GetAttribute("Name");
+      throw Error(path + " is damaged: its " + (name != nullptr ? name : "unnamed") +
+        " array holds fewer values than its " + std::to_string(tuples) + " " + of + " need.");
+    }
+  }
+}
+
+void checkArrayLengths(vtkXMLReader* reader, const std::string& path, const std::string& refusal)
+{
+  vtkXMLDataParser* parser = reader->GetXMLParser();
+  vtkXMLDataElement* root = parser != nullptr ? parser->GetRootElement() : nullptr;
+  // The reader closed its stream after the information pass; the parser's
+  // recorded data positions are offsets into the file.
+  std::ifstream stream(path, std::ios::in | std::ios::binary);
+  if (root == nullptr || !stream)
+  {
+    throw Error(refusal);
+  }
+  std::istream* previous = parser->GetStream();
+  parser->SetStream(&stream);
+  struct Restore
+  {
+    vtkXMLDataParser* parser;
+    std::istream* stream;
+    ~Restore() { parser->SetStream(stream); }
+  } restore{ parser, previous };
+  vtkXMLDataElement* dataset = root != nullptr ? root->GetNestedElement(0) : nullptr;
+  for (int p = 0; dataset != nullptr && p < dataset->GetNumberOfNestedElements(); ++p)
+  {
+    vtkXMLDataElement* piece = dataset->GetNestedElement(p);
+    if (std::strcmp(piece->GetName(), "Piece") != 0)
+    {
+      continue;
+    }
+    const std::array<vtkIdType, 2> size = pieceSize(piece);
+    checkGroup(parser, piece->FindNestedElementWithName("Points"), size[0], path, "points");
+    checkGroup(parser, piece->FindNestedElementWithName("PointData"), size[0], path, "points");
+    checkGroup(parser, piece->FindNestedElementWithName("CellData"), size[1], path, "cells");
+  }
+}
+
+} // namespace
+
+void readXmlDataFile(vtkXMLReader* reader, const std::string& path, const std::string& what)
+{
+  const QuietVtk quiet;
+  VtkErrorObserver observer;
+  reader->AddObserver(vtkCommand::ErrorEvent, observer.callback);
+  reader->SetParserErrorObserver(observer.callback);
+  const std::string refusal = path + " is not a VTK " + what + " file that can be read.";
+  reader->UpdateInformation();
+  if (observer.failed)
+  {
+    throw Error(refusal);
+  }
+  checkArrayLengths(reader, path, refusal);
+  reader->Update();
+  if (observer.failed || reader->GetOutputDataObject(0) == nullptr)
+  {
+    throw Error(refusal);
+  }
+}
+
+} // namespace tsynth

@@ -1,0 +1,166 @@
+// Memory budgets: the one refusal sentence (Core/Memory.h) and the estimates of
+// pit removal, terrain optimisation and distance synthesis, each refused by its
+// kernel's own set-up before any work, with the estimate in the message.
+#include "Core/Error.h"
+#include "Core/Memory.h"
+#include "Distance/DistanceMemory.h"
+#include "Distance/DistanceSynthesis.h"
+#include "Hydrology/PitRemoval.h"
+#include "Optimisation/TerrainOptimisation.h"
+
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+
+using namespace tsynth;
+
+namespace
+{
+
+std::string errorOf(const std::function<void()>& call)
+{
+  try
+  {
+    call();
+  }
+  catch (const Error& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+
+// "about N MB" as bytesText prints the estimate.
+std::string about(double bytes)
+{
+  return "needs about " + bytesText(bytes) + " but the memory budget is ";
+}
+
+Heightfield slope(int width, int height)
+{
+  Heightfield hf(width, height);
+  for (int j = 0; j < height; ++j)
+  {
+    for (int i = 0; i < width; ++i)
+    {
+      hf.at(i, j) = static_cast<float>(3 * i + 2 * j + ((i * 7 + j * 13) % 5));
+    }
+  }
+  hf.cellX = hf.cellY = 30.0;
+  return hf;
+}
+
+} // namespace
+
+TEST(MemoryBudget, TheRefusalNamesEstimateBudgetAdviceAndOption)
+{
+  EXPECT_EQ(bytesText(164.4e6), "164 MB");
+  EXPECT_EQ(bytesText(2.54e9), "2.5 GB");
+  EXPECT_EQ(bytesText(1.0e5), "0.1 MB");
+  EXPECT_EQ(bytesText(812.0e9), "812 GB");
+  EXPECT_EQ(checkMemoryBudget(5.0e6, 6.0e6, "A run", "do less", "--max-memory"), 6.0e6);
+  EXPECT_EQ(errorOf([] { checkMemoryBudget(7.0e6, 6.0e6, "A run", "do less", "--max-memory"); }),
+    "A run needs about 7 MB but the memory budget is 6 MB; do less, or raise --max-memory.");
+  const std::string byDefault = errorOf(
+    [] { checkMemoryBudget(10.0 * physicalMemory(), 0.0, "A run", "do less", "MemoryBudget"); });
+  EXPECT_NE(byDefault.find("(80% of this machine's memory); do less, or raise MemoryBudget."),
+    std::string::npos)
+    << byDefault;
+  EXPECT_NEAR(defaultMemoryBudget(), kDefaultMemoryFraction * physicalMemory(), 1.0);
+}
+
+TEST(MemoryBudget, PitRemovalIsRefusedByItsSetUpWithTheEstimate)
+{
+  const double plain = pitRemovalMemoryEstimate(1024, 1024, false);
+  EXPECT_NEAR(plain, 128.0e6 + 20.0 * 1024 * 1024, 1.0);
+  EXPECT_NEAR(pitRemovalMemoryEstimate(1024, 1024, true) - plain, 8.0 * 1024 * 1024, 1.0);
+  EXPECT_NEAR(pitRemovalMemoryEstimate(2048, 2048, false) - 128.0e6, 4.0 * (plain - 128.0e6), 1.0);
+  const Heightfield dem = slope(64, 48);
+  PitRemovalOptions o;
+  o.memoryBudget = 1.0e6;
+  o.memoryOption = "--max-memory";
+  const std::string m = errorOf([&] { checkDemToDrain(dem, o, true); });
+  EXPECT_NE(m.find("This pit removal of 64 x 48 cells with flow routing " +
+              about(pitRemovalMemoryEstimate(64, 48, true)) + "1 MB; give a smaller DEM"),
+    std::string::npos)
+    << m;
+  EXPECT_NE(m.find("raise --max-memory."), std::string::npos) << m;
+  o.memoryBudget = pitRemovalMemoryEstimate(64, 48, true);
+  EXPECT_EQ(errorOf([&] { checkDemToDrain(dem, o, true); }), "");
+}
+
+TEST(MemoryBudget, OptimisationCountsOutputSourceAndOrientations)
+{
+  OptimisationOptions o;
+  const double plain = optimisationMemoryEstimate(1024, 1024, 648 * 648, o);
+  EXPECT_NEAR(plain, 128.0e6 + 100.0 * 1024 * 1024 + 54.0 * 648 * 648, 1.0);
+  o.rotations = true;
+  o.reflections = true;
+  EXPECT_NEAR(
+    optimisationMemoryEstimate(1024, 1024, 648 * 648, o) - plain, 7.0 * 14.0 * 648 * 648, 1.0);
+  o.rotations = o.reflections = false;
+  o.drainOutput = true;
+  EXPECT_NEAR(
+    optimisationMemoryEstimate(1024, 1024, 648 * 648, o) - plain, 25.0 * 1024 * 1024, 1.0);
+}
+
+TEST(MemoryBudget, OptimisationIsRefusedBeforeAnyWork)
+{
+  const Heightfield source = slope(96, 96);
+  const Heightfield guide = slope(80, 80);
+  OptimisationOptions o;
+  o.patchSize = 5;
+  o.levels = 1;
+  o.memoryBudget = 1.0e6;
+  o.memoryOption = "MemoryBudget";
+  o.sizeOption = "OutputSize";
+  bool progressed = false;
+  o.progress = [&](double)
+  {
+    progressed = true;
+    return true;
+  };
+  const std::string m = errorOf([&] { optimiseTerrain(source, guide, o); });
+  EXPECT_NE(m.find("This optimisation of 80 x 80 cells from a source of 9216 cells " +
+              about(optimisationMemoryEstimate(80, 80, 96 * 96, o)) +
+              "1 MB; give a smaller OutputSize or source"),
+    std::string::npos)
+    << m;
+  EXPECT_NE(m.find("raise MemoryBudget."), std::string::npos) << m;
+  EXPECT_FALSE(progressed);
+}
+
+TEST(MemoryBudget, DistanceSynthesisIsRefusedBeforeAnyWork)
+{
+  const double one = distanceMemoryEstimate(1024, 1024, 1);
+  EXPECT_NEAR(one, 128.0e6 + 108.0 * 1024 * 1024, 1.0);
+  EXPECT_NEAR(distanceMemoryEstimate(1024, 1024, 4) - one, 3.0 * 8.0 * 1024 * 1024, 1.0);
+  DistanceInputs in;
+  in.width = 300;
+  in.height = 200;
+  DistanceFeature f;
+  f.nodes.push_back({ 100 * 300 + 150, 1.0f, kNoProfile });
+  in.features.push_back(f);
+  DistanceOptions o;
+  o.memoryBudget = 1.0e5;
+  o.memoryOption = "--max-memory";
+  o.sizeOption = "--size";
+  bool progressed = false;
+  o.progress = [&](double)
+  {
+    progressed = true;
+    return true;
+  };
+  const std::string m = errorOf([&] { synthesiseByDistance(in, o); });
+  EXPECT_NE(m.find("This distance synthesis of 300 x 200 cells " +
+              about(distanceMemoryEstimate(300, 200, omp_get_max_threads())) +
+              "0.1 MB; give a smaller --size, or raise --max-memory."),
+    std::string::npos)
+    << m;
+  EXPECT_FALSE(progressed);
+  o.memoryBudget = 0.0;
+  EXPECT_EQ(synthesiseByDistance(in, o).heights.width, 300);
+}

@@ -1,0 +1,609 @@
+"""A catalogue of bad inputs to every tsynth command (issue 14): each must end with a non-zero exit,
+exactly one clear sentence on stderr naming what is wrong, no output file (not even a partial one)
+and no hang. The bad files are generated in a temporary folder; the table below is the catalogue.
+
+Argument tokens: "@name" is the fixture `name` made by make_fixtures() in the temporary folder,
+"$dem"/"$strokes"/... are bundled data (DATA below), "^name" is an output path in the case's own
+empty folder, which must still be empty when the command has failed. Everything else is passed as
+it is.
+"""
+import base64
+import json
+import os
+import re
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import unittest
+import zlib
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import harness  # noqa: E402
+from harness import PATHS  # noqa: E402
+
+# A failing command must say so within this long (the slowest refusals read two DEMs and a sketch).
+CASE_TIMEOUT_S = 120
+
+# (id, arguments, exit status, regex the one stderr sentence must match)
+CASES = [
+    # Readers: truncated, corrupt, empty, zero-size, huge, NaN/inf, all-nodata -------------------
+    ("tif-truncated", ["info", "@truncated.tif"], 1, r"truncated\.tif.*(truncated|corrupt|not a raster)"),
+    ("tif-corrupt-strips", ["convert", "@corrupt.tif", "-o", "^out.tif"], 1,
+     r"corrupt\.tif.*(truncated|corrupt)"),
+    ("tif-header-only", ["render", "@header-only.tif", "-o", "^out.png"], 1,
+     r"header-only\.tif.*(truncated|corrupt)"),
+    ("png-truncated", ["convert", "@truncated.png", "-o", "^out.tif"], 1,
+     r"truncated\.png.*(truncated|corrupt)"),
+    ("png-bad-crc", ["info", "@badcrc.png"], 1, r"badcrc\.png is not a raster .*(invalid|CRC|corrupt)"),
+    ("png-huge-header", ["info", "@huge.png"], 1, r"huge\.png is 1000000 x 1000000 cells: reading it needs about 10000 GB, more than"),
+    ("tif-huge-header", ["convert", "@huge.tif", "-o", "^out.tif"], 1, r"huge\.tif.*memory"),
+    ("empty-file", ["pits", "@empty.tif", "-o", "^out.tif"], 1, r"empty"),
+    ("zero-cells-asc", ["info", "@zero.asc"], 1, r"zero\.asc.*(zero size|not a raster)"),
+    ("one-pixel-exemplar", ["synth", "--exemplar", "@one.tif", "--sketch", "$strokes", "-o", "^out.tif"], 1,
+     r"one\.tif.*(1 x 1|smaller than|too small)"),
+    ("one-pixel-pits", ["pits", "@one.tif", "-o", "^out.tif"], 1, r"flat|one cell|1 x 1"),
+    ("one-pixel-source", ["optimise", "--exemplar", "@one.tif", "--guide", "$grey", "-o", "^out.tif"], 1,
+     r"source.*(flat|smaller|too small)"),
+    ("all-nan-tif", ["render", "@allnan.tif", "-o", "^out.png"], 1, r"allnan\.tif.*no valid heights"),
+    ("all-inf-tif", ["convert", "@allinf.tif", "-o", "^out.tif"], 1, r"allinf\.tif.*no valid heights"),
+    ("all-nodata-tif", ["features", "@nodata.tif", "-o", "^out.vtp"], 1, r"nodata\.tif.*no valid heights"),
+    ("all-nodata-asc", ["pits", "@nodata.asc", "-o", "^out.tif"], 1, r"no valid heights"),
+    ("extreme-heights", ["pits", "@extreme.tif", "-o", "^out.tif"], 1, r"extreme\.tif.*heights? .*(beyond|m)"),
+    ("synth-all-nan-exemplar", ["synth", "--exemplar", "@allnan.tif", "--sketch", "$strokes", "-o", "^out.tif"],
+     1, r"allnan\.tif.*no valid heights"),
+    ("directory-as-dem", ["evaluate", "@", "--exemplar", "$dem"], 1, r"is a directory"),
+    ("text-as-dem", ["info", "@readme.tif"], 1, r"readme\.tif is not a raster"),
+    ("fifo-as-dem", ["info", "@pipe.tif"], 1, r"pipe\.tif.*not a (regular file|raster)"),
+    ("dev-zero-as-dem", ["info", "/dev/zero"], 1, r"/dev/zero.*not a (regular file|raster)"),
+    # Sidecars -----------------------------------------------------------------------------------
+    ("sidecar-bad-json", ["info", "@badjson/dem.png"], 1, r"not valid JSON"),
+    ("sidecar-wrong-unit", ["convert", "@badunit/dem.png", "-o", "^out.tif"], 1, r"z_unit.*\"m\" or \"ft\""),
+    ("sidecar-negative-cell", ["render", "@badcell/dem.png", "-o", "^out.png"], 1,
+     r"cell_size_m.*positive"),
+    ("sidecar-range-reversed", ["info", "@badrange/dem.png"], 1, r"z_max.*greater than.*z_min"),
+    ("sidecar-not-object", ["pits", "@badtype/dem.png", "-o", "^out.tif"], 1, r"JSON object"),
+    ("sidecar-nan-cell", ["info", "@nancell/dem.png"], 1, r"nancell/dem\.json is not valid JSON"),
+    ("sidecar-unreadable", ["info", "@dirsidecar/dem.png"], 1, r"Cannot read sidecar"),
+    # Read options -------------------------------------------------------------------------------
+    ("cell-inf", ["info", "$dem", "--cell", "inf"], 2, r"--cell.*positive"),
+    ("cell-nan", ["convert", "$dem", "--cell", "nan", "-o", "^out.tif"], 2, r"--cell.*positive"),
+    ("z-range-infinite", ["info", "$dem", "--z-range", "-inf,inf"], 2, r"--z-range"),
+    ("z-unit-unknown", ["info", "$dem", "--z-unit", "furlong"], 2, r"--z-unit must be m or ft"),
+    # render -------------------------------------------------------------------------------------
+    ("render-size-overflow", ["render", "$dem", "--3d", "--size", "99999999999x5", "-o", "^out.png"], 2,
+     r"--size.*16 and 8192"),
+    ("render-size-negative", ["render", "$dem", "--3d", "--size", "-5x100", "-o", "^out.png"], 2,
+     r"--size.*16 and 8192"),
+    ("render-size-trailing", ["render", "$dem", "--3d", "--size", "100x100junk", "-o", "^out.png"], 2,
+     r"--size.*16 and 8192"),
+    ("render-altitude-nan", ["render", "$dem", "--altitude", "nan", "-o", "^out.png"], 2, r"--altitude"),
+    ("render-azimuth-inf", ["render", "$dem", "--azimuth", "inf", "-o", "^out.png"], 2, r"--azimuth"),
+    ("render-exaggeration-inf", ["render", "$dem", "--exaggeration", "inf", "-o", "^out.png"], 2,
+     r"--exaggeration"),
+    # Output paths -------------------------------------------------------------------------------
+    ("out-missing-folder", ["convert", "$dem", "-o", "^missing/out.tif"], 1, r"does not exist"),
+    ("out-parent-is-file", ["pits", "$dem", "-o", "@readme.tif/out.tif"], 1, r"readme\.tif.*(not a folder|does not exist)"),
+    ("out-in-proc", ["convert", "$dem", "-o", "/proc/tsynth-out.tif"], 1, r"Cannot write /proc/tsynth-out\.tif"),
+    ("out-is-directory", ["convert", "$dem", "-o", "@folder.tif"], 1, r"folder\.tif: it is a folder"),
+    ("render-out-missing-folder", ["render", "$dem", "-o", "^missing/out.png"], 1, r"does not exist"),
+    ("features-controls-missing-folder",
+     ["features", "$dem", "-o", "^tree.vtp", "--control-points", "^missing/cp.vtp"], 1, r"does not exist"),
+    ("synth-report-missing-folder",
+     ["synth", "--exemplar", "$dem", "--sketch", "$strokes", "-o", "^out.tif", "--report", "^missing/r.json"], 1,
+     r"does not exist"),
+    ("synth-debug-dir-under-file",
+     ["synth", "--exemplar", "$dem", "--sketch", "$strokes", "-o", "^out.tif", "--debug-dir", "@readme.tif/dbg"], 1,
+     r"readme\.tif.*(not a folder|debug)"),
+    ("synth-out-in-proc", ["synth", "--exemplar", "$dem", "--sketch", "$strokes", "-o", "/proc/tsynth.tif"], 1,
+     r"Cannot write /proc/tsynth\.tif"),
+    ("pits-flow-missing-folder", ["pits", "$dem", "-o", "^out.tif", "--flow", "^missing/acc.tif"], 1,
+     r"does not exist"),
+    ("optimise-out-parent-is-file", ["optimise", "--exemplar", "$dem", "--guide", "$grey", "-o", "@readme.tif/o.tif"],
+     1, r"readme\.tif.*(not a folder|does not exist)"),
+    ("distance-out-missing-folder", ["distance", "--generators", "$distance", "-o", "^missing/d.tif"], 1,
+     r"does not exist"),
+    # features -----------------------------------------------------------------------------------
+    ("features-vtp-huge", ["features", "@huge.vtp", "--sketch", "-o", "^out.vtp"], 1, r"poly-lines.*(span|beyond)"),
+    ("features-vtp-nan", ["features", "@nan.vtp", "--sketch", "-o", "^out.vtp"], 1, r"not a finite number"),
+    ("features-vtp-negative", ["features", "@negative.vtp", "--sketch", "-o", "^out.vtp"], 1,
+     r"poly-lines.*(west or south|span)"),
+    ("features-vtp-not-vtk", ["features", "@readme.vtp", "--sketch", "-o", "^out.vtp"], 1,
+     r"readme\.vtp is not a VTK poly-data file"),
+    ("features-sketch-too-small", ["features", "@tiny-strokes.png", "--sketch", "-o", "^out.vtp"], 1,
+     r"smaller than one patch"),
+    ("features-patch-absurd", ["features", "$dem", "--patch", "1e9", "-o", "^out.vtp"], 2, r"--patch"),
+    # synth --------------------------------------------------------------------------------------
+    ("synth-size-overflow", ["synth", "--exemplar", "$dem", "--sketch", "$strokes", "--size", "99999999999x5",
+                             "-o", "^out.tif"], 2, r"--size .* beyond any machine"),
+    ("synth-size-negative", ["synth", "--exemplar", "$dem", "--sketch", "$strokes", "--size", "-5x100",
+                             "-o", "^out.tif"], 2, r"--size expects WxH"),
+    ("synth-size-zero", ["synth", "--exemplar", "$dem", "--sketch", "$strokes", "--size", "0x0", "-o", "^out.tif"],
+     2, r"--size expects WxH"),
+    ("synth-size-below-patch", ["synth", "--exemplar", "$dem", "--sketch", "$strokes", "--size", "20x20",
+                                "-o", "^out.tif"], 1, r"smaller than one patch"),
+    ("synth-patch-zero", ["synth", "--exemplar", "$dem", "--sketch", "$strokes", "--patch", "0", "-o", "^out.tif"],
+     2, r"--patch"),
+    ("synth-patch-huge", ["synth", "--exemplar", "$dem", "--sketch", "$strokes", "--patch", "100000",
+                          "-o", "^out.tif"], 2, r"--patch"),
+    ("synth-patch-odd", ["synth", "--exemplar", "$dem", "--sketch", "$strokes", "--patch", "81", "-o", "^out.tif"],
+     2, r"--patch must be a multiple of 4"),
+    ("synth-memory-budget", ["synth", "--exemplar", "$dem", "--sketch", "$strokes", "--max-memory", "0.001",
+                             "-o", "^out.tif"], 1, r"needs about \d+ MB but the memory budget is 1 MB"),
+    ("synth-mismatched-cells", ["synth", "--exemplar", "@fine.tif", "--exemplar", "$dem", "--sketch", "$strokes",
+                                "-o", "^out.tif"], 1, r"needs about .* GB but the memory budget"),
+    ("synth-empty-sketch", ["synth", "--exemplar", "$dem", "--sketch", "@blank.png", "-o", "^out.tif"], 1,
+     r"(nothing|no (ridge|line|stroke|feature)).*(drawn|sketch)"),
+    ("synth-vtp-huge", ["synth", "--exemplar", "$dem", "--sketch", "@huge.vtp", "-o", "^out.tif"], 1,
+     r"poly-lines span"),
+    ("synth-vtp-nan", ["synth", "--exemplar", "$dem", "--sketch", "@nan.vtp", "-o", "^out.tif"], 1,
+     r"not a finite number"),
+    ("synth-vtp-no-lines", ["synth", "--exemplar", "$dem", "--sketch", "@points.vtp", "-o", "^out.tif"], 1,
+     r"no lines"),
+    ("synth-vtp-short-featuretype", ["synth", "--exemplar", "$dem", "--sketch", "@shorttype.vtp", "-o", "^out.tif"],
+     1, r"shorttype\.vtp is damaged: its FeatureType array holds fewer values than its 2 cells need"),
+    ("synth-vtp-short-binary-array", ["synth", "--exemplar", "$dem", "--sketch", "@shorttype-bin.vtp",
+                                      "-o", "^out.tif"], 1, r"FeatureType array holds fewer values"),
+    ("synth-vti-short-elevation", ["synth", "--exemplar", "@short.vti", "--sketch", "$strokes", "-o", "^out.tif"],
+     1, r"short\.vti is damaged: its Elevation array holds fewer values than its 4096 points need"),
+    ("info-vti-not-vtk", ["info", "@readme.vti"], 1, r"readme\.vti is not a VTK image file"),
+    ("synth-landform-relief", ["synth", "--exemplar", "$dem", "--sketch", "$strokes", "--landform-relief", "nan",
+                               "-o", "^out.tif"], 2, r"--landform-relief"),
+    ("synth-seed-negative", ["synth", "--exemplar", "$dem", "--sketch", "$strokes", "--seed", "-1", "-o", "^out.tif"],
+     2, r"--seed expects a whole number"),
+    ("synth-regions-colour-image", ["synth", "--exemplar", "$dem", "--sketch", "$strokes", "--regions", "$strokes",
+                                    "-o", "^out.tif"], 1, r"strokes_y_ridges\.png has 3 bands"),
+    ("synth-region-bad-map", ["synth", "--exemplar", "$dem", "--sketch", "$strokes", "--regions", "@labels.png",
+                              "--region", "x=y", "-o", "^out.tif"], 1, r"--region|region"),
+    ("synth-region-missing-exemplar", ["synth", "--exemplar", "$dem", "--sketch", "$strokes", "--regions",
+                                       "@labels.png", "--region", "1=7", "-o", "^out.tif"], 1, r"1=7: exemplar numbers run from 0 to 0"),
+    # evaluate -----------------------------------------------------------------------------------
+    ("evaluate-missing-terrain", ["evaluate", "@nope.tif", "--exemplar", "$dem"], 1, r"No such file"),
+    ("evaluate-no-exemplar", ["evaluate", "$dem"], 2, r"needs an --exemplar"),
+    ("evaluate-patch-absurd", ["evaluate", "$dem", "--exemplar", "$dem", "--patch", "-3"], 2, r"--patch"),
+    ("evaluate-vtp-far", ["evaluate", "$dem", "--exemplar", "$dem", "--sketch", "@far.vtp"], 1,
+     r"poly-lines span .* outside the output"),
+    ("evaluate-vtp-short-array", ["evaluate", "$dem", "--exemplar", "$dem", "--sketch", "@shorttype.vtp"], 1,
+     r"shorttype\.vtp is damaged: its FeatureType array holds fewer values than its 2 cells need"),
+    # pits ---------------------------------------------------------------------------------------
+    ("pits-flat", ["pits", "@flat.tif", "-o", "^out.tif"], 1, r"flat"),
+    ("pits-sinks-wrong-size", ["pits", "$dem", "--sinks", "@one.tif", "-o", "^out.tif"], 1, r"1 x 1.*648 x 648"),
+    ("pits-method-unknown", ["pits", "$dem", "--method", "pour", "-o", "^out.tif"], 2, r"fill.*breach.*hybrid"),
+    ("pits-max-depth-nan", ["pits", "$dem", "--method", "hybrid", "--max-depth", "nan", "-o", "^out.tif"], 2,
+     r"--max-depth"),
+    ("pits-memory-budget", ["pits", "$dem", "--max-memory", "0.0001", "-o", "^out.tif"], 1,
+     r"needs about \d+ MB but the memory budget is 0\.1 MB"),
+    # optimise -----------------------------------------------------------------------------------
+    ("optimise-size-overflow", ["optimise", "--exemplar", "$dem", "--guide", "$grey", "--size", "99999999999x5",
+                                "-o", "^out.tif"], 2, r"--size .* beyond any machine"),
+    ("optimise-size-negative", ["optimise", "--exemplar", "$dem", "--guide", "$grey", "--size", "-5x100",
+                                "-o", "^out.tif"], 2, r"--size expects WxH"),
+    ("optimise-patch-even", ["optimise", "--exemplar", "$dem", "--guide", "$grey", "--patch", "8", "-o", "^out.tif"],
+     1, r"patch size must be odd"),
+    ("optimise-alpha", ["optimise", "--exemplar", "$dem", "--guide", "$grey", "--alpha", "2", "-o", "^out.tif"], 1,
+     r"alpha must be between 0 and 1"),
+    ("optimise-levels-too-many", ["optimise", "--exemplar", "$dem", "--guide", "$grey", "--levels", "16",
+                                  "-o", "^out.tif"], 1, r"pyramid levels"),
+    ("optimise-flat-source", ["optimise", "--exemplar", "@flat.tif", "--guide", "$grey", "-o", "^out.tif"], 1,
+     r"flat"),
+    ("optimise-empty-guide", ["optimise", "--exemplar", "$dem", "--guide", "@blank.png", "-o", "^out.tif"], 1,
+     r"(nothing|no (ridge|line|stroke|feature)).*(drawn|guide|sketch)"),
+    ("optimise-guide-vtp-nan", ["optimise", "--exemplar", "$dem", "--guide", "@nan.vtp", "-o", "^out.tif"], 1,
+     r"not a finite number"),
+    ("optimise-memory-budget", ["optimise", "--exemplar", "$dem", "--guide", "$grey", "--max-memory", "0.001",
+                                "-o", "^out.tif"], 1, r"needs about \d+ MB but the memory budget is 1 MB"),
+    # distance -----------------------------------------------------------------------------------
+    ("distance-no-generators", ["distance", "--generators", "@blank.png", "-o", "^out.tif"], 1, r"no generators|no ridge"),
+    ("distance-profile-rising", ["distance", "--generators", "$distance", "--profiles", "@rising.csv",
+                                 "-o", "^out.tif"], 1, r"profile.*(fall|monoton|rise)"),
+    ("distance-profile-garbage", ["distance", "--generators", "$distance", "--profiles", "@garbage.csv",
+                                  "-o", "^out.tif"], 1, r"garbage\.csv"),
+    ("distance-profile-nan", ["distance", "--generators", "$distance", "--profiles", "@nanprofile.csv",
+                              "-o", "^out.tif"], 1, r"nanprofile\.csv|finite|number"),
+    ("distance-profile-empty", ["distance", "--generators", "$distance", "--profiles", "@emptyprofile.csv",
+                                "-o", "^out.tif"], 1, r"emptyprofile\.csv|no profile|no rows|empty"),
+    ("distance-vtp-far", ["distance", "--generators", "@far.vtp", "-o", "^out.tif"], 1, r"no generator"),
+    ("distance-vtp-nan", ["distance", "--generators", "@nan.vtp", "-o", "^out.tif"], 1,
+     r"point of poly-line 0 is not a finite number"),
+    ("distance-vtp-not-vtk", ["distance", "--generators", "@readme.vtp", "-o", "^out.tif"], 1,
+     r"readme\.vtp is not a VTK poly-data file"),
+    ("distance-size-overflow", ["distance", "--generators", "@line.vtp", "--size", "99999999999x5",
+                                "-o", "^out.tif"], 2, r"--size .* beyond any machine"),
+    ("distance-size-negative", ["distance", "--generators", "@line.vtp", "--size", "-5x100", "-o", "^out.tif"], 2,
+     r"--size expects WxH"),
+    ("distance-size-with-image", ["distance", "--generators", "$distance", "--size", "64x64", "-o", "^out.tif"], 2,
+     r"--size applies to poly-lines"),
+    ("distance-mu-zero", ["distance", "--generators", "$distance", "--mu", "0", "-o", "^out.tif"], 1, r"mu|weight"),
+    ("distance-r-too-large", ["distance", "--generators", "$distance", "--r", "5", "-o", "^out.tif"], 1,
+     r"rough|deviation|r "),
+    ("distance-cell-nan", ["distance", "--generators", "$distance", "--cell", "nan", "-o", "^out.tif"], 2,
+     r"--cell expects a number"),
+    ("distance-labels-wrong-size", ["distance", "--generators", "$distance", "--profiles", "$profiles",
+                                    "--labels", "@tiny-strokes.png", "-o", "^out.tif"], 1, r"label.*(size|\d+x\d+)"),
+    ("distance-edge-weights-wrong-size", ["distance", "--generators", "$distance", "--edge-weights",
+                                          "@tiny-strokes.png", "-o", "^out.tif"], 1, r"edge-weight image is 40x40"),
+    ("distance-region-profile-missing", ["distance", "--generators", "$distance", "--region-profile", "3",
+                                         "-o", "^out.tif"], 1, r"region profile 3 does not exist"),
+    ("distance-memory-budget", ["distance", "--generators", "$distance", "--max-memory", "0.0001",
+                                "-o", "^out.tif"], 1, r"needs about \d+ MB but the memory budget is 0\.1 MB"),
+    # usage --------------------------------------------------------------------------------------
+    ("unknown-command", ["synthesise"], 2, r"Unknown command \"synthesise\"\. See \"tsynth --help\""),
+    ("option-without-value", ["info", "$dem", "--cell"], 2, r"--cell needs a value"),
+]
+
+# Odd but valid inputs: each must succeed (exit 0, only warnings on stderr, its outputs written).
+# (id, arguments, outputs it must write)
+EDGE_CASES = [
+    ("info-one-pixel", ["info", "@one.tif"], []),
+    ("render-some-inf-heights", ["render", "@someinf.tif", "-o", "^out.png"], ["out.png"]),
+    ("features-strokes-on-border", ["features", "@border.png", "--sketch", "-o", "^tree.vtp"], ["tree.vtp"]),
+    ("synth-strokes-on-border", ["synth", "--exemplar", "$dem", "--sketch", "@border.png", "--patch", "32",
+                                 "-o", "^out.tif"], ["out.tif"]),
+    ("optimise-strokes-on-border", ["optimise", "--exemplar", "$dem", "--guide", "@border.png", "-o", "^out.tif"],
+     ["out.tif"]),
+    ("distance-strokes-on-border", ["distance", "--generators", "@border.png", "-o", "^out.tif"], ["out.tif"]),
+    # Lines from inside the grid to 1e300 m: only what lies on the grid is used, in bounded time.
+    ("evaluate-vtp-reaching-1e300", ["evaluate", "$dem", "--exemplar", "$dem", "--sketch", "@huge.vtp"], []),
+    ("distance-vtp-reaching-1e300", ["distance", "--generators", "@huge.vtp", "-o", "^out.tif"], ["out.tif"]),
+    ("synth-vtp-reaching-1e300-with-size", ["synth", "--exemplar", "$dem", "--sketch", "@huge.vtp", "--size",
+                                            "128x128", "--patch", "32", "-o", "^out.tif"], ["out.tif"]),
+]
+
+DATA = {
+    "$dem": ("dems", "colorado.png"),
+    "$strokes": ("sketches", "strokes_y_ridges.png"),
+    "$grey": ("sketches", "lambda_circle_grey.png"),
+}
+# Not under Data/: the distance examples.
+EXAMPLES = {
+    "$distance": ("distance", "valley_pair_strokes.png"),
+    "$profiles": ("distance", "mountain_profiles.csv"),
+}
+
+# Anything of these in stderr is a crash or garbage, never a sentence for a user.
+FORBIDDEN = re.compile(r"Traceback|terminate called|Sanitizer|runtime error|Segmentation|core dumped|"
+                       r"unexpected failure|std::|basic_string|what\(\)|Assertion|ERROR: In ")
+
+
+def png_bytes(width, height, rows, colour_type=2, bit_depth=8):
+    def chunk(kind, data):
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
+
+    raw = b"".join(b"\x00" + row for row in rows)
+    return (b"\x89PNG\r\n\x1a\n"
+            + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, bit_depth, colour_type, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+def rgb_png(path, width, height, pixel):
+    rows = [bytes(c for x in range(width) for c in pixel(x, y)) for y in range(height)]
+    with open(path, "wb") as f:
+        f.write(png_bytes(width, height, rows))
+
+
+def float_tiff(path, width, height, value, nodata=None):
+    """A baseline little-endian float32 TIFF, one strip; value(x, y) gives the height."""
+    pixels = b"".join(struct.pack("<f", value(x, y)) for y in range(height) for x in range(width))
+    entries = [(256, 4, 1, width), (257, 4, 1, height), (258, 3, 1, 32), (259, 3, 1, 1), (262, 3, 1, 1),
+               (273, 4, 1, 0), (277, 3, 1, 1), (278, 4, 1, height), (279, 4, 1, len(pixels)), (339, 3, 1, 3)]
+    extra = b""
+    if nodata is not None:
+        text = (nodata + "\0").encode()
+        entries.append((42113, 2, len(text), 0))
+        extra = text
+    entries.sort()
+    ifd_size = 2 + 12 * len(entries) + 4
+    data_offset = 8 + ifd_size
+    extra_offset = data_offset + len(pixels)
+    ifd = struct.pack("<H", len(entries))
+    for tag, kind, count, value_ in entries:
+        if tag == 273:
+            value_ = data_offset
+        if tag == 42113:
+            value_ = extra_offset
+        if kind == 3:
+            ifd += struct.pack("<HHIHH", tag, kind, count, value_, 0)
+        else:
+            ifd += struct.pack("<HHII", tag, kind, count, value_)
+    ifd += struct.pack("<I", 0)
+    with open(path, "wb") as f:
+        f.write(b"II*\x00" + struct.pack("<I", 8) + ifd + pixels + extra)
+
+
+def sidecar(path, text):
+    with open(os.path.splitext(path)[0] + ".json", "w") as f:
+        f.write(text)
+
+
+def vtp(path, points, lines, feature_types=None, raw_points=None):
+    """A VTK XML poly-data file; points are written in binary (base64) so NaN survives."""
+    coords = raw_points if raw_points is not None else b"".join(struct.pack("<3d", *p) for p in points)
+    n = len(coords) // 24
+
+    def binary(data):
+        return base64.b64encode(struct.pack("<I", len(data)) + data).decode()
+
+    connectivity = " ".join(str(i) for line in lines for i in line)
+    offsets, total = [], 0
+    for line in lines:
+        total += len(line)
+        offsets.append(str(total))
+    cell_data = ""
+    if feature_types is not None:
+        cell_data = ('<CellData><DataArray type="Int32" Name="FeatureType" format="ascii">%s</DataArray>'
+                     '</CellData>' % " ".join(str(t) for t in feature_types))
+    line_block = ""
+    if lines:
+        line_block = ('<Lines><DataArray type="Int64" Name="connectivity" format="ascii">%s</DataArray>'
+                      '<DataArray type="Int64" Name="offsets" format="ascii">%s</DataArray></Lines>'
+                      % (connectivity, " ".join(offsets)))
+    verts = ""
+    if not lines:
+        verts = ('<Verts><DataArray type="Int64" Name="connectivity" format="ascii">%s</DataArray>'
+                 '<DataArray type="Int64" Name="offsets" format="ascii">%s</DataArray></Verts>'
+                 % (" ".join(str(i) for i in range(n)), " ".join(str(i + 1) for i in range(n))))
+    with open(path, "w") as f:
+        f.write('<?xml version="1.0"?>\n<VTKFile type="PolyData" version="0.1" byte_order="LittleEndian">'
+                '<PolyData><Piece NumberOfPoints="%d" NumberOfVerts="%d" NumberOfLines="%d" NumberOfStrips="0" '
+                'NumberOfPolys="0">%s<Points><DataArray type="Float64" NumberOfComponents="3" format="binary">'
+                '%s</DataArray></Points>%s%s</Piece></PolyData></VTKFile>\n'
+                % (n, 0 if lines else n, len(lines), cell_data, binary(coords), verts, line_block))
+
+
+def make_fixtures(d, bundled):
+    join = lambda *p: os.path.join(d, *p)  # noqa: E731
+    colorado = os.path.join(bundled, "dems", "colorado.png")
+    jackson = os.path.join(bundled, "dems", "mount_jackson_crop601.tif")
+    with open(jackson, "rb") as f:
+        tif = f.read()
+    with open(colorado, "rb") as f:
+        png = f.read()
+    with open(join("truncated.tif"), "wb") as f:
+        f.write(tif[:len(tif) // 3])
+    corrupt = bytearray(tif)
+    for k in range(len(corrupt) // 2, len(corrupt) - 1000, 7):
+        corrupt[k] = 0xFF
+    with open(join("corrupt.tif"), "wb") as f:
+        f.write(bytes(corrupt))
+    with open(join("header-only.tif"), "wb") as f:
+        f.write(tif[:16384])
+    with open(join("truncated.png"), "wb") as f:
+        f.write(png[:len(png) // 2])
+    bad = bytearray(png)
+    bad[40] ^= 0x55  # inside IHDR/first chunk: its CRC no longer matches
+    bad[len(bad) // 2] ^= 0x55
+    with open(join("badcrc.png"), "wb") as f:
+        f.write(bytes(bad))
+    with open(join("huge.png"), "wb") as f:  # a header claiming 10^12 grey pixels
+        f.write(png_bytes(1000000, 1000000, [], colour_type=0)[:33] + png_bytes(1, 1, [b"\x00"], colour_type=0)[33:])
+    float_tiff(join("huge.tif"), 1, 1, lambda x, y: 1.0)
+    with open(join("huge.tif"), "r+b") as f:  # then widen the header to 10^6 x 10^6
+        data = bytearray(f.read())
+        ifd = 8
+        for e in range(struct.unpack_from("<H", data, ifd)[0]):
+            at = ifd + 2 + 12 * e
+            if struct.unpack_from("<H", data, at)[0] in (256, 257, 278):
+                struct.pack_into("<I", data, at + 8, 1000000)
+        f.seek(0)
+        f.write(bytes(data))
+    open(join("empty.tif"), "w").close()
+    with open(join("zero.asc"), "w") as f:
+        f.write("ncols 0\nnrows 0\nxllcorner 0\nyllcorner 0\ncellsize 30\n")
+    float_tiff(join("one.tif"), 1, 1, lambda x, y: 1000.0)
+    sidecar(join("one.tif"), '{"cell_size_m": 90}')
+    nan = float("nan")
+    float_tiff(join("allnan.tif"), 64, 64, lambda x, y: nan)
+    sidecar(join("allnan.tif"), '{"cell_size_m": 90}')
+    float_tiff(join("allinf.tif"), 64, 64, lambda x, y: float("inf") if (x + y) % 2 else -float("inf"))
+    sidecar(join("allinf.tif"), '{"cell_size_m": 90}')
+    float_tiff(join("nodata.tif"), 64, 64, lambda x, y: -9999.0, nodata="-9999")
+    sidecar(join("nodata.tif"), '{"cell_size_m": 90}')
+    with open(join("nodata.asc"), "w") as f:
+        f.write("ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 30\nNODATA_value -1\n-1 -1 -1\n-1 -1 -1\n")
+    float_tiff(join("extreme.tif"), 64, 64, lambda x, y: 3.0e38 if (x * 7 + y * 3) % 5 == 0 else -3.0e38)
+    sidecar(join("extreme.tif"), '{"cell_size_m": 90}')
+    float_tiff(join("flat.tif"), 200, 200, lambda x, y: 1234.0)
+    sidecar(join("flat.tif"), '{"cell_size_m": 90}')
+    # 0.01 m cells: the second exemplar (90 m) would be resampled to 58320 x 58320 cells.
+    float_tiff(join("fine.tif"), 200, 200, lambda x, y: 0.001 * ((x * 37 + y * 91) % 17))
+    sidecar(join("fine.tif"), '{"cell_size_m": 0.01}')
+    with open(join("readme.tif"), "w") as f:
+        f.write("hello, I am text\n")
+    shutil.copy(join("readme.tif"), join("readme.vtp"))
+    shutil.copy(join("readme.tif"), join("readme.vti"))
+    os.mkfifo(join("pipe.tif"))
+    os.mkdir(join("folder.tif"))
+    for name, text in (("badjson", '{"z_unit": "ft", "cell_size_m": }'),
+                       ("badunit", '{"z_unit": "furlongs"}'),
+                       ("badcell", '{"cell_size_m": -90}'),
+                       ("badrange", '{"z_min": 100, "z_max": 50}'),
+                       ("badtype", '[1, 2, 3]'),
+                       ("nancell", '{"cell_size_m": NaN}'),
+                       ("dirsidecar", None)):
+        os.mkdir(join(name))
+        shutil.copy(colorado, join(name, "dem.png"))
+        if text is None:
+            os.mkdir(join(name, "dem.json"))  # a sidecar that cannot be read
+        else:
+            sidecar(join(name, "dem.png"), text)
+    rgb_png(join("blank.png"), 256, 256, lambda x, y: (255, 255, 255))
+    with open(join("labels.png"), "wb") as f:  # two style regions, grey 8-bit
+        f.write(png_bytes(128, 128, [bytes(0 if x < 64 else 1 for x in range(128))] * 128, colour_type=0))
+    # A ridge along the top row and a valley down the right-hand column, touching the border.
+    rgb_png(join("border.png"), 256, 256,
+            lambda x, y: (230, 20, 20) if y == 0 and x < 200 else (20, 20, 230) if x == 255 and y > 40
+            else (255, 255, 255))
+    float_tiff(join("someinf.tif"), 64, 64, lambda x, y: float("inf") if x == y else 100.0 + x * 3 + y)
+    sidecar(join("someinf.tif"), '{"cell_size_m": 90}')
+    rgb_png(join("tiny-strokes.png"), 40, 40, lambda x, y: (230, 20, 20) if x == y else (255, 255, 255))
+    vtp(join("huge.vtp"), [(0, 0, 0), (1e300, 1e300, 0), (10, 10, 0), (2e300, 5, 0)], [[0, 1], [2, 3]], [1, -1])
+    vtp(join("nan.vtp"), None, [[0, 1, 2]], [1],
+        raw_points=struct.pack("<9d", 100, 100, 0, nan, 2000, 0, 3000, 3000, 0))
+    vtp(join("negative.vtp"), [(-5000, -5000, 0), (-100, -200, 0)], [[0, 1]], [1])
+    vtp(join("points.vtp"), [(100, 100, 0), (200, 200, 0)], [], None)
+    vtp(join("shorttype.vtp"), [(1000, 1000, 0), (20000, 20000, 0), (1000, 20000, 0), (20000, 1000, 0)],
+        [[0, 1], [2, 3]], [1])
+    vtp(join("line.vtp"), [(500, 2000, 0), (3500, 2000, 0)], [[0, 1]], [1])
+    vtp(join("far.vtp"), [(1e300, 1e300, 0), (2e300, 1e300, 0)], [[0, 1]], [1])
+    with open(join("shorttype.vtp")) as f:  # the same, its FeatureType array in binary
+        text = f.read()
+    short = base64.b64encode(struct.pack("<I", 4) + struct.pack("<i", 1)).decode()
+    with open(join("shorttype-bin.vtp"), "w") as f:
+        f.write(text.replace('format="ascii">1</DataArray></CellData>',
+                             'format="binary">%s</DataArray></CellData>' % short))
+    with open(join("short.vti"), "w") as f:  # 64 x 64 points, an Elevation array of 10 values
+        f.write('<?xml version="1.0"?>\n<VTKFile type="ImageData" version="0.1" byte_order="LittleEndian">'
+                '<ImageData WholeExtent="0 63 0 63 0 0" Origin="0 0 0" Spacing="90 90 1">'
+                '<Piece Extent="0 63 0 63 0 0"><PointData Scalars="Elevation">'
+                '<DataArray type="Float32" Name="Elevation" format="ascii">%s</DataArray>'
+                '</PointData><CellData/></Piece></ImageData></VTKFile>\n' % " ".join(["100"] * 10))
+    with open(join("rising.csv"), "w") as f:
+        f.write("0,1\n5,0.5\n7,0.8\n")
+    with open(join("garbage.csv"), "w") as f:
+        f.write("distance,height\nthis,is\nnot,numbers\n")
+    with open(join("nanprofile.csv"), "w") as f:
+        f.write("0,1\n5,nan\n10,0\n")
+    open(join("emptyprofile.csv"), "w").close()
+
+
+class BadInputTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix="tsynth-bad-")
+        make_fixtures(cls.tmp, PATHS.bundled_data)
+        examples = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Examples")
+        cls.data = {k: os.path.join(PATHS.bundled_data, *v) for k, v in DATA.items()}
+        cls.data.update({k: os.path.join(examples, *v) for k, v in EXAMPLES.items()})
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp)
+
+    def arguments(self, args, out_dir):
+        out = []
+        for a in args:
+            if a.startswith("@"):
+                out.append(os.path.join(self.tmp, a[1:]) if len(a) > 1 else self.tmp)
+            elif a.startswith("^"):
+                out.append(os.path.join(out_dir, a[1:]))
+            else:
+                out.append(self.data.get(a, a))
+        return out
+
+    def check_case(self, case_id, args, status, pattern):
+        out_dir = os.path.join(self.tmp, "out-" + case_id)
+        os.mkdir(out_dir)
+        try:
+            r = subprocess.run([PATHS.tsynth] + self.arguments(args, out_dir), capture_output=True,
+                               text=True, errors="replace", timeout=CASE_TIMEOUT_S)
+        except subprocess.TimeoutExpired:
+            self.fail("hung for more than %d s" % CASE_TIMEOUT_S)
+        lines = [line for line in r.stderr.splitlines() if line.strip()]
+        self.assertGreater(r.returncode, 0, "exit %d (a signal if negative); stderr %r" % (r.returncode, r.stderr))
+        self.assertIsNone(FORBIDDEN.search(r.stderr), r.stderr)
+        self.assertEqual(len(lines), 1, "expected one sentence, got %r" % r.stderr)
+        sentence = lines[0]
+        self.assertTrue(sentence.startswith("tsynth: ") and sentence.rstrip().endswith("."), sentence)
+        self.assertTrue(all(32 <= ord(c) < 127 for c in sentence), "not plain text: %r" % sentence)
+        if os.environ.get("TSYNTH_BAD_INPUT_VERBOSE"):
+            print("\n%-34s %d %s" % (case_id, r.returncode, sentence))
+        self.assertRegex(sentence, pattern)
+        self.assertEqual(r.returncode, status, sentence)
+        self.assertNotIn("Wrote ", r.stdout)
+        self.assertEqual(os.listdir(out_dir), [], "a failed command left files behind")
+        self.assertFalse(os.path.exists("/proc/tsynth-out.tif"))
+
+    def run_tsynth(self, args):
+        return subprocess.run([PATHS.tsynth] + args, capture_output=True, timeout=CASE_TIMEOUT_S)
+
+    def test_report_is_valid_json_whatever_the_paths(self):
+        """The report is written with nlohmann: quotes, backslashes, a newline and a byte that is not
+        UTF-8 in the paths still give valid JSON (the byte replaced), never an error after the
+        terrain was written."""
+        folder = os.path.join(self.tmp, 'we"ird\\dir')
+        os.mkdir(folder)
+        out = os.path.join(folder, "o\nut.tif").encode() + b"\xe9.tif"
+        report = os.path.join(folder, 'r"\\.json')
+        strokes = os.path.join(PATHS.bundled_data, "sketches", "strokes_y_ridges.png")
+        r = self.run_tsynth([b"synth", b"--exemplar", self.data["$dem"].encode(), b"--sketch", strokes.encode(),
+                             b"--size", b"128x128", b"--patch", b"32", b"-o", out, b"--report", report.encode(),
+                             b"--no-progress"])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(report, encoding="utf-8") as f:
+            doc = json.load(f)
+        self.assertEqual(doc["output"], out.decode("utf-8", errors="replace"))
+        self.assertEqual(doc["sketch"], strokes)
+        self.assertTrue(os.path.exists(out))
+
+    def test_info_json_keeps_every_character_of_the_path(self):
+        name = os.path.join(self.tmp, 'a"b\\c\nd.png')
+        shutil.copy(self.data["$dem"], name)
+        shutil.copy(os.path.splitext(self.data["$dem"])[0] + ".json", os.path.splitext(name)[0] + ".json")
+        r = self.run_tsynth([b"info", name.encode(), b"--json"])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        doc = json.loads(r.stdout.decode("utf-8"))
+        self.assertEqual(doc["file"], name)  # the newline too (it used to become a space)
+        self.assertEqual((doc["width"], doc["height"]), (648, 648))
+
+    def test_a_flat_exemplar_gives_null_figures_with_a_reason(self):
+        """Seam index and slope distance have no scale on a flat exemplar: null with a note, never the 0
+        that read as a perfect score; evaluate's text shows "-"."""
+        out = os.path.join(self.tmp, "flat-out.tif")
+        report = os.path.join(self.tmp, "flat-report.json")
+        strokes = os.path.join(PATHS.bundled_data, "sketches", "strokes_y_ridges.png")
+        flat = os.path.join(self.tmp, "flat.tif")
+        r = self.run_tsynth(["synth", "--exemplar", flat, "--sketch", strokes, "--size", "128x128", "--patch", "32",
+                             "-o", out, "--report", report, "--no-progress"])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(report) as f:
+            quality = json.load(f)["quality"]
+        self.assertIsNone(quality["seam_index"])
+        self.assertIsNone(quality["slope_distance"])
+        self.assertIn("flat", quality["notes"]["seamIndex"])
+        self.assertIn("flat", quality["notes"]["slopeDistance"])
+        self.assertGreater(quality["pit_density"], 0.0)  # still measured: it needs no exemplar scale
+        r = self.run_tsynth(["evaluate", out, "--exemplar", flat, "--json"])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        figures = json.loads(r.stdout)["terrain"]
+        self.assertIsNone(figures["seam_index"])
+        self.assertIsNone(figures["ridge_fidelity"])  # no sketch given
+        self.assertEqual(figures["notes"]["ridgeFidelity"], "no sketch given")
+        text = self.run_tsynth(["evaluate", out, "--exemplar", flat]).stdout.decode()
+        self.assertRegex(text.splitlines()[0], r"seam   -    slope   -  ")
+
+    def test_odd_but_valid_inputs_succeed(self):
+        for case_id, args, outputs in EDGE_CASES:
+            with self.subTest(case=case_id):
+                out_dir = os.path.join(self.tmp, "edge-" + case_id)
+                os.mkdir(out_dir)
+                try:
+                    r = subprocess.run([PATHS.tsynth] + self.arguments(args, out_dir), capture_output=True,
+                                       text=True, errors="replace", timeout=CASE_TIMEOUT_S)
+                except subprocess.TimeoutExpired:
+                    self.fail("hung for more than %d s" % CASE_TIMEOUT_S)
+                self.assertEqual(r.returncode, 0, r.stderr)
+                others = [line for line in r.stderr.splitlines()
+                          if line.strip() and not line.startswith("tsynth: warning: ")]
+                self.assertEqual(others, [], r.stderr)
+                self.assertIsNone(FORBIDDEN.search(r.stderr), r.stderr)
+                self.assertEqual(sorted(os.listdir(out_dir)), sorted(outputs))
+
+    def test_catalogue(self):
+        self.assertGreaterEqual(len(CASES), 40)
+        self.assertEqual(len({c[0] for c in CASES}), len(CASES), "case ids must be unique")
+        commands = {c[1][0] for c in CASES}
+        for command in ("info", "render", "convert", "features", "synth", "evaluate", "pits", "optimise",
+                        "distance"):
+            self.assertIn(command, commands)
+        only = os.environ.get("TSYNTH_BAD_INPUT_CASES")  # a comma-separated subset, for debugging
+        for case_id, args, status, pattern in CASES:
+            if only and case_id not in only.split(","):
+                continue
+            with self.subTest(case=case_id):
+                self.check_case(case_id, args, status, pattern)
+
+
+if __name__ == "__main__":
+    harness.run(__name__)
