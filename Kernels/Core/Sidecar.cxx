@@ -96,6 +96,12 @@ Sidecar readSidecar(const std::string& path)
     throw Error("Sidecar " + path + " is not valid JSON (byte " + std::to_string(e.byte) +
       "); fix it or remove it.");
   }
+  catch (const nlohmann::json::out_of_range&)
+  {
+    // The parser's only other complaint: a number beyond a double (1e999).
+    throw Error("Sidecar " + path +
+      " holds a number too large for a double (over 1.8e308); fix it or remove it.");
+  }
   if (!doc.is_object())
   {
     throw Error("Sidecar " + path + " must hold a JSON object such as {\"z_unit\": \"m\"}.");

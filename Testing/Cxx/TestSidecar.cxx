@@ -86,6 +86,9 @@ TEST(Sidecar, BadInputGetsOneClearSentence)
   EXPECT_NE(errorOf(writeText("order.json", R"({"z_min": 3, "z_max": 2})")).find("greater"),
     std::string::npos);
   EXPECT_NE(errorOf(writeText("array.json", R"([1, 2])")).find("JSON object"), std::string::npos);
+  // Found by fuzzing: the JSON parser's number overflow escaped as its own exception type.
+  EXPECT_NE(errorOf(writeText("huge.json", R"({"nodata": 1e999})")).find("too large for a double"),
+    std::string::npos);
 }
 
 TEST(Sidecar, PathIsBesideTheRaster)
