@@ -273,6 +273,39 @@ PolylineSketch polyDataToPolylineSketch(const vtkPolyData* constInput, std::stri
   return sketch;
 }
 
+namespace
+{
+
+// vtkXMLPolyDataReader does not check that the cells refer to existing points;
+// a damaged file would make every reader of the points read past their end.
+void checkPointIds(vtkPolyData* data, const std::string& path)
+{
+  const vtkIdType points = data->GetNumberOfPoints();
+  vtkNew<vtkIdList> ids;
+  for (vtkCellArray* cells :
+    { data->GetVerts(), data->GetLines(), data->GetPolys(), data->GetStrips() })
+  {
+    if (cells == nullptr)
+    {
+      continue;
+    }
+    for (cells->InitTraversal(); cells->GetNextCell(ids);)
+    {
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+      {
+        const vtkIdType id = ids->GetId(k);
+        if (id < 0 || id >= points)
+        {
+          throw Error(path + " is damaged: a cell refers to point " + std::to_string(id) +
+            " but the file has " + std::to_string(points) + " points.");
+        }
+      }
+    }
+  }
+}
+
+} // namespace
+
 void readPolyDataFile(const std::string& path, vtkPolyData* out)
 {
   std::error_code ec;
@@ -289,6 +322,7 @@ void readPolyDataFile(const std::string& path, vtkPolyData* out)
   {
     throw Error(path + " is not a VTK poly-data file that can be read.");
   }
+  checkPointIds(reader->GetOutput(), path);
   out->ShallowCopy(reader->GetOutput());
 }
 

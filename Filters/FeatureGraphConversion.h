@@ -46,7 +46,8 @@ std::vector<Polyline> polyDataToPolylines(const vtkPolyData* input,
 // are there (a feature tree written by featureGraphToPolyData).
 PolylineSketch polyDataToPolylineSketch(const vtkPolyData* input, std::string* warning = nullptr);
 
-// Reads a .vtp file into `out`. Throws tsynth::Error if it is missing or unreadable.
+// Reads a .vtp file into `out`. Throws tsynth::Error if it is missing, unreadable
+// or damaged (a cell refers to a point the file does not have).
 void readPolyDataFile(const std::string& path, vtkPolyData* out);
 
 // Writes a .vtp with inline binary data (readable by this machine's ParaView);

@@ -211,6 +211,34 @@ TEST(Filters, VtiErrors)
   EXPECT_THROW(tsynth::readTerrainFile(junk), tsynth::Error);
 }
 
+// Found while writing the poly-line fuzz target: a cell naming a point past the
+// end made every reader of the lines read past the points (a crash or garbage).
+TEST(Filters, PolyDataFileWithAPointIdPastTheEndIsDamaged)
+{
+  const std::string path = (tsynth::test::scratchDir() / "bad-point-id.vtp").string();
+  std::ofstream(path) << R"(<?xml version="1.0"?>
+<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">
+  <PolyData><Piece NumberOfPoints="3" NumberOfLines="1">
+    <Points><DataArray type="Float64" NumberOfComponents="3" format="ascii">0 0 0 1 1 0 2 0 0</DataArray></Points>
+    <Lines><DataArray type="Int64" Name="connectivity" format="ascii">0 1 3</DataArray>
+      <DataArray type="Int64" Name="offsets" format="ascii">3</DataArray></Lines>
+  </Piece></PolyData>
+</VTKFile>
+)";
+  vtkNew<vtkPolyData> lines;
+  try
+  {
+    tsynth::readPolyDataFile(path, lines);
+    ADD_FAILURE() << "no error";
+  }
+  catch (const tsynth::Error& e)
+  {
+    EXPECT_NE(
+      std::string(e.what()).find("refers to point 3 but the file has 3 points"), std::string::npos)
+      << e.what();
+  }
+}
+
 TEST(Filters, FeatureGraphBecomesPolyDataWithSharedNodePoints)
 {
   // A Y of poly-lines: one branch node shared by three chains.
