@@ -157,7 +157,9 @@ Sidecar readSidecar(const std::string& path)
 
 void writeSidecar(const std::string& path, const Sidecar& s)
 {
-  nlohmann::ordered_json doc;
+  // An object even without keys: a default ordered_json would be written as `null`,
+  // which readSidecar refuses.
+  nlohmann::ordered_json doc = nlohmann::ordered_json::object();
   if (s.zUnit)
   {
     doc["z_unit"] = zUnitName(*s.zUnit);

@@ -72,6 +72,15 @@ TEST(Sidecar, WriteThenReadIsIdentity)
   EXPECT_FALSE(r.nodata.has_value());
 }
 
+// Found by fuzzing: a sidecar without keys was written as `null`, which the reader refuses.
+TEST(Sidecar, EmptySidecarWritesAnObjectItReadsBack)
+{
+  const auto path = (tsynth::test::scratchDir() / "empty-written.json").string();
+  tsynth::writeSidecar(path, tsynth::Sidecar{});
+  const tsynth::Sidecar r = tsynth::readSidecar(path);
+  EXPECT_FALSE(r.zUnit || r.cellX || r.cellY || r.zMin || r.zMax || r.nodata);
+}
+
 TEST(Sidecar, BadInputGetsOneClearSentence)
 {
   EXPECT_NE(errorOf(writeText("bad.json", R"({"z_unit": "m", )")).find("is not valid JSON"),
