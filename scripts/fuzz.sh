@@ -24,9 +24,11 @@ mkdir -p "$work" "$artifacts"
 # One core: OpenMP loops in the kernels run on one thread.
 export OMP_NUM_THREADS=1
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"
+dict=()
+[ -f "$root/Testing/Fuzz/$target.dict" ] && dict=(-dict="$root/Testing/Fuzz/$target.dict")
 status=0
 "$fuzzer" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 \
-  -artifact_prefix="$artifacts/" "$work" "$corpus" || status=$?
+  "${dict[@]}" -artifact_prefix="$artifacts/" "$work" "$corpus" || status=$?
 # The smallest set of inputs with the same coverage; regression-* files (inputs
 # that once crashed) always stay.
 merged="$(mktemp -d)"

@@ -204,6 +204,13 @@ def polyline_seeds(out):
     square = [300, 300, 0, 900, 300, 0, 900, 900, 0, 300, 900, 0]
     write(out, "polylines", "closed_loop",
           vtp_lines(square, [0, 1, 2, 3, 0], [5], [-1]))
+    # Generator lines of tsynth distance: per-point costs and a profile per cell.
+    write(out, "polylines", "distance_generators",
+          vtp_lines(y_points, [0, 1, 2, 1, 3, 4, 5], [2, 3, 5, 7], [1, 1, 1, -1]).replace(
+              b"<CellData>", b'<CellData><DataArray type="Int32" Name="Profile" format="ascii">'
+              b"0 1 -1 2</DataArray>").replace(
+              b"</CellData>", b'</CellData>\n      <PointData><DataArray type="Float32" '
+              b'Name="Cost" format="ascii">1 2 nan 4 5 6</DataArray></PointData>'))
     write(out, "polylines", "no_feature_type",
           vtp_lines(y_points[:9], [0, 1, 2], [3], []).replace(
               b'<CellData><DataArray type="Int32" Name="FeatureType" format="ascii">'
