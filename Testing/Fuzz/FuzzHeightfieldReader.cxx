@@ -6,6 +6,7 @@
 #include "Core/HeightfieldIO.h"
 #include "FuzzSupport.h"
 
+#include <cpl_conv.h>
 #include <cpl_error.h>
 
 #include <array>
@@ -15,8 +16,8 @@ namespace
 {
 
 // GeoTIFF, PNG, ESRI ASCII grid, SRTM .hgt (GDAL wants the tile name), ASCII
-// XYZ, USGS DEM, JPEG, GIF, BMP, Erdas .img, ENVI-like .bil, netCDF .nc, .vrt.
-const std::array<const char*, 13> kNames = { "input.tif",
+// XYZ, USGS DEM, JPEG, GIF, BMP, Erdas .img, ENVI-like .bil, .vrt.
+const std::array<const char*, 12> kNames = { "input.tif",
   "input.png",
   "input.asc",
   "N45E006.hgt",
@@ -27,15 +28,20 @@ const std::array<const char*, 13> kNames = { "input.tif",
   "input.bmp",
   "input.img",
   "input.bil",
-  "input.nc",
   "input.vrt" };
 constexpr std::uint8_t kSidecarFlag = 0x80;
 
-void quietGdal()
+// GDAL quiet, and without its netCDF driver: libnetcdf callocs names and
+// attributes of the length a header declares (up to 4 GB) before it finds the
+// file too short. The pages are never touched, but under ASan their shadow is,
+// and a few such files in a row pass any RSS limit. That is libnetcdf's way,
+// not the project's, and would hide every other finding.
+void setUpGdal()
 {
   static const bool once = []
   {
     CPLSetErrorHandler(CPLQuietErrorHandler);
+    CPLSetConfigOption("GDAL_SKIP", "netCDF");
     return true;
   }();
   (void)once;
@@ -58,7 +64,7 @@ void expectOnlyTsynthErrors(F&& read)
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
-  quietGdal();
+  setUpGdal();
   tsynth::fuzz::Bytes in(data, size);
   const std::uint8_t selector = in.byte();
   const std::string name = kNames[(selector & ~kSidecarFlag) % kNames.size()];

@@ -21,7 +21,7 @@ gdal.UseExceptions()
 SIDECAR_FLAG = 0x80
 # The heightfield_reader's file names, as FuzzHeightfieldReader.cxx lists them.
 NAMES = ["input.tif", "input.png", "input.asc", "N45E006.hgt", "input.xyz", "input.dem",
-         "input.jpg", "input.gif", "input.bmp", "input.img", "input.bil", "input.nc", "input.vrt"]
+         "input.jpg", "input.gif", "input.bmp", "input.img", "input.bil", "input.vrt"]
 
 
 def write(out, target, name, data):
@@ -77,8 +77,7 @@ def heightfield_seeds(out):
         "jpg": (6, raster_bytes("JPEG", hills.astype(np.uint8), gdal.GDT_Byte, geo=False)),
         "gif_palette": (7, raster_bytes("GIF", hills.astype(np.uint8), gdal.GDT_Byte, geo=False)),
         "bmp": (8, raster_bytes("BMP", hills.astype(np.uint8), gdal.GDT_Byte, geo=False)),
-        "nc": (11, raster_bytes("netCDF", hills, gdal.GDT_Float32)),
-        "vrt_huge": (12, b'<VRTDataset rasterXSize="200000" rasterYSize="200000">'
+        "vrt_huge": (11, b'<VRTDataset rasterXSize="200000" rasterYSize="200000">'
                          b'<VRTRasterBand dataType="Float32" band="1"></VRTRasterBand>'
                          b'</VRTDataset>'),
     }
