@@ -17,11 +17,15 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLDataParser.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include <cmath>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 namespace tsynth
 {
@@ -304,6 +308,38 @@ void checkPointIds(vtkPolyData* data, const std::string& path)
   }
 }
 
+// Every data array of the file must name a type VTK knows: vtkXMLReader (VTK
+// 9.2) dereferences a null array when a FieldData array's type is missing or
+// unknown (type="Float82"), and the process dies before any error is reported.
+void checkArrayTypes(const std::string& path)
+{
+  vtkNew<vtkXMLDataParser> parser;
+  VtkErrorObserver observer;
+  parser->AddObserver(vtkCommand::ErrorEvent, observer.callback);
+  parser->SetFileName(path.c_str());
+  if (parser->Parse() == 0 || observer.failed || parser->GetRootElement() == nullptr)
+  {
+    throw Error(path + " is not a VTK poly-data file that can be read.");
+  }
+  std::vector<vtkXMLDataElement*> pending{ parser->GetRootElement() };
+  while (!pending.empty())
+  {
+    vtkXMLDataElement* e = pending.back();
+    pending.pop_back();
+    int type = 0;
+    if (std::string(e->GetName()) == "DataArray" && e->GetWordTypeAttribute("type", type) == 0)
+    {
+      const char* name = e->GetAttribute("Name");
+      throw Error(path + " is damaged: its data array " +
+        (name != nullptr ? name : "without a name") + " has no type VTK knows.");
+    }
+    for (int k = 0; k < e->GetNumberOfNestedElements(); ++k)
+    {
+      pending.push_back(e->GetNestedElement(k));
+    }
+  }
+}
+
 } // namespace
 
 void readPolyDataFile(const std::string& path, vtkPolyData* out)
@@ -313,6 +349,7 @@ void readPolyDataFile(const std::string& path, vtkPolyData* out)
   {
     throw Error("No such file: " + path + ".");
   }
+  checkArrayTypes(path);
   vtkNew<vtkXMLPolyDataReader> reader;
   VtkErrorObserver observer;
   reader->AddObserver(vtkCommand::ErrorEvent, observer.callback);

@@ -239,6 +239,37 @@ TEST(Filters, PolyDataFileWithAPointIdPastTheEndIsDamaged)
   }
 }
 
+// Found by the polylines fuzz target: a field-data array of an unknown type made
+// VTK's reader dereference a null pointer (the process died).
+TEST(Filters, PolyDataFileWithAnUnknownArrayTypeIsDamaged)
+{
+  const std::string path = (tsynth::test::scratchDir() / "bad-array-type.vtp").string();
+  std::ofstream(path) << R"(<?xml version="1.0"?>
+<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">
+  <PolyData>
+    <FieldData><DataArray type="Float82" Name="CellSize" NumberOfTuples="2" format="ascii">30 30</DataArray></FieldData>
+    <Piece NumberOfPoints="2" NumberOfLines="1">
+      <Points><DataArray type="Float64" NumberOfComponents="3" format="ascii">0 0 0 1 1 0</DataArray></Points>
+      <Lines><DataArray type="Int64" Name="connectivity" format="ascii">0 1</DataArray>
+        <DataArray type="Int64" Name="offsets" format="ascii">2</DataArray></Lines>
+    </Piece>
+  </PolyData>
+</VTKFile>
+)";
+  vtkNew<vtkPolyData> lines;
+  try
+  {
+    tsynth::readPolyDataFile(path, lines);
+    ADD_FAILURE() << "no error";
+  }
+  catch (const tsynth::Error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("its data array CellSize has no type VTK knows"),
+      std::string::npos)
+      << e.what();
+  }
+}
+
 TEST(Filters, FeatureGraphBecomesPolyDataWithSharedNodePoints)
 {
   // A Y of poly-lines: one branch node shared by three chains.
