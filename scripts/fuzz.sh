@@ -25,6 +25,8 @@ mkdir -p "$work" "$artifacts"
 # One core: OpenMP loops in the kernels run on one thread.
 export OMP_NUM_THREADS=1
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"
+# Leaks of other projects' libraries, listed with what leaks.
+export LSAN_OPTIONS="suppressions=$root/Testing/Fuzz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 dict=()
 [ -f "$root/Testing/Fuzz/$target.dict" ] && dict=(-dict="$root/Testing/Fuzz/$target.dict")
 status=0
@@ -41,6 +43,7 @@ merged="$(mktemp -d)"
 control="$merged.control"
 mkdir "$merged/all" "$merged/picked"
 "$fuzzer" -merge=1 -use_counters=0 -merge_control_file="$control" -rss_limit_mb=2048 \
+  -artifact_prefix="$artifacts/merge-" \
   -timeout=10 "$merged/all" "$corpus" "$work" > /dev/null 2>&1 || true
 if [ -n "$(ls -A "$merged/all")" ]; then
   /usr/bin/python3 "$root/Testing/Fuzz/pick_corpus.py" "$control" "$merged/picked" "$committed"
