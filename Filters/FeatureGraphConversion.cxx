@@ -4,6 +4,7 @@
 #include "Core/OutputFile.h"
 #include "VtkErrorObserver.h"
 
+#include <vtkBase64Utilities.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCommand.h>
@@ -22,8 +23,12 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -308,10 +313,173 @@ void checkPointIds(vtkPolyData* data, const std::string& path)
   }
 }
 
-// Every data array of the file must name a type VTK knows: vtkXMLReader (VTK
-// 9.2) dereferences a null array when a FieldData array's type is missing or
+// Every DataArray element of an XML tree.
+std::vector<vtkXMLDataElement*> dataArrays(vtkXMLDataElement* root)
+{
+  std::vector<vtkXMLDataElement*> arrays;
+  std::vector<vtkXMLDataElement*> pending{ root };
+  while (!pending.empty())
+  {
+    vtkXMLDataElement* e = pending.back();
+    pending.pop_back();
+    if (std::string(e->GetName()) == "DataArray")
+    {
+      arrays.push_back(e);
+    }
+    for (int k = 0; k < e->GetNumberOfNestedElements(); ++k)
+    {
+      pending.push_back(e->GetNestedElement(k));
+    }
+  }
+  return arrays;
+}
+
+std::string arrayName(vtkXMLDataElement* array)
+{
+  const char* name = array->GetAttribute("Name");
+  return name != nullptr ? name : "without a name";
+}
+
+std::string attribute(vtkXMLDataElement* e, const char* name)
+{
+  const char* value = e->GetAttribute(name);
+  return value != nullptr ? value : "";
+}
+
+// Every data array must name a type VTK knows: vtkXMLReader (VTK 9.2)
+// dereferences a null array when a FieldData array's type is missing or
 // unknown (type="Float82"), and the process dies before any error is reported.
-void checkArrayTypes(const std::string& path)
+void checkArrayTypes(const std::vector<vtkXMLDataElement*>& arrays, const std::string& path)
+{
+  for (vtkXMLDataElement* a : arrays)
+  {
+    int type = 0;
+    if (a->GetWordTypeAttribute("type", type) == 0)
+    {
+      throw Error(path + " is damaged: its data array " + arrayName(a) + " has no type VTK knows.");
+    }
+  }
+}
+
+// A header word from its bytes in the file's byte order; 0 if too few bytes.
+std::uint64_t wordFromBytes(const std::vector<unsigned char>& bytes, int wordSize, bool bigEndian)
+{
+  if (bytes.size() < static_cast<std::size_t>(wordSize))
+  {
+    return 0;
+  }
+  std::uint64_t value = 0;
+  for (int k = 0; k < wordSize; ++k)
+  {
+    value = (value << 8) | bytes[static_cast<std::size_t>(bigEndian ? k : wordSize - 1 - k)];
+  }
+  return value;
+}
+
+// The first bytes of base64 text (whitespace skipped), enough for one word.
+std::vector<unsigned char> decodeFirstWord(std::istream& text, int wordSize)
+{
+  // Four characters carry three bytes.
+  const std::size_t wanted = 4 * ((static_cast<std::size_t>(wordSize) + 2) / 3);
+  std::string chars;
+  for (char c = 0; chars.size() < wanted && text.get(c);)
+  {
+    if (!std::isspace(static_cast<unsigned char>(c)))
+    {
+      chars.push_back(c);
+    }
+  }
+  std::vector<unsigned char> bytes(wanted, 0);
+  bytes.resize(
+    vtkBase64Utilities::DecodeSafely(reinterpret_cast<const unsigned char*>(chars.data()),
+      chars.size(),
+      bytes.data(),
+      bytes.size()));
+  return bytes;
+}
+
+// The first word of an inline binary array's header: base64 text after the
+// start tag at `tagPosition` of the file.
+std::uint64_t inlineHeaderWord(std::ifstream& in,
+  std::streamoff tagPosition,
+  int wordSize,
+  bool bigEndian)
+{
+  in.clear();
+  in.seekg(tagPosition);
+  for (char c = 0; in.get(c) && c != '>';)
+  {
+  }
+  return wordFromBytes(decodeFirstWord(in, wordSize), wordSize, bigEndian);
+}
+
+// The first word of an appended array's header at `position` of the file.
+std::uint64_t appendedHeaderWord(std::ifstream& in,
+  std::streamoff position,
+  bool base64,
+  int wordSize,
+  bool bigEndian)
+{
+  in.clear();
+  in.seekg(position);
+  if (base64)
+  {
+    return wordFromBytes(decodeFirstWord(in, wordSize), wordSize, bigEndian);
+  }
+  std::vector<unsigned char> bytes(static_cast<std::size_t>(wordSize), 0);
+  if (!in.read(reinterpret_cast<char*>(bytes.data()), wordSize))
+  {
+    return 0;
+  }
+  return wordFromBytes(bytes, wordSize, bigEndian);
+}
+
+// A compressed array's header starts with its number of blocks, then holds one
+// compressed size per block. vtkXMLDataParser sizes the table from that count
+// before reading it: a damaged count in a 5 KB file made it allocate 8 GB. The
+// table must fit in the file.
+void checkCompressedHeaders(vtkXMLDataParser* parser,
+  const std::vector<vtkXMLDataElement*>& arrays,
+  const std::string& path)
+{
+  vtkXMLDataElement* root = parser->GetRootElement();
+  if (attribute(root, "compressor").empty())
+  {
+    return;
+  }
+  const int wordSize = attribute(root, "header_type") == "UInt64" ? 8 : 4;
+  const bool bigEndian = attribute(root, "byte_order") == "BigEndian";
+  vtkXMLDataElement* appended = root->FindNestedElementWithName("AppendedData");
+  const bool appendedBase64 = appended != nullptr && attribute(appended, "encoding") == "base64";
+  std::error_code ec;
+  const auto fileSize = static_cast<std::uint64_t>(std::filesystem::file_size(path, ec));
+  std::ifstream in(path, std::ios::binary);
+  for (vtkXMLDataElement* a : arrays)
+  {
+    const std::string format = attribute(a, "format");
+    std::uint64_t blocks = 0;
+    if (format == "binary")
+    {
+      blocks = inlineHeaderWord(in, a->GetXMLByteIndex(), wordSize, bigEndian);
+    }
+    else if (format == "appended")
+    {
+      long offset = 0;
+      a->GetScalarAttribute("offset", offset);
+      blocks = appendedHeaderWord(
+        in, parser->GetAppendedDataPosition() + offset, appendedBase64, wordSize, bigEndian);
+    }
+    if (blocks > fileSize / static_cast<std::uint64_t>(wordSize))
+    {
+      throw Error(path + " is damaged: its compressed data array " + arrayName(a) + " claims " +
+        std::to_string(blocks) + " blocks, more than the file holds.");
+    }
+  }
+}
+
+// What vtkXMLPolyDataReader does not check and would crash or exhaust memory
+// on, checked on the XML structure first.
+void checkXmlStructure(const std::string& path)
 {
   vtkNew<vtkXMLDataParser> parser;
   VtkErrorObserver observer;
@@ -321,23 +489,9 @@ void checkArrayTypes(const std::string& path)
   {
     throw Error(path + " is not a VTK poly-data file that can be read.");
   }
-  std::vector<vtkXMLDataElement*> pending{ parser->GetRootElement() };
-  while (!pending.empty())
-  {
-    vtkXMLDataElement* e = pending.back();
-    pending.pop_back();
-    int type = 0;
-    if (std::string(e->GetName()) == "DataArray" && e->GetWordTypeAttribute("type", type) == 0)
-    {
-      const char* name = e->GetAttribute("Name");
-      throw Error(path + " is damaged: its data array " +
-        (name != nullptr ? name : "without a name") + " has no type VTK knows.");
-    }
-    for (int k = 0; k < e->GetNumberOfNestedElements(); ++k)
-    {
-      pending.push_back(e->GetNestedElement(k));
-    }
-  }
+  const std::vector<vtkXMLDataElement*> arrays = dataArrays(parser->GetRootElement());
+  checkArrayTypes(arrays, path);
+  checkCompressedHeaders(parser, arrays, path);
 }
 
 } // namespace
@@ -349,7 +503,7 @@ void readPolyDataFile(const std::string& path, vtkPolyData* out)
   {
     throw Error("No such file: " + path + ".");
   }
-  checkArrayTypes(path);
+  checkXmlStructure(path);
   vtkNew<vtkXMLPolyDataReader> reader;
   VtkErrorObserver observer;
   reader->AddObserver(vtkCommand::ErrorEvent, observer.callback);

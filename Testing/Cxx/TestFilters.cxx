@@ -270,6 +270,41 @@ TEST(Filters, PolyDataFileWithAnUnknownArrayTypeIsDamaged)
   }
 }
 
+// Found by the polylines fuzz target: a damaged block count in a compressed
+// array's header made VTK's parser allocate 8 GB (20 s) for a 5 KB file.
+TEST(Filters, PolyDataFileWithADamagedCompressionHeaderIsRefusedAtOnce)
+{
+  std::vector<tsynth::Polyline> lines(1);
+  lines[0].points = { { 1, 1 }, { 20, 25 } };
+  vtkNew<vtkPolyData> pd;
+  tsynth::featureGraphToPolyData(tsynth::polylineFeatures(lines, 30, 30, 30.0, 30.0), pd);
+  const std::string good = (tsynth::test::scratchDir() / "compressed.vtp").string();
+  tsynth::writePolyDataFile(good, pd);
+  std::ifstream in(good, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // The first binary array's header starts with its block count: make it 2^31 - 1.
+  const std::size_t data = text.find('>', text.find("format=\"binary\"")) + 1;
+  const std::size_t first = text.find_first_not_of(" \n", data);
+  ASSERT_NE(first, std::string::npos);
+  text.replace(first, 8, "////fwAA");
+  const std::string bad = (tsynth::test::scratchDir() / "compressed-damaged.vtp").string();
+  std::ofstream(bad, std::ios::binary) << text;
+
+  vtkNew<vtkPolyData> back;
+  EXPECT_NO_THROW(tsynth::readPolyDataFile(good, back));
+  try
+  {
+    tsynth::readPolyDataFile(bad, back);
+    ADD_FAILURE() << "no error";
+  }
+  catch (const tsynth::Error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("claims 2147483647 blocks, more than the file holds"),
+      std::string::npos)
+      << e.what();
+  }
+}
+
 TEST(Filters, FeatureGraphBecomesPolyDataWithSharedNodePoints)
 {
   // A Y of poly-lines: one branch node shared by three chains.
