@@ -361,94 +361,136 @@ void checkArrayTypes(const std::vector<vtkXMLDataElement*>& arrays, const std::s
   }
 }
 
-// A header word from its bytes in the file's byte order; 0 if too few bytes.
-std::uint64_t wordFromBytes(const std::vector<unsigned char>& bytes, int wordSize, bool bigEndian)
+// How a file stores the headers of its compressed arrays.
+struct HeaderFormat
 {
-  if (bytes.size() < static_cast<std::size_t>(wordSize))
-  {
-    return 0;
-  }
-  std::uint64_t value = 0;
-  for (int k = 0; k < wordSize; ++k)
-  {
-    value = (value << 8) | bytes[static_cast<std::size_t>(bigEndian ? k : wordSize - 1 - k)];
-  }
-  return value;
-}
+  int wordSize = 4; // header_type UInt32 (8: UInt64)
+  bool bigEndian = false;
+};
 
-// The first bytes of base64 text (whitespace skipped), enough for one word.
-std::vector<unsigned char> decodeFirstWord(std::istream& text, int wordSize)
-{
-  // Four characters carry three bytes.
-  const std::size_t wanted = 4 * ((static_cast<std::size_t>(wordSize) + 2) / 3);
-  std::string chars;
-  for (char c = 0; chars.size() < wanted && text.get(c);)
-  {
-    if (!std::isspace(static_cast<unsigned char>(c)))
-    {
-      chars.push_back(c);
-    }
-  }
-  std::vector<unsigned char> bytes(wanted, 0);
-  bytes.resize(
-    vtkBase64Utilities::DecodeSafely(reinterpret_cast<const unsigned char*>(chars.data()),
-      chars.size(),
-      bytes.data(),
-      bytes.size()));
-  return bytes;
-}
-
-// The first word of an inline binary array's header: base64 text after the
-// start tag at `tagPosition` of the file.
-std::uint64_t inlineHeaderWord(std::ifstream& in,
-  std::streamoff tagPosition,
-  int wordSize,
-  bool bigEndian)
-{
-  in.clear();
-  in.seekg(tagPosition);
-  for (char c = 0; in.get(c) && c != '>';)
-  {
-  }
-  return wordFromBytes(decodeFirstWord(in, wordSize), wordSize, bigEndian);
-}
-
-// The first word of an appended array's header at `position` of the file.
-std::uint64_t appendedHeaderWord(std::ifstream& in,
-  std::streamoff position,
+// Up to `count` header words from `in`: raw bytes, or base64 text (whitespace
+// skipped; a header is encoded apart from its data). Fewer if the file ends.
+std::vector<std::uint64_t> headerWords(std::istream& in,
   bool base64,
-  int wordSize,
-  bool bigEndian)
+  const HeaderFormat& f,
+  std::size_t count)
 {
-  in.clear();
-  in.seekg(position);
+  const std::size_t size = static_cast<std::size_t>(f.wordSize);
+  std::vector<unsigned char> bytes(count * size, 0);
   if (base64)
   {
-    return wordFromBytes(decodeFirstWord(in, wordSize), wordSize, bigEndian);
+    const std::size_t wanted = 4 * ((bytes.size() + 2) / 3); // 4 characters carry 3 bytes
+    std::string chars;
+    for (char c = 0; chars.size() < wanted && in.get(c);)
+    {
+      if (!std::isspace(static_cast<unsigned char>(c)))
+      {
+        chars.push_back(c);
+      }
+    }
+    bytes.assign(wanted, 0);
+    bytes.resize(
+      vtkBase64Utilities::DecodeSafely(reinterpret_cast<const unsigned char*>(chars.data()),
+        chars.size(),
+        bytes.data(),
+        bytes.size()));
   }
-  std::vector<unsigned char> bytes(static_cast<std::size_t>(wordSize), 0);
-  if (!in.read(reinterpret_cast<char*>(bytes.data()), wordSize))
+  else
   {
-    return 0;
+    in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    bytes.resize(static_cast<std::size_t>(in.gcount()));
   }
-  return wordFromBytes(bytes, wordSize, bigEndian);
+  std::vector<std::uint64_t> words(std::min(count, bytes.size() / size), 0);
+  for (std::size_t w = 0; w < words.size(); ++w)
+  {
+    for (std::size_t k = 0; k < size; ++k)
+    {
+      words[w] = (words[w] << 8) | bytes[w * size + (f.bigEndian ? k : size - 1 - k)];
+    }
+  }
+  return words;
 }
 
-// A compressed array's header starts with its number of blocks, then holds one
-// compressed size per block. vtkXMLDataParser sizes the table from that count
-// before reading it: a damaged count in a 5 KB file made it allocate 8 GB. The
-// table must fit in the file.
+// Where an array's data starts: after its start tag (inline), or at its offset
+// in the appended data.
+struct DataStart
+{
+  std::streamoff position = 0;
+  bool base64 = true;
+};
+
+void seekData(std::istream& in, const DataStart& start, bool inlineData)
+{
+  in.clear();
+  in.seekg(start.position);
+  for (char c = 0; inlineData && in.get(c) && c != '>';)
+  {
+  }
+}
+
+// deflate (zlib) expands a block at most 1032-fold, LZ4 at most 255-fold;
+// LZMA can go further, so its blocks are not bounded this way.
+constexpr std::uint64_t kMaxInflation = 1032;
+
+// A compressed array's header: the number of blocks, the size of a block and
+// of the last one (0: a full block), then each block's compressed size.
+// vtkXMLDataParser allocates from these before it reads any data: a damaged
+// count in a 5 KB file made it allocate 8 GB, a damaged block size 4 GB (and
+// with 64-bit headers std::bad_alloc). Every size must fit in the file.
+void checkCompressedHeader(std::istream& in,
+  const DataStart& start,
+  bool inlineData,
+  const HeaderFormat& f,
+  std::uint64_t fileSize,
+  bool boundedInflation,
+  const std::string& what)
+{
+  seekData(in, start, inlineData);
+  const std::vector<std::uint64_t> head = headerWords(in, start.base64, f, 3);
+  if (head.size() < 3)
+  {
+    return; // too short to be read at all: VTK reports it
+  }
+  const std::uint64_t blocks = head[0];
+  if (blocks > fileSize / static_cast<std::uint64_t>(f.wordSize))
+  {
+    throw Error(what + " claims " + std::to_string(blocks) + " blocks, more than the file holds.");
+  }
+  seekData(in, start, inlineData);
+  const std::vector<std::uint64_t> words =
+    headerWords(in, start.base64, f, 3 + static_cast<std::size_t>(blocks));
+  for (std::size_t b = 0; b + 3 < words.size(); ++b)
+  {
+    const std::uint64_t compressed = words[b + 3];
+    const std::uint64_t size = (b + 1 == blocks && head[2] != 0) ? head[2] : head[1];
+    if (compressed > fileSize)
+    {
+      throw Error(what + " has a block of " + std::to_string(compressed) +
+        " compressed bytes, more than the file holds.");
+    }
+    if (boundedInflation && size / kMaxInflation > compressed)
+    {
+      throw Error(what + " has a block of " + std::to_string(compressed) +
+        " compressed bytes said to hold " + std::to_string(size) +
+        ", more than its compressor can expand them to.");
+    }
+  }
+}
+
 void checkCompressedHeaders(vtkXMLDataParser* parser,
   const std::vector<vtkXMLDataElement*>& arrays,
   const std::string& path)
 {
   vtkXMLDataElement* root = parser->GetRootElement();
-  if (attribute(root, "compressor").empty())
+  const std::string compressor = attribute(root, "compressor");
+  if (compressor.empty())
   {
     return;
   }
-  const int wordSize = attribute(root, "header_type") == "UInt64" ? 8 : 4;
-  const bool bigEndian = attribute(root, "byte_order") == "BigEndian";
+  HeaderFormat f;
+  f.wordSize = attribute(root, "header_type") == "UInt64" ? 8 : 4;
+  f.bigEndian = attribute(root, "byte_order") == "BigEndian";
+  const bool bounded = compressor != "vtkLZMADataCompressor";
   vtkXMLDataElement* appended = root->FindNestedElementWithName("AppendedData");
   const bool appendedBase64 = appended != nullptr && attribute(appended, "encoding") == "base64";
   std::error_code ec;
@@ -457,22 +499,17 @@ void checkCompressedHeaders(vtkXMLDataParser* parser,
   for (vtkXMLDataElement* a : arrays)
   {
     const std::string format = attribute(a, "format");
-    std::uint64_t blocks = 0;
+    const std::string what = path + " is damaged: its compressed data array " + arrayName(a);
     if (format == "binary")
     {
-      blocks = inlineHeaderWord(in, a->GetXMLByteIndex(), wordSize, bigEndian);
+      checkCompressedHeader(in, { a->GetXMLByteIndex(), true }, true, f, fileSize, bounded, what);
     }
     else if (format == "appended")
     {
       long offset = 0;
       a->GetScalarAttribute("offset", offset);
-      blocks = appendedHeaderWord(
-        in, parser->GetAppendedDataPosition() + offset, appendedBase64, wordSize, bigEndian);
-    }
-    if (blocks > fileSize / static_cast<std::uint64_t>(wordSize))
-    {
-      throw Error(path + " is damaged: its compressed data array " + arrayName(a) + " claims " +
-        std::to_string(blocks) + " blocks, more than the file holds.");
+      const DataStart start{ parser->GetAppendedDataPosition() + offset, appendedBase64 };
+      checkCompressedHeader(in, start, false, f, fileSize, bounded, what);
     }
   }
 }
