@@ -25,8 +25,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -346,6 +348,33 @@ std::string attribute(vtkXMLDataElement* e, const char* name)
   return value != nullptr ? value : "";
 }
 
+// More components than any array a VTK file holds (1 for scalars, 3 for points,
+// 9 for tensors): vtkXMLReader loops over the components of each array it
+// creates, and a damaged NumberOfComponents="3333333333" kept it busy for minutes.
+constexpr long long kMaxArrayComponents = 1024;
+
+// Every data array's NumberOfComponents, if given, is a whole number from 1 to
+// kMaxArrayComponents.
+void checkComponentCounts(const std::vector<vtkXMLDataElement*>& arrays, const std::string& path)
+{
+  for (vtkXMLDataElement* a : arrays)
+  {
+    const char* text = a->GetAttribute("NumberOfComponents");
+    if (text == nullptr)
+    {
+      continue;
+    }
+    char* end = nullptr;
+    errno = 0;
+    const long long n = std::strtoll(text, &end, 10);
+    if (end == text || *end != '\0' || errno == ERANGE || n < 1 || n > kMaxArrayComponents)
+    {
+      throw Error(path + " is damaged: its data array " + arrayName(a) + " has " + text +
+        " components (1 to " + std::to_string(kMaxArrayComponents) + " can be read).");
+    }
+  }
+}
+
 // Every data array must name a type VTK knows: vtkXMLReader (VTK 9.2)
 // dereferences a null array when a FieldData array's type is missing or
 // unknown (type="Float82"), and the process dies before any error is reported.
@@ -528,6 +557,7 @@ void checkXmlStructure(const std::string& path)
   }
   const std::vector<vtkXMLDataElement*> arrays = dataArrays(parser->GetRootElement());
   checkArrayTypes(arrays, path);
+  checkComponentCounts(arrays, path);
   checkCompressedHeaders(parser, arrays, path);
 }
 

@@ -305,6 +305,34 @@ TEST(Filters, PolyDataFileWithADamagedCompressionHeaderIsRefusedAtOnce)
   }
 }
 
+// Found by the polylines fuzz target: NumberOfComponents="3333333333333333333"
+// kept VTK's reader looping over components for minutes.
+TEST(Filters, PolyDataFileWithAbsurdComponentCountIsDamaged)
+{
+  const std::string path = (tsynth::test::scratchDir() / "bad-components.vtp").string();
+  std::ofstream(path) << R"(<?xml version="1.0"?>
+<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">
+  <PolyData><Piece NumberOfPoints="2" NumberOfLines="1">
+    <Points><DataArray type="Float64" NumberOfComponents="3333333333333333333" format="ascii">0 0 0 1 1 0</DataArray></Points>
+    <Lines><DataArray type="Int64" Name="connectivity" format="ascii">0 1</DataArray>
+      <DataArray type="Int64" Name="offsets" format="ascii">2</DataArray></Lines>
+  </Piece></PolyData>
+</VTKFile>
+)";
+  vtkNew<vtkPolyData> lines;
+  try
+  {
+    tsynth::readPolyDataFile(path, lines);
+    ADD_FAILURE() << "no error";
+  }
+  catch (const tsynth::Error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("has 3333333333333333333 components (1 to 1024"),
+      std::string::npos)
+      << e.what();
+  }
+}
+
 TEST(Filters, FeatureGraphBecomesPolyDataWithSharedNodePoints)
 {
   // A Y of poly-lines: one branch node shared by three chains.
