@@ -46,7 +46,11 @@ std::vector<Polyline> polyDataToPolylines(const vtkPolyData* input,
 // are there (a feature tree written by featureGraphToPolyData).
 PolylineSketch polyDataToPolylineSketch(const vtkPolyData* input, std::string* warning = nullptr);
 
-// Reads a .vtp file into `out`. Throws tsynth::Error if it is missing or unreadable.
+// Reads a .vtp file into `out`. Throws tsynth::Error if it is missing, unreadable
+// or damaged: a data array of no known type or of more than 1024 components, a
+// compressed array whose header gives sizes the file cannot hold, a cell
+// referring to a point the file does not have (VTK's reader would crash, hang
+// or allocate gigabytes on these).
 void readPolyDataFile(const std::string& path, vtkPolyData* out);
 
 // Writes a .vtp with inline binary data (readable by this machine's ParaView);

@@ -102,6 +102,12 @@ Sidecar readSidecar(const std::string& path)
     throw Error("Sidecar " + path + " is not valid JSON (byte " + std::to_string(e.byte) +
       "); fix it or remove it.");
   }
+  catch (const nlohmann::json::out_of_range&)
+  {
+    // The parser's only other complaint: a number beyond a double (1e999).
+    throw Error("Sidecar " + path +
+      " holds a number too large for a double (over 1.8e308); fix it or remove it.");
+  }
   if (!doc.is_object())
   {
     throw Error("Sidecar " + path + " must hold a JSON object such as {\"z_unit\": \"m\"}.");
@@ -157,7 +163,9 @@ Sidecar readSidecar(const std::string& path)
 
 void writeSidecar(const std::string& path, const Sidecar& s)
 {
-  nlohmann::ordered_json doc;
+  // An object even without keys: a default ordered_json would be written as `null`,
+  // which readSidecar refuses.
+  nlohmann::ordered_json doc = nlohmann::ordered_json::object();
   if (s.zUnit)
   {
     doc["z_unit"] = zUnitName(*s.zUnit);

@@ -14,8 +14,6 @@ namespace tsynth
 namespace
 {
 
-constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
-
 float heightAt(const Heightfield* hf, int i, int j)
 {
   if (hf == nullptr || !hf->isValid(i, j))

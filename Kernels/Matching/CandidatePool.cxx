@@ -14,8 +14,6 @@ namespace tsynth
 namespace
 {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // Point at arc length s along a polyline, and the index of the segment it is on.
 Point2 pointAt(const std::vector<Point2>& pts, const std::vector<double>& arc, double s)
 {

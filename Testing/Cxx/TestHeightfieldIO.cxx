@@ -345,6 +345,17 @@ TEST(HeightfieldIO, BadInputGetsOneClearSentence)
   EXPECT_NE(
     errorOf([&] { readHeightfield(allNodata); }).find("no valid heights"), std::string::npos);
 
+  // Found by fuzzing: a 71-byte header claiming 10^10 cells made the reader
+  // allocate 40 GB. The header itself is still described.
+  const std::string huge = scratch("huge.asc");
+  std::ofstream(huge) << "ncols 100000\nnrows 100000\nxllcorner 0\nyllcorner 0\ncellsize 30\n"
+                         "1 2 3 4\n";
+  EXPECT_NE(errorOf([&] { readHeightfield(huge); }).find("100000 x 100000 cells, more than the"),
+    std::string::npos);
+  EXPECT_NE(
+    errorOf([&] { tsynth::readColourImage(huge); }).find("crop or downsample"), std::string::npos);
+  EXPECT_EQ(tsynth::readRasterInfo(huge).width, 100000);
+
   // A broken sidecar is reported, naming the sidecar.
   const std::string dem = scratch("sidecar_broken.png");
   writeWithGdal(dem, "PNG", 2, 2, GDT_UInt16, { 1, 2, 3, 4 });

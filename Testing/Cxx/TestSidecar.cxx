@@ -72,6 +72,15 @@ TEST(Sidecar, WriteThenReadIsIdentity)
   EXPECT_FALSE(r.nodata.has_value());
 }
 
+// Found by fuzzing: a sidecar without keys was written as `null`, which the reader refuses.
+TEST(Sidecar, EmptySidecarWritesAnObjectItReadsBack)
+{
+  const auto path = (tsynth::test::scratchDir() / "empty-written.json").string();
+  tsynth::writeSidecar(path, tsynth::Sidecar{});
+  const tsynth::Sidecar r = tsynth::readSidecar(path);
+  EXPECT_FALSE(r.zUnit || r.cellX || r.cellY || r.zMin || r.zMax || r.nodata);
+}
+
 TEST(Sidecar, BadInputGetsOneClearSentence)
 {
   EXPECT_NE(errorOf(writeText("bad.json", R"({"z_unit": "m", )")).find("is not valid JSON"),
@@ -86,6 +95,9 @@ TEST(Sidecar, BadInputGetsOneClearSentence)
   EXPECT_NE(errorOf(writeText("order.json", R"({"z_min": 3, "z_max": 2})")).find("greater"),
     std::string::npos);
   EXPECT_NE(errorOf(writeText("array.json", R"([1, 2])")).find("JSON object"), std::string::npos);
+  // Found by fuzzing: the JSON parser's number overflow escaped as its own exception type.
+  EXPECT_NE(errorOf(writeText("huge.json", R"({"nodata": 1e999})")).find("too large for a double"),
+    std::string::npos);
 }
 
 TEST(Sidecar, PathIsBesideTheRaster)
