@@ -114,21 +114,6 @@ DatasetPtr openRaster(const std::string& path)
   return ds;
 }
 
-// Refuses a raster too large to read (kMaxRasterCells) before any allocation.
-void checkCellCount(GDALDataset& ds, const std::string& path)
-{
-  const std::size_t cells =
-    static_cast<std::size_t>(ds.GetRasterXSize()) * static_cast<std::size_t>(ds.GetRasterYSize());
-  if (cells > kMaxRasterCells)
-  {
-    throw Error(path + " is " + std::to_string(ds.GetRasterXSize()) + " x " +
-      std::to_string(ds.GetRasterYSize()) + " cells, more than the " +
-      std::to_string(kMaxRasterCells) +
-      " (about 11585 x 11585) that can be read; crop or downsample it first "
-      "(gdal_translate -srcwin or -outsize).");
-  }
-}
-
 // The band with the heights; a second band is accepted only as an alpha mask.
 GDALRasterBand* heightBand(GDALDataset& ds, const std::string& path)
 {
@@ -524,7 +509,6 @@ Heightfield readHeightfield(const std::string& path, const ReadOptions& options,
   DatasetPtr ds = openRaster(path);
   RasterInfo info = describe(*ds, path, options);
   GDALRasterBand* band = heightBand(*ds, path);
-  checkCellCount(*ds, path);
 
   const int w = info.width;
   const int h = info.height;
@@ -601,10 +585,13 @@ Heightfield readHeightfield(const std::string& path, const ReadOptions& options,
 ColourImage readColourImage(const std::string& path)
 {
   DatasetPtr ds = openRaster(path);
-  checkCellCount(*ds, path);
   ColourImage img;
   img.width = ds->GetRasterXSize();
   img.height = ds->GetRasterYSize();
+  // Before anything else, at the most a sketch can hold (4 channels and one 16-bit band on
+  // the way): a damaged header must not make the reader allocate.
+  constexpr double kMostBytesPerSketchCell = 4.0 + sizeof(std::uint16_t);
+  checkReadFits(path, img.width, img.height, kMostBytesPerSketchCell);
   img.channels = ds->GetRasterCount();
   if (img.channels > 4)
   {

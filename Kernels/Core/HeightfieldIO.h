@@ -53,16 +53,10 @@ struct RasterInfo
 // (missing file, not a raster, several colour bands, bad sidecar, ...).
 RasterInfo readRasterInfo(const std::string& path, const ReadOptions& options = {});
 
-// The most cells readHeightfield and readColourImage take: 2^27, about
-// 11585 x 11585 (a 10812 x 10812 1/3 arc-second tile fits). Reading holds about
-// 10 bytes a cell (1.3 GB here) and the synthesis 140-240 bytes per cell, beyond
-// any machine the project runs on; a larger header is more often a damaged or
-// hostile file, which must not make the reader allocate tens of gigabytes.
-constexpr std::size_t kMaxRasterCells = std::size_t{ 1 } << 27;
-
 // Reads heights in metres, rows flipped so row 0 is the south edge; nodata,
 // NaN and masked cells become invalid. Throws tsynth::Error if the raster has
-// no valid cell, more than kMaxRasterCells or cannot be read.
+// no valid cell, would need more memory to read than the machine allows (checkReadFits), or
+// cannot be read.
 Heightfield readHeightfield(const std::string& path,
   const ReadOptions& options = {},
   RasterInfo* info = nullptr);
@@ -96,7 +90,7 @@ struct ColourImage
 };
 
 // Reads an image GDAL understands; 16-bit channels are scaled to 8 bits.
-// Throws tsynth::Error with one clear sentence (also above kMaxRasterCells).
+// Throws tsynth::Error with one clear sentence (also when reading would not fit in memory).
 ColourImage readColourImage(const std::string& path);
 
 // True if the extension names a format writeHeightfield writes.
