@@ -27,7 +27,10 @@ std::vector<std::uint8_t> windowValidity(int w,
   int side,
   const std::vector<std::uint8_t>& cellValid)
 {
-  std::vector<int> sat(static_cast<std::size_t>(w + 1) * static_cast<std::size_t>(h + 1), 0);
+  // Counts of invalid cells up to the whole grid: 64-bit, since a grid may hold more than
+  // 2^31 cells.
+  std::vector<std::int64_t> sat(
+    static_cast<std::size_t>(w + 1) * static_cast<std::size_t>(h + 1), 0);
   auto at = [&](int i, int j)
   {
     return static_cast<std::size_t>(j) * static_cast<std::size_t>(w + 1) +
@@ -35,7 +38,7 @@ std::vector<std::uint8_t> windowValidity(int w,
   };
   for (int j = 0; j < h; ++j)
   {
-    int row = 0;
+    std::int64_t row = 0;
     for (int i = 0; i < w; ++i)
     {
       row += cellValid[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
@@ -52,7 +55,7 @@ std::vector<std::uint8_t> windowValidity(int w,
   {
     for (int x = 0; x < nx; ++x)
     {
-      const int bad =
+      const std::int64_t bad =
         sat[at(x + side, y + side)] - sat[at(x, y + side)] - sat[at(x + side, y)] + sat[at(x, y)];
       valid[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) +
         static_cast<std::size_t>(x)] = bad == 0 ? 1 : 0;
