@@ -5,7 +5,10 @@
 // against the whole synthesis, and the mean cells a feature's search settles
 // (the thesis: 35-47 thousand at these sizes, 28 s mean at 512^2 and 55 min at
 // 1536^2 with 14,758 features on a Pentium 4).
-// Usage: tsynth_bench_distance [repetitions]
+// Usage: tsynth_bench_distance [repetitions] [--only 512|1536] [--write DIR]
+//   --only: one of the two cases; --write: each case's heights and approximate
+//   field (s = 2 and s = 1.1) as raw little-endian float32 files in DIR, to
+//   compare the bits of two builds.
 #include "Core/Random.h"
 #include "Distance/DistanceSynthesis.h"
 
@@ -16,9 +19,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <string>
+#include <vector>
 
 using namespace tsynth;
 using Clock = std::chrono::steady_clock;
@@ -74,7 +80,33 @@ DistanceInputs strokeScene(int size, int count, double minLength, double maxLeng
   return in;
 }
 
-void bench(const char* name, const DistanceInputs& in, int repetitions)
+void writeFloats(const std::string& path, const std::vector<float>& values)
+{
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(values.data()),
+    static_cast<std::streamsize>(values.size() * sizeof(float)));
+  if (!out)
+  {
+    std::fprintf(stderr, "cannot write %s\n", path.c_str());
+    std::exit(1);
+  }
+}
+
+// Writes DIR/<tag>_heights.f32 and DIR/<tag>_approximate.f32.
+void writeTerrain(const std::string& dir, const std::string& tag, const DistanceTerrain& t)
+{
+  if (!dir.empty())
+  {
+    writeFloats(dir + "/" + tag + "_heights.f32", t.heights.z);
+    writeFloats(dir + "/" + tag + "_approximate.f32", t.approximate.z);
+  }
+}
+
+void bench(const char* name,
+  const std::string& tag,
+  const DistanceInputs& in,
+  int repetitions,
+  const std::string& writeDir)
 {
   DistanceOptions o;
   DistanceTerrain t;
@@ -112,14 +144,39 @@ void bench(const char* name, const DistanceInputs& in, int repetitions)
     kRunningExampleS,
     thesisS,
     static_cast<double>(lower.featureVisits) / static_cast<double>(lower.features));
+  writeTerrain(writeDir, tag + "_s2", t);
+  writeTerrain(writeDir, tag + "_s1.1", lower);
 }
 
 } // namespace
 
 int main(int argc, char** argv)
 {
-  const int repetitions = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
-  bench("512 x 512", strokeScene(512, 100, 20.0, 80.0, 120.0), repetitions);
-  bench("1536 x 1536", strokeScene(1536, 15000, 2.0, 12.0, 40.0), repetitions);
+  int repetitions = 3;
+  std::string only;
+  std::string writeDir;
+  for (int a = 1; a < argc; ++a)
+  {
+    if (std::strcmp(argv[a], "--only") == 0 && a + 1 < argc)
+    {
+      only = argv[++a];
+    }
+    else if (std::strcmp(argv[a], "--write") == 0 && a + 1 < argc)
+    {
+      writeDir = argv[++a];
+    }
+    else
+    {
+      repetitions = std::max(1, std::atoi(argv[a]));
+    }
+  }
+  if (only.empty() || only == "512")
+  {
+    bench("512 x 512", "512", strokeScene(512, 100, 20.0, 80.0, 120.0), repetitions, writeDir);
+  }
+  if (only.empty() || only == "1536")
+  {
+    bench("1536 x 1536", "1536", strokeScene(1536, 15000, 2.0, 12.0, 40.0), repetitions, writeDir);
+  }
   return 0;
 }
