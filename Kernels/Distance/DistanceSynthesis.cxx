@@ -300,8 +300,9 @@ struct Visit
 };
 
 // One feature's bounded search (step 7a): halted within eps_s of c_s, or where
-// the feature's height is below p_f of the approximate height.
-void featurePass(const Search& s,
+// the feature's height is below p_f of the approximate height. Returns true if
+// the radix heap searched in the bucket queue's place.
+bool featurePass(const Search& s,
   const DistanceOptions& o,
   const std::vector<float>& approxHeight,
   std::size_t first,
@@ -321,8 +322,9 @@ void featurePass(const Search& s,
     const double hn = (static_cast<double>(sea) - c) / sea;
     visits.push_back({ static_cast<std::uint32_t>(u), static_cast<float>(hn), biasPower(hn, b) });
   };
-  run(o.queue, s, first, last, field, halt, settle);
+  const bool radix = run(o.queue, s, first, last, field, halt, settle, [&] { visits.clear(); });
   field.reset();
+  return radix;
 }
 
 void blendFeatures(const Search& s,
@@ -330,7 +332,7 @@ void blendFeatures(const Search& s,
   const std::vector<float>& approxHeight,
   const std::vector<std::size_t>& begin,
   Blend& blend,
-  std::size_t& visitsTotal)
+  DistanceTerrain& out)
 {
   const std::size_t features = begin.size() - 1;
   const std::size_t n = approxHeight.size();
@@ -338,9 +340,10 @@ void blendFeatures(const Search& s,
   std::vector<Field> fields;
   for (int t = 0; t < threads; ++t)
   {
-    fields.emplace_back(n, false);
+    fields.emplace_back(n, o.queue == DijkstraQueue::Bucket);
   }
   std::vector<std::vector<Visit>> visits(std::min(features, kFeaturesPerBatch));
+  std::vector<std::uint8_t> radix(visits.size());
   for (std::size_t batch = 0; batch < features; batch += kFeaturesPerBatch)
   {
     const std::size_t count = std::min(kFeaturesPerBatch, features - batch);
@@ -348,7 +351,7 @@ void blendFeatures(const Search& s,
     for (std::size_t i = 0; i < count; ++i)
     {
       const std::size_t f = batch + i;
-      featurePass(s,
+      radix[i] = featurePass(s,
         o,
         approxHeight,
         begin[f],
@@ -365,7 +368,8 @@ void blendFeatures(const Search& s,
         blend.contributors[v.cell] = static_cast<std::uint16_t>(
           std::min<int>(blend.contributors[v.cell] + 1, kMaxContributors));
       }
-      visitsTotal += visits[i].size();
+      out.featureVisits += visits[i].size();
+      out.radixSearches += radix[i];
     }
     reportProgress(o,
       kProgressRidges +
@@ -418,6 +422,7 @@ DistanceTerrain synthesiseByDistance(const DistanceInputs& in, const DistanceOpt
   }
 
   std::vector<ScalingFunction> scaling;
+  std::vector<detail::ScalingBounds> scalingBounds;
   double smallestScaling = 1.0;
   for (std::size_t p = 0; p < in.profiles.size(); ++p)
   {
@@ -435,6 +440,7 @@ DistanceTerrain synthesiseByDistance(const DistanceInputs& in, const DistanceOpt
       throw Error("Profile " + std::to_string(p) + ": " + e.what());
     }
     smallestScaling = std::min(smallestScaling, static_cast<double>(scaling.back().smallest()));
+    scalingBounds.push_back({ scaling.back().smallest(), scaling.back().largest() });
   }
   requirePrecision(std::max(seaCost, std::fabs(static_cast<double>(minCost))),
     lattice.minWeight() * smallestScaling);
@@ -443,13 +449,15 @@ DistanceTerrain synthesiseByDistance(const DistanceInputs& in, const DistanceOpt
   std::vector<std::size_t> begin;
   std::vector<Source> flat = flatten(perFeature, begin);
   const std::size_t n = lattice.size();
-  Field approx(n, o.ridgeCount > 0);
+  Field approx(n, o.ridgeCount > 0 || o.queue == DijkstraQueue::Bucket);
   auto never = [](std::size_t, float) { return false; };
   auto ignore = [](std::size_t, float) {};
   auto approximatePass = [&]()
   {
-    const Search s{ lattice, scaling, flat, regionOf, in.regions, static_cast<float>(seaCost) };
-    run(o.queue, s, 0, flat.size(), approx, never, ignore);
+    const Search s{
+      lattice, scaling, scalingBounds, flat, regionOf, in.regions, static_cast<float>(seaCost)
+    };
+    out.radixSearches += run(o.queue, s, 0, flat.size(), approx, never, ignore, [] {}) ? 1 : 0;
   };
   approximatePass();
   reportProgress(o, kProgressApproximate);
@@ -488,8 +496,10 @@ DistanceTerrain synthesiseByDistance(const DistanceInputs& in, const DistanceOpt
   Blend blend{
     std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), std::vector<std::uint16_t>(n, 0)
   };
-  const Search s{ lattice, scaling, flat, regionOf, in.regions, static_cast<float>(seaCost) };
-  blendFeatures(s, o, approxHeight, begin, blend, out.featureVisits);
+  const Search s{
+    lattice, scaling, scalingBounds, flat, regionOf, in.regions, static_cast<float>(seaCost)
+  };
+  blendFeatures(s, o, approxHeight, begin, blend, out);
   for (std::size_t k = 0; k < n; ++k)
   {
     const double h = blend.den[k] > 0.0 ? blend.num[k] / blend.den[k] * seaCost : 0.0; // eq. 3.7

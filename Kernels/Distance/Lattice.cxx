@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace tsynth
@@ -79,6 +80,7 @@ Lattice Lattice::random(int width, int height, const LatticeOptions& options)
       }
     }
   }
+  lattice.findEdgeRange();
   return lattice;
 }
 
@@ -117,7 +119,35 @@ Lattice Lattice::fromNodeWeights(int width,
       lattice.weights_[kDirectionCount * k + d] = weights[k] * factor[d];
     }
   }
+  lattice.findEdgeRange();
   return lattice;
+}
+
+void Lattice::findEdgeRange()
+{
+  float least = std::numeric_limits<float>::infinity();
+  float greatest = 0.0f;
+#pragma omp parallel for schedule(static) reduction(min : least) reduction(max : greatest)
+  for (int row = 0; row < height_; ++row)
+  {
+    for (int col = 0; col < width_; ++col)
+    {
+      const float* w = weights(static_cast<std::size_t>(row) * static_cast<std::size_t>(width_) +
+        static_cast<std::size_t>(col));
+      for (std::size_t d = 0; d < kDirectionCount; ++d)
+      {
+        const int c = col + kDirectionDx[d];
+        const int r = row + kDirectionDy[d];
+        if (c >= 0 && r >= 0 && c < width_ && r < height_)
+        {
+          least = std::min(least, w[d]);
+          greatest = std::max(greatest, w[d]);
+        }
+      }
+    }
+  }
+  leastEdge_ = least;
+  greatestEdge_ = greatest;
 }
 
 std::vector<float> greyToWeights(const std::uint8_t* pixels,
