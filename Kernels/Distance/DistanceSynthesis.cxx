@@ -10,6 +10,7 @@
 #include <cfloat>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <sstream>
 
 namespace tsynth
@@ -267,23 +268,36 @@ std::size_t traceRidges(const DistanceOptions& o,
 }
 
 // x^b by squaring when b is a whole number (the thesis's 3, 4, 8, 15), else pow.
-double biasPower(double x, double b)
+class BiasPower
 {
-  if (b != std::floor(b))
+public:
+  explicit BiasPower(double b)
+    : b_(b)
+    , whole_(b == std::floor(b))
   {
-    return std::pow(x, b);
   }
-  double result = 1.0;
-  for (auto e = static_cast<unsigned>(b); e != 0; e >>= 1)
+  double operator()(double x) const
   {
-    if ((e & 1u) != 0)
+    if (!whole_)
     {
-      result *= x;
+      return std::pow(x, b_);
     }
-    x *= x;
+    double result = 1.0;
+    for (auto e = static_cast<unsigned>(b_); e != 0; e >>= 1)
+    {
+      if ((e & 1u) != 0)
+      {
+        result *= x;
+      }
+      x *= x;
+    }
+    return result;
   }
-  return result;
-}
+
+private:
+  double b_;
+  bool whole_;
+};
 
 struct Blend
 {
@@ -313,19 +327,126 @@ bool featurePass(const Search& s,
   const float sea = s.seaCost;
   const auto haltCost = static_cast<float>(sea - o.seaLevelEpsilon);
   const auto pf = static_cast<float>(o.approximateFraction);
-  const double b = o.blendBias;
+  const BiasPower power(o.blendBias);
   visits.clear();
   auto halt = [&](std::size_t u, float c)
   { return c >= haltCost || (sea - c) < pf * approxHeight[u]; };
   auto settle = [&](std::size_t u, float c)
   {
     const double hn = (static_cast<double>(sea) - c) / sea;
-    visits.push_back({ static_cast<std::uint32_t>(u), static_cast<float>(hn), biasPower(hn, b) });
+    visits.push_back({ static_cast<std::uint32_t>(u), static_cast<float>(hn), power(hn) });
   };
   const bool radix = run(o.queue, s, first, last, field, halt, settle, [&] { visits.clear(); });
   field.reset();
   return radix;
 }
+
+// Adds finished features to the blend in feature order (so the same sums on
+// any thread count), each as soon as all before it are in, on whichever thread
+// finished it: the blend overlaps the searches, and the visit buffers go back
+// to a pool for later features while they are still in the cache.
+class OrderedBlend
+{
+public:
+  OrderedBlend(Blend& blend, DistanceTerrain& out)
+    : blend_(blend)
+    , out_(out)
+  {
+  }
+  // A batch of count features follows, handed in by their index in it.
+  void startBatch(std::size_t count)
+  {
+    next_ = 0;
+    ready_.assign(count, {});
+    done_.assign(count, 0);
+    radix_.assign(count, 0);
+  }
+  std::vector<Visit> buffer()
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (pool_.empty())
+    {
+      return {};
+    }
+    std::vector<Visit> v = std::move(pool_.back());
+    pool_.pop_back();
+    return v;
+  }
+  // Hands in feature first + i, then blends whatever is ready in order, unless
+  // another thread is at it (it will find feature i when it gets there).
+  void finish(std::size_t i, std::vector<Visit>&& visits, bool radix)
+  {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      ready_[i] = std::move(visits);
+      radix_[i] = radix ? 1 : 0;
+      done_[i] = 1;
+    }
+    while (readyToBlend() && blending_.try_lock())
+    {
+      blendReady();
+      blending_.unlock(); // then look again: a feature may have come in meanwhile
+    }
+  }
+  // After the batch's threads have joined: anything left (there should be none).
+  void endBatch()
+  {
+    std::lock_guard<std::mutex> lock(blending_);
+    blendReady();
+    if (next_ != done_.size())
+    {
+      throw Error("Internal error: a feature's search did not finish.");
+    }
+  }
+
+private:
+  bool readyToBlend()
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return next_ < done_.size() && done_[next_] != 0;
+  }
+  void blendReady()
+  {
+    while (true)
+    {
+      std::vector<Visit> visits;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (next_ == done_.size() || done_[next_] == 0)
+        {
+          return;
+        }
+        visits = std::move(ready_[next_]);
+        out_.radixSearches += radix_[next_];
+      }
+      add(visits);
+      std::lock_guard<std::mutex> lock(mutex_);
+      pool_.push_back(std::move(visits));
+      ++next_;
+    }
+  }
+  void add(const std::vector<Visit>& visits)
+  {
+    for (const Visit& v : visits)
+    {
+      blend_.num[v.cell] += v.power * v.height;
+      blend_.den[v.cell] += v.power;
+      blend_.contributors[v.cell] = static_cast<std::uint16_t>(
+        std::min<int>(blend_.contributors[v.cell] + 1, kMaxContributors));
+    }
+    out_.featureVisits += visits.size();
+  }
+
+  Blend& blend_;
+  DistanceTerrain& out_;
+  std::mutex mutex_;     // guards all below but the blend itself
+  std::mutex blending_;  // held by the thread adding to the blend
+  std::size_t next_ = 0; // the next feature of the batch to add
+  std::vector<std::vector<Visit>> ready_;
+  std::vector<std::uint8_t> done_;
+  std::vector<std::uint8_t> radix_;
+  std::vector<std::vector<Visit>> pool_;
+};
 
 void blendFeatures(const Search& s,
   const DistanceOptions& o,
@@ -342,35 +463,26 @@ void blendFeatures(const Search& s,
   {
     fields.emplace_back(n, o.queue == DijkstraQueue::Bucket);
   }
-  std::vector<std::vector<Visit>> visits(std::min(features, kFeaturesPerBatch));
-  std::vector<std::uint8_t> radix(visits.size());
+  OrderedBlend ordered(blend, out);
   for (std::size_t batch = 0; batch < features; batch += kFeaturesPerBatch)
   {
     const std::size_t count = std::min(kFeaturesPerBatch, features - batch);
+    ordered.startBatch(count);
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::size_t i = 0; i < count; ++i)
     {
       const std::size_t f = batch + i;
-      radix[i] = featurePass(s,
+      std::vector<Visit> visits = ordered.buffer();
+      const bool radix = featurePass(s,
         o,
         approxHeight,
         begin[f],
         begin[f + 1],
         fields[static_cast<std::size_t>(omp_get_thread_num())],
-        visits[i]);
+        visits);
+      ordered.finish(i, std::move(visits), radix);
     }
-    for (std::size_t i = 0; i < count; ++i) // in feature order: the same sums on any thread count
-    {
-      for (const Visit& v : visits[i])
-      {
-        blend.num[v.cell] += v.power * v.height;
-        blend.den[v.cell] += v.power;
-        blend.contributors[v.cell] = static_cast<std::uint16_t>(
-          std::min<int>(blend.contributors[v.cell] + 1, kMaxContributors));
-      }
-      out.featureVisits += visits[i].size();
-      out.radixSearches += radix[i];
-    }
+    ordered.endBatch();
     reportProgress(o,
       kProgressRidges +
         (1.0 - kProgressRidges) * static_cast<double>(batch + count) /
