@@ -163,6 +163,22 @@ struct Search
   }
 };
 
+// Bucket numbers of costs: [base + b width, base + (b + 1) width) is bucket b.
+// A value the searches keep in registers.
+struct BucketIndex
+{
+  double base = 0.0;
+  double inverseWidth = 0.0;
+
+  // Costs below base never occur: they are at least the cheapest generator's.
+  // Via a signed integer: one instruction (the value is below 2^63).
+  std::uint64_t operator()(float cost) const
+  {
+    return static_cast<std::uint64_t>(
+      static_cast<std::int64_t>((static_cast<double>(cost) - base) * inverseWidth));
+  }
+};
+
 // Dial's bucket queue with Dinitz's width: bucket b holds the cells whose cost
 // lies in [base + b width, base + (b + 1) width). A power-of-two ring of
 // buckets, large enough for the costs a search has queued at any time (they
@@ -183,16 +199,11 @@ public:
       slots_.resize(size);
     }
     mask_ = size - 1;
-    base_ = base;
-    inverseWidth_ = 1.0 / width;
+    index_ = { base, 1.0 / width };
     queued_ = 0;
   }
   std::size_t span() const { return mask_ + 1; }
-  // Costs below base never occur: they are at least the cheapest generator's.
-  std::uint64_t bucketOf(float cost) const
-  {
-    return static_cast<std::uint64_t>((static_cast<double>(cost) - base_) * inverseWidth_);
-  }
+  BucketIndex index() const { return index_; }
   void push(std::uint64_t bucket, std::uint32_t cell)
   {
     slots_[bucket & mask_].push_back(cell);
@@ -213,8 +224,7 @@ public:
 private:
   std::vector<std::vector<std::uint32_t>> slots_;
   std::size_t mask_ = 0;
-  double base_ = 0.0;
-  double inverseWidth_ = 0.0;
+  BucketIndex index_;
   std::size_t queued_ = 0;
 };
 
@@ -352,8 +362,6 @@ constexpr std::size_t kMaxRingBuckets = std::size_t(1) << 16;
 // Buckets a shade narrower than the least step, for the rounding of the bucket
 // index in double (relative error ~1e-16 at costs up to 2^24 least steps).
 constexpr double kBucketWidthShare = 1.0 - 1.0 / (1 << 20);
-// Cells ahead in the bucket whose memory is fetched while one is expanded.
-constexpr std::size_t kPrefetchAhead = 8;
 
 // Bounds on one step fl(c + fl(w w_s)) - c of a search.
 struct StepRange
@@ -485,10 +493,11 @@ inline void seedBuckets(const Search& s, std::size_t first, std::size_t last, Fi
 inline std::size_t injectGenerators(Field& f, std::size_t next, std::uint64_t b)
 {
   BucketRing& ring = f.ring;
-  for (; next < ring.pending.size() && ring.bucketOf(ring.pending[next].first) == b; ++next)
+  const BucketIndex bucketOf = ring.index();
+  for (; next < ring.pending.size() && bucketOf(ring.pending[next].first) == b; ++next)
   {
     const std::uint32_t k = ring.pending[next].second;
-    if (ring.bucketOf(f.cost[k]) == b)
+    if (bucketOf(f.cost[k]) == b)
     {
       ring.push(b, k);
     }
@@ -589,9 +598,11 @@ bool expandCell(const Search& s,
   std::uint64_t b)
 {
   BucketRing& ring = f.ring;
+  const BucketIndex bucketOf = ring.index();
   const std::int32_t source = f.source[u];
   const Source& g = s.sources[static_cast<std::size_t>(source)];
   const float ws = Regions ? s.scalingAt(u, c, g) : s.scalingOf(g.profile, c, g);
+  const std::int32_t feature = g.feature;
   const std::size_t col = u % nb.width;
   const std::size_t row = u / nb.width;
   const bool interior = col > 0 && row > 0 && col + 1 < nb.width && row + 1 < nb.height;
@@ -605,11 +616,11 @@ bool expandCell(const Search& s,
     }
     const auto v = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(u) + nb.offset[d]);
     const float next = c + weights[d] * ws;
-    if (!(next < s.seaCost) || next > f.cost[v] || (Regions && s.blocked(v, g.feature)))
+    if (!(next < s.seaCost) || next > f.cost[v] || (Regions && s.blocked(v, feature)))
     {
       continue;
     }
-    const std::uint64_t to = ring.bucketOf(next);
+    const std::uint64_t to = bucketOf(next);
     if (to - b - 1 >= span - 1) // to <= b or beyond the ring
     {
       return false;
@@ -626,21 +637,12 @@ bool expandCell(const Search& s,
     f.cost[v] = next;
     f.source[v] = source;
     f.pred[v] = static_cast<std::int32_t>(u);
-    if (old == kUnreached || ring.bucketOf(old) != to)
+    if (old == kUnreached || bucketOf(old) != to)
     {
       ring.push(to, static_cast<std::uint32_t>(v)); // else it is queued there already
     }
   }
   return true;
-}
-
-inline void prefetchCell(const Search& s, const Field& f, std::size_t k)
-{
-  __builtin_prefetch(s.lattice.weights(k));
-  const std::size_t w = static_cast<std::size_t>(s.lattice.width());
-  __builtin_prefetch(f.cost.data() + k);
-  __builtin_prefetch(f.cost.data() + (k >= w ? k - w : k));
-  __builtin_prefetch(f.cost.data() + std::min(k + w, f.cost.size() - 1));
 }
 
 // propagate with the bucket queue: the same costs, sources and predecessors
@@ -657,6 +659,7 @@ bool propagateBuckets(const Search& s,
 {
   BucketRing& ring = f.ring;
   ring.start(plan.base, plan.width, plan.span);
+  const BucketIndex bucketOf = ring.index();
   seedBuckets(s, first, last, f);
   const Neighbourhood nb(s.lattice);
   std::size_t pending = 0;
@@ -665,19 +668,13 @@ bool propagateBuckets(const Search& s,
   {
     if (ring.empty()) // nothing queued: on to the next generator's bucket
     {
-      b = std::max(b, ring.bucketOf(ring.pending[pending].first));
+      b = std::max(b, bucketOf(ring.pending[pending].first));
     }
     pending = injectGenerators(f, pending, b);
-    const std::vector<std::uint32_t>& cells = ring.slot(b);
-    for (std::size_t i = 0; i < cells.size(); ++i)
+    for (const std::uint32_t u : ring.slot(b))
     {
-      if (i + kPrefetchAhead < cells.size())
-      {
-        prefetchCell(s, f, cells[i + kPrefetchAhead]);
-      }
-      const std::size_t u = cells[i];
       const float c = f.cost[u];
-      if (ring.bucketOf(c) != b)
+      if (bucketOf(c) != b)
       {
         continue; // lowered into an earlier bucket and settled there
       }
