@@ -228,20 +228,47 @@ private:
   std::size_t queued_ = 0;
 };
 
-// One search's per-cell state; cells it touched are listed so that it can be
-// reset in time proportional to its footprint.
+// The cells a search has reached, each once, so that its state can be reset
+// in time proportional to its footprint: room for all n cells, and one more
+// for addIf's store past the last.
+class CellList
+{
+public:
+  explicit CellList(std::size_t n)
+    : cells_(n + 1)
+  {
+  }
+  void add(std::uint32_t cell) { cells_[size_++] = cell; }
+  // add(cell) if yes, with no branch to mispredict.
+  void addIf(std::uint32_t cell, bool yes)
+  {
+    cells_[size_] = cell;
+    size_ += yes ? 1 : 0;
+  }
+  const std::uint32_t* begin() const { return cells_.data(); }
+  const std::uint32_t* end() const { return cells_.data() + size_; }
+  void clear() { size_ = 0; }
+
+private:
+  std::vector<std::uint32_t> cells_;
+  std::size_t size_ = 0;
+};
+
+// One search's per-cell state; the cells it reached are listed so that it can
+// be reset in time proportional to its footprint.
 struct Field
 {
   std::vector<float> cost;
   std::vector<std::int32_t> source;
   std::vector<std::int32_t> pred; // empty unless wanted (the bucket queue wants it)
-  std::vector<std::uint32_t> touched;
+  CellList touched;
   BucketRing ring; // the bucket queue's, kept from search to search
 
   explicit Field(std::size_t n, bool withPred)
     : cost(n, kUnreached)
     , source(n, kNone)
     , pred(withPred ? n : 0, kNone)
+    , touched(n)
   {
   }
   void reset()
@@ -271,7 +298,7 @@ void propagate(const Search& s,
   {
     if (f.cost[k] == kUnreached)
     {
-      f.touched.push_back(static_cast<std::uint32_t>(k));
+      f.touched.add(static_cast<std::uint32_t>(k));
     }
     f.cost[k] = c;
     f.source[k] = source;
@@ -468,7 +495,7 @@ inline void seedBuckets(const Search& s, std::size_t first, std::size_t last, Fi
     {
       if (f.cost[k] == kUnreached)
       {
-        f.touched.push_back(static_cast<std::uint32_t>(k));
+        f.touched.add(static_cast<std::uint32_t>(k));
       }
       f.cost[k] = g.cost;
       f.source[k] = static_cast<std::int32_t>(i);
@@ -630,10 +657,7 @@ bool expandCell(const Search& s,
     {
       continue;
     }
-    if (old == kUnreached)
-    {
-      f.touched.push_back(static_cast<std::uint32_t>(v));
-    }
+    f.touched.addIf(static_cast<std::uint32_t>(v), old == kUnreached);
     f.cost[v] = next;
     f.source[v] = source;
     f.pred[v] = static_cast<std::int32_t>(u);
@@ -671,13 +695,19 @@ bool propagateBuckets(const Search& s,
       b = std::max(b, bucketOf(ring.pending[pending].first));
     }
     pending = injectGenerators(f, pending, b);
-    for (const std::uint32_t u : ring.slot(b))
+    // First drop the cells lowered into an earlier bucket (and settled there),
+    // without a branch: which cells are stale is as good as random.
+    std::vector<std::uint32_t>& cells = ring.slot(b);
+    std::size_t live = 0;
+    for (const std::uint32_t u : cells)
     {
+      cells[live] = u;
+      live += bucketOf(f.cost[u]) == b ? 1 : 0;
+    }
+    for (std::size_t i = 0; i < live; ++i)
+    {
+      const std::uint32_t u = cells[i];
       const float c = f.cost[u];
-      if (bucketOf(c) != b)
-      {
-        continue; // lowered into an earlier bucket and settled there
-      }
       settle(u, c);
       if (!halt(u, c) && !expandCell<Regions>(s, nb, f, u, c, b))
       {
