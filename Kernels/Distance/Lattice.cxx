@@ -64,19 +64,34 @@ Lattice Lattice::random(int width, int height, const LatticeOptions& options)
     const double v = 2.0 * seededUniform(options.seed, kEdgeStream, e) - 1.0; // [-1, 1)
     return static_cast<float>(mu + r * v);
   };
+  // Directions E, N, NE, NW (even d) are the edges a node owns; W, S, SW, SE
+  // (odd d) are the next lower direction's edge of the owner, with the same
+  // diagonal factor: copied, not drawn again.
   const std::array<std::ptrdiff_t, kDirectionCount> owner = { 0, -1, 0, -w, 0, -w - 1, 0, -w + 1 };
-  const std::array<int, kDirectionCount> slot = { 0, 0, 1, 1, 2, 2, 3, 3 };
   lattice.weights_.assign(kDirectionCount * lattice.size(), 0.0f);
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t k = 0; k < n; ++k)
+  float* weights = lattice.weights_.data();
+#pragma omp parallel
   {
-    for (std::size_t d = 0; d < kDirectionCount; ++d)
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t k = 0; k < n; ++k)
     {
-      const std::ptrdiff_t o = k + owner[d];
-      if (o >= 0 && o < n) // edges off the grid are never read
+      for (std::size_t d = 0; d < kDirectionCount; d += 2)
       {
-        lattice.weights_[kDirectionCount * static_cast<std::size_t>(k) + d] =
-          edgeWeight(o, slot[d]) * factor[d];
+        weights[kDirectionCount * static_cast<std::size_t>(k) + d] =
+          edgeWeight(k, static_cast<int>(d / 2)) * factor[d];
+      }
+    }
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t k = 0; k < n; ++k)
+    {
+      for (std::size_t d = 1; d < kDirectionCount; d += 2)
+      {
+        const std::ptrdiff_t o = k + owner[d];
+        if (o >= 0 && o < n) // edges off the grid are never read
+        {
+          weights[kDirectionCount * static_cast<std::size_t>(k) + d] =
+            weights[kDirectionCount * static_cast<std::size_t>(o) + d - 1];
+        }
       }
     }
   }
