@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <string>
 
 using namespace tsynth;
@@ -546,6 +547,70 @@ TEST(DistanceSynthesis, ApproximateOnlyPreview)
   // The blend never exceeds the maximum of the features (the approximate field
   // is that maximum where the searches agree); it is lower somewhere.
   EXPECT_NE(full.heights.z, t.heights.z);
+}
+
+// ---------------------------------------------------------------------------
+// The lattice
+
+// Every edge that exists, read from both ends: the same weight both ways on
+// random lattices; the least and greatest of them are the lattice's edge range.
+void expectEdgeRange(const Lattice& l, bool symmetric)
+{
+  float least = std::numeric_limits<float>::infinity();
+  float greatest = 0.0f;
+  const int w = l.width();
+  for (int row = 0; row < l.height(); ++row)
+  {
+    for (int col = 0; col < w; ++col)
+    {
+      for (int d = 0; d < kDirectionCount; ++d)
+      {
+        const int c = col + kDirectionDx[static_cast<std::size_t>(d)];
+        const int r = row + kDirectionDy[static_cast<std::size_t>(d)];
+        if (c < 0 || r < 0 || c >= w || r >= l.height())
+        {
+          continue;
+        }
+        const float weight = l.weight(static_cast<std::size_t>(cellOf(col, row, w)), Direction(d));
+        least = std::min(least, weight);
+        greatest = std::max(greatest, weight);
+        if (symmetric) // the opposite direction is d ^ 1 (E/W, N/S, NE/SW, NW/SE)
+        {
+          ASSERT_EQ(weight, l.weight(static_cast<std::size_t>(cellOf(c, r, w)), Direction(d ^ 1)));
+        }
+      }
+    }
+  }
+  EXPECT_EQ(l.leastEdgeWeight(), least);
+  EXPECT_EQ(l.greatestEdgeWeight(), greatest);
+}
+
+TEST(DistanceLattice, EdgeWeightsBothWaysAndTheirRange)
+{
+  LatticeOptions o;
+  o.meanWeight = 2.0;
+  o.roughness = 1.5;
+  o.seed = 9;
+  const Lattice l = Lattice::random(37, 23, o);
+  expectEdgeRange(l, true);
+  EXPECT_GE(l.leastEdgeWeight(), 0.5f);                      // mu_w - r
+  EXPECT_LT(l.leastEdgeWeight(), 0.55f);                     // 3,300 draws reach near it
+  EXPECT_LE(l.greatestEdgeWeight(), 3.5f * std::sqrt(2.0f)); // (mu_w + r) sqrt 2
+  EXPECT_GT(l.greatestEdgeWeight(), 3.4f * std::sqrt(2.0f)); // on a diagonal
+  o.sqrt2Diagonals = false;
+  expectEdgeRange(Lattice::random(1, 6, o), true); // one column: N and S only
+  EXPECT_LE(Lattice::random(1, 6, o).greatestEdgeWeight(), 3.5f);
+  const Lattice single = Lattice::random(1, 1, o); // no edges
+  EXPECT_EQ(single.leastEdgeWeight(), std::numeric_limits<float>::infinity());
+  EXPECT_EQ(single.greatestEdgeWeight(), 0.0f);
+  // Image weights: a node's weight on all its outgoing edges (directed).
+  std::vector<float> nodes(5 * 4, 1.0f);
+  nodes[7] = 0.25f;
+  nodes[19] = 3.0f; // a corner: its diagonal edge SW exists
+  const Lattice image = Lattice::fromNodeWeights(5, 4, nodes, true);
+  expectEdgeRange(image, false);
+  EXPECT_EQ(image.leastEdgeWeight(), 0.25f);
+  EXPECT_EQ(image.greatestEdgeWeight(), 3.0f * static_cast<float>(std::sqrt(2.0)));
 }
 
 // ---------------------------------------------------------------------------
