@@ -254,9 +254,13 @@ private:
   std::size_t size_ = 0;
 };
 
+// Its own cache lines: threads' fields side by side in a vector would share
+// lines, and a search writes its list and ring counters at every step.
+constexpr std::size_t kCacheLine = 64;
+
 // One search's per-cell state; the cells it reached are listed so that it can
 // be reset in time proportional to its footprint.
-struct Field
+struct alignas(kCacheLine) Field
 {
   std::vector<float> cost;
   std::vector<std::int32_t> source;
