@@ -129,6 +129,11 @@ float ScalingFunction::smallest() const
   return table_.empty() ? 1.0f : *std::min_element(table_.begin(), table_.end());
 }
 
+float ScalingFunction::largest() const
+{
+  return table_.empty() ? 1.0f : *std::max_element(table_.begin(), table_.end());
+}
+
 std::vector<MonotoneProfile> profilesFromRows(const std::vector<ProfileRow>& rows,
   const std::string& source)
 {

@@ -58,6 +58,7 @@ public:
   }
   const std::vector<float>& table() const { return table_; }
   float smallest() const; // the least table value (1 when empty)
+  float largest() const;  // the greatest table value (1 when empty)
 
 private:
   std::vector<float> table_;

@@ -3,16 +3,15 @@
 #include "../Core/Error.h"
 #include "../Core/Random.h"
 #include "DistanceMemory.h"
+#include "LatticeSearch.h"
 
 #include <omp.h>
 
 #include <algorithm>
-#include <array>
 #include <cfloat>
 #include <cmath>
-#include <cstring>
 #include <limits>
-#include <queue>
+#include <mutex>
 #include <sstream>
 
 namespace tsynth
@@ -20,8 +19,13 @@ namespace tsynth
 namespace
 {
 
-constexpr float kUnreached = std::numeric_limits<float>::infinity();
-constexpr std::int32_t kNone = -1;
+using detail::Field;
+using detail::kNone;
+using detail::kUnreached;
+using detail::run;
+using detail::Search;
+using detail::Source;
+
 // Above this bias the powers of small heights underflow double precision.
 constexpr double kMaxBlendBias = 64.0;
 constexpr int kMaxProfileBins = 1 << 20;
@@ -34,257 +38,6 @@ constexpr std::uint16_t kMaxContributors = std::numeric_limits<std::uint16_t>::m
 // Progress shares of the stages.
 constexpr double kProgressApproximate = 0.1;
 constexpr double kProgressRidges = 0.2;
-
-// A generator node with its feature, in one flat array (each feature a run).
-struct Source
-{
-  std::int32_t cell = 0;
-  float cost = 0.0f;
-  std::int32_t profile = kNoProfile;
-  std::int32_t feature = 0;
-};
-
-// Float costs as unsigned keys of the same order (negative costs included).
-std::uint32_t floatKey(float f)
-{
-  std::uint32_t b = 0;
-  std::memcpy(&b, &f, sizeof b);
-  return (b & 0x80000000u) != 0 ? ~b : (b | 0x80000000u);
-}
-
-float keyFloat(std::uint32_t k)
-{
-  const std::uint32_t b = (k & 0x80000000u) != 0 ? (k & 0x7fffffffu) : ~k;
-  float f = 0.0f;
-  std::memcpy(&f, &b, sizeof f);
-  return f;
-}
-
-// A monotone radix heap (Ahuja et al. 1990) on 32-bit keys: each element moves
-// down at most 32 buckets, so a push and a pop cost O(1) amortised plus a scan.
-class RadixHeap
-{
-public:
-  bool empty() const { return size_ == 0; }
-  void push(float cost, std::uint32_t node)
-  {
-    const std::uint32_t key = floatKey(cost);
-    buckets_[bucket(key)].push_back({ key, node });
-    ++size_;
-  }
-  std::pair<float, std::uint32_t> pop()
-  {
-    if (buckets_[0].empty())
-    {
-      std::size_t i = 1;
-      while (buckets_[i].empty())
-      {
-        ++i;
-      }
-      std::uint32_t least = buckets_[i].front().first;
-      for (const auto& e : buckets_[i])
-      {
-        least = std::min(least, e.first);
-      }
-      last_ = least;
-      for (const auto& e : buckets_[i])
-      {
-        buckets_[bucket(e.first)].push_back(e);
-      }
-      buckets_[i].clear();
-    }
-    const auto e = buckets_[0].back();
-    buckets_[0].pop_back();
-    --size_;
-    return { keyFloat(e.first), e.second };
-  }
-
-private:
-  std::size_t bucket(std::uint32_t key) const
-  {
-    return key == last_ ? 0 : static_cast<std::size_t>(32 - __builtin_clz(key ^ last_));
-  }
-  std::array<std::vector<std::pair<std::uint32_t, std::uint32_t>>, 33> buckets_;
-  std::uint32_t last_ = 0;
-  std::size_t size_ = 0;
-};
-
-class BinaryHeap
-{
-public:
-  bool empty() const { return heap_.empty(); }
-  void push(float cost, std::uint32_t node) { heap_.push({ cost, node }); }
-  std::pair<float, std::uint32_t> pop()
-  {
-    const auto e = heap_.top();
-    heap_.pop();
-    return e;
-  }
-
-private:
-  using Entry = std::pair<float, std::uint32_t>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap_;
-};
-
-// What every search reads.
-struct Search
-{
-  const Lattice& lattice;
-  const std::vector<ScalingFunction>& scaling; // by profile id
-  const std::vector<Source>& sources;
-  const std::vector<std::int32_t>& regionOf; // region index per cell, or kNone
-  const std::vector<DistanceRegion>& regions;
-  float seaCost = 0.0f;
-
-  bool blocked(std::size_t cell, std::int32_t feature) const
-  {
-    const std::int32_t r = regionOf[cell];
-    return r != kNone && regions[static_cast<std::size_t>(r)].feature != feature;
-  }
-  // w_s at a settled node: its region's profile inside a region, else its
-  // generator's, evaluated at the modified cost of eq. 3.6.
-  float scalingAt(std::size_t cell, float cost, const Source& g) const
-  {
-    const std::int32_t r = regionOf[cell];
-    const std::int32_t profile =
-      r != kNone ? regions[static_cast<std::size_t>(r)].profile : g.profile;
-    if (profile == kNoProfile)
-    {
-      return 1.0f;
-    }
-    const float modified = (cost - g.cost) / (seaCost - g.cost) * seaCost;
-    return scaling[static_cast<std::size_t>(profile)](modified);
-  }
-};
-
-// One search's per-cell state; cells it touched are listed so that it can be
-// reset in time proportional to its footprint.
-struct Field
-{
-  std::vector<float> cost;
-  std::vector<std::int32_t> source;
-  std::vector<std::int32_t> pred; // empty unless wanted
-  std::vector<std::uint32_t> touched;
-
-  explicit Field(std::size_t n, bool withPred)
-    : cost(n, kUnreached)
-    , source(n, kNone)
-    , pred(withPred ? n : 0, kNone)
-  {
-  }
-  void reset()
-  {
-    for (const std::uint32_t k : touched)
-    {
-      cost[k] = kUnreached;
-    }
-    touched.clear();
-  }
-};
-
-// Label-setting propagation of eq. 3.4 from sources[first, last): pops the
-// cheapest node, reports it (settle), and unless halt says so relaxes its eight
-// edges with c + w_e w_s(c_m). Only costs below c_s are kept.
-template<class Queue, class Halt, class Settle>
-void propagate(const Search& s,
-  std::size_t first,
-  std::size_t last,
-  Field& f,
-  Halt halt,
-  Settle settle)
-{
-  Queue queue;
-  const bool withPred = !f.pred.empty();
-  auto improve = [&](std::size_t k, float c, std::int32_t source, std::int32_t from)
-  {
-    if (f.cost[k] == kUnreached)
-    {
-      f.touched.push_back(static_cast<std::uint32_t>(k));
-    }
-    f.cost[k] = c;
-    f.source[k] = source;
-    if (withPred)
-    {
-      f.pred[k] = from;
-    }
-    queue.push(c, static_cast<std::uint32_t>(k));
-  };
-  for (std::size_t i = first; i < last; ++i)
-  {
-    const Source& g = s.sources[i];
-    const auto k = static_cast<std::size_t>(g.cell);
-    if (!s.blocked(k, g.feature) && g.cost < f.cost[k])
-    {
-      improve(k, g.cost, static_cast<std::int32_t>(i), kNone);
-    }
-  }
-  const int w = s.lattice.width();
-  const int h = s.lattice.height();
-  const auto sw = static_cast<std::ptrdiff_t>(w);
-  const std::array<std::ptrdiff_t, kDirectionCount> offset = {
-    1, -1, sw, -sw, sw + 1, -sw - 1, sw - 1, -sw + 1
-  };
-  const std::array<int, kDirectionCount> dx = { 1, -1, 0, 0, 1, -1, -1, 1 };
-  const std::array<int, kDirectionCount> dy = { 0, 0, 1, -1, 1, -1, 1, -1 };
-  while (!queue.empty())
-  {
-    const auto [c, node] = queue.pop();
-    const std::size_t u = node;
-    if (c != f.cost[u])
-    {
-      continue; // superseded by a cheaper path
-    }
-    settle(u, c);
-    if (halt(u, c))
-    {
-      continue;
-    }
-    const std::int32_t source = f.source[u];
-    const Source& g = s.sources[static_cast<std::size_t>(source)];
-    const float ws = s.scalingAt(u, c, g);
-    const int col = static_cast<int>(u % static_cast<std::size_t>(w));
-    const int row = static_cast<int>(u / static_cast<std::size_t>(w));
-    const bool interior = col > 0 && row > 0 && col + 1 < w && row + 1 < h;
-    const float* weights = s.lattice.weights(u);
-    for (std::size_t d = 0; d < kDirectionCount; ++d)
-    {
-      if (!interior)
-      {
-        const int nc = col + dx[d];
-        const int nr = row + dy[d];
-        if (nc < 0 || nr < 0 || nc >= w || nr >= h)
-        {
-          continue;
-        }
-      }
-      const auto v = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(u) + offset[d]);
-      const float next = c + weights[d] * ws;
-      if (next < s.seaCost && next < f.cost[v] && !s.blocked(v, g.feature))
-      {
-        improve(v, next, source, static_cast<std::int32_t>(u));
-      }
-    }
-  }
-}
-
-template<class Halt, class Settle>
-void run(DijkstraQueue queue,
-  const Search& s,
-  std::size_t first,
-  std::size_t last,
-  Field& f,
-  Halt halt,
-  Settle settle)
-{
-  if (queue == DijkstraQueue::Radix)
-  {
-    propagate<RadixHeap>(s, first, last, f, halt, settle);
-  }
-  else
-  {
-    propagate<BinaryHeap>(s, first, last, f, halt, settle);
-  }
-}
 
 void require(bool ok, const std::string& message)
 {
@@ -516,23 +269,36 @@ std::size_t traceRidges(const DistanceOptions& o,
 }
 
 // x^b by squaring when b is a whole number (the thesis's 3, 4, 8, 15), else pow.
-double biasPower(double x, double b)
+class BiasPower
 {
-  if (b != std::floor(b))
+public:
+  explicit BiasPower(double b)
+    : b_(b)
+    , whole_(b == std::floor(b))
   {
-    return std::pow(x, b);
   }
-  double result = 1.0;
-  for (auto e = static_cast<unsigned>(b); e != 0; e >>= 1)
+  double operator()(double x) const
   {
-    if ((e & 1u) != 0)
+    if (!whole_)
     {
-      result *= x;
+      return std::pow(x, b_);
     }
-    x *= x;
+    double result = 1.0;
+    for (auto e = static_cast<unsigned>(b_); e != 0; e >>= 1)
+    {
+      if ((e & 1u) != 0)
+      {
+        result *= x;
+      }
+      x *= x;
+    }
+    return result;
   }
-  return result;
-}
+
+private:
+  double b_;
+  bool whole_;
+};
 
 struct Blend
 {
@@ -549,8 +315,9 @@ struct Visit
 };
 
 // One feature's bounded search (step 7a): halted within eps_s of c_s, or where
-// the feature's height is below p_f of the approximate height.
-void featurePass(const Search& s,
+// the feature's height is below p_f of the approximate height. Returns true if
+// the radix heap searched in the bucket queue's place.
+bool featurePass(const Search& s,
   const DistanceOptions& o,
   const std::vector<float>& approxHeight,
   std::size_t first,
@@ -561,25 +328,133 @@ void featurePass(const Search& s,
   const float sea = s.seaCost;
   const auto haltCost = static_cast<float>(sea - o.seaLevelEpsilon);
   const auto pf = static_cast<float>(o.approximateFraction);
-  const double b = o.blendBias;
+  const BiasPower power(o.blendBias);
   visits.clear();
   auto halt = [&](std::size_t u, float c)
   { return c >= haltCost || (sea - c) < pf * approxHeight[u]; };
   auto settle = [&](std::size_t u, float c)
   {
     const double hn = (static_cast<double>(sea) - c) / sea;
-    visits.push_back({ static_cast<std::uint32_t>(u), static_cast<float>(hn), biasPower(hn, b) });
+    visits.push_back({ static_cast<std::uint32_t>(u), static_cast<float>(hn), power(hn) });
   };
-  run(o.queue, s, first, last, field, halt, settle);
+  const bool radix = run(o.queue, s, first, last, field, halt, settle, [&] { visits.clear(); });
   field.reset();
+  return radix;
 }
+
+// Adds finished features to the blend in feature order (so the same sums on
+// any thread count), each as soon as all before it are in, on whichever thread
+// finished it: the blend overlaps the searches, and the visit buffers go back
+// to a pool for later features while they are still in the cache.
+class OrderedBlend
+{
+public:
+  OrderedBlend(Blend& blend, DistanceTerrain& out)
+    : blend_(blend)
+    , out_(out)
+  {
+  }
+  // A batch of count features follows, handed in by their index in it.
+  void startBatch(std::size_t count)
+  {
+    next_ = 0;
+    ready_.assign(count, {});
+    done_.assign(count, 0);
+    radix_.assign(count, 0);
+  }
+  std::vector<Visit> buffer()
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (pool_.empty())
+    {
+      return {};
+    }
+    std::vector<Visit> v = std::move(pool_.back());
+    pool_.pop_back();
+    return v;
+  }
+  // Hands in feature first + i, then blends whatever is ready in order, unless
+  // another thread is at it (it will find feature i when it gets there).
+  void finish(std::size_t i, std::vector<Visit>&& visits, bool radix)
+  {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      ready_[i] = std::move(visits);
+      radix_[i] = radix ? 1 : 0;
+      done_[i] = 1;
+    }
+    while (readyToBlend() && blending_.try_lock())
+    {
+      blendReady();
+      blending_.unlock(); // then look again: a feature may have come in meanwhile
+    }
+  }
+  // After the batch's threads have joined: anything left (there should be none).
+  void endBatch()
+  {
+    std::lock_guard<std::mutex> lock(blending_);
+    blendReady();
+    if (next_ != done_.size())
+    {
+      throw Error("Internal error: a feature's search did not finish.");
+    }
+  }
+
+private:
+  bool readyToBlend()
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return next_ < done_.size() && done_[next_] != 0;
+  }
+  void blendReady()
+  {
+    while (true)
+    {
+      std::vector<Visit> visits;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (next_ == done_.size() || done_[next_] == 0)
+        {
+          return;
+        }
+        visits = std::move(ready_[next_]);
+        out_.radixSearches += radix_[next_];
+      }
+      add(visits);
+      std::lock_guard<std::mutex> lock(mutex_);
+      pool_.push_back(std::move(visits));
+      ++next_;
+    }
+  }
+  void add(const std::vector<Visit>& visits)
+  {
+    for (const Visit& v : visits)
+    {
+      blend_.num[v.cell] += v.power * v.height;
+      blend_.den[v.cell] += v.power;
+      blend_.contributors[v.cell] = static_cast<std::uint16_t>(
+        std::min<int>(blend_.contributors[v.cell] + 1, kMaxContributors));
+    }
+    out_.featureVisits += visits.size();
+  }
+
+  Blend& blend_;
+  DistanceTerrain& out_;
+  std::mutex mutex_;     // guards all below but the blend itself
+  std::mutex blending_;  // held by the thread adding to the blend
+  std::size_t next_ = 0; // the next feature of the batch to add
+  std::vector<std::vector<Visit>> ready_;
+  std::vector<std::uint8_t> done_;
+  std::vector<std::uint8_t> radix_;
+  std::vector<std::vector<Visit>> pool_;
+};
 
 void blendFeatures(const Search& s,
   const DistanceOptions& o,
   const std::vector<float>& approxHeight,
   const std::vector<std::size_t>& begin,
   Blend& blend,
-  std::size_t& visitsTotal)
+  DistanceTerrain& out)
 {
   const std::size_t features = begin.size() - 1;
   const std::size_t n = approxHeight.size();
@@ -587,35 +462,28 @@ void blendFeatures(const Search& s,
   std::vector<Field> fields;
   for (int t = 0; t < threads; ++t)
   {
-    fields.emplace_back(n, false);
+    fields.emplace_back(n, o.queue == DijkstraQueue::Bucket);
   }
-  std::vector<std::vector<Visit>> visits(std::min(features, kFeaturesPerBatch));
+  OrderedBlend ordered(blend, out);
   for (std::size_t batch = 0; batch < features; batch += kFeaturesPerBatch)
   {
     const std::size_t count = std::min(kFeaturesPerBatch, features - batch);
+    ordered.startBatch(count);
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::size_t i = 0; i < count; ++i)
     {
       const std::size_t f = batch + i;
-      featurePass(s,
+      std::vector<Visit> visits = ordered.buffer();
+      const bool radix = featurePass(s,
         o,
         approxHeight,
         begin[f],
         begin[f + 1],
         fields[static_cast<std::size_t>(omp_get_thread_num())],
-        visits[i]);
+        visits);
+      ordered.finish(i, std::move(visits), radix);
     }
-    for (std::size_t i = 0; i < count; ++i) // in feature order: the same sums on any thread count
-    {
-      for (const Visit& v : visits[i])
-      {
-        blend.num[v.cell] += v.power * v.height;
-        blend.den[v.cell] += v.power;
-        blend.contributors[v.cell] = static_cast<std::uint16_t>(
-          std::min<int>(blend.contributors[v.cell] + 1, kMaxContributors));
-      }
-      visitsTotal += visits[i].size();
-    }
+    ordered.endBatch();
     reportProgress(o,
       kProgressRidges +
         (1.0 - kProgressRidges) * static_cast<double>(batch + count) /
@@ -668,6 +536,7 @@ DistanceTerrain synthesiseByDistance(const DistanceInputs& in, const DistanceOpt
   }
 
   std::vector<ScalingFunction> scaling;
+  std::vector<detail::ScalingBounds> scalingBounds;
   double smallestScaling = 1.0;
   for (std::size_t p = 0; p < in.profiles.size(); ++p)
   {
@@ -685,6 +554,7 @@ DistanceTerrain synthesiseByDistance(const DistanceInputs& in, const DistanceOpt
       throw Error("Profile " + std::to_string(p) + ": " + e.what());
     }
     smallestScaling = std::min(smallestScaling, static_cast<double>(scaling.back().smallest()));
+    scalingBounds.push_back({ scaling.back().smallest(), scaling.back().largest() });
   }
   requirePrecision(std::max(seaCost, std::fabs(static_cast<double>(minCost))),
     lattice.minWeight() * smallestScaling);
@@ -693,13 +563,15 @@ DistanceTerrain synthesiseByDistance(const DistanceInputs& in, const DistanceOpt
   std::vector<std::size_t> begin;
   std::vector<Source> flat = flatten(perFeature, begin);
   const std::size_t n = lattice.size();
-  Field approx(n, o.ridgeCount > 0);
+  Field approx(n, o.ridgeCount > 0 || o.queue == DijkstraQueue::Bucket);
   auto never = [](std::size_t, float) { return false; };
   auto ignore = [](std::size_t, float) {};
   auto approximatePass = [&]()
   {
-    const Search s{ lattice, scaling, flat, regionOf, in.regions, static_cast<float>(seaCost) };
-    run(o.queue, s, 0, flat.size(), approx, never, ignore);
+    const Search s{
+      lattice, scaling, scalingBounds, flat, regionOf, in.regions, static_cast<float>(seaCost)
+    };
+    out.radixSearches += run(o.queue, s, 0, flat.size(), approx, never, ignore, [] {}) ? 1 : 0;
   };
   approximatePass();
   reportProgress(o, kProgressApproximate);
@@ -738,8 +610,10 @@ DistanceTerrain synthesiseByDistance(const DistanceInputs& in, const DistanceOpt
   Blend blend{
     std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), std::vector<std::uint16_t>(n, 0)
   };
-  const Search s{ lattice, scaling, flat, regionOf, in.regions, static_cast<float>(seaCost) };
-  blendFeatures(s, o, approxHeight, begin, blend, out.featureVisits);
+  const Search s{
+    lattice, scaling, scalingBounds, flat, regionOf, in.regions, static_cast<float>(seaCost)
+  };
+  blendFeatures(s, o, approxHeight, begin, blend, out);
   for (std::size_t k = 0; k < n; ++k)
   {
     const double h = blend.den[k] > 0.0 ? blend.num[k] / blend.den[k] * seaCost : 0.0; // eq. 3.7

@@ -56,8 +56,12 @@ enum class RidgeCost
   ScaledCost  // f C_a, the thesis read literally: ridges rise above their own peak near it
 };
 
+// The priority queue of the searches; all give the same bits (for the one
+// exception, exact double ties, see LatticeSearch.h).
 enum class DijkstraQueue
 {
+  Bucket,    // Dial's buckets of width under the least step: whole buckets settle at once;
+             // the radix heap where the steps are too uneven (DistanceTerrain::radixSearches)
   Radix,     // a radix heap on the float costs' bits (monotone: costs never fall)
   BinaryHeap // std::priority_queue, for comparison
 };
@@ -101,7 +105,7 @@ struct DistanceOptions
   double heightScale = 5.0;     // metres per cost unit (so mu_w = 1 rises 1:2 at the crests)
   std::uint64_t seed = 1;       // edge weights, fBm and ridge cells
   bool approximateOnly = false; // steps 1-6 only: the fast preview of §7 (seams and all)
-  DijkstraQueue queue = DijkstraQueue::Radix;
+  DijkstraQueue queue = DijkstraQueue::Bucket;
   // Called with the fraction done; returning false stops with tsynth::Cancelled.
   std::function<bool(double)> progress;
   // A synthesis whose distanceMemoryEstimate (DistanceMemory.h) is above this
@@ -125,6 +129,9 @@ struct DistanceTerrain
   // Each traced ridge's cells, from its random start back towards its generator.
   std::vector<std::vector<std::int32_t>> ridges;
   std::size_t featureVisits = 0; // cells the per-feature searches settled, in total
+  // Searches (the approximate ones and one per feature) that DijkstraQueue::Bucket
+  // left to the radix heap because their greatest step exceeds the least too far.
+  std::size_t radixSearches = 0;
   std::vector<std::string> warnings;
 };
 

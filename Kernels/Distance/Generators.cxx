@@ -411,6 +411,11 @@ std::vector<float> fbmCosts(int width, int height, const FbmOptions& options, st
   std::vector<double> value(n);
   const double stepX = options.domain / width;
   const double stepY = options.domain / height;
+  std::vector<double> amplitude(static_cast<std::size_t>(options.octaves)); // lacunarity^(-H i)
+  for (int i = 0; i < options.octaves; ++i)
+  {
+    amplitude[static_cast<std::size_t>(i)] = std::pow(options.lacunarity, -options.h * i);
+  }
 #pragma omp parallel for schedule(static)
   for (int row = 0; row < height; ++row)
   {
@@ -421,7 +426,7 @@ std::vector<float> fbmCosts(int width, int height, const FbmOptions& options, st
       double sum = 0.0;
       for (int i = 0; i < options.octaves; ++i)
       {
-        sum += noise(x, y) * std::pow(options.lacunarity, -options.h * i);
+        sum += noise(x, y) * amplitude[static_cast<std::size_t>(i)];
         x *= options.lacunarity;
         y *= options.lacunarity;
       }

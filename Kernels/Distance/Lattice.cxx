@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace tsynth
@@ -63,22 +64,38 @@ Lattice Lattice::random(int width, int height, const LatticeOptions& options)
     const double v = 2.0 * seededUniform(options.seed, kEdgeStream, e) - 1.0; // [-1, 1)
     return static_cast<float>(mu + r * v);
   };
+  // Directions E, N, NE, NW (even d) are the edges a node owns; W, S, SW, SE
+  // (odd d) are the next lower direction's edge of the owner, with the same
+  // diagonal factor: copied, not drawn again.
   const std::array<std::ptrdiff_t, kDirectionCount> owner = { 0, -1, 0, -w, 0, -w - 1, 0, -w + 1 };
-  const std::array<int, kDirectionCount> slot = { 0, 0, 1, 1, 2, 2, 3, 3 };
   lattice.weights_.assign(kDirectionCount * lattice.size(), 0.0f);
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t k = 0; k < n; ++k)
+  float* weights = lattice.weights_.data();
+#pragma omp parallel
   {
-    for (std::size_t d = 0; d < kDirectionCount; ++d)
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t k = 0; k < n; ++k)
     {
-      const std::ptrdiff_t o = k + owner[d];
-      if (o >= 0 && o < n) // edges off the grid are never read
+      for (std::size_t d = 0; d < kDirectionCount; d += 2)
       {
-        lattice.weights_[kDirectionCount * static_cast<std::size_t>(k) + d] =
-          edgeWeight(o, slot[d]) * factor[d];
+        weights[kDirectionCount * static_cast<std::size_t>(k) + d] =
+          edgeWeight(k, static_cast<int>(d / 2)) * factor[d];
+      }
+    }
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t k = 0; k < n; ++k)
+    {
+      for (std::size_t d = 1; d < kDirectionCount; d += 2)
+      {
+        const std::ptrdiff_t o = k + owner[d];
+        if (o >= 0 && o < n) // edges off the grid are never read
+        {
+          weights[kDirectionCount * static_cast<std::size_t>(k) + d] =
+            weights[kDirectionCount * static_cast<std::size_t>(o) + d - 1];
+        }
       }
     }
   }
+  lattice.findEdgeRange();
   return lattice;
 }
 
@@ -117,7 +134,35 @@ Lattice Lattice::fromNodeWeights(int width,
       lattice.weights_[kDirectionCount * k + d] = weights[k] * factor[d];
     }
   }
+  lattice.findEdgeRange();
   return lattice;
+}
+
+void Lattice::findEdgeRange()
+{
+  float least = std::numeric_limits<float>::infinity();
+  float greatest = 0.0f;
+#pragma omp parallel for schedule(static) reduction(min : least) reduction(max : greatest)
+  for (int row = 0; row < height_; ++row)
+  {
+    for (int col = 0; col < width_; ++col)
+    {
+      const float* w = weights(static_cast<std::size_t>(row) * static_cast<std::size_t>(width_) +
+        static_cast<std::size_t>(col));
+      for (std::size_t d = 0; d < kDirectionCount; ++d)
+      {
+        const int c = col + kDirectionDx[d];
+        const int r = row + kDirectionDy[d];
+        if (c >= 0 && r >= 0 && c < width_ && r < height_)
+        {
+          least = std::min(least, w[d]);
+          greatest = std::max(greatest, w[d]);
+        }
+      }
+    }
+  }
+  leastEdge_ = least;
+  greatestEdge_ = greatest;
 }
 
 std::vector<float> greyToWeights(const std::uint8_t* pixels,

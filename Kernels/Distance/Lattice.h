@@ -24,6 +24,9 @@ enum class Direction : int
   SouthEast
 };
 constexpr int kDirectionCount = 8;
+// Column and row steps of the directions (rows grow northwards).
+constexpr std::array<int, kDirectionCount> kDirectionDx = { 1, -1, 0, 0, 1, -1, -1, 1 };
+constexpr std::array<int, kDirectionCount> kDirectionDy = { 0, 0, 1, -1, 1, -1, 1, -1 };
 
 struct LatticeOptions
 {
@@ -57,6 +60,10 @@ public:
   }
   double meanWeight() const { return meanWeight_; } // divides profile slopes (eq. 3.5)
   double minWeight() const { return minWeight_; }   // smallest edge weight (axis edge)
+  // The least and the greatest stored edge weight (diagonal factor applied), as
+  // the searches read them; +inf and 0 on a 1 x 1 lattice, which has no edges.
+  float leastEdgeWeight() const { return leastEdge_; }
+  float greatestEdgeWeight() const { return greatestEdge_; }
 
   // Weight of the edge from `node` in direction `d`; the neighbour must exist.
   float weight(std::size_t node, Direction d) const
@@ -71,9 +78,13 @@ private:
   int height_ = 0;
   double meanWeight_ = 1.0;
   double minWeight_ = 1.0;
+  float leastEdge_ = 0.0f;
+  float greatestEdge_ = 0.0f;
   // Eight outgoing weights per node, diagonal factor applied: a search reads one
   // node's edges from one cache line (an undirected edge is stored twice).
   std::vector<float> weights_;
+
+  void findEdgeRange(); // leastEdge_ and greatestEdge_ over the edges that exist
 };
 
 // Grey values (0.3 R + 0.59 G + 0.11 B, eq. 4.4) of an image's pixels, rows

@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <string>
 
 using namespace tsynth;
@@ -546,6 +547,168 @@ TEST(DistanceSynthesis, ApproximateOnlyPreview)
   // The blend never exceeds the maximum of the features (the approximate field
   // is that maximum where the searches agree); it is lower somewhere.
   EXPECT_NE(full.heights.z, t.heights.z);
+}
+
+// ---------------------------------------------------------------------------
+// The lattice
+
+// Every edge that exists, read from both ends: the same weight both ways on
+// random lattices; the least and greatest of them are the lattice's edge range.
+void expectEdgeRange(const Lattice& l, bool symmetric)
+{
+  float least = std::numeric_limits<float>::infinity();
+  float greatest = 0.0f;
+  const int w = l.width();
+  for (int row = 0; row < l.height(); ++row)
+  {
+    for (int col = 0; col < w; ++col)
+    {
+      for (int d = 0; d < kDirectionCount; ++d)
+      {
+        const int c = col + kDirectionDx[static_cast<std::size_t>(d)];
+        const int r = row + kDirectionDy[static_cast<std::size_t>(d)];
+        if (c < 0 || r < 0 || c >= w || r >= l.height())
+        {
+          continue;
+        }
+        const float weight = l.weight(static_cast<std::size_t>(cellOf(col, row, w)), Direction(d));
+        least = std::min(least, weight);
+        greatest = std::max(greatest, weight);
+        if (symmetric) // the opposite direction is d ^ 1 (E/W, N/S, NE/SW, NW/SE)
+        {
+          ASSERT_EQ(weight, l.weight(static_cast<std::size_t>(cellOf(c, r, w)), Direction(d ^ 1)));
+        }
+      }
+    }
+  }
+  EXPECT_EQ(l.leastEdgeWeight(), least);
+  EXPECT_EQ(l.greatestEdgeWeight(), greatest);
+}
+
+TEST(DistanceLattice, EdgeWeightsBothWaysAndTheirRange)
+{
+  LatticeOptions o;
+  o.meanWeight = 2.0;
+  o.roughness = 1.5;
+  o.seed = 9;
+  const Lattice l = Lattice::random(37, 23, o);
+  expectEdgeRange(l, true);
+  EXPECT_GE(l.leastEdgeWeight(), 0.5f);                      // mu_w - r
+  EXPECT_LT(l.leastEdgeWeight(), 0.55f);                     // 3,300 draws reach near it
+  EXPECT_LE(l.greatestEdgeWeight(), 3.5f * std::sqrt(2.0f)); // (mu_w + r) sqrt 2
+  EXPECT_GT(l.greatestEdgeWeight(), 3.4f * std::sqrt(2.0f)); // on a diagonal
+  o.sqrt2Diagonals = false;
+  expectEdgeRange(Lattice::random(1, 6, o), true); // one column: N and S only
+  EXPECT_LE(Lattice::random(1, 6, o).greatestEdgeWeight(), 3.5f);
+  const Lattice single = Lattice::random(1, 1, o); // no edges
+  EXPECT_EQ(single.leastEdgeWeight(), std::numeric_limits<float>::infinity());
+  EXPECT_EQ(single.greatestEdgeWeight(), 0.0f);
+  // Image weights: a node's weight on all its outgoing edges (directed).
+  std::vector<float> nodes(5 * 4, 1.0f);
+  nodes[7] = 0.25f;
+  nodes[19] = 3.0f; // a corner: its diagonal edge SW exists
+  const Lattice image = Lattice::fromNodeWeights(5, 4, nodes, true);
+  expectEdgeRange(image, false);
+  EXPECT_EQ(image.leastEdgeWeight(), 0.25f);
+  EXPECT_EQ(image.greatestEdgeWeight(), 3.0f * static_cast<float>(std::sqrt(2.0)));
+}
+
+// ---------------------------------------------------------------------------
+// Queues: the bucket queue (the default) against the radix heap
+
+// Ten points with fBm costs, a ring and a straight line of equal costs, a
+// crater (the ring's inside, its own bowl profile) and 15 dendritic ridges:
+// every rule a search's order could touch (generators' ties, regions, paths).
+DistanceInputs queueScene()
+{
+  const int w = 96;
+  DistanceInputs in = manyFeatures(w, 10);
+  in.features.push_back(ring(48, 48, 14.0, w, 6.0f, 1));
+  DistanceFeature line;
+  for (int col = 10; col < 40; ++col)
+  {
+    line.nodes.push_back({ cellOf(col, 80, w), 4.0f, 0 });
+  }
+  in.features.push_back(line);
+  in.profiles.push_back(MonotoneProfile::fromPoints({ 0.0, 4.0, 60.0 }, { 1.0, 0.3, 0.0 }));
+  in.regions = enclosedRegions({ in.features[10] }, w, w, 2);
+  in.regions.at(0).feature = 10;
+  return in;
+}
+
+void expectSameTerrain(const DistanceTerrain& a, const DistanceTerrain& b)
+{
+  EXPECT_EQ(a.heights.z, b.heights.z);
+  EXPECT_EQ(a.approximate.z, b.approximate.z);
+  EXPECT_EQ(a.contributors, b.contributors);
+  EXPECT_EQ(a.ridges, b.ridges);
+  EXPECT_EQ(a.featureVisits, b.featureVisits);
+}
+
+TEST(DistanceSynthesis, BucketQueueGivesTheRadixHeapsBits)
+{
+  const DistanceInputs in = queueScene();
+  ASSERT_EQ(in.regions.size(), 1u);
+  DistanceOptions o;
+  o.ridgeCount = 15;
+  o.seed = 5;
+  EXPECT_EQ(o.queue, DijkstraQueue::Bucket); // the default
+  // Random weights; then the thesis's lattice with equal weights, where paths
+  // of exactly equal cost meet everywhere and the queue's order picks the
+  // predecessor (and so generators, w_s and the ridges' paths).
+  for (const bool ties : { false, true })
+  {
+    SCOPED_TRACE(ties);
+    o.roughness = ties ? 0.0 : 0.75;
+    o.sqrt2Diagonals = !ties;
+    o.queue = DijkstraQueue::Radix;
+    const DistanceTerrain radix = synthesiseByDistance(in, o);
+    o.queue = DijkstraQueue::Bucket;
+    const DistanceTerrain buckets = synthesiseByDistance(in, o);
+    EXPECT_EQ(buckets.radixSearches, 0u);
+    EXPECT_EQ(buckets.ridges.size(), 15u);
+    EXPECT_GT(buckets.featureVisits, 12u * 1000u);
+    expectSameTerrain(radix, buckets);
+    if (ties)
+    {
+      // The ties are real: std::priority_queue breaks them otherwise (by cell
+      // index), and thousands of heights differ.
+      o.queue = DijkstraQueue::BinaryHeap;
+      EXPECT_NE(synthesiseByDistance(in, o).heights.z, radix.heights.z);
+    }
+  }
+}
+
+TEST(DistanceSynthesis, BucketQueueLeavesUnevenStepsToTheRadixHeap)
+{
+  const int w = 64;
+  DistanceInputs in;
+  in.width = w;
+  in.height = w;
+  in.features = { point(20, 20, w, 5.0f, 0), point(40, 44, w, 4.0f, 0), point(30, 50, w, 3.0f, 0) };
+  // 90% of the fall in the first cell, 10% over the next 29: w_s spans 260x.
+  in.profiles = { MonotoneProfile::fromPoints({ 0.0, 1.0, 30.0 }, { 1.0, 0.1, 0.0 }) };
+  DistanceOptions o;
+  o.seaLevelScale = 3.0; // c_s = 15
+  // The greatest step over the least: 2,600 at r = 0.75 mu_w, 63,000 at 0.99
+  // (the least weight drawn is 0.0116), both within the 65,536 buckets of the
+  // ring; 3.3 million at 0.9999 mu_w: all four searches (the approximate one,
+  // three features) fall back.
+  for (const auto& [r, fallbacks] :
+    { std::pair{ 0.75, 0u }, std::pair{ 0.99, 0u }, std::pair{ 0.9999, 4u } })
+  {
+    SCOPED_TRACE(r);
+    o.roughness = r;
+    o.queue = DijkstraQueue::Radix;
+    const DistanceTerrain radix = synthesiseByDistance(in, o);
+    EXPECT_EQ(radix.radixSearches, 0u); // counts stand-ins for the bucket queue only
+    o.queue = DijkstraQueue::Bucket;
+    const DistanceTerrain buckets = synthesiseByDistance(in, o);
+    EXPECT_EQ(buckets.radixSearches, fallbacks);
+    expectSameTerrain(radix, buckets);
+    EXPECT_NEAR(buckets.heights.at(40, 44), 55.0f, 0.01f); // (c_s - 4) 5 m at the peak
+    EXPECT_GT(buckets.featureVisits, 3u);
+  }
 }
 
 // ---------------------------------------------------------------------------
