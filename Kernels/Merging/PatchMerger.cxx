@@ -396,6 +396,13 @@ void PatchMerger::blendShepard(const MergeOptions& options)
   }
 }
 
+namespace
+{
+// The values spread from each seam point in New mode: the gradient mismatch
+// (x, y) and the height mismatch.
+constexpr int GradientX = 0, HeightMismatch = 2, Values = 3;
+} // namespace
+
 void PatchMerger::blendPoisson(const MergeOptions& options,
   bool gradientShepard,
   MergeResult& result)
@@ -406,7 +413,6 @@ void PatchMerger::blendPoisson(const MergeOptions& options,
   // The height mismatch A - B rides along as a third value: the patch shifted
   // by it is a start close to the solution near the seam (one CG iteration
   // fewer); the start does not change what the solve converges to.
-  constexpr int GradientX = 0, HeightMismatch = 2, Values = 3;
   if (gradientShepard)
   {
     seamX_.clear();
@@ -499,15 +505,6 @@ void PatchMerger::blendPoisson(const MergeOptions& options,
       }
     }
   }
-  std::vector<std::uint8_t>& unknown = coreMask_; // reused as scratch
-  unknown.assign(n, 0);
-  for (std::size_t k = 0; k < n; ++k)
-  {
-    unknown[k] = side_[k] == 2;
-    const double start =
-      gradientShepard ? new_[k] + shepardOut_[k * Values + HeightMismatch] : new_[k];
-    out_[k] = side_[k] == 2 ? start : (side_[k] == 1 ? old_[k] : NaN);
-  }
   PoissonOptions poisson = options.poisson;
   if (!(poisson.errorTolerance > 0.0) && options.relativeHeightTolerance > 0.0)
   {
@@ -524,8 +521,117 @@ void PatchMerger::blendPoisson(const MergeOptions& options,
     if (hi > lo)
       poisson.errorTolerance = options.relativeHeightTolerance * (static_cast<double>(hi) - lo);
   }
-  result.poisson = poisson_.solveGuided(
+  const bool canAnchor = gradientShepard && !seamX_.empty();
+  const bool anchored = canAnchor && options.anchorFreeBorder;
+  result.poisson = solveNewSide(gradientShepard, anchored, options.shepardRadius, poisson);
+  if (canAnchor && !anchored && freeBorderOutside(options.lowestHeight, options.highestHeight))
+  {
+    result.poisson = solveNewSide(gradientShepard, true, options.shepardRadius, poisson);
+  }
+}
+
+PoissonStatistics PatchMerger::solveNewSide(bool gradientShepard,
+  bool anchored,
+  double anchorDistance,
+  const PoissonOptions& poisson)
+{
+  const std::size_t n = static_cast<std::size_t>(fw_) * fh_;
+  std::vector<std::uint8_t>& unknown = coreMask_; // reused as scratch
+  unknown.assign(n, 0);
+  double meanMismatch = 0.0;
+  if (anchored)
+  {
+    seamDistance(seamDistance_);
+    for (std::size_t s = 0; s < seamX_.size(); ++s)
+    {
+      meanMismatch += seamValue_[s * Values + HeightMismatch];
+    }
+    meanMismatch /= static_cast<double>(seamX_.size());
+  }
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const bool anchor =
+      anchored && side_[k] == 2 && seamDistance_[k] > anchorDistance && onFreeBorder(k);
+    unknown[k] = side_[k] == 2 && !anchor;
+    const double start = anchor ? new_[k] + meanMismatch
+      : gradientShepard         ? new_[k] + shepardOut_[k * Values + HeightMismatch]
+                                : new_[k];
+    out_[k] = side_[k] == 2 ? start : (side_[k] == 1 ? old_[k] : NaN);
+  }
+  return poisson_.solveGuided(
     fw_, fh_, cellX_, cellY_, unknown.data(), gx_.data(), gy_.data(), out_.data(), poisson);
+}
+
+bool PatchMerger::freeBorderOutside(float lowest, float highest) const
+{
+  for (std::size_t k = 0; k < out_.size(); ++k)
+  {
+    if (side_[k] == 2 && onFreeBorder(k) && (out_[k] < lowest || out_[k] > highest))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool PatchMerger::onFreeBorder(std::size_t k) const
+{
+  const int i = static_cast<int>(k % static_cast<std::size_t>(fw_));
+  const int j = static_cast<int>(k / static_cast<std::size_t>(fw_));
+  for (int d = 0; d < 4; ++d)
+  {
+    const int ni = i + Di[d];
+    const int nj = j + Dj[d];
+    if (ni < 0 || nj < 0 || ni >= fw_ || nj >= fh_ ||
+      side_[static_cast<std::size_t>(nj) * fw_ + ni] == 0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+void PatchMerger::seamDistance(std::vector<float>& out) const
+{
+  // Two chamfer passes (1 straight, 1.4 diagonal, in cells): within 8% of the
+  // Euclidean distance, plenty to say where the correction has faded out.
+  constexpr float kStraight = 1.0f;
+  constexpr float kDiagonal = 1.4f;
+  const std::size_t n = static_cast<std::size_t>(fw_) * fh_;
+  out.assign(n, std::numeric_limits<float>::infinity());
+  for (std::size_t s = 0; s < seamX_.size(); ++s)
+  {
+    out[static_cast<std::size_t>(seamY_[s]) * fw_ + static_cast<std::size_t>(seamX_[s])] = 0.0f;
+  }
+  auto relax = [&](int i, int j, int di, int dj, float step)
+  {
+    const int ni = i + di;
+    const int nj = j + dj;
+    if (ni < 0 || nj < 0 || ni >= fw_ || nj >= fh_)
+      return;
+    float& here = out[static_cast<std::size_t>(j) * fw_ + i];
+    here = std::min(here, out[static_cast<std::size_t>(nj) * fw_ + ni] + step);
+  };
+  for (int j = 0; j < fh_; ++j)
+  {
+    for (int i = 0; i < fw_; ++i)
+    {
+      relax(i, j, -1, 0, kStraight);
+      relax(i, j, 0, -1, kStraight);
+      relax(i, j, -1, -1, kDiagonal);
+      relax(i, j, 1, -1, kDiagonal);
+    }
+  }
+  for (int j = fh_ - 1; j >= 0; --j)
+  {
+    for (int i = fw_ - 1; i >= 0; --i)
+    {
+      relax(i, j, 1, 0, kStraight);
+      relax(i, j, 0, 1, kStraight);
+      relax(i, j, 1, 1, kDiagonal);
+      relax(i, j, -1, 1, kDiagonal);
+    }
+  }
 }
 
 MergeResult PatchMerger::merge(Heightfield& terrain,

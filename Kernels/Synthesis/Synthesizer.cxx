@@ -5,8 +5,8 @@
 #include "../Core/Smoothing.h"
 #include "../Distance/DistanceField.h"
 #include "../Features/Ppa.h"
-#include "Finishing.h"
 #include "../Hydrology/MultiscalePitRemoval.h"
+#include "Finishing.h"
 
 #include <algorithm>
 #include <chrono>
@@ -38,6 +38,11 @@ constexpr double kCorrectionScaleInPatches = 0.25;
 // kilometres on steep exemplars (Mont Blanc at 40-cell patches: 112-8615 m
 // where the exemplar spans 454-4810 m).
 constexpr double kShepardRadiusInPatches = 0.25;
+// A merged patch whose free border leaves the exemplars' height range by more
+// than this share of its span is anchored (MergeOptions::lowestHeight): real
+// land a little beyond the exemplars' extremes is plausible, kilometres are a
+// runaway.
+constexpr double kHeightSlackShare = 0.1;
 // The seed moves the fill's inner windows by up to this share of a patch.
 constexpr double kGridJitterInPatches = 0.125;
 // Windows per axis are fewer than this (it spaces the seed's draws per axis).
@@ -444,6 +449,8 @@ public:
     MergeOptions mo;
     mo.mode = o_.merge;
     mo.shepardRadius = kShepardRadiusInPatches * P_;
+    mo.lowestHeight = lowest_;
+    mo.highestHeight = highest_;
     const MergeResult r = mergers_[0].merge(
       out_, filled_, best, x0, y0, feature ? &core : nullptr, mo, &dry[bestIndex]);
     const int id = static_cast<int>(result_.placements.size());
@@ -482,6 +489,32 @@ public:
     result_.placements.push_back(p);
     recordSource(result_.placements.size() - 1);
     return r.newCells;
+  }
+
+  // Heights a merged patch's free border may reach before it is anchored
+  // (MergeOptions::lowestHeight): the exemplars' range, widened by
+  // kHeightSlackShare of its span each way.
+  void boundHeights(const std::vector<const Heightfield*>& exemplars)
+  {
+    float lo = std::numeric_limits<float>::infinity();
+    float hi = -std::numeric_limits<float>::infinity();
+    for (const Heightfield* e : exemplars)
+    {
+      for (std::size_t c = 0; c < e->size(); ++c)
+      {
+        if (e->isValid(c) && std::isfinite(e->z[c]))
+        {
+          lo = std::min(lo, e->z[c]);
+          hi = std::max(hi, e->z[c]);
+        }
+      }
+    }
+    if (lo <= hi)
+    {
+      const float slack = static_cast<float>(kHeightSlackShare) * (hi - lo);
+      lowest_ = lo - slack;
+      highest_ = hi + slack;
+    }
   }
 
   void placeFeatures()
@@ -823,6 +856,8 @@ private:
   std::vector<std::uint8_t> filled_;
   std::vector<std::uint8_t> line_;
   NoiseVariance noise_;
+  float lowest_ = -std::numeric_limits<float>::infinity();
+  float highest_ = std::numeric_limits<float>::infinity();
   Heightfield lowTarget_;                // the target through the landform term's low-pass
   Heightfield correctionTarget_;         // ... through the landform correction's
   std::vector<float> ownConfidence_;     // 1 everywhere, for targets that give none
@@ -883,6 +918,7 @@ SynthesisResult synthesize(const SynthesisTarget& target,
   mo.weights.verticalOffset = o.verticalOffset;
   PatchMatcher matcher(exemplars, graphs, mo);
   SynthesisState state(target, matcher, o);
+  state.boundHeights(exemplars);
   const double setup = secondsSince(t0);
   state.report(0.1, "setup");
   t0 = Clock::now();

@@ -181,6 +181,66 @@ TEST(PatchMerge, NewModeRemovesTheSeamThatCutLeaves)
   EXPECT_LE(zhouMedian, p99); // Zhou's: smooth on the whole, with kinks
 }
 
+TEST(PatchMerge, NewModeKeepsThePatchShapeOnItsFreeBorder)
+{
+  // An Alps patch merged into Colorado with 40 columns of overlap on its west;
+  // its east side borders unfilled land. Anchored, the free border beyond the
+  // Shepard radius is kept at the patch's own heights plus one shift (the seam's
+  // mean mismatch), so the next patch fits to an untilted edge.
+  const Heightfield base = crop(colorado(), 20, 20, 260, 200);
+  Heightfield patch = crop(alps(), 200, 150, 96, 96);
+  patch.cellX = base.cellX;
+  patch.cellY = base.cellY;
+  const int px = 100, py = 50;
+  // Spread of (terrain - patch) along the patch's east column, and its mean.
+  auto eastOffsets = [&](bool anchor, float highest, double& mean, double& spread)
+  {
+    Heightfield terrain = base;
+    std::vector<std::uint8_t> filled(terrain.size(), 0);
+    for (int j = 0; j < terrain.height; ++j)
+      for (int i = 0; i < terrain.width; ++i)
+        filled[terrain.index(i, j)] = i < 140;
+    MergeOptions options;
+    options.anchorFreeBorder = anchor;
+    options.highestHeight = highest;
+    PatchMerger merger;
+    merger.merge(terrain, filled, patch, px, py, nullptr, options);
+    const int i = patch.width - 1;
+    double sum = 0.0, square = 0.0;
+    for (int j = 0; j < patch.height; ++j)
+    {
+      const double d = terrain.at(px + i, py + j) - patch.at(i, j);
+      sum += d;
+      square += d * d;
+    }
+    mean = sum / patch.height;
+    spread = std::sqrt(std::max(0.0, square / patch.height - mean * mean));
+  };
+  const float unbounded = std::numeric_limits<float>::infinity();
+  double anchoredMean = 0, anchoredSpread = 0, freeMean = 0, freeSpread = 0;
+  eastOffsets(true, unbounded, anchoredMean, anchoredSpread);
+  eastOffsets(false, unbounded, freeMean, freeSpread);
+  // A free border above highestHeight makes the merge solve again, anchored.
+  double boundedMean = 0, boundedSpread = 0;
+  eastOffsets(false, 0.0f, boundedMean, boundedSpread);
+  EXPECT_EQ(boundedMean, anchoredMean);
+  EXPECT_EQ(boundedSpread, anchoredSpread);
+  std::printf(
+    "east border offset: anchored %.1f m (spread %.4f m), unanchored %.1f m (spread %.1f m)\n",
+    anchoredMean,
+    anchoredSpread,
+    freeMean,
+    freeSpread);
+  // This part of Colorado stands about 600 m above the Alps patch: the patch
+  // is lifted by that, one number for the whole border (measured 595 m).
+  EXPECT_GT(anchoredMean, 300.0);
+  EXPECT_LT(anchoredSpread, 0.01);
+  // Unanchored, the spread gradient correction carries the far side a further
+  // 265 m and leans it (spread 18 m): the drift that adds up patch by patch.
+  EXPECT_GT(std::abs(freeMean - anchoredMean), 100.0);
+  EXPECT_GT(freeSpread, 10.0 * std::max(anchoredSpread, 0.1));
+}
+
 TEST(PatchMerge, ShepardIsExactOnTheSeamAndFadesWithoutAStep)
 {
   const Heightfield& dem = alps();

@@ -254,6 +254,24 @@ class DrawnSketchTest(unittest.TestCase):
             self.assertLessEqual(json.loads(heights.stdout)["z_max_m"], 4810.0)
             self.assertGreaterEqual(report["landform_quality"]["ridge_prominence_ratio"], 1.5)
 
+    def test_spiral_ridge_with_mont_blanc_on_default_patches_does_not_drift(self):
+        # At the default 80-cell patches on 640 x 640 cells the new merge still drifted: each patch's
+        # far side was carried off by its spread gradient correction and the next one fitted to it,
+        # down to -5621 m (seed 4; seeds 1 and 3: -1646 and -3848 m) where the exemplar spans
+        # 454-4810 m. With the free border anchored they stay within 483-4143 m. Allowed: the
+        # exemplar's range widened by a tenth of its span (436 m) each way.
+        sketch = sketch_drawing.spiral().save(os.path.join(self.tmp, "spiral.png"))
+        dem = os.path.join(PATHS.bundled_data, "dems", "alps-montblanc.png")
+        out = os.path.join(self.tmp, "spiral.tif")
+        low, high, slack = 454.0, 4810.0, 0.1 * (4810.0 - 454.0)
+        for seed in ("1", "3", "4"):
+            synthesise(self, dem, sketch, out, "--size", "640x640", "--seed", seed)
+            heights = tsynth("info", out, "--json")
+            self.assertEqual(heights.returncode, 0, heights.stderr)
+            z = json.loads(heights.stdout)
+            self.assertGreaterEqual(z["z_min_m"], low - slack, f"seed {seed}")
+            self.assertLessEqual(z["z_max_m"], high + slack, f"seed {seed}")
+
 
 class SynthTest(unittest.TestCase):
     def setUp(self):
