@@ -398,6 +398,7 @@ SetupInputs readSynthInputs(const SynthArguments& a)
   in.seed = a.options.seed;
   in.landformRelief = a.landformRelief;
   in.memoryBudget = a.memoryBudget;
+  in.openClMatcher = a.options.backend != Backend::Cpu;
   in.names.size = "--size";
   in.names.cell = "--cell";
   in.names.patch = "--patch";

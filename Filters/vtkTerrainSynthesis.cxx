@@ -284,6 +284,7 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
     in.seed = static_cast<std::uint64_t>(this->Seed);
     in.landformRelief = this->LandformRelief;
     in.memoryBudget = this->MemoryBudget * kBytesPerGB;
+    in.openClMatcher = tsynth::backendFromProperty(this->Backend) != tsynth::Backend::Cpu;
     in.names = propertyNames();
     for (const auto& w : ex.warnings)
     {

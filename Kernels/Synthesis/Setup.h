@@ -111,9 +111,13 @@ constexpr int kMaxOutputSide = 1000000;
 // Peak memory in bytes of a synthesis of width x height cells from exemplars of
 // these cell counts (at the output's cell size): measured, with a margin, on
 // 512^2 to 4096^2 outputs (DESIGN.md's machines; see Setup.cxx).
+// With `openCl`, also what the OpenCL matcher holds: the runtime with its
+// compiled kernels and the device's copy of the exemplar pool (on PoCL's CPU
+// device both are host memory).
 double synthesisMemoryEstimate(int width,
   int height,
-  const std::vector<std::size_t>& exemplarCells);
+  const std::vector<std::size_t>& exemplarCells,
+  bool openCl = false);
 
 // defaultMemoryBudget() and kDefaultMemoryFraction: Core/Memory.h.
 
@@ -157,7 +161,9 @@ struct SetupInputs
   GridRequest grid;
   int patchSize = 80;
   double memoryBudget = 0.0; // bytes; 0: defaultMemoryBudget()
-  std::uint64_t seed = 0;    // breaks ties in the target (valley outlets)
+  // The matcher may run on OpenCL (backend auto or opencl): its memory counts too.
+  bool openClMatcher = true;
+  std::uint64_t seed = 0; // breaks ties in the target (valley outlets)
   // Sketched ridges and valleys get this times the relief of the exemplars'
   // own major ones (1: like them); a DEM target keeps its own.
   double landformRelief = 1.0;

@@ -250,7 +250,14 @@ TEST(Setup, MemoryOverTheBudgetIsRefusedWithTheEstimate)
   const double small = synthesisMemoryEstimate(160, 160, { 200 * 200 });
   EXPECT_GT(synthesisMemoryEstimate(320, 320, { 200 * 200 }), small);
   EXPECT_GT(synthesisMemoryEstimate(160, 160, { 200 * 200, 200 * 200 }), small);
+  // The OpenCL matcher's runtime and device pool: 85 MB and 64 bytes per
+  // exemplar cell more (measured 110 MB with one 648 x 648 exemplar).
+  EXPECT_NEAR(synthesisMemoryEstimate(160, 160, { 648 * 648 }, true) -
+      synthesisMemoryEstimate(160, 160, { 648 * 648 }, false),
+    110.0e6,
+    5.0e6);
   SetupInputs in;
+  in.openClMatcher = false;
   in.exemplars.push_back(ridgeExemplar(200, kCell));
   in.sketch = sketchOf({ line({ { 900, 900 }, { 14310, 14310 } }) });
   in.patchSize = kPatch;
