@@ -6,6 +6,7 @@
 
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
+#include <vtkSetGet.h>
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
 #include <vtkXMLReader.h>
@@ -65,10 +66,15 @@ std::array<vtkIdType, 2> pieceSize(vtkXMLDataElement* piece)
   return { countAttribute(piece, "NumberOfPoints"), cells };
 }
 
-// The values the parser finds for a DataArray element, up to `wanted`.
-std::size_t valuesFound(vtkXMLDataParser* parser, vtkXMLDataElement* array, std::size_t wanted)
+// Reads up to `wanted` values of a DataArray element into `buffer` (resized to
+// fit them in the array's own type, returned in `type`); returns how many the
+// file holds, or 0 for an element without a type.
+std::size_t readValues(vtkXMLDataParser* parser,
+  vtkXMLDataElement* array,
+  std::size_t wanted,
+  std::vector<char>& buffer,
+  int& type)
 {
-  int type = 0;
   if (array->GetWordTypeAttribute("type", type) == 0)
   {
     return 0;
@@ -78,7 +84,7 @@ std::size_t valuesFound(vtkXMLDataParser* parser, vtkXMLDataElement* array, std:
   {
     return wanted;
   }
-  std::vector<char> buffer(wanted * static_cast<std::size_t>(size));
+  buffer.assign(wanted * static_cast<std::size_t>(size), 0);
   const char* format = array->GetAttribute("format");
   if (format != nullptr && std::strcmp(format, "appended") == 0)
   {
@@ -91,6 +97,95 @@ std::size_t valuesFound(vtkXMLDataParser* parser, vtkXMLDataElement* array, std:
   }
   const int ascii = format != nullptr && std::strcmp(format, "ascii") == 0 ? 1 : 0;
   return parser->ReadInlineData(array, ascii, buffer.data(), 0, wanted, type);
+}
+
+// The values the parser finds for a DataArray element, up to `wanted`.
+std::size_t valuesFound(vtkXMLDataParser* parser, vtkXMLDataElement* array, std::size_t wanted)
+{
+  std::vector<char> buffer;
+  int type = 0;
+  return readValues(parser, array, wanted, buffer, type);
+}
+
+// Up to `wanted` values of a DataArray element as 64-bit integers.
+std::vector<long long> integersFound(vtkXMLDataParser* parser,
+  vtkXMLDataElement* array,
+  std::size_t wanted)
+{
+  std::vector<char> buffer;
+  int type = 0;
+  const std::size_t found = readValues(parser, array, wanted, buffer, type);
+  std::vector<long long> values(std::min(found, wanted));
+  if (buffer.empty())
+  {
+    values.clear();
+    return values;
+  }
+  switch (type)
+  {
+    vtkTemplateMacro(for (std::size_t k = 0; k < values.size(); ++k) {
+      values[k] = static_cast<long long>(reinterpret_cast<const VTK_TT*>(buffer.data())[k]);
+    });
+    default:
+      values.clear();
+  }
+  return values;
+}
+
+// zlib never expands data more than about 1032 times: no array of a file can
+// hold more values than this many per byte of the file.
+constexpr long long kMaxValuesPerFileByte = 1032;
+
+// Throws tsynth::Error unless the cells of one kind (Verts, Lines, Strips,
+// Polys) have `cells` offsets that never fall and a connectivity array with
+// as many point ids as the last offset says.
+void checkCells(vtkXMLDataParser* parser,
+  vtkXMLDataElement* piece,
+  const char* kind,
+  long long fileBytes,
+  const std::string& path)
+{
+  const vtkIdType cells = countAttribute(piece, (std::string("NumberOf") + kind).c_str());
+  if (cells == 0)
+  {
+    return;
+  }
+  const std::string damaged = path + " is damaged: its " + kind + " ";
+  vtkXMLDataElement* element = piece->FindNestedElementWithName(kind);
+  vtkXMLDataElement* offsets = element != nullptr
+    ? element->FindNestedElementWithNameAndAttribute("DataArray", "Name", "offsets")
+    : nullptr;
+  vtkXMLDataElement* connectivity = element != nullptr
+    ? element->FindNestedElementWithNameAndAttribute("DataArray", "Name", "connectivity")
+    : nullptr;
+  if (offsets == nullptr || connectivity == nullptr)
+  {
+    throw Error(damaged + "lack their offsets or connectivity array.");
+  }
+  // Older files give one end offset per cell, newer ones a leading 0 too.
+  const std::vector<long long> ends =
+    integersFound(parser, offsets, static_cast<std::size_t>(cells) + 1);
+  if (ends.size() < static_cast<std::size_t>(cells))
+  {
+    throw Error(
+      damaged + "offsets hold fewer values than their " + std::to_string(cells) + " cells need.");
+  }
+  long long previous = 0;
+  for (long long end : ends)
+  {
+    if (end < previous)
+    {
+      throw Error(damaged + "offsets fall or are negative (" + std::to_string(end) + ").");
+    }
+    previous = end;
+  }
+  if (previous > kMaxValuesPerFileByte * fileBytes ||
+    valuesFound(parser, connectivity, static_cast<std::size_t>(previous)) <
+      static_cast<std::size_t>(previous))
+  {
+    throw Error(damaged + "connectivity holds fewer point ids than their offsets say (" +
+      std::to_string(previous) + ").");
+  }
 }
 
 // Throws tsynth::Error for the first array of `group` (PointData, CellData,
@@ -132,6 +227,9 @@ void checkArrayLengths(vtkXMLReader* reader, const std::string& path, const std:
   {
     throw Error(refusal);
   }
+  stream.seekg(0, std::ios::end);
+  const long long fileBytes = static_cast<long long>(stream.tellg());
+  stream.seekg(0, std::ios::beg);
   std::istream* previous = parser->GetStream();
   parser->SetStream(&stream);
   struct Restore
@@ -152,6 +250,10 @@ void checkArrayLengths(vtkXMLReader* reader, const std::string& path, const std:
     checkGroup(parser, piece->FindNestedElementWithName("Points"), size[0], path, "points");
     checkGroup(parser, piece->FindNestedElementWithName("PointData"), size[0], path, "points");
     checkGroup(parser, piece->FindNestedElementWithName("CellData"), size[1], path, "cells");
+    for (const char* kind : { "Verts", "Lines", "Strips", "Polys" })
+    {
+      checkCells(parser, piece, kind, fileBytes, path);
+    }
   }
 }
 

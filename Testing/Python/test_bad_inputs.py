@@ -145,6 +145,18 @@ CASES = [
      1, r"shorttype\.vtp is damaged: its FeatureType array holds fewer values than its 2 cells need"),
     ("synth-vtp-short-binary-array", ["synth", "--exemplar", "$dem", "--sketch", "@shorttype-bin.vtp",
                                       "-o", "^out.tif"], 1, r"FeatureType array holds fewer values"),
+    ("synth-vtp-offsets-short", ["synth", "--exemplar", "$dem", "--sketch", "@offsets-short.vtp", "-o", "^out.tif"],
+     1, r"offsets-short\.vtp is damaged: its Lines offsets hold fewer values than their 3 cells need"),
+    ("synth-vtp-offsets-falling", ["synth", "--exemplar", "$dem", "--sketch", "@offsets-falling.vtp",
+                                   "-o", "^out.tif"], 1, r"offsets-falling\.vtp is damaged: its Lines offsets fall"),
+    ("synth-vtp-offsets-huge", ["synth", "--exemplar", "$dem", "--sketch", "@offsets-huge.vtp", "-o", "^out.tif"],
+     1, r"connectivity holds fewer point ids than their offsets say \(4000000000\)"),
+    ("evaluate-vtp-connectivity-short", ["evaluate", "$dem", "--exemplar", "$dem", "--sketch",
+                                         "@connectivity-short.vtp"], 1, r"connectivity holds fewer point ids"),
+    ("distance-vtp-appended-falling", ["distance", "--generators", "@appended-falling.vtp", "-o", "^out.tif"], 1,
+     r"appended-falling\.vtp is damaged: its Lines offsets fall"),
+    ("features-vtp-appended-short-connectivity", ["features", "@appended-short-connectivity.vtp", "--sketch",
+                                                  "-o", "^out.vtp"], 1, r"connectivity holds fewer point ids"),
     ("synth-vti-short-elevation", ["synth", "--exemplar", "@short.vti", "--sketch", "$strokes", "-o", "^out.tif"],
      1, r"short\.vti is damaged: its Elevation array holds fewer values than its 4096 points need"),
     ("info-vti-not-vtk", ["info", "@readme.vti"], 1, r"readme\.vti is not a VTK image file"),
@@ -248,6 +260,8 @@ EDGE_CASES = [
     ("distance-vtp-reaching-1e300", ["distance", "--generators", "@huge.vtp", "-o", "^out.tif"], ["out.tif"]),
     ("synth-vtp-reaching-1e300-with-size", ["synth", "--exemplar", "$dem", "--sketch", "@huge.vtp", "--size",
                                             "128x128", "--patch", "32", "-o", "^out.tif"], ["out.tif"]),
+    # The appended-data fixture undamaged: what the damaged ones are refused for is their damage.
+    ("distance-vtp-appended", ["distance", "--generators", "@appended.vtp", "-o", "^out.tif"], ["out.tif"]),
 ]
 
 DATA = {
@@ -352,6 +366,31 @@ def vtp(path, points, lines, feature_types=None, raw_points=None):
                 % (n, 0 if lines else n, len(lines), cell_data, binary(coords), verts, line_block))
 
 
+def vtp_appended(path, points, connectivity, offsets, feature_types, connectivity_bytes=None):
+    """A VTK XML poly-data file of one piece with every array in raw appended data (UInt32 block sizes);
+    connectivity_bytes, if given, is the size its block claims."""
+    blocks, arrays = b"", {}
+    for name, data in (("points", b"".join(struct.pack("<3d", *p) for p in points)),
+                       ("types", struct.pack("<%di" % len(feature_types), *feature_types)),
+                       ("connectivity", struct.pack("<%dq" % len(connectivity), *connectivity)),
+                       ("offsets", struct.pack("<%dq" % len(offsets), *offsets))):
+        size = connectivity_bytes if name == "connectivity" and connectivity_bytes is not None else len(data)
+        arrays[name] = len(blocks)
+        blocks += struct.pack("<I", size) + data
+    with open(path, "wb") as f:
+        f.write(('<?xml version="1.0"?>\n<VTKFile type="PolyData" version="0.1" byte_order="LittleEndian">'
+                 '<PolyData><Piece NumberOfPoints="%d" NumberOfVerts="0" NumberOfLines="%d" NumberOfStrips="0" '
+                 'NumberOfPolys="0"><CellData><DataArray type="Int32" Name="FeatureType" format="appended" '
+                 'offset="%d"/></CellData><Points><DataArray type="Float64" NumberOfComponents="3" '
+                 'format="appended" offset="%d"/></Points><Lines><DataArray type="Int64" Name="connectivity" '
+                 'format="appended" offset="%d"/><DataArray type="Int64" Name="offsets" format="appended" '
+                 'offset="%d"/></Lines></Piece></PolyData><AppendedData encoding="raw">_'
+                 % (len(points), len(feature_types), arrays["types"], arrays["points"], arrays["connectivity"],
+                    arrays["offsets"])).encode())
+        f.write(blocks)
+        f.write(b"</AppendedData></VTKFile>\n")
+
+
 def make_fixtures(d, bundled):
     join = lambda *p: os.path.join(d, *p)  # noqa: E731
     colorado = os.path.join(bundled, "dems", "colorado.png")
@@ -453,6 +492,24 @@ def make_fixtures(d, bundled):
     with open(join("shorttype-bin.vtp"), "w") as f:
         f.write(text.replace('format="ascii">1</DataArray></CellData>',
                              'format="binary">%s</DataArray></CellData>' % short))
+    # Cell arrays that disagree with their counts: line.vtp's single line [0, 1], offsets "2", altered.
+    with open(join("line.vtp")) as f:
+        line = f.read()
+    lines = ('<DataArray type="Int64" Name="connectivity" format="ascii">0 1</DataArray>'
+             '<DataArray type="Int64" Name="offsets" format="ascii">2</DataArray>')
+    for name, count, connectivity, offsets in (("offsets-short", 3, "0 1", "2"),
+                                               ("offsets-falling", 2, "0 1 1 0", "2 1"),
+                                               ("offsets-huge", 1, "0 1", "4000000000"),
+                                               ("connectivity-short", 1, "0", "2")):
+        with open(join(name + ".vtp"), "w") as f:
+            f.write(line.replace('NumberOfLines="1"', 'NumberOfLines="%d"' % count)
+                    .replace('format="ascii">1</DataArray></CellData>',
+                             'format="ascii">%s</DataArray></CellData>' % " ".join(["1"] * count))
+                    .replace(lines, lines.replace(">0 1<", ">%s<" % connectivity).replace(">2<", ">%s<" % offsets)))
+    ends = [(500, 2000, 0), (3500, 2000, 0), (500, 3000, 0), (3500, 3000, 0)]
+    vtp_appended(join("appended.vtp"), ends, [0, 1, 2, 3], [2, 4], [1, -1])
+    vtp_appended(join("appended-falling.vtp"), ends, [0, 1, 2, 3], [4, 2], [1, -1])
+    vtp_appended(join("appended-short-connectivity.vtp"), ends, [0, 1, 2, 3], [2, 4], [1, -1], connectivity_bytes=16)
     with open(join("short.vti"), "w") as f:  # 64 x 64 points, an Elevation array of 10 values
         f.write('<?xml version="1.0"?>\n<VTKFile type="ImageData" version="0.1" byte_order="LittleEndian">'
                 '<ImageData WholeExtent="0 63 0 63 0 0" Origin="0 0 0" Spacing="90 90 1">'
