@@ -14,6 +14,8 @@
 #include <array>
 #include <cstring>
 #include <fstream>
+#include <new>
+#include <stdexcept>
 #include <vector>
 
 namespace tsynth
@@ -271,8 +273,22 @@ void readXmlDataFile(vtkXMLReader* reader, const std::string& path, const std::s
   {
     throw Error(refusal);
   }
-  checkArrayLengths(reader, path, refusal);
-  reader->Update();
+  // VTK's parser sizes its buffers from the headers it reads: a header it
+  // decodes to an absurd size ends in std::length_error or std::bad_alloc.
+  try
+  {
+    checkArrayLengths(reader, path, refusal);
+    reader->Update();
+  }
+  catch (const std::length_error&)
+  {
+    throw Error(path + " is damaged: an array's header claims more data than any file holds.");
+  }
+  catch (const std::bad_alloc&)
+  {
+    throw Error("Reading " + path +
+      " needs more memory than this machine has: its array headers are probably damaged.");
+  }
   if (observer.failed || reader->GetOutputDataObject(0) == nullptr)
   {
     throw Error(refusal);
