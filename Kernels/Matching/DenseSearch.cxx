@@ -689,14 +689,9 @@ DenseMatch DenseMatcher::describe(const DenseQuery& q,
     landformWeight > 0.0 ? static_cast<float>(std::sqrt(landformSquares / landformWeight)) : 0.0f;
   const auto nv =
     noise_[static_cast<std::size_t>(r.exemplar)].window(match.centreX, match.centreY, P);
-  double cn = 0.0;
-  for (int l = 0; l < kNoiseLevels; ++l)
-  {
-    const double d =
-      (q.noise[static_cast<std::size_t>(l)] - nv[static_cast<std::size_t>(l)]) / scale2;
-    cn += d * d;
-  }
-  match.cost = static_cast<float>(combined(overlap, landformSquares) + options_.noiseWeight * cn);
+  match.roughness = static_cast<float>(roughnessMisfit(q.noise, nv));
+  match.cost =
+    static_cast<float>(combined(overlap, landformSquares) + options_.noiseWeight * match.roughness);
   return match;
 }
 
@@ -960,6 +955,55 @@ std::vector<DenseMatch> DenseMatcher::bruteForce(const DenseQuery& q, std::size_
     all.resize(k);
   }
   return all;
+}
+
+std::array<float, kNoiseLevels> DenseMatcher::typicalNoise() const
+{
+  const int P = options_.patchSize;
+  std::array<std::vector<float>, kNoiseLevels> samples;
+  for (std::size_t e = 0; e < noise_.size(); ++e)
+  {
+    const auto& size = exemplarSize_[e];
+    for (int y = P / 2; y + P / 2 <= size[1]; y += P / 2)
+    {
+      for (int x = P / 2; x + P / 2 <= size[0]; x += P / 2)
+      {
+        const auto v = noise_[e].window(x, y, P);
+        for (int l = 0; l < kNoiseLevels; ++l)
+        {
+          samples[static_cast<std::size_t>(l)].push_back(v[static_cast<std::size_t>(l)]);
+        }
+      }
+    }
+  }
+  std::array<float, kNoiseLevels> typical{};
+  for (int l = 0; l < kNoiseLevels; ++l)
+  {
+    auto& v = samples[static_cast<std::size_t>(l)];
+    if (!v.empty())
+    {
+      std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+      typical[static_cast<std::size_t>(l)] = v[v.size() / 2];
+    }
+  }
+  return typical;
+}
+
+double roughnessMisfit(const std::array<float, kNoiseLevels>& asked,
+  const std::array<float, kNoiseLevels>& found)
+{
+  double misfit = 0.0;
+  for (std::size_t l = 0; l < asked.size(); ++l)
+  {
+    const double a = asked[l];
+    const double f = found[l];
+    if (a > 0.0 && a + f > 0.0)
+    {
+      const double d = (a - f) / (a + f);
+      misfit += d * d;
+    }
+  }
+  return misfit;
 }
 
 } // namespace tsynth

@@ -164,7 +164,9 @@ public:
         }
       }
     }
-    q.noise = noise_.window(x0 + 0.5 * P_, y0 + 0.5 * P_, P_);
+    // The roughness to match: a DEM target's own; a drawing says nothing of
+    // it, so the exemplars' typical one.
+    q.noise = target_.detailed ? noise_.window(x0 + 0.5 * P_, y0 + 0.5 * P_, P_) : typicalNoise_;
     return q;
   }
 
@@ -517,6 +519,11 @@ public:
     }
   }
 
+  void setTypicalNoise(const std::array<float, kNoiseLevels>& t)
+  {
+    typicalNoise_ = t;
+  }
+
   void placeFeatures()
   {
     const std::vector<FeatureSite> sites = orderedSites();
@@ -857,6 +864,7 @@ private:
   std::vector<std::uint8_t> line_;
   NoiseVariance noise_;
   float lowest_ = -std::numeric_limits<float>::infinity();
+  std::array<float, kNoiseLevels> typicalNoise_{};
   float highest_ = std::numeric_limits<float>::infinity();
   Heightfield lowTarget_;                // the target through the landform term's low-pass
   Heightfield correctionTarget_;         // ... through the landform correction's
@@ -919,6 +927,7 @@ SynthesisResult synthesize(const SynthesisTarget& target,
   PatchMatcher matcher(exemplars, graphs, mo);
   SynthesisState state(target, matcher, o);
   state.boundHeights(exemplars);
+  state.setTypicalNoise(matcher.dense().typicalNoise());
   const double setup = secondsSince(t0);
   state.report(0.1, "setup");
   t0 = Clock::now();

@@ -194,6 +194,7 @@ SynthesisTarget targetFromHeights(const Heightfield& heights,
   SynthesisTarget t;
   t.graph = graph;
   t.field = heights;
+  t.detailed = true;
   const HeightRange r = computeHeightRange(heights);
   const double span = r.max > r.min ? r.max - r.min : 1.0;
   for (std::size_t k = 0; k < t.field.size(); ++k)

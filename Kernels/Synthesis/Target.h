@@ -42,6 +42,9 @@ struct SynthesisTarget
   // (metres, NaN elsewhere): water runs towards smaller values.
   std::vector<float> downstream;
   std::vector<std::string> warnings;
+  // The field is real terrain (a DEM target), whose roughness the fill
+  // matches; a drawing's field is smooth and says nothing of roughness.
+  bool detailed = false;
 };
 
 // Scales a graph drawn on a sketch of sketchWidth x sketchHeight pixels onto an

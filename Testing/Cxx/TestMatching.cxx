@@ -1,5 +1,6 @@
 #include "Core/Error.h"
 #include "Core/HeightfieldIO.h"
+#include "Core/Smoothing.h"
 #include "Features/Ppa.h"
 #include "Matching/CandidatePool.h"
 #include "Matching/DenseSearch.h"
@@ -423,6 +424,71 @@ TEST(DenseSearch, FindsAWindowCutFromTheExemplar)
   EXPECT_NEAR(best[0].overlap, 0.0f, 1e-9f);
   EXPECT_NEAR(best[0].centreX, 57 + 15.5, 1e-9);
   EXPECT_NEAR(best[0].centreY, 83 + 15.5, 1e-9);
+}
+
+TEST(DenseSearch, RoughnessMisfitIsScaleFreeAndSkipsLevelsNotAsked)
+{
+  EXPECT_EQ(roughnessMisfit({ 100.0f, 200.0f, 800.0f }, { 100.0f, 200.0f, 800.0f }), 0.0);
+  // Twice or half the variance asked: (1/3)^2 per level, at any scale.
+  EXPECT_NEAR(roughnessMisfit({ 100.0f, 0.0f, 0.0f }, { 200.0f, 5.0f, 9.0f }), 1.0 / 9.0, 1e-12);
+  EXPECT_NEAR(roughnessMisfit({ 1e6f, 0.0f, 0.0f }, { 5e5f, 0.0f, 0.0f }), 1.0 / 9.0, 1e-12);
+  // A flat window against a rough one asked for: 1 per level.
+  EXPECT_NEAR(roughnessMisfit({ 50.0f, 60.0f, 70.0f }, { 0.0f, 0.0f, 0.0f }), 3.0, 1e-12);
+  EXPECT_EQ(roughnessMisfit({ 0.0f, 0.0f, 0.0f }, { 50.0f, 60.0f, 70.0f }), 0.0);
+}
+
+TEST(DenseSearch, TheRoughnessTermStopsTheFillPreferringSmoothLand)
+{
+  // Colorado with its west half smoothed (sigma 6 cells): the same heights,
+  // far less roughness. The query knows a level strip at the exemplar's mean,
+  // which smooth windows stray least from; it asks for the east's roughness.
+  Heightfield ex = crop(colorado(), 200, 200, 240, 160);
+  const Heightfield smooth = smoothLarge(ex, 6.0);
+  double sum = 0.0;
+  for (int j = 0; j < ex.height; ++j)
+  {
+    for (int i = 0; i < ex.width; ++i)
+    {
+      sum += ex.at(i, j);
+      if (i < ex.width / 2)
+      {
+        ex.at(i, j) = smooth.at(i, j);
+      }
+    }
+  }
+  const float mean = static_cast<float>(sum / static_cast<double>(ex.size()));
+  constexpr int P = 32;
+  DenseQuery q;
+  q.heights.assign(P * P, mean);
+  q.known.assign(P * P, 0);
+  for (int j = 0; j < P; ++j)
+  {
+    for (int i = 0; i < 6; ++i)
+    {
+      q.known[static_cast<std::size_t>(j * P + i)] = 1;
+    }
+  }
+  DenseOptions o;
+  o.patchSize = P;
+  o.variants.fill(false);
+  o.variants[0] = true;
+  // The term ranks the refined candidates: let it see the best 32 offsets.
+  o.refinePerVariant = 32;
+  o.refineTotal = 32;
+  const DenseMatcher matcher({ &ex }, o);
+  const NoiseVariance noise(ex);
+  q.noise = noise.window(0.75 * ex.width, 0.5 * ex.height, P); // the rough half's
+  o.noiseWeight = 0.0;
+  const DenseMatcher blind({ &ex }, o);
+  const auto without = blind.search(q, 1);
+  const auto with = matcher.search(q, 1);
+  ASSERT_FALSE(without.empty());
+  ASSERT_FALSE(with.empty());
+  // Without the term the known strip is matched in the smooth half; with it
+  // the whole window lies in the rough half (variant 0: x is the exemplar's).
+  EXPECT_LE(without[0].x + 6, ex.width / 2);
+  EXPECT_GE(with[0].x, ex.width / 2);
+  EXPECT_GT(with[0].overlap, without[0].overlap); // a worse overlap, taken for its roughness
 }
 
 TEST(DenseSearch, CoarseToFineFindsTheExhaustiveWinner)
