@@ -477,9 +477,13 @@ void checkCompressedHeader(std::istream& in,
 {
   seekData(in, start, inlineData);
   const std::vector<std::uint64_t> head = headerWords(in, start.base64, f, 3);
+  // A writer encodes the whole header as one unit, so all its words decode
+  // before any padding. Fewer means a damaged header or a header_type that
+  // does not match it; VTK's stream would read on into the data and take
+  // whatever it finds there for sizes.
   if (head.size() < 3)
   {
-    return; // too short to be read at all: VTK reports it
+    throw Error(what + " has a header shorter than its header_type says.");
   }
   const std::uint64_t blocks = head[0];
   if (blocks > fileSize / static_cast<std::uint64_t>(f.wordSize))
@@ -489,6 +493,11 @@ void checkCompressedHeader(std::istream& in,
   seekData(in, start, inlineData);
   const std::vector<std::uint64_t> words =
     headerWords(in, start.base64, f, 3 + static_cast<std::size_t>(blocks));
+  if (words.size() < 3 + blocks)
+  {
+    throw Error(
+      what + " has a header shorter than its " + std::to_string(blocks) + " blocks need.");
+  }
   for (std::size_t b = 0; b + 3 < words.size(); ++b)
   {
     const std::uint64_t compressed = words[b + 3];
