@@ -524,9 +524,11 @@ void PatchMerger::blendPoisson(const MergeOptions& options,
   const bool canAnchor = gradientShepard && !seamX_.empty();
   const bool anchored = canAnchor && options.anchorFreeBorder;
   result.poisson = solveNewSide(gradientShepard, anchored, options.shepardRadius, poisson);
+  result.anchored = anchored;
   if (canAnchor && !anchored && freeBorderOutside(options.lowestHeight, options.highestHeight))
   {
     result.poisson = solveNewSide(gradientShepard, true, options.shepardRadius, poisson);
+    result.anchored = true;
   }
 }
 

@@ -73,6 +73,7 @@ struct MergeResult
   std::size_t overlapCells = 0;
   std::size_t newCells = 0;
   PoissonStatistics poisson; // Poisson and New modes
+  bool anchored = false;     // New mode: the free border was anchored (anchorFreeBorder or bounds)
 };
 
 // Reusable workspace (one per thread): merge() and seamCost() keep their

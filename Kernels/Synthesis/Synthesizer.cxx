@@ -455,6 +455,7 @@ public:
     mo.highestHeight = highest_;
     const MergeResult r = mergers_[0].merge(
       out_, filled_, best, x0, y0, feature ? &core : nullptr, mo, &dry[bestIndex]);
+    result_.anchoredMerges += r.anchored ? 1 : 0;
     const int id = static_cast<int>(result_.placements.size());
     const PatchCandidate& chosen = candidates[bestIndex];
     for (int j = 0; j < r.height; ++j)

@@ -109,6 +109,7 @@ struct SynthesisResult
   std::vector<std::uint8_t> seam; // 1 on seam cells
   std::vector<float> matchCost;   // match cost of the placement that wrote each cell
   std::vector<Placement> placements;
+  std::size_t anchoredMerges = 0; // merges whose free border left the height bounds (MergeOptions)
   SynthesisTimings timings;
   FinishingReport finishing;
   // The terrain as the patches made it, before the final corrections.

@@ -264,13 +264,17 @@ class DrawnSketchTest(unittest.TestCase):
         dem = os.path.join(PATHS.bundled_data, "dems", "alps-montblanc.png")
         out = os.path.join(self.tmp, "spiral.tif")
         low, high, slack = 454.0, 4810.0, 0.1 * (4810.0 - 454.0)
+        anchored = 0
         for seed in ("1", "3", "4"):
-            synthesise(self, dem, sketch, out, "--size", "640x640", "--seed", seed)
+            report, _ = synthesise(self, dem, sketch, out, "--size", "640x640", "--seed", seed)
+            anchored += report["anchored_merges"]
+            self.assertLess(report["anchored_merges"], 0.1 * report["placements"])
             heights = tsynth("info", out, "--json")
             self.assertEqual(heights.returncode, 0, heights.stderr)
             z = json.loads(heights.stdout)
             self.assertGreaterEqual(z["z_min_m"], low - slack, f"seed {seed}")
             self.assertLessEqual(z["z_max_m"], high + slack, f"seed {seed}")
+        self.assertGreater(anchored, 0)  # the guard, not luck, kept them in range
 
 
 class SynthTest(unittest.TestCase):
