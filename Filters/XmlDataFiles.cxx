@@ -14,6 +14,7 @@
 #include <array>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <new>
 #include <stdexcept>
 #include <vector>
@@ -134,9 +135,41 @@ std::vector<long long> integersFound(vtkXMLDataParser* parser,
   return values;
 }
 
-// zlib never expands data more than about 1032 times: no array of a file can
-// hold more values than this many per byte of the file.
-constexpr long long kMaxValuesPerFileByte = 1032;
+// The most values a file of `fileBytes` bytes can hold: 8 per byte (bit
+// arrays) times the most its compressor expands data: zlib about 1032-fold,
+// LZ4 255-fold; LZMA has no such bound (infinity: nothing is refused).
+double valueCapacity(vtkXMLDataElement* root, long long fileBytes)
+{
+  constexpr double kValuesPerByte = 8.0;
+  const char* compressor = root->GetAttribute("compressor");
+  double expansion = 1.0;
+  if (compressor != nullptr && std::strcmp(compressor, "vtkZLibDataCompressor") == 0)
+  {
+    expansion = 1032.0;
+  }
+  else if (compressor != nullptr && std::strcmp(compressor, "vtkLZ4DataCompressor") == 0)
+  {
+    expansion = 255.0;
+  }
+  else if (compressor != nullptr && compressor[0] != '\0')
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  return kValuesPerByte * expansion * static_cast<double>(fileBytes);
+}
+
+// Throws tsynth::Error if `values` values (what they are: `claim`) would need
+// a large buffer and cannot fit in the file (`capacity`, valueCapacity):
+// nothing is allocated for such a claim. Small claims are read and compared
+// with what the file holds, which gives the more telling sentence.
+void checkClaim(double values, double capacity, const std::string& path, const std::string& claim)
+{
+  constexpr double kLargeClaim = 1 << 21; // values: 16 MB as 64-bit numbers
+  if (values > kLargeClaim && values > capacity)
+  {
+    throw Error(path + " is damaged: it claims " + claim + ", more than a file of its size holds.");
+  }
+}
 
 // Throws tsynth::Error unless the cells of one kind (Verts, Lines, Strips,
 // Polys) have `cells` offsets that never fall and a connectivity array with
@@ -144,7 +177,7 @@ constexpr long long kMaxValuesPerFileByte = 1032;
 void checkCells(vtkXMLDataParser* parser,
   vtkXMLDataElement* piece,
   const char* kind,
-  long long fileBytes,
+  double capacity,
   const std::string& path)
 {
   const vtkIdType cells = countAttribute(piece, (std::string("NumberOf") + kind).c_str());
@@ -152,6 +185,7 @@ void checkCells(vtkXMLDataParser* parser,
   {
     return;
   }
+  checkClaim(static_cast<double>(cells), capacity, path, std::to_string(cells) + " " + kind);
   const std::string damaged = path + " is damaged: its " + kind + " ";
   vtkXMLDataElement* element = piece->FindNestedElementWithName(kind);
   vtkXMLDataElement* offsets = element != nullptr
@@ -181,7 +215,7 @@ void checkCells(vtkXMLDataParser* parser,
     }
     previous = end;
   }
-  if (previous > kMaxValuesPerFileByte * fileBytes ||
+  if (static_cast<double>(previous) > capacity ||
     valuesFound(parser, connectivity, static_cast<std::size_t>(previous)) <
       static_cast<std::size_t>(previous))
   {
@@ -195,6 +229,7 @@ void checkCells(vtkXMLDataParser* parser,
 void checkGroup(vtkXMLDataParser* parser,
   vtkXMLDataElement* group,
   vtkIdType tuples,
+  double capacity,
   const std::string& path,
   const char* of)
 {
@@ -207,8 +242,9 @@ void checkGroup(vtkXMLDataParser* parser,
     }
     int components = 1;
     array->GetScalarAttribute("NumberOfComponents", components);
-    const std::size_t wanted =
-      static_cast<std::size_t>(tuples) * static_cast<std::size_t>(std::max(1, components));
+    const double claimed = static_cast<double>(tuples) * std::max(1, components);
+    checkClaim(claimed, capacity, path, std::to_string(tuples) + " " + of);
+    const std::size_t wanted = static_cast<std::size_t>(claimed);
     if (valuesFound(parser, array, wanted) < wanted)
     {
       const char* name = array->GetAttribute("Name");
@@ -230,7 +266,7 @@ void checkArrayLengths(vtkXMLReader* reader, const std::string& path, const std:
     throw Error(refusal);
   }
   stream.seekg(0, std::ios::end);
-  const long long fileBytes = static_cast<long long>(stream.tellg());
+  const double capacity = valueCapacity(root, static_cast<long long>(stream.tellg()));
   stream.seekg(0, std::ios::beg);
   std::istream* previous = parser->GetStream();
   parser->SetStream(&stream);
@@ -249,12 +285,15 @@ void checkArrayLengths(vtkXMLReader* reader, const std::string& path, const std:
       continue;
     }
     const std::array<vtkIdType, 2> size = pieceSize(piece);
-    checkGroup(parser, piece->FindNestedElementWithName("Points"), size[0], path, "points");
-    checkGroup(parser, piece->FindNestedElementWithName("PointData"), size[0], path, "points");
-    checkGroup(parser, piece->FindNestedElementWithName("CellData"), size[1], path, "cells");
+    checkGroup(
+      parser, piece->FindNestedElementWithName("Points"), size[0], capacity, path, "points");
+    checkGroup(
+      parser, piece->FindNestedElementWithName("PointData"), size[0], capacity, path, "points");
+    checkGroup(
+      parser, piece->FindNestedElementWithName("CellData"), size[1], capacity, path, "cells");
     for (const char* kind : { "Verts", "Lines", "Strips", "Polys" })
     {
-      checkCells(parser, piece, kind, fileBytes, path);
+      checkCells(parser, piece, kind, capacity, path);
     }
   }
 }

@@ -151,6 +151,8 @@ CASES = [
                                    "-o", "^out.tif"], 1, r"offsets-falling\.vtp is damaged: its Lines offsets fall"),
     ("synth-vtp-offsets-huge", ["synth", "--exemplar", "$dem", "--sketch", "@offsets-huge.vtp", "-o", "^out.tif"],
      1, r"connectivity holds fewer point ids than their offsets say \(4000000000\)"),
+    ("synth-vtp-claims-1e15-points", ["synth", "--exemplar", "$dem", "--sketch", "@claims-points.vtp", "-o",
+                                      "^out.tif"], 1, r"claims-points\.vtp is damaged: it claims 1000000000000000 points"),
     ("evaluate-vtp-connectivity-short", ["evaluate", "$dem", "--exemplar", "$dem", "--sketch",
                                          "@connectivity-short.vtp"], 1, r"connectivity holds fewer point ids"),
     ("distance-vtp-appended-falling", ["distance", "--generators", "@appended-falling.vtp", "-o", "^out.tif"], 1,
@@ -506,6 +508,8 @@ def make_fixtures(d, bundled):
                     .replace('format="ascii">1</DataArray></CellData>',
                              'format="ascii">%s</DataArray></CellData>' % " ".join(["1"] * count))
                     .replace(lines, lines.replace(">0 1<", ">%s<" % connectivity).replace(">2<", ">%s<" % offsets)))
+    with open(join("claims-points.vtp"), "w") as f:
+        f.write(line.replace('NumberOfPoints="2"', 'NumberOfPoints="1000000000000000"'))
     ends = [(500, 2000, 0), (3500, 2000, 0), (500, 3000, 0), (3500, 3000, 0)]
     vtp_appended(join("appended.vtp"), ends, [0, 1, 2, 3], [2, 4], [1, -1])
     vtp_appended(join("appended-falling.vtp"), ends, [0, 1, 2, 3], [4, 2], [1, -1])
