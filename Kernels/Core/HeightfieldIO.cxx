@@ -182,6 +182,28 @@ void fillCellSizeFromGeoreference(RasterInfo& info, const OGRSpatialReference* s
   info.cellSizeKnown = true;
 }
 
+// A text raster (ESRI or GRASS ASCII grid, XYZ) spends at least a digit and
+// a separator on every cell: a header claiming more cells than that is
+// damaged. GDAL would scan such a file for minutes (40 bytes claiming 10^9
+// cells kept `tsynth info` busy past 20 s) before it failed.
+void checkTextRasterSize(const std::string& driver, const std::string& path, int width, int height)
+{
+  constexpr double kLeastBytesPerTextCell = 2.0;
+  if (driver != "AAIGrid" && driver != "GRASSASCIIGrid" && driver != "XYZ")
+  {
+    return;
+  }
+  std::error_code ec;
+  const double bytes = static_cast<double>(fs::file_size(path, ec));
+  const double cells = static_cast<double>(width) * static_cast<double>(height);
+  if (!ec && cells * kLeastBytesPerTextCell > bytes)
+  {
+    throw Error(path + " claims " + std::to_string(width) + " x " + std::to_string(height) +
+      " cells, more than its " + std::to_string(static_cast<long long>(bytes)) +
+      " bytes of text can hold: the header is damaged or the file truncated.");
+  }
+}
+
 RasterInfo describe(GDALDataset& ds, const std::string& path, const ReadOptions& options)
 {
   RasterInfo info;
@@ -512,6 +534,7 @@ Heightfield readHeightfield(const std::string& path, const ReadOptions& options,
 
   const int w = info.width;
   const int h = info.height;
+  checkTextRasterSize(info.driver, path, w, h);
   checkReadFits(path, w, h, kBytesPerReadCell);
   const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
   std::vector<float> raw(n);
@@ -591,6 +614,10 @@ ColourImage readColourImage(const std::string& path)
   // Before anything else, at the most a sketch can hold (4 channels and one 16-bit band on
   // the way): a damaged header must not make the reader allocate.
   constexpr double kMostBytesPerSketchCell = 4.0 + sizeof(std::uint16_t);
+  checkTextRasterSize(ds->GetDriver() != nullptr ? ds->GetDriver()->GetDescription() : "",
+    path,
+    img.width,
+    img.height);
   checkReadFits(path, img.width, img.height, kMostBytesPerSketchCell);
   img.channels = ds->GetRasterCount();
   if (img.channels > 4)
