@@ -26,7 +26,7 @@ mkdir -p "$work" "$artifacts"
 export OMP_NUM_THREADS=1
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"
 # Leaks of other projects' libraries, listed with what leaks.
-export LSAN_OPTIONS="suppressions=$root/Testing/Fuzz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
+export LSAN_OPTIONS="suppressions=$root/Testing/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 dict=()
 [ -f "$root/Testing/Fuzz/$target.dict" ] && dict=(-dict="$root/Testing/Fuzz/$target.dict")
 status=0

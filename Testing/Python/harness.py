@@ -1,9 +1,20 @@
 """Shared argument handling for the Python tests: paths come from CTest."""
 import argparse
+import os
 import sys
 import unittest
 
 PATHS = argparse.Namespace()
+
+# scripts/sanitize.sh sets TSYNTH_TEST_INSTRUMENTED=1: the tsynth under test is built with
+# AddressSanitizer and UndefinedBehaviorSanitizer and runs several times slower, so the few tests
+# whose timing only holds for a normal build skip themselves (skip_if_instrumented).
+INSTRUMENTED = os.environ.get("TSYNTH_TEST_INSTRUMENTED") == "1"
+
+
+def skip_if_instrumented(why):
+    """Skips a test whose timing an instrumented tsynth cannot meet; why says what it times."""
+    return unittest.skipIf(INSTRUMENTED, "instrumented tsynth (TSYNTH_TEST_INSTRUMENTED=1): " + why)
 
 
 def run(test_module_name):
