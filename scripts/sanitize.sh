@@ -38,4 +38,12 @@ if [ -f "$gl_driver" ]; then
   export TSYNTH_TEST_GL_PRELOAD="$gl_driver"
 fi
 cd "$build"
-ctest -j "$(nproc)" --output-on-failure --timeout 900 -R "$tests"
+# The OpenCL GoogleTests run without the leak check: in this tree LeakSanitizer's tracer crashes at
+# exit while PoCL's pthread device threads live ("Tracer caught signal 11", every OpenCL test, in both
+# runs of a fresh clone), and PoCL's basic device leaks its own buffers. ASan and UBSan still check them.
+opencl='^matching\.OpenCL\.'
+status=0
+ctest -j "$(nproc)" --output-on-failure --timeout 900 -R "$tests" -E "$opencl" || status=$?
+ASAN_OPTIONS="${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0}" \
+  ctest -j "$(nproc)" --output-on-failure --timeout 900 -R "$opencl" || status=$?
+exit "$status"
