@@ -1,6 +1,7 @@
 #include "LandformMetrics.h"
 
 #include "../Core/Error.h"
+#include "../Features/ChainPath.h"
 #include "../Features/Profiles.h"
 #include "../Hydrology/Flow.h"
 
@@ -17,65 +18,11 @@ namespace
 
 // Samples every cell along the lines ("every cell" in the measures' definitions).
 constexpr double kSampleSpacing = 1.0;
-// The line direction is taken over this many cells each side of a sample: the
-// direction of a hand-drawn or thinned line, not its pixel staircase.
-constexpr double kTangentHalfWindow = 3.0;
 // Floor samples for the descent are a quarter patch apart.
 constexpr double kDescentSpacingPatches = 0.25;
 // A reference prominence below a centimetre is no relief (a plane's rounding
 // error is micrometres): the ratios would divide by noise.
 constexpr double kMinReferenceMetres = 0.01;
-
-// A chain as a function of arc length (cells).
-class ChainPath
-{
-public:
-  explicit ChainPath(const std::vector<Point2>& points)
-    : points_(points)
-    , arc_(points.size(), 0.0)
-  {
-    for (std::size_t k = 1; k < points_.size(); ++k)
-    {
-      arc_[k] =
-        arc_[k - 1] + std::hypot(points_[k].x - points_[k - 1].x, points_[k].y - points_[k - 1].y);
-    }
-  }
-
-  double length() const { return arc_.empty() ? 0.0 : arc_.back(); }
-
-  Point2 at(double s) const
-  {
-    s = std::clamp(s, 0.0, length());
-    const std::size_t k =
-      static_cast<std::size_t>(std::upper_bound(arc_.begin(), arc_.end(), s) - arc_.begin());
-    if (k == 0 || k >= arc_.size())
-    {
-      return k == 0 ? points_.front() : points_.back();
-    }
-    const double span = arc_[k] - arc_[k - 1];
-    const double t = span > 0.0 ? (s - arc_[k - 1]) / span : 0.0;
-    return { points_[k - 1].x + t * (points_[k].x - points_[k - 1].x),
-      points_[k - 1].y + t * (points_[k].y - points_[k - 1].y) };
-  }
-
-  // Unit normal (left of the direction of travel); false where the line has no direction.
-  bool normal(double s, Point2& n) const
-  {
-    const Point2 a = at(s - kTangentHalfWindow);
-    const Point2 b = at(s + kTangentHalfWindow);
-    const double len = std::hypot(b.x - a.x, b.y - a.y);
-    if (!(len > 0.0))
-    {
-      return false;
-    }
-    n = { -(b.y - a.y) / len, (b.x - a.x) / len };
-    return true;
-  }
-
-private:
-  std::vector<Point2> points_;
-  std::vector<double> arc_;
-};
 
 double featureSign(FeatureType type)
 {

@@ -1,0 +1,63 @@
+// Cross-sections of a terrain at a landform's own scale: the heights across a
+// line out to a half width h, smoothed at a third of h so that what is left is
+// the landform and not the texture on it, and how far its crest (or floor)
+// stands out over its two sides. The same reading of random cross-sections of
+// an exemplar gives the land's own relief at that scale, which a sketched
+// landform must stand out of to be seen (Metrics/Legibility.h), and which the
+// target gives its landforms a margin over (Synthesis/Landform.h).
+#pragma once
+
+#include "../Core/Heightfield.h"
+
+#include <vector>
+
+namespace tsynth
+{
+
+// Heights at x + s n, s = -half .. half cells (bilinear); false where one is
+// invalid or outside the grid.
+bool readSection(const Heightfield& hf,
+  double x,
+  double y,
+  double nx,
+  double ny,
+  int half,
+  std::vector<double>& z);
+
+struct SectionReading
+{
+  // The lines wander from the stroke drawn: the crest or floor is looked for
+  // within this share of the half width (at least `tolerance` cells).
+  double lineShare = 0.2;
+  double tolerance = 2.0;
+};
+
+// A cross-section z (2 half + 1 heights) once smoothed at a third of its half
+// width: the crest (sign +1) or floor (sign -1) near the middle over the higher
+// (under the lower) of its two sides, each side the mean of its outer half.
+// Positive when both sides are lower (higher), metres.
+double sectionProminence(const std::vector<double>& z, double sign, const SectionReading& r = {});
+
+// The same section's middle over the mean of both sides (signed, no search for
+// the line): the relief a cross-section of land shows at its scale.
+double sectionRelief(const std::vector<double>& z);
+
+// The exemplars' own relief per half width: the root mean square sectionRelief
+// of random cross-sections through their land (a fixed seed draws them, so it
+// is deterministic), at half widths about a factor 1.4 apart, interpolated
+// between them in log h.
+class LandRelief
+{
+public:
+  LandRelief() = default; // no land: no relief at any half width
+  // Throws tsynth::Error without an exemplar.
+  explicit LandRelief(const std::vector<const Heightfield*>& exemplars,
+    int sectionsPerExemplar = 1500);
+  double at(double halfWidth) const; // metres, for a half width in cells
+  bool empty() const { return relief_.empty(); }
+
+private:
+  std::vector<double> halfWidths_, relief_;
+};
+
+} // namespace tsynth

@@ -1,0 +1,225 @@
+#include "StrokeSpacing.h"
+
+#include "../Distance/DistanceField.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
+
+namespace tsynth
+{
+namespace
+{
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+// Two neighbouring cells whose nearest stroke points are farther apart than
+// this many times their distance to them look at strokes across from each
+// other: the points are seen more than about 80 degrees apart. Parallel
+// strokes, a ring from its centre and the turns of a spiral give 2; a line's
+// own cells, a gentle bend and the outside of any corner well under 1; the
+// inside of a right-angle corner (the T's, a blocky S's) 1.41, so a bend of one
+// stroke is not taken for two strokes.
+constexpr double kFacingRatio = 1.5;
+// ... and at least this many cells apart: on a stroke itself neighbouring cells
+// have neighbouring nearest points.
+constexpr double kMinFacingCells = 3.0;
+
+struct Cell
+{
+  float distance;
+  std::size_t index;
+  bool operator>(const Cell& o) const
+  {
+    return distance != o.distance ? distance > o.distance : index > o.index;
+  }
+};
+
+class Grid
+{
+public:
+  Grid(int w, int h, double cx, double cy)
+    : w_(w)
+    , h_(h)
+    , cx_(cx)
+    , cy_(cy)
+  {
+  }
+  std::size_t index(int i, int j) const
+  {
+    return static_cast<std::size_t>(j) * static_cast<std::size_t>(w_) + static_cast<std::size_t>(i);
+  }
+  int column(std::size_t k) const { return static_cast<int>(k % static_cast<std::size_t>(w_)); }
+  int row(std::size_t k) const { return static_cast<int>(k / static_cast<std::size_t>(w_)); }
+  bool inside(int i, int j) const { return i >= 0 && j >= 0 && i < w_ && j < h_; }
+  double metres(std::size_t a, std::size_t b) const
+  {
+    return std::hypot((column(a) - column(b)) * cx_, (row(a) - row(b)) * cy_);
+  }
+  double step(int di, int dj) const { return std::hypot(di * cx_, dj * cy_); }
+
+private:
+  int w_, h_;
+  double cx_, cy_;
+};
+
+// Cells between strokes that face each other (see kFacingRatio).
+std::vector<std::uint8_t> medialAxis(const NearestSeeds& near,
+  const Grid& g,
+  int w,
+  int h,
+  double cell)
+{
+  std::vector<std::uint8_t> medial(near.distance.size(), 0);
+  const double minimum = kMinFacingCells * cell;
+  for (int j = 0; j < h; ++j)
+  {
+    for (int i = 0; i < w; ++i)
+    {
+      const std::size_t k = g.index(i, j);
+      const int a = near.nearest[k];
+      const int neighbours[2][2] = { { i + 1, j }, { i, j + 1 } };
+      for (const auto& n : neighbours)
+      {
+        if (!g.inside(n[0], n[1]))
+        {
+          continue;
+        }
+        const std::size_t m = g.index(n[0], n[1]);
+        const int b = near.nearest[m];
+        if (a == b || a < 0 || b < 0)
+        {
+          continue;
+        }
+        const double apart = g.metres(static_cast<std::size_t>(a), static_cast<std::size_t>(b));
+        // A cell more: near a corner's apex the grid's steps alone make the
+        // nearest points of neighbouring cells look farther apart.
+        const double reach = std::max(near.distance[k], near.distance[m]) + cell;
+        if (apart > minimum && apart > kFacingRatio * reach)
+        {
+          // The cell nearer the middle carries it.
+          medial[near.distance[k] >= near.distance[m] ? k : m] = 1;
+        }
+      }
+    }
+  }
+  return medial;
+}
+
+// Metres from every cell to the nearest medial cell along paths that do not
+// cross a stroke (stroke cells are walls; a diagonal step between two stroke
+// cells that touch at a corner is one too).
+std::vector<float> distanceToMedial(const std::vector<std::uint8_t>& medial,
+  const std::vector<std::uint8_t>& strokes,
+  const Grid& g)
+{
+  std::vector<float> d(medial.size(), kInfinity);
+  std::priority_queue<Cell, std::vector<Cell>, std::greater<Cell>> open;
+  for (std::size_t k = 0; k < medial.size(); ++k)
+  {
+    if (medial[k] != 0 && strokes[k] == 0)
+    {
+      d[k] = 0.0f;
+      open.push({ 0.0f, k });
+    }
+  }
+  const double steps[8] = { g.step(1, 0),
+    g.step(0, 1),
+    g.step(1, 1),
+    g.step(1, 1),
+    g.step(1, 0),
+    g.step(0, 1),
+    g.step(1, 1),
+    g.step(1, 1) };
+  const int di[8] = { 1, 0, 1, -1, -1, 0, -1, 1 };
+  const int dj[8] = { 0, 1, 1, 1, 0, -1, -1, -1 };
+  while (!open.empty())
+  {
+    const Cell c = open.top();
+    open.pop();
+    if (c.distance > d[c.index])
+    {
+      continue;
+    }
+    const int i = g.column(c.index);
+    const int j = g.row(c.index);
+    for (int s = 0; s < 8; ++s)
+    {
+      const int x = i + di[s];
+      const int y = j + dj[s];
+      if (!g.inside(x, y))
+      {
+        continue;
+      }
+      const std::size_t m = g.index(x, y);
+      const bool diagonal = di[s] != 0 && dj[s] != 0;
+      if (diagonal && strokes[g.index(x, j)] != 0 && strokes[g.index(i, y)] != 0)
+      {
+        continue; // between two stroke cells touching at a corner
+      }
+      const float next = static_cast<float>(c.distance + steps[s]);
+      if (next < d[m])
+      {
+        d[m] = next;
+        if (strokes[m] == 0)
+        {
+          open.push({ next, m }); // a stroke cell gets a value but passes nothing on
+        }
+      }
+    }
+  }
+  return d;
+}
+
+} // namespace
+
+StrokeSpacing strokeSpacing(const std::vector<std::uint8_t>& strokes,
+  int width,
+  int height,
+  double cellX,
+  double cellY)
+{
+  StrokeSpacing s;
+  s.width = width;
+  s.height = height;
+  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  s.halfSpacing.assign(n, kInfinity);
+  s.medial.assign(n, 0);
+  const NearestSeeds near = nearestSeeds(strokes, width, height, cellX, cellY);
+  s.toStroke = near.distance;
+  if (near.empty())
+  {
+    return s;
+  }
+  const Grid g(width, height, cellX, cellY);
+  s.medial = medialAxis(near, g, width, height, std::min(cellX, cellY));
+  const std::vector<float> toMedial = distanceToMedial(s.medial, strokes, g);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    s.halfSpacing[k] = strokes[k] != 0 ? toMedial[k] : s.toStroke[k] + toMedial[k];
+  }
+  return s;
+}
+
+float strokeHalfSpacing(const StrokeSpacing& s, int i, int j)
+{
+  float best = kInfinity;
+  for (int dj = -1; dj <= 1; ++dj)
+  {
+    for (int di = -1; di <= 1; ++di)
+    {
+      const int x = i + di;
+      const int y = j + dj;
+      if (x >= 0 && y >= 0 && x < s.width && y < s.height)
+      {
+        best = std::min(best,
+          s.halfSpacing[static_cast<std::size_t>(y) * static_cast<std::size_t>(s.width) +
+            static_cast<std::size_t>(x)]);
+      }
+    }
+  }
+  return best;
+}
+
+} // namespace tsynth
