@@ -10,8 +10,10 @@
 #include "Core/Error.h"
 #include "Core/HeightfieldIO.h"
 #include "Core/OutputFile.h"
+#include "Core/Resample.h"
 #include "Features/Sketch.h"
 #include "Metrics/LandformMetrics.h"
+#include "Metrics/Legibility.h"
 #include "Metrics/TerrainMetrics.h"
 #include "Synthesis/Regions.h"
 #include "Synthesis/Setup.h"
@@ -153,6 +155,23 @@ nlohmann::json evaluationJson(const TerrainEvaluation& e)
     { "notes", notes } };
 }
 
+std::string figure(double v, int digits)
+{
+  return std::isnan(v)
+    ? std::string("-")
+    : (std::ostringstream() << std::fixed << std::setprecision(digits) << v).str();
+}
+
+void printLandforms(const char* name, const LandformMeasures& m)
+{
+  std::cout << std::left << std::setw(22) << name << " landforms: ridges "
+            << figure(m.ridgeProminence, 0) << " m (x" << figure(m.ridgeProminenceRatio, 2)
+            << "), valleys " << figure(m.valleyDepth, 0) << " m (x" << figure(m.valleyDepthRatio, 2)
+            << "), order " << figure(m.ridgeOverValley, 3) << ", drainage "
+            << figure(m.valleyDrainage, 3) << ", descent " << figure(m.valleyDescent, 3)
+            << ", shedding " << figure(m.ridgeShedding, 3) << "\n";
+}
+
 nlohmann::json landformJson(const LandformMeasures& m)
 {
   nlohmann::json notes = nlohmann::json::object();
@@ -171,19 +190,44 @@ nlohmann::json landformJson(const LandformMeasures& m)
     { "notes", notes } };
 }
 
-void printLandforms(const char* name, const LandformMeasures& m)
+nlohmann::json legibilityJson(const Legibility& l)
 {
-  auto f = [](double v, int digits)
+  auto kind = [](const StrokeLegibility& k)
   {
-    return std::isnan(v)
-      ? std::string("-")
-      : (std::ostringstream() << std::fixed << std::setprecision(digits) << v).str();
+    return nlohmann::json{ { "legible_share", k.share },
+      { "samples", k.samples },
+      { "median_prominence_m", k.prominence },
+      { "median_threshold_m", k.threshold },
+      { "median_half_width_cells", k.halfWidth } };
   };
-  std::cout << std::left << std::setw(22) << name << " landforms: ridges "
-            << f(m.ridgeProminence, 0) << " m (x" << f(m.ridgeProminenceRatio, 2) << "), valleys "
-            << f(m.valleyDepth, 0) << " m (x" << f(m.valleyDepthRatio, 2) << "), order "
-            << f(m.ridgeOverValley, 3) << ", drainage " << f(m.valleyDrainage, 3) << ", descent "
-            << f(m.valleyDescent, 3) << ", shedding " << f(m.ridgeShedding, 3) << "\n";
+  return { { "legible_share", l.share }, { "ridge", kind(l.ridge) }, { "valley", kind(l.valley) } };
+}
+
+nlohmann::json correlationJson(const std::vector<BandCorrelation>& bands)
+{
+  nlohmann::json out = nlohmann::json::array();
+  for (const BandCorrelation& b : bands)
+  {
+    out.push_back({ { "sigma_cells", b.sigma }, { "correlation", b.correlation } });
+  }
+  return out;
+}
+
+void printLegibility(const char* name, const Legibility& l)
+{
+  std::cout << std::left << std::setw(22) << name << " legible: " << figure(l.share, 2)
+            << " of the stroke length (ridges " << figure(l.ridge.share, 2) << ", valleys "
+            << figure(l.valley.share, 2) << ")\n";
+}
+
+void printCorrelation(const char* name, const std::vector<BandCorrelation>& bands)
+{
+  std::cout << std::left << std::setw(22) << name << " band-pass correlation with the target:";
+  for (const BandCorrelation& b : bands)
+  {
+    std::cout << " " << figure(b.correlation, 2) << " (" << b.sigma << " cells)";
+  }
+  std::cout << "\n";
 }
 
 void printEvaluation(const char* name, const TerrainEvaluation& e)
@@ -459,6 +503,12 @@ void printSummary(const SynthesisSetup& setup,
             << " m deep, " << std::setprecision(1) << l.valley.width / 1000.0
             << " km to their rim; floors fall " << l.floorGradient * 100.0 << "%.\n"
             << std::setprecision(2);
+  if (setup.target.ridgeRaise > 1.0 || setup.target.valleyRaise > 1.0)
+  {
+    std::cout << "Sketched landforms stand out of the land's own relief: ridges x"
+              << setup.target.ridgeRaise << ", valleys x" << setup.target.valleyRaise
+              << " the exemplars' relief.\n";
+  }
   std::cout << "Times: prepare " << prepare << " s, matcher setup " << r.timings.setup
             << " s, features " << r.timings.features << " s, fill " << r.timings.fill << " s.\n";
   if (r.finishing.drained)
@@ -483,7 +533,7 @@ void writeReport(const std::string& path,
 {
   double seamSum = 0.0;
   // [order, feature, exemplar, variant, x0, y0, match cost, seam cost, landform misfit (m),
-  //  vertical offset (m)]
+  //  vertical offset (m), line offset (cells; null where not measured)]
   nlohmann::json list = nlohmann::json::array();
   for (const Placement& p : r.placements)
   {
@@ -497,7 +547,8 @@ void writeReport(const std::string& path,
       p.matchCost,
       p.seamCost,
       p.landformMisfit,
-      p.offset });
+      p.offset,
+      std::isnan(p.lineOffset) ? nlohmann::json() : nlohmann::json(p.lineOffset) });
   }
   const LandformStatistics& l = setup.landform;
   auto profile = [](const LandformProfile& p)
@@ -607,8 +658,16 @@ void writeDebug(const std::string& dir, const SynthesisSetup& setup, const Synth
   writeTerrainFile(dir + "/seams.tif", seams);
 }
 
-// The sketch's features on the terrain's grid, as the synthesis reads them.
-FeatureGraph sketchOnTerrain(const std::string& path, const Heightfield& terrain)
+// The sketch as the synthesis reads it, on the terrain's grid: its features,
+// and for a DEM used as the target its heights.
+struct SketchOnTerrain
+{
+  FeatureGraph graph;
+  bool demTarget = false;
+  Heightfield heights; // the DEM target resampled onto the terrain's grid
+};
+
+SketchOnTerrain sketchOnTerrain(const std::string& path, const Heightfield& terrain)
 {
   std::vector<std::string> warnings;
   const SketchInput input = readSketchInput(path, warnings);
@@ -627,8 +686,15 @@ FeatureGraph sketchOnTerrain(const std::string& path, const Heightfield& terrain
     outputGrid(sketchExtent(input), request, terrain.cellX, terrain.cellY, 1, names);
   const AnalysedSketch s = analyseSketch(input, grid, kEvaluationPatch);
   printWarnings(s.warnings);
-  return scaleGraph(
+  SketchOnTerrain out;
+  out.graph = scaleGraph(
     s.graph, s.width, s.height, terrain.width, terrain.height, terrain.cellX, terrain.cellY);
+  out.demTarget = s.hasHeights && s.kind == "DEM";
+  if (out.demTarget)
+  {
+    out.heights = resampleNearest(s.heights, terrain.width, terrain.height);
+  }
+  return out;
 }
 
 } // namespace
@@ -715,12 +781,12 @@ int runEvaluate(std::vector<std::string> args)
     pooled.push_back(&x);
   }
   const Heightfield& exemplar = exemplars.front();
-  FeatureGraph graph;
+  SketchOnTerrain drawn;
   const FeatureGraph* sketch = nullptr;
   if (sketchPath)
   {
-    graph = sketchOnTerrain(*sketchPath, terrain);
-    sketch = &graph;
+    drawn = sketchOnTerrain(*sketchPath, terrain);
+    sketch = &drawn.graph;
   }
   const TerrainEvaluation e = evaluateTerrain(terrain, pooled, sketch);
   const Heightfield tiledTerrain = tiledBaseline(exemplar, terrain.width, terrain.height);
@@ -746,6 +812,16 @@ int runEvaluate(std::vector<std::string> args)
   const LandformMeasures le = landforms(terrain);
   const LandformMeasures lt = landforms(tiledTerrain);
   const LandformMeasures lr = landforms(randomTerrain);
+  const LandRelief land(pooled);
+  auto legibility = [&](const Heightfield& t)
+  { return sketch ? evaluateLegibility(t, *sketch, land) : Legibility{}; };
+  const Legibility ge = legibility(terrain);
+  const Legibility gr = legibility(randomTerrain);
+  auto correlation = [&](const Heightfield& t)
+  {
+    return drawn.demTarget ? bandPassCorrelation(t, drawn.heights, defaultCorrelationScales())
+                           : std::vector<BandCorrelation>{};
+  };
   if (asJson)
   {
     nlohmann::json figures = { { "terrain", evaluationJson(e) },
@@ -756,6 +832,13 @@ int runEvaluate(std::vector<std::string> args)
       figures["terrain"]["landforms"] = landformJson(le);
       figures["tiled_exemplar"]["landforms"] = landformJson(lt);
       figures["random_patches"]["landforms"] = landformJson(lr);
+      figures["terrain"]["legibility"] = legibilityJson(ge);
+      figures["random_patches"]["legibility"] = legibilityJson(gr);
+    }
+    if (drawn.demTarget)
+    {
+      figures["terrain"]["target_correlation"] = correlationJson(correlation(terrain));
+      figures["random_patches"]["target_correlation"] = correlationJson(correlation(randomTerrain));
     }
     std::cout << figures.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     return 0;
@@ -768,6 +851,13 @@ int runEvaluate(std::vector<std::string> args)
     printLandforms(rest[0].c_str(), le);
     printLandforms("baseline: tiled", lt);
     printLandforms("baseline: random", lr);
+    printLegibility(rest[0].c_str(), ge);
+    printLegibility("baseline: random", gr);
+  }
+  if (drawn.demTarget)
+  {
+    printCorrelation(rest[0].c_str(), correlation(terrain));
+    printCorrelation("baseline: random", correlation(randomTerrain));
   }
   return 0;
 }

@@ -2,6 +2,7 @@
 
 #include "Error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -39,6 +40,24 @@ Heightfield resampleToCellSize(const Heightfield& hf, double cellX, double cellY
       }
       out.at(i, j) = static_cast<float>((1 - fy) * ((1 - fx) * hf.at(i0, j0) + fx * hf.at(i1, j0)) +
         fy * ((1 - fx) * hf.at(i0, j1) + fx * hf.at(i1, j1)));
+    }
+  }
+  normaliseMask(out);
+  return out;
+}
+
+Heightfield resampleNearest(const Heightfield& in, int width, int height)
+{
+  Heightfield out(width, height);
+  for (int j = 0; j < height; ++j)
+  {
+    const int sj =
+      std::min(in.height - 1, static_cast<int>(static_cast<double>(j) * in.height / height));
+    for (int i = 0; i < width; ++i)
+    {
+      const int si =
+        std::min(in.width - 1, static_cast<int>(static_cast<double>(i) * in.width / width));
+      out.at(i, j) = in.isValid(si, sj) ? in.at(si, sj) : std::numeric_limits<float>::quiet_NaN();
     }
   }
   normaliseMask(out);

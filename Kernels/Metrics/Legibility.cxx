@@ -1,0 +1,262 @@
+#include "Legibility.h"
+
+#include "../Core/Error.h"
+#include "../Core/Smoothing.h"
+#include "../Features/ChainPath.h"
+#include "../Features/CrossSections.h"
+#include "../Features/StrokeSpacing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace tsynth
+{
+namespace
+{
+
+// Samples every cell along the lines and across them.
+constexpr double kSampleSpacing = 1.0;
+
+double median(std::vector<double> v)
+{
+  if (v.empty())
+  {
+    return StrokeLegibility::kNaN;
+  }
+  const std::size_t mid = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(mid), v.end());
+  return v[mid];
+}
+
+// The cells under every chain of the graph.
+std::vector<std::uint8_t> strokeCells(const FeatureGraph& g)
+{
+  std::vector<std::uint8_t> cells(
+    static_cast<std::size_t>(g.width) * static_cast<std::size_t>(g.height), 0);
+  for (const FeatureChain& c : g.chains)
+  {
+    forEachChainCell(c,
+      g.width,
+      g.height,
+      [&](int i, int j, std::size_t, double)
+      {
+        cells[static_cast<std::size_t>(j) * static_cast<std::size_t>(g.width) +
+          static_cast<std::size_t>(i)] = 1;
+      });
+  }
+  return cells;
+}
+
+struct Sample
+{
+  double prominence = 0.0;
+  double threshold = 0.0;
+  double halfWidth = 0.0;
+};
+
+class SectionReader
+{
+public:
+  SectionReader(const Heightfield& terrain,
+    const FeatureGraph& sketch,
+    const LandRelief& land,
+    const LegibilityOptions& o)
+    : terrain_(terrain)
+    , land_(land)
+    , o_(o)
+    , spacing_(strokeSpacing(strokeCells(sketch), sketch.width, sketch.height))
+  {
+  }
+
+  // The cross-section at p across normal n; false where it cannot be read.
+  bool read(const Point2& p, const Point2& n, FeatureType type, Sample& out) const
+  {
+    const int i = std::clamp(static_cast<int>(std::lround(p.x)), 0, terrain_.width - 1);
+    const int j = std::clamp(static_cast<int>(std::lround(p.y)), 0, terrain_.height - 1);
+    double h = std::min(o_.loneHalfWidth, static_cast<double>(strokeHalfSpacing(spacing_, i, j)));
+    h = std::floor(std::min(h, roomInside(p, n)));
+    if (!(h >= o_.minHalfWidth))
+    {
+      return false;
+    }
+    std::vector<double> z;
+    if (!readSection(terrain_, p.x, p.y, n.x, n.y, static_cast<int>(h), z))
+    {
+      return false;
+    }
+    const bool ridge = type == FeatureType::Ridge;
+    out.prominence = sectionProminence(z, ridge ? 1.0 : -1.0, o_.reading);
+    out.threshold = o_.margin * land_.at(h);
+    out.halfWidth = h;
+    return true;
+  }
+
+private:
+  // How far the section can reach both ways from p along n inside the grid.
+  double roomInside(const Point2& p, const Point2& n) const
+  {
+    double room = std::numeric_limits<double>::infinity();
+    const double limits[2][3] = { { p.x, terrain_.width - 1 - p.x, n.x },
+      { p.y, terrain_.height - 1 - p.y, n.y } };
+    for (const auto& l : limits)
+    {
+      if (std::abs(l[2]) > 1e-12)
+      {
+        room = std::min(room, std::min(l[0], l[1]) / std::abs(l[2]));
+      }
+    }
+    return room;
+  }
+
+  const Heightfield& terrain_;
+  const LandRelief& land_;
+  const LegibilityOptions& o_;
+  StrokeSpacing spacing_;
+};
+
+StrokeLegibility summarise(const std::vector<Sample>& samples)
+{
+  StrokeLegibility r;
+  r.samples = samples.size();
+  if (samples.empty())
+  {
+    return r;
+  }
+  std::vector<double> prominence, threshold, width;
+  std::size_t legible = 0;
+  for (const Sample& s : samples)
+  {
+    legible += s.prominence > 0.0 && s.prominence >= s.threshold ? 1 : 0;
+    prominence.push_back(s.prominence);
+    threshold.push_back(s.threshold);
+    width.push_back(s.halfWidth);
+  }
+  r.share = static_cast<double>(legible) / static_cast<double>(samples.size());
+  r.prominence = median(prominence);
+  r.threshold = median(threshold);
+  r.halfWidth = median(width);
+  return r;
+}
+
+double pearson(const std::vector<float>& a, const std::vector<float>& b)
+{
+  double sa = 0.0, sb = 0.0, n = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k)
+  {
+    if (std::isfinite(a[k]) && std::isfinite(b[k]))
+    {
+      sa += a[k];
+      sb += b[k];
+      n += 1.0;
+    }
+  }
+  if (n < 2.0)
+  {
+    return StrokeLegibility::kNaN;
+  }
+  const double ma = sa / n;
+  const double mb = sb / n;
+  double ab = 0.0, aa = 0.0, bb = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k)
+  {
+    if (std::isfinite(a[k]) && std::isfinite(b[k]))
+    {
+      ab += (a[k] - ma) * (b[k] - mb);
+      aa += (a[k] - ma) * (a[k] - ma);
+      bb += (b[k] - mb) * (b[k] - mb);
+    }
+  }
+  return aa > 0.0 && bb > 0.0 ? ab / std::sqrt(aa * bb) : StrokeLegibility::kNaN;
+}
+
+// G(sigma) - G(2 sigma), NaN where either is invalid.
+std::vector<float> bandPass(const Heightfield& hf, double sigma)
+{
+  const Heightfield fine = smoothLarge(hf, sigma);
+  const Heightfield coarse = smoothLarge(hf, 2.0 * sigma);
+  std::vector<float> out(hf.size(), std::numeric_limits<float>::quiet_NaN());
+  for (std::size_t k = 0; k < hf.size(); ++k)
+  {
+    if (hf.isValid(k) && fine.isValid(k) && coarse.isValid(k))
+    {
+      out[k] = fine.z[k] - coarse.z[k];
+    }
+  }
+  return out;
+}
+
+} // namespace
+
+Legibility evaluateLegibility(const Heightfield& terrain,
+  const FeatureGraph& sketch,
+  const LandRelief& land,
+  const LegibilityOptions& o)
+{
+  if (sketch.width != terrain.width || sketch.height != terrain.height)
+  {
+    throw Error("The sketch's lines are on a " + std::to_string(sketch.width) + " x " +
+      std::to_string(sketch.height) + " grid, the terrain is " + std::to_string(terrain.width) +
+      " x " + std::to_string(terrain.height) + " cells.");
+  }
+  if (!(o.loneHalfWidth >= o.minHalfWidth && o.minHalfWidth >= 1.0 && o.margin >= 0.0 &&
+        o.reading.lineShare >= 0.0 && o.reading.lineShare < 1.0 && o.reading.tolerance >= 0.0))
+  {
+    throw Error("Legibility options out of range.");
+  }
+  const SectionReader reader(terrain, sketch, land, o);
+  std::vector<Sample> ridge, valley;
+  for (const FeatureChain& c : sketch.chains)
+  {
+    if (c.points.size() < 2)
+    {
+      continue;
+    }
+    const ChainPath path(c.points);
+    for (double s = 0.0; s <= path.length(); s += kSampleSpacing)
+    {
+      Point2 n;
+      Sample sample;
+      if (path.normal(s, n) && reader.read(path.at(s), n, c.type, sample))
+      {
+        (c.type == FeatureType::Ridge ? ridge : valley).push_back(sample);
+      }
+    }
+  }
+  Legibility l;
+  l.ridge = summarise(ridge);
+  l.valley = summarise(valley);
+  const std::size_t all = ridge.size() + valley.size();
+  if (all > 0)
+  {
+    const double r = ridge.empty() ? 0.0 : l.ridge.share * static_cast<double>(ridge.size());
+    const double v = valley.empty() ? 0.0 : l.valley.share * static_cast<double>(valley.size());
+    l.share = (r + v) / static_cast<double>(all);
+  }
+  return l;
+}
+
+std::vector<double> defaultCorrelationScales()
+{
+  return { 2.0, 4.0, 8.0, 16.0, 32.0 };
+}
+
+std::vector<BandCorrelation> bandPassCorrelation(const Heightfield& terrain,
+  const Heightfield& target,
+  const std::vector<double>& sigmas)
+{
+  if (terrain.width != target.width || terrain.height != target.height)
+  {
+    throw Error("The target (" + std::to_string(target.width) + " x " +
+      std::to_string(target.height) + " cells) is not on the terrain's grid (" +
+      std::to_string(terrain.width) + " x " + std::to_string(terrain.height) + ").");
+  }
+  std::vector<BandCorrelation> out;
+  for (double sigma : sigmas)
+  {
+    out.push_back({ sigma, pearson(bandPass(terrain, sigma), bandPass(target, sigma)) });
+  }
+  return out;
+}
+
+} // namespace tsynth

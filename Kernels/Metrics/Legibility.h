@@ -1,0 +1,83 @@
+// Can the sketch be read off the terrain? Measured at each stroke's own scale,
+// not the patch's: for each sample along a sketched ridge (valley), the
+// terrain's cross-section out to half the distance to the neighbouring
+// strokes (Features/StrokeSpacing.h) must show a crest (trough) that stands
+// out over both sides by a margin over the land's own relief at that scale
+// (Features/CrossSections.h). For a real DEM used as the target, the band-pass
+// correlation with it at a few scales.
+// Distances in cells of the terrain's grid (row 0 south), heights in metres.
+#pragma once
+
+#include "../Core/Heightfield.h"
+#include "../Features/CrossSections.h"
+#include "../Features/FeatureGraph.h"
+
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+namespace tsynth
+{
+
+struct LegibilityOptions
+{
+  // A stroke no other faces is looked at out to this many cells each side:
+  // half an 80-cell patch, the width of a landform one patch draws.
+  double loneHalfWidth = 40.0;
+  // Cross-sections narrower than this (cells each side) say nothing: strokes
+  // drawn touching are one landform.
+  double minHalfWidth = 3.0;
+  // Where the crest or floor is looked for.
+  SectionReading reading;
+  // A sample is legible when its prominence (sectionProminence) is at least
+  // `margin` times the exemplars' own relief at its half width (LandRelief:
+  // the root mean square relief of random cross-sections of their land). At 1,
+  // on hillshades of a valley network synthesised from Everest, a terrain with
+  // no landform scores 0.04 and the peer's (whose branches a person traces)
+  // 0.52; at 2 nothing but the sketch's own field scores much.
+  double margin = 1.0;
+};
+
+struct StrokeLegibility
+{
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  double share = kNaN;      // legible share of the samples (every cell along the lines)
+  std::size_t samples = 0;  // samples with a valid cross-section
+  double prominence = kNaN; // median, m
+  double threshold = kNaN;  // median of margin x the land's relief at the samples' half widths, m
+  double halfWidth = kNaN;  // median half width looked at, cells
+};
+
+struct Legibility
+{
+  StrokeLegibility ridge;
+  StrokeLegibility valley;
+  // Both kinds together, each sample counting once (share of all stroke length).
+  double share = StrokeLegibility::kNaN;
+};
+
+// `sketch` on the terrain's grid (as scaled for a synthesis); `land` the
+// exemplars' relief the strokes must stand out of (at the terrain's cell
+// size). Throws tsynth::Error for a graph on another grid or options out of range.
+Legibility evaluateLegibility(const Heightfield& terrain,
+  const FeatureGraph& sketch,
+  const LandRelief& land,
+  const LegibilityOptions& options = {});
+
+// Scales (Gaussian sigma, cells) at which a DEM target is compared.
+std::vector<double> defaultCorrelationScales();
+
+struct BandCorrelation
+{
+  double sigma = 0.0;       // cells
+  double correlation = 0.0; // Pearson, over the cells valid in both
+};
+
+// Correlation of the two heightfields' band-passes G(sigma) - G(2 sigma) (the
+// relief between sigma and twice sigma cells) at each scale. Throws
+// tsynth::Error if the grids differ in size.
+std::vector<BandCorrelation> bandPassCorrelation(const Heightfield& terrain,
+  const Heightfield& target,
+  const std::vector<double>& sigmas);
+
+} // namespace tsynth

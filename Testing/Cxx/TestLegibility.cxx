@@ -1,0 +1,274 @@
+// Reading a sketch off a terrain at each stroke's own scale: how far apart
+// strokes are (StrokeSpacing), cross-sections and the land's own relief
+// (CrossSections), and the legibility measure and band-pass correlation built
+// on them, on analytic surfaces with known answers.
+#include "Core/Random.h"
+#include "Features/CrossSections.h"
+#include "Features/StrokeSpacing.h"
+#include "Metrics/Legibility.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <vector>
+
+using namespace tsynth;
+
+namespace
+{
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::vector<std::uint8_t> cells(int w, int h, const std::function<bool(int, int)>& on)
+{
+  std::vector<std::uint8_t> c(static_cast<std::size_t>(w * h), 0);
+  for (int j = 0; j < h; ++j)
+  {
+    for (int i = 0; i < w; ++i)
+    {
+      c[static_cast<std::size_t>(j * w + i)] = on(i, j) ? 1 : 0;
+    }
+  }
+  return c;
+}
+
+float at(const StrokeSpacing& s, int i, int j)
+{
+  return s.halfSpacing[static_cast<std::size_t>(j * s.width + i)];
+}
+
+Heightfield surface(int w, int h, const std::function<double(int, int)>& f)
+{
+  Heightfield hf(w, h);
+  hf.cellX = hf.cellY = 30.0;
+  hf.cellSizeKnown = true;
+  for (int j = 0; j < h; ++j)
+  {
+    for (int i = 0; i < w; ++i)
+    {
+      hf.at(i, j) = static_cast<float>(f(i, j));
+    }
+  }
+  return hf;
+}
+
+// Smooth random relief: a sum of seeded sines of wavelengths 8 to 64 cells,
+// each `amplitude` metres.
+Heightfield rough(int w, int h, double amplitude, std::uint64_t seed)
+{
+  return surface(w,
+    h,
+    [&](int i, int j)
+    {
+      double z = 0.0;
+      for (int k = 0; k < 24; ++k)
+      {
+        const double wave = 8.0 * std::pow(2.0, 3.0 * seededUniform(seed, 1, k));
+        const double a = 2.0 * kPi * seededUniform(seed, 2, k);
+        const double p = 2.0 * kPi * seededUniform(seed, 3, k);
+        z += amplitude * std::sin(2.0 * kPi * (i * std::cos(a) + j * std::sin(a)) / wave + p);
+      }
+      return z;
+    });
+}
+
+// A graph of straight chains on a grid (points every cell).
+FeatureGraph lines(int w,
+  int h,
+  const std::vector<std::pair<Point2, Point2>>& segments,
+  FeatureType type)
+{
+  FeatureGraph g;
+  g.width = w;
+  g.height = h;
+  for (const auto& [a, b] : segments)
+  {
+    FeatureChain c;
+    c.type = type;
+    const int n = static_cast<int>(std::ceil(std::hypot(b.x - a.x, b.y - a.y)));
+    for (int k = 0; k <= n; ++k)
+    {
+      const double t = static_cast<double>(k) / n;
+      c.points.push_back({ a.x + t * (b.x - a.x), a.y + t * (b.y - a.y) });
+    }
+    c.from = static_cast<int>(g.nodes.size());
+    c.to = c.from + 1;
+    g.nodes.push_back(FeatureNode{});
+    g.nodes.push_back(FeatureNode{});
+    g.chains.push_back(c);
+  }
+  return g;
+}
+
+} // namespace
+
+TEST(StrokeSpacing, ParallelStrokesMeetHalfWayAndALoneStrokeHasRoomForever)
+{
+  // Two horizontal strokes 40 cells apart (rows 30 and 70), a lone one far off at row 150.
+  const int w = 120, h = 180;
+  const StrokeSpacing s =
+    strokeSpacing(cells(w, h, [](int, int j) { return j == 30 || j == 70 || j == 150; }), w, h);
+  for (int j : { 35, 50, 65 })
+  {
+    EXPECT_NEAR(at(s, 60, j), 20.0f, 1.0f) << "between the pair, row " << j;
+  }
+  EXPECT_NEAR(at(s, 60, 30), 20.0f, 1.0f); // the stroke itself: its inner side
+  EXPECT_NEAR(strokeHalfSpacing(s, 60, 70), 20.0f, 1.0f);
+  EXPECT_EQ(s.medial[static_cast<std::size_t>(50 * w + 60)], 1);
+  // Below the pair and round the lone stroke nothing faces: the medial axis
+  // between row 70 and row 150 does (40 cells each way) ...
+  EXPECT_NEAR(at(s, 60, 110), 40.0f, 1.0f);
+  // ... but nothing lies beyond the lone stroke or beyond the first.
+  EXPECT_TRUE(std::isinf(at(s, 60, 165)));
+  EXPECT_TRUE(std::isinf(at(s, 60, 10)));
+}
+
+TEST(StrokeSpacing, ARingFacesItselfAcrossItsCentreButACornerDoesNot)
+{
+  const int w = 121, h = 121;
+  const StrokeSpacing ring = strokeSpacing(
+    cells(w, h, [](int i, int j) { return std::abs(std::hypot(i - 60, j - 60) - 40.0) < 0.5; }),
+    w,
+    h);
+  EXPECT_NEAR(at(ring, 60, 80), 40.0f, 2.0f); // inside: half the diameter
+  EXPECT_TRUE(std::isinf(at(ring, 60, 115))); // outside: open
+  // An L: a right-angle corner of one stroke is a bend, not two strokes.
+  const StrokeSpacing corner = strokeSpacing(
+    cells(w, h, [](int i, int j) { return (j == 20 && i >= 20) || (i == 20 && j >= 20); }), w, h);
+  EXPECT_TRUE(std::isinf(at(corner, 50, 50)));
+  EXPECT_TRUE(std::isinf(at(corner, 25, 25)));
+}
+
+TEST(StrokeSpacing, NoStrokesNoSpacing)
+{
+  const StrokeSpacing s = strokeSpacing(std::vector<std::uint8_t>(100, 0), 10, 10);
+  for (float v : s.halfSpacing)
+  {
+    EXPECT_TRUE(std::isinf(v));
+  }
+}
+
+TEST(CrossSections, AVShapedValleyStandsOutByHalfItsDepthAndAPlaneNotAtAll)
+{
+  // A V 300 m deep over 30 cells each side: smoothed at a third of the half
+  // width its floor rises by about a quarter of the depth, its outer halves
+  // average three quarters of the rim less what the smoothing at the section's
+  // ends takes: a little over a third of the depth.
+  std::vector<double> v(61), plane(61);
+  for (int s = -30; s <= 30; ++s)
+  {
+    v[static_cast<std::size_t>(s + 30)] = 300.0 * std::abs(s) / 30.0;
+    plane[static_cast<std::size_t>(s + 30)] = 5.0 * s;
+  }
+  const double valley = sectionProminence(v, -1.0);
+  EXPECT_GT(valley, 0.3 * 300.0);
+  EXPECT_LT(valley, 0.45 * 300.0);
+  EXPECT_LT(sectionProminence(v, 1.0), 0.0); // no crest there
+  EXPECT_NEAR(sectionRelief(plane), 0.0, 1e-9);
+  // A tilted plane has one side higher than its middle: no ridge, no valley.
+  EXPECT_LT(sectionProminence(plane, 1.0), 0.0);
+  EXPECT_LT(sectionProminence(plane, -1.0), 0.0);
+}
+
+TEST(CrossSections, LandReliefGrowsWithRoughnessAndIsZeroOnAPlane)
+{
+  const Heightfield plane = surface(200, 200, [](int i, int j) { return 3.0 * i - 2.0 * j; });
+  const Heightfield gentle = rough(200, 200, 10.0, 7);
+  const Heightfield rugged = rough(200, 200, 40.0, 7);
+  const LandRelief flat({ &plane });
+  const LandRelief soft({ &gentle });
+  const LandRelief hard({ &rugged });
+  for (double h : { 4.0, 10.0, 30.0 })
+  {
+    EXPECT_NEAR(flat.at(h), 0.0, 1e-3) << h; // float rounding of the bilinear reads
+    EXPECT_GT(soft.at(h), 0.0) << h;
+    // Relief scales with the heights: four times the amplitude, four times the relief.
+    EXPECT_NEAR(hard.at(h) / soft.at(h), 4.0, 1e-3) << h;
+  }
+  EXPECT_GT(soft.at(30.0), soft.at(4.0)); // wider sections see more of the relief
+  EXPECT_EQ(LandRelief({ &gentle }).at(16.0), soft.at(16.0)); // a fixed seed
+  EXPECT_EQ(LandRelief().at(16.0), 0.0);
+}
+
+TEST(Legibility, AGaussianRidgeOnTheStrokeIsLegibleAndTheLandBesideItIsNot)
+{
+  const int w = 200, h = 160;
+  const Heightfield land = rough(w, h, 15.0, 3);
+  const LandRelief relief({ &land });
+  // A ridge 600 m high, 10 cells wide (sigma), along row 80.
+  const Heightfield ridged = surface(w,
+    h,
+    [&](int i, int j)
+    { return land.at(i, j) + 600.0 * std::exp(-0.5 * std::pow((j - 80) / 10.0, 2)); });
+  const FeatureGraph onIt = lines(w, h, { { { 20, 80 }, { 180, 80 } } }, FeatureType::Ridge);
+  const FeatureGraph beside = lines(w, h, { { { 20, 120 }, { 180, 120 } } }, FeatureType::Ridge);
+  const FeatureGraph asValley = lines(w, h, { { { 20, 80 }, { 180, 80 } } }, FeatureType::Valley);
+  const Legibility good = evaluateLegibility(ridged, onIt, relief);
+  EXPECT_GT(good.ridge.share, 0.95);
+  EXPECT_GT(good.ridge.prominence, 200.0);
+  EXPECT_TRUE(std::isnan(good.valley.share));
+  EXPECT_EQ(good.share, good.ridge.share);
+  EXPECT_NEAR(good.ridge.halfWidth, 40.0, 0.5); // a lone stroke: loneHalfWidth
+  EXPECT_LT(evaluateLegibility(ridged, beside, relief).ridge.share, 0.35);
+  EXPECT_LT(evaluateLegibility(ridged, asValley, relief).valley.share, 0.05);
+  // The bare land reads about as often as chance would have it.
+  EXPECT_LT(evaluateLegibility(land, onIt, relief).ridge.share, 0.35);
+}
+
+TEST(Legibility, NeighbouringStrokesAreReadAtHalfTheirSpacing)
+{
+  // Valleys every 40 cells, 300 m deep: each is read 20 cells each side.
+  const int w = 200, h = 200;
+  const Heightfield land = rough(w, h, 10.0, 5);
+  const Heightfield valleys = surface(w,
+    h,
+    [&](int i, int j)
+    { return land.at(i, j) + 150.0 * (1.0 - std::cos(2.0 * kPi * (j - 20) / 40.0)); });
+  const FeatureGraph g = lines(w,
+    h,
+    { { { 10, 60 }, { 190, 60 } }, { { 10, 100 }, { 190, 100 } }, { { 10, 140 }, { 190, 140 } } },
+    FeatureType::Valley);
+  const Legibility l = evaluateLegibility(valleys, g, LandRelief({ &land }));
+  EXPECT_NEAR(l.valley.halfWidth, 20.0, 0.5);
+  EXPECT_GT(l.valley.share, 0.95);
+  // Drawn on the divides instead, they are not valleys at all.
+  const FeatureGraph divides = lines(
+    w, h, { { { 10, 80 }, { 190, 80 } }, { { 10, 120 }, { 190, 120 } } }, FeatureType::Valley);
+  EXPECT_LT(evaluateLegibility(valleys, divides, LandRelief({ &land })).valley.share, 0.05);
+}
+
+TEST(Legibility, RefusesAGraphOfAnotherGrid)
+{
+  const Heightfield land = rough(64, 64, 10.0, 1);
+  FeatureGraph g = lines(64, 64, { { { 5, 30 }, { 60, 30 } } }, FeatureType::Ridge);
+  g.width = 65;
+  EXPECT_THROW(evaluateLegibility(land, g, LandRelief({ &land })), std::exception);
+}
+
+TEST(BandPassCorrelation, OneForTheSameRelief_MinusOneForItsNegativeAndNearZeroForOther)
+{
+  const Heightfield a = rough(160, 160, 20.0, 11);
+  const Heightfield b = rough(160, 160, 20.0, 12);
+  Heightfield negative = a;
+  Heightfield shifted = a;
+  for (std::size_t k = 0; k < a.size(); ++k)
+  {
+    negative.z[k] = 1000.0f - a.z[k];
+    shifted.z[k] = a.z[k] * 3.0f + 500.0f;
+  }
+  for (const BandCorrelation& c : bandPassCorrelation(a, shifted, defaultCorrelationScales()))
+  {
+    EXPECT_NEAR(c.correlation, 1.0, 1e-4) << c.sigma;
+  }
+  for (const BandCorrelation& c : bandPassCorrelation(a, negative, { 2.0, 8.0 }))
+  {
+    EXPECT_NEAR(c.correlation, -1.0, 1e-4) << c.sigma;
+  }
+  for (const BandCorrelation& c : bandPassCorrelation(a, b, { 2.0, 4.0 }))
+  {
+    EXPECT_LT(std::abs(c.correlation), 0.2) << c.sigma;
+  }
+  EXPECT_THROW(bandPassCorrelation(a, rough(150, 160, 1.0, 1), { 2.0 }), std::exception);
+}
