@@ -2,9 +2,12 @@
 
 #include "../Core/Error.h"
 #include "../Distance/DistanceField.h"
+#include "../Features/StrokeSpacing.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <limits>
 #include <numeric>
@@ -18,6 +21,11 @@ namespace
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Every so many cells of an exemplar are enough for its height percentiles.
+constexpr std::size_t kHeightSampleStep = 7;
+// Sketched landforms keep within the exemplars' heights but for this share at
+// each end (LandformStatistics::lowest, highest).
+constexpr double kLandExtremeShare = 0.005;
 // Fewer cells than this at one distance say nothing about a cross-section.
 constexpr std::size_t kMinCellsPerDistance = 32;
 // Samples along valley lines for their floor gradient, a quarter patch apart:
@@ -41,6 +49,12 @@ constexpr double kGorgeReachInPatches = 0.25;
 // landform) and fades from there over half a patch.
 constexpr double kConfidentReach = 0.75;
 constexpr double kConfidenceFadeInPatches = 0.5;
+// Strokes closer than this are drawn as if this far apart (cells of half
+// spacing): a crest a cell or two from the next valley would be a cliff.
+constexpr double kNarrowestHalfWidthCells = 4.0;
+// A landform is seen out to this far from its line at most (in patches; the
+// legibility measure's loneHalfWidth at 80-cell patches).
+constexpr double kSeenHalfWidthInPatches = 0.5;
 // An end within this share of a patch of the border drains out of the map.
 constexpr double kBorderReachInPatches = 0.125;
 // Outlet candidates whose flow paths differ by less than this share are
@@ -283,7 +297,7 @@ void reconcile(LandformStatistics& s, const std::vector<const Heightfield*>& exe
   std::vector<float> all;
   for (const Heightfield* ex : exemplars)
   {
-    for (std::size_t k = 0; k < ex->size(); k += 7) // a sample is plenty for percentiles
+    for (std::size_t k = 0; k < ex->size(); k += kHeightSampleStep)
     {
       if (ex->isValid(k))
       {
@@ -329,6 +343,20 @@ LandformStatistics measureLandforms(const std::vector<const Heightfield*>& exemp
   s.ridge = poolProfile(ridges, FeatureType::Ridge, cell);
   s.valley = poolProfile(valleys, FeatureType::Valley, cell);
   reconcile(s, exemplars, o.patchSize);
+  s.land = LandRelief(exemplars);
+  std::vector<float> all;
+  for (const Heightfield* ex : exemplars)
+  {
+    for (std::size_t k = 0; k < ex->size(); k += kHeightSampleStep)
+    {
+      if (ex->isValid(k))
+      {
+        all.push_back(ex->z[k]);
+      }
+    }
+  }
+  s.lowest = percentile(all, kLandExtremeShare);
+  s.highest = percentile(all, 1.0 - kLandExtremeShare);
   if (gradients.empty())
   {
     s.floorGradient = kFallbackFloorGradient;
@@ -844,6 +872,54 @@ DenseLines densify(const FeatureGraph& g, const LineHeights* heights)
   return d;
 }
 
+// One kind of landform's cross-section in the room the drawing leaves it: as
+// the exemplars have it where the strokes are farther apart than it is wide;
+// squeezed into the half spacing where they are closer, and there turning
+// into an even slope from the line to the medial axis (the exemplars' major
+// sections rise steeply at the line and slowly after, which squeezed reads as
+// a notch in a plateau, not as a valley or a crest). So the whole relief is
+// made by the medial axis: two valleys make a divide between them, a ridge and
+// a valley one flank.
+class CrossSection
+{
+public:
+  CrossSection(const MonotoneProfile& shape, double width, double narrowest)
+    : shape_(shape)
+    , width_(width)
+    , narrowest_(narrowest)
+  {
+  }
+
+  // 0 at the line, 1 where the landform has made its relief (0.9 at `width`
+  // for an unsqueezed section, as measured).
+  double shape(double d, double room) const
+  {
+    const double q = squeeze(room);
+    if (q >= 1.0)
+    {
+      return shape_(d);
+    }
+    const double u = std::min(1.0, d / (q * width_));
+    return q * shape_(d / q) + (1.0 - q) * u;
+  }
+
+  // The distance as the unsqueezed section would see it (for confidence and
+  // for weighing one line's influence against another's).
+  double distance(double d, double room) const { return d / squeeze(room); }
+
+private:
+  // 1 with room to spare; else the share of the section's width there is room for.
+  double squeeze(double room) const
+  {
+    const double r = std::max(narrowest_, room);
+    return r < width_ ? r / width_ : 1.0;
+  }
+
+  const MonotoneProfile& shape_;
+  double width_;
+  double narrowest_;
+};
+
 double confidence(double d, double width, double fade)
 {
   if (d <= width)
@@ -860,12 +936,116 @@ double confidence(double d, double width, double fade)
 
 } // namespace
 
+namespace
+{
+
+// The cells of the chains of one type (or of all types).
+std::vector<std::uint8_t> chainCells(const FeatureGraph& g, int w, int h, const FeatureType* type)
+{
+  std::vector<std::uint8_t> cells(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
+  for (const FeatureChain& c : g.chains)
+  {
+    if (type == nullptr || c.type == *type)
+    {
+      forEachChainCell(c,
+        w,
+        h,
+        [&](int i, int j, std::size_t, double)
+        {
+          cells[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
+            static_cast<std::size_t>(i)] = 1;
+        });
+    }
+  }
+  return cells;
+}
+
+// The typical room (metres) the drawing leaves one kind of landform: the
+// median over its line cells of the half spacing, at most its width; 0 if
+// there is no such line.
+double typicalRoom(const FeatureGraph& g,
+  FeatureType type,
+  const StrokeSpacing& spacing,
+  double width)
+{
+  const std::vector<std::uint8_t> cells = chainCells(g, spacing.width, spacing.height, &type);
+  std::vector<float> rooms;
+  for (std::size_t k = 0; k < cells.size(); ++k)
+  {
+    if (cells[k] != 0)
+    {
+      rooms.push_back(static_cast<float>(std::min<double>(width, spacing.halfSpacing[k])));
+    }
+  }
+  return rooms.empty() ? 0.0 : percentile(rooms, 0.5);
+}
+
+// How much a landform of this section, relief 1, stands out by
+// sectionProminence when squeezed into `room` metres and looked at over
+// `half` cells each side.
+double unitProminence(const CrossSection& section,
+  double room,
+  int half,
+  double cell,
+  FeatureType type)
+{
+  std::vector<double> z(static_cast<std::size_t>(2 * half + 1));
+  const double sign = type == FeatureType::Ridge ? 1.0 : -1.0;
+  for (int k = -half; k <= half; ++k)
+  {
+    z[static_cast<std::size_t>(k + half)] = sign * (1.0 - section.shape(std::abs(k) * cell, room));
+  }
+  return sectionProminence(z, sign);
+}
+
+// The factor one kind of landform's relief is raised by so that it stands
+// out (LandformFieldOptions::standOut): at least 1, at most what keeps its
+// crest (floor) within the exemplars' heights.
+double standOutRaise(const LandformProfile& p,
+  const CrossSection& section,
+  FeatureType type,
+  double room,
+  const LandformStatistics& s,
+  const LandformFieldOptions& o,
+  double cell)
+{
+  if (!(o.standOut > 0.0) || !(room > 0.0) || !(p.relief > 0.0) || s.land.empty())
+  {
+    return 1.0;
+  }
+  const int half =
+    std::max(1, static_cast<int>(std::min(room / cell, kSeenHalfWidthInPatches * o.patchSize)));
+  const double unit = unitProminence(section, room, half, cell, type);
+  if (!(unit > 0.0))
+  {
+    return 1.0;
+  }
+  const double wanted = o.standOut * s.land.at(half) / unit;
+  const double room_ = type == FeatureType::Ridge ? s.highest - s.base : s.base - s.lowest;
+  return std::clamp(wanted / p.relief, 1.0, std::max(1.0, room_ / p.relief));
+}
+
+// The statistics with each kind's relief raised by its factor.
+LandformStatistics withReliefs(const LandformStatistics& s, double ridge, double valley)
+{
+  LandformStatistics r = s;
+  r.ridge.relief *= ridge;
+  r.valley.relief *= valley;
+  r.ridge.level = r.base + r.ridge.relief;
+  r.valley.level = r.base - r.valley.relief;
+  r.ridge.section = withRelief(s.ridge, r.ridge.relief, FeatureType::Ridge);
+  r.valley.section = withRelief(s.valley, r.valley.relief, FeatureType::Valley);
+  return r;
+}
+
+} // namespace
+
 LandformField landformField(const FeatureGraph& sketch,
   int w,
   int h,
   double cellX,
   double cellY,
-  const LandformStatistics& s,
+  const LandformStatistics& measured,
   const LandformFieldOptions& o,
   const Heightfield* base,
   const LineHeights* sketchHeights)
@@ -873,13 +1053,39 @@ LandformField landformField(const FeatureGraph& sketch,
   const DenseLines dense = densify(sketch, sketchHeights);
   const FeatureGraph& graph = dense.graph;
   const LineHeights* heights = sketchHeights != nullptr ? &dense.heights : nullptr;
+  const double cell = std::min(cellX, cellY);
+  const double narrowest = kNarrowestHalfWidthCells * cell;
+  const StrokeSpacing spacing = strokeSpacing(chainCells(graph, w, h, nullptr), w, h, cellX, cellY);
   LandformField out;
+  // Each kind's relief raised to stand out at the room the drawing leaves it.
+  {
+    const MonotoneProfile ridgeShape = measured.ridge.section.normalised();
+    const MonotoneProfile valleyShape = measured.valley.section.normalised();
+    const CrossSection ridgeSection(ridgeShape, measured.ridge.width, narrowest);
+    const CrossSection valleySection(valleyShape, measured.valley.width, narrowest);
+    out.ridgeRaise = standOutRaise(measured.ridge,
+      ridgeSection,
+      FeatureType::Ridge,
+      typicalRoom(graph, FeatureType::Ridge, spacing, measured.ridge.width),
+      measured,
+      o,
+      cell);
+    out.valleyRaise = standOutRaise(measured.valley,
+      valleySection,
+      FeatureType::Valley,
+      typicalRoom(graph, FeatureType::Valley, spacing, measured.valley.width),
+      measured,
+      o,
+      cell);
+  }
+  const LandformStatistics s = withReliefs(measured, out.ridgeRaise, out.valleyRaise);
   out.field = Heightfield(w, h, static_cast<float>(s.base));
   out.field.cellX = cellX;
   out.field.cellY = cellY;
   out.field.cellSizeKnown = true;
   const std::size_t n = out.field.size();
   out.weight.assign(n, 0.0f);
+  out.halfWidth.assign(n, 0.0f);
   out.downstream.assign(n, kNaN);
   if (base != nullptr)
   {
@@ -888,7 +1094,6 @@ LandformField landformField(const FeatureGraph& sketch,
       out.field.z[k] = base->isValid(k) ? base->z[k] : static_cast<float>(s.base);
     }
   }
-  const double cell = std::min(cellX, cellY);
   auto baseOf = [&](const LineNetwork& net)
   {
     std::vector<double> b(net.size(), s.base);
@@ -915,6 +1120,8 @@ LandformField landformField(const FeatureGraph& sketch,
   const NearestSeeds nearValley = nearestSeeds(valleyCells.seeds, w, h, cellX, cellY);
   const MonotoneProfile ridgeShape = s.ridge.section.normalised();
   const MonotoneProfile valleyShape = s.valley.section.normalised();
+  const CrossSection ridgeSection(ridgeShape, s.ridge.width, narrowest);
+  const CrossSection valleySection(valleyShape, s.valley.width, narrowest);
   const double fade = kConfidenceFadeInPatches * o.patchSize * cell;
   const double gorgeSlope =
     (s.ridge.relief + s.valley.relief) / (kGorgeReachInPatches * o.patchSize * cell);
@@ -925,36 +1132,46 @@ LandformField landformField(const FeatureGraph& sketch,
   for (std::size_t k = 0; k < n; ++k)
   {
     const double b = out.field.z[k];
+    const double room = spacing.halfSpacing[k];
     double sum = 0.0;
     double weights = 0.0;
     double conf = 0.0;
+    double nearest = kInfinity;
+    double width = 0.0;
     if (!nearRidge.empty())
     {
-      const double d = nearRidge.distance[k];
+      const double d = ridgeSection.distance(nearRidge.distance[k], room);
       const double top = ridgeCells.value[static_cast<std::size_t>(nearRidge.nearest[k])];
       const double a = 1.0 / (d * d + ridgeSoft2);
-      sum += a * (top - (top - b) * ridgeShape(d));
+      sum += a * (top - (top - b) * ridgeSection.shape(nearRidge.distance[k], room));
       weights += a;
       conf = std::max(conf, confidence(d, ridgeConfident, fade));
+      nearest = nearRidge.distance[k];
+      width = s.ridge.width;
     }
     double gorge = kInfinity;
     if (!nearValley.empty())
     {
-      const double d = nearValley.distance[k];
+      const double d = valleySection.distance(nearValley.distance[k], room);
       const std::size_t at = static_cast<std::size_t>(nearValley.nearest[k]);
       const double bottom = valleyCells.value[at];
       const double top = valleyRims.value[at];
       const double a = 1.0 / (d * d + valleySoft2);
-      sum += a * (bottom + (top - bottom) * valleyShape(d));
+      sum += a * (bottom + (top - bottom) * valleySection.shape(nearValley.distance[k], room));
       weights += a;
       conf = std::max(conf, confidence(d, valleyConfident, fade));
       gorge = bottom + gorgeSlope * d;
+      if (nearValley.distance[k] < nearest)
+      {
+        width = s.valley.width;
+      }
     }
     if (weights > 0.0)
     {
       out.field.z[k] = static_cast<float>(std::min(gorge, sum / weights));
     }
     out.weight[k] = static_cast<float>(conf);
+    out.halfWidth[k] = static_cast<float>(std::max(narrowest, std::min(width, room)) / cell);
     if (flow.seeds[k] != 0)
     {
       out.downstream[k] = flow.value[k];

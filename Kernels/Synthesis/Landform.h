@@ -9,6 +9,7 @@
 
 #include "../Core/Heightfield.h"
 #include "../Distance/Profile.h"
+#include "../Features/CrossSections.h"
 #include "../Features/FeatureGraph.h"
 
 #include <cstdint>
@@ -36,6 +37,13 @@ struct LandformStatistics
   LandformProfile valley;
   double base = 0.0;          // the land ridges stand on and valleys are cut into, m
   double floorGradient = 0.0; // typical descent of major valley floors, m per m
+  // The exemplars' own relief per half width (in cells of their grid), which
+  // a sketched landform must stand out of to be seen.
+  LandRelief land;
+  // Heights sketched landforms keep within: the exemplars' 0.5th and 99.5th
+  // percentiles (a crest above their highest land would be no crest of theirs).
+  double lowest = 0.0;
+  double highest = 0.0;
   std::vector<std::string> warnings;
 };
 
@@ -66,6 +74,14 @@ LandformStatistics withReliefScaled(const LandformStatistics& statistics, double
 struct LandformFieldOptions
 {
   int patchSize = 80;
+  // A sketched ridge's crest (valley's floor) stands out of its sides by at
+  // least this many times the land's own relief at its half width (as
+  // sectionProminence measures both), its relief raised where need be (never
+  // past LandformStatistics::lowest/highest). The legibility measure calls a
+  // stroke legible at 1 (Metrics/Legibility.h); the texture the patches lay
+  // over the landform scatters it by about 1 more, and the eye wants it to
+  // stand out at a glance: 0 turns the rule off.
+  double standOut = 4.0;
   std::uint64_t seed = 0; // breaks ties between equally good valley outlets
   // A ridge's crest keeps this share of its relief at a free end (a spur ends
   // in a slope, not a cliff), rising to all of it half a patch along the line.
@@ -87,6 +103,14 @@ struct LandformField
 {
   Heightfield field;         // T_tar, metres
   std::vector<float> weight; // confidence 0..1 of T_tar, per cell
+  // Per cell: the room the drawing leaves the landform nearest it, cells:
+  // half the spacing to the facing stroke (StrokeSpacing), at most the
+  // landform's own width. The scale the result must follow the target at.
+  std::vector<float> halfWidth;
+  // The factors sketched ridges' and valleys' relief was raised by to stand
+  // out (LandformFieldOptions::standOut); 1: as the exemplars' own.
+  double ridgeRaise = 1.0;
+  double valleyRaise = 1.0;
   // Along the sketched valleys: per cell of their rasterised lines the flow
   // distance to the outlet (metres), NaN elsewhere. Water runs towards smaller
   // values, so the result's floors can be made to descend the same way.

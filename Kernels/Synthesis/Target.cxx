@@ -1,9 +1,11 @@
 #include "Target.h"
 
 #include "../Core/Error.h"
+#include "../Core/Resample.h"
 #include "../Distance/DistanceField.h"
 #include "../Features/Ppa.h"
 #include "../Features/Profiles.h"
+#include "../Features/StrokeSpacing.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +17,8 @@ namespace tsynth
 namespace
 {
 
+// Every so many cells of a DEM (target or exemplar) are enough for its percentiles.
+constexpr std::size_t kPercentileSampleStep = 7;
 // A grey sketch's background leaves out cells this close to its strokes (in
 // patches: 5 cells for 80-cell patches, wider than a drawn stroke's half width)
 // and is smoothed over a quarter patch.
@@ -40,6 +44,14 @@ double longestStroke(const FeatureGraph& g)
     }
   }
   return longest;
+}
+
+// A DEM target's own scale per cell: half the spacing (cells) between its
+// ridges and valleys, the width of each slope between a crest and a floor.
+std::vector<float> featureHalfWidths(const FeatureGraph& graph, int width, int height)
+{
+  StrokeSpacing s = strokeSpacing(rasteriseChains(graph, width, height), width, height);
+  return std::move(s.halfSpacing);
 }
 
 } // namespace
@@ -72,7 +84,7 @@ ExemplarStatistics exemplarStatistics(const std::vector<const Heightfield*>& exe
   for (std::size_t e = 0; e < exemplars.size(); ++e)
   {
     const Heightfield& ex = *exemplars[e];
-    for (std::size_t k = 0; k < ex.size(); k += 7) // a sample is plenty for percentiles
+    for (std::size_t k = 0; k < ex.size(); k += kPercentileSampleStep)
     {
       if (ex.isValid(k))
       {
@@ -169,6 +181,9 @@ SynthesisTarget targetFromStrokes(const FeatureGraph& graph,
   t.graph = graph;
   t.field = std::move(f.field);
   t.weight = std::move(f.weight);
+  t.halfWidth = std::move(f.halfWidth);
+  t.ridgeRaise = f.ridgeRaise;
+  t.valleyRaise = f.valleyRaise;
   t.downstream = std::move(f.downstream);
   t.warnings = stats.landform.warnings;
   t.warnings.insert(t.warnings.end(), f.warnings.begin(), f.warnings.end());
@@ -187,25 +202,37 @@ SynthesisTarget targetFromStrokes(const FeatureGraph& graph,
   return t;
 }
 
-SynthesisTarget targetFromHeights(const Heightfield& heights,
-  const FeatureGraph& graph,
+namespace
+{
+
+// The heights mapped linearly so that fromLow and fromHigh land on the
+// exemplars' 5th and 95th percentiles.
+Heightfield mappedOntoExemplars(const Heightfield& heights,
+  double fromLow,
+  double fromHigh,
   const ExemplarStatistics& stats)
+{
+  Heightfield out = heights;
+  const double span = fromHigh > fromLow ? fromHigh - fromLow : 1.0;
+  for (std::size_t k = 0; k < out.size(); ++k)
+  {
+    if (out.isValid(k))
+    {
+      out.z[k] =
+        static_cast<float>(stats.low + (out.z[k] - fromLow) / span * (stats.high - stats.low));
+    }
+  }
+  return out;
+}
+
+SynthesisTarget targetOfField(Heightfield field, const FeatureGraph& graph)
 {
   SynthesisTarget t;
   t.graph = graph;
-  t.field = heights;
+  t.field = std::move(field);
   t.detailed = true;
-  const HeightRange r = computeHeightRange(heights);
-  const double span = r.max > r.min ? r.max - r.min : 1.0;
-  for (std::size_t k = 0; k < t.field.size(); ++k)
-  {
-    if (t.field.isValid(k))
-    {
-      t.field.z[k] =
-        static_cast<float>(stats.low + (t.field.z[k] - r.min) / span * (stats.high - stats.low));
-    }
-  }
   t.weight.assign(t.field.size(), 1.0f);
+  t.halfWidth = featureHalfWidths(graph, t.field.width, t.field.height);
   t.downstream.assign(t.field.size(), std::numeric_limits<float>::quiet_NaN());
   if (graph.chains.empty())
   {
@@ -213,6 +240,32 @@ SynthesisTarget targetFromHeights(const Heightfield& heights,
       "The target has no features: the terrain is filled without feature placement.");
   }
   return t;
+}
+
+} // namespace
+
+SynthesisTarget targetFromHeights(const Heightfield& heights,
+  const FeatureGraph& graph,
+  const ExemplarStatistics& stats)
+{
+  // Percentile onto percentile: the target's relief keeps its size against
+  // the exemplars' (its whole range onto their 5th..95th squeezed a DEM as
+  // rugged as theirs to under half its relief, and its valleys with it).
+  std::vector<float> valid;
+  for (std::size_t k = 0; k < heights.size(); k += kPercentileSampleStep)
+  {
+    if (heights.isValid(k))
+    {
+      valid.push_back(heights.z[k]);
+    }
+  }
+  if (valid.empty())
+  {
+    return targetOfField(heights, graph);
+  }
+  const double low = percentile(valid, 0.05);
+  const double high = percentile(valid, 0.95);
+  return targetOfField(mappedOntoExemplars(heights, low, high, stats), graph);
 }
 
 namespace
@@ -253,7 +306,11 @@ SynthesisTarget targetFromGreySketch(const Heightfield& grey,
   int patchSize,
   std::uint64_t seed)
 {
-  const SynthesisTarget mapped = targetFromHeights(grey, graph, stats);
+  // The sketch's darkest and brightest grey onto the exemplars' typical
+  // extremes: what is drawn at the ends of the scale means low and high land.
+  const HeightRange r = computeHeightRange(grey);
+  const SynthesisTarget mapped =
+    targetOfField(mappedOntoExemplars(grey, r.min, r.max, stats), graph);
   LineHeights heights;
   for (const FeatureChain& c : graph.chains)
   {
@@ -282,6 +339,9 @@ SynthesisTarget targetFromGreySketch(const Heightfield& grey,
   t.field = std::move(f.field);
   t.field.georef = grey.georef;
   t.weight = std::move(f.weight);
+  t.halfWidth = std::move(f.halfWidth);
+  t.ridgeRaise = f.ridgeRaise;
+  t.valleyRaise = f.valleyRaise;
   t.downstream = std::move(f.downstream);
   t.warnings = stats.landform.warnings;
   t.warnings.insert(t.warnings.end(), f.warnings.begin(), f.warnings.end());
@@ -315,24 +375,10 @@ SynthesisTarget makeTarget(const FeatureGraph& sketchGraph,
   {
     return targetFromStrokes(graph, width, height, cellX, cellY, scaled, patchSize, seed);
   }
-  // Nearest-neighbour resampling of the sketch's heights onto the output grid.
-  Heightfield field(width, height);
+  Heightfield field = resampleNearest(*sketchHeights, width, height);
   field.cellX = cellX;
   field.cellY = cellY;
   field.cellSizeKnown = true;
-  const Heightfield& in = *sketchHeights;
-  for (int j = 0; j < height; ++j)
-  {
-    for (int i = 0; i < width; ++i)
-    {
-      const int si =
-        std::min(in.width - 1, static_cast<int>(static_cast<double>(i) * in.width / width));
-      const int sj =
-        std::min(in.height - 1, static_cast<int>(static_cast<double>(j) * in.height / height));
-      field.at(i, j) = in.isValid(si, sj) ? in.at(si, sj) : std::numeric_limits<float>::quiet_NaN();
-    }
-  }
-  normaliseMask(field);
   return kind == SketchHeights::Grey ? targetFromGreySketch(field, graph, scaled, patchSize, seed)
                                      : targetFromHeights(field, graph, stats);
 }

@@ -38,6 +38,14 @@ struct SynthesisTarget
   // Confidence in T_tar per cell (0..1): 1 near the sketched lines (or all over
   // a DEM target), 0 where the sketch leaves the land free.
   std::vector<float> weight;
+  // Per cell: the scale (cells) the result should follow T_tar at: the half
+  // width of the nearest sketched landform (LandformField::halfWidth); empty:
+  // a quarter patch everywhere.
+  std::vector<float> halfWidth;
+  // The factors the sketched ridges' and valleys' relief was raised by to
+  // stand out of the land's own relief (LandformField::ridgeRaise).
+  double ridgeRaise = 1.0;
+  double valleyRaise = 1.0;
   // Per cell of the sketched valley lines, the flow distance to their outlet
   // (metres, NaN elsewhere): water runs towards smaller values.
   std::vector<float> downstream;

@@ -633,3 +633,56 @@ TEST(LandformField, GivenHeightsWin)
   EXPECT_NEAR(b.field.at(60, 80), 1700.0, 1e-3);
   EXPECT_NEAR(b.field.at(60, 0), 1200.0, 1.0);
 }
+
+TEST(LandformField, ValleysCloserThanTheirWidthMakeADivideBetweenThem)
+{
+  // The hand sections make 90% of their relief by 19 cells; two valleys 20
+  // cells apart leave each 10. Squeezed into that room, the land midway is
+  // nearly the rim: a divide, not the broad low of two wide sections.
+  const FeatureGraph g =
+    sketch({ valley({ { 0, 70 }, { 119, 70 } }), valley({ { 0, 90 }, { 119, 90 } }) });
+  const LandformField f = landformField(g, kW, kH2, kCell, kCell, handStatistics(), fieldOptions());
+  const MonotoneProfile shape = handStatistics().valley.section.normalised();
+  for (int i : { 30, 60, 90 })
+  {
+    const double floor = std::max(f.field.at(i, 70), f.field.at(i, 90));
+    const double divide = f.field.at(i, 80);
+    // The unsqueezed section would reach shape(10 cells) = 0.5 of the depth there.
+    EXPECT_LT(shape(10 * kCell), 0.55);
+    EXPECT_GT(divide - floor, 0.85 * kRelief * 0.6) << i; // the rim is 60-100% of the depth
+    EXPECT_GT(divide, f.field.at(i, 75)) << i;
+    EXPECT_GT(divide, f.field.at(i, 85)) << i;
+    EXPECT_NEAR(f.halfWidth[cell(i, 80)], 10.0, 1.0) << i;
+  }
+  // Beyond the pair the sections have their own width.
+  EXPECT_NEAR(f.halfWidth[cell(60, 130)], handStatistics().valley.width / kCell, 0.5);
+}
+
+TEST(LandformField, LandformsAreRaisedToStandOutOfRuggedLandOnlyAndKeepWithinIt)
+{
+  const FeatureGraph g = sketch({ ridge({ { 0, 80 }, { 119, 80 } }) });
+  LandformStatistics smooth = handStatistics();
+  const Heightfield gentle =
+    terrain(200, 200, [](int i, int j) { return 2.0 * std::sin(i / 9.0) * std::cos(j / 7.0); });
+  smooth.land = LandRelief({ &gentle });
+  smooth.lowest = kBase - 5000.0;
+  smooth.highest = kBase + 5000.0;
+  EXPECT_EQ(landformField(g, kW, kH2, kCell, kCell, smooth, fieldOptions()).ridgeRaise, 1.0);
+  // Land whose own relief rivals the sketched ridge's: raised, crest and all ...
+  LandformStatistics rugged = smooth;
+  const Heightfield rough =
+    terrain(200, 200, [](int i, int j) { return 400.0 * std::sin(i / 9.0) * std::cos(j / 7.0); });
+  rugged.land = LandRelief({ &rough });
+  const LandformField raised = landformField(g, kW, kH2, kCell, kCell, rugged, fieldOptions());
+  EXPECT_GT(raised.ridgeRaise, 1.5);
+  EXPECT_NEAR(raised.field.at(60, 80), kBase + kRelief * raised.ridgeRaise, 1e-2);
+  // ... but never past the exemplars' highest land.
+  rugged.highest = kBase + 1.2 * kRelief;
+  const LandformField capped = landformField(g, kW, kH2, kCell, kCell, rugged, fieldOptions());
+  EXPECT_NEAR(capped.ridgeRaise, 1.2, 1e-9);
+  EXPECT_NEAR(capped.field.at(60, 80), kBase + 1.2 * kRelief, 1e-2);
+  // standOut 0 turns the rule off.
+  LandformFieldOptions off = fieldOptions();
+  off.standOut = 0.0;
+  EXPECT_EQ(landformField(g, kW, kH2, kCell, kCell, rugged, off).ridgeRaise, 1.0);
+}
