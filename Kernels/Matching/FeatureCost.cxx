@@ -100,13 +100,19 @@ float candidateCost(const CandidatePool& pool,
     const float ca = arms > 0 ? angle / static_cast<float>(arms) : 0.0f;
     best = std::min(best, static_cast<float>(w.feature) * cf + static_cast<float>(w.angle) * ca);
   }
+  // Roughness, scale-free as the fill's roughnessMisfit: per noise level the
+  // squared relative difference of the variances asked and found; a level
+  // asked as 0 is left out.
   float cn = 0.0f;
   for (int l = 0; l < kNoiseLevels; ++l)
   {
-    const float dn = (q.noise[static_cast<std::size_t>(l)] -
-                       pool.noise[c * kNoiseLevels + static_cast<std::size_t>(l)]) *
-      invScale2;
-    cn += dn * dn;
+    const float a = q.noise[static_cast<std::size_t>(l)];
+    const float f = pool.noise[c * kNoiseLevels + static_cast<std::size_t>(l)];
+    if (a > 0.0f)
+    {
+      const float relative = (a - f) / (a + f);
+      cn += relative * relative;
+    }
   }
   // Landform: weighted squared differences, 16 lanes over samples k, k + 16.
   const float* l = pool.landform.data() + c * kLandformStride;

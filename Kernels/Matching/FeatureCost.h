@@ -15,7 +15,13 @@ struct MatchWeights
 {
   double feature = 5.0; // a_f: profiles along and across the arms
   double angle = 2.0;   // a_a: arm directions
-  double noise = 0.001; // a_n: multi-resolution noise variance
+  // a_n: roughness, the multi-resolution noise variances compared scale-free
+  // (each level's squared relative difference, as the fill's roughnessMisfit).
+  // Tasse's a_n = 0.001 on squared variances over the height scale weighed
+  // about 1e-7 of the cost: a DEM target's smooth valley floors then got the
+  // exemplars' rough peaks. At 1 a factor two at every level (1/3) weighs as
+  // much as a typical profile misfit.
+  double noise = 1.0;
   double overlap = 1.0; // a_o: already-synthesised pixels
   // a_l: the landform around the site (LandformTerm.h), weighted like the
   // feature profiles: it is their context out to the patch's corners.

@@ -219,6 +219,87 @@ double correctLandform(Heightfield& out,
   return largest;
 }
 
+double correctLandformAtScales(Heightfield& out,
+  const Heightfield& target,
+  const std::vector<float>& confidence,
+  const std::vector<float>& sigma,
+  double largestSigma,
+  double finestSigma)
+{
+  if (!(largestSigma > 0.0))
+  {
+    return 0.0;
+  }
+  float finest = static_cast<float>(largestSigma);
+  for (float s : sigma)
+  {
+    finest = std::min(finest, s);
+  }
+  finest = std::max(finest, static_cast<float>(std::min(finestSigma, largestSigma)));
+  // The levels, coarsest first, and each one's correction per cell.
+  std::vector<double> levels{ largestSigma };
+  while (levels.back() * 0.5 >= finest * (1.0 - 1e-6))
+  {
+    levels.push_back(levels.back() * 0.5);
+  }
+  if (levels.back() > finest)
+  {
+    levels.push_back(finest);
+  }
+  // The scale asked for, made smooth from cell to cell (in log sigma, over
+  // the finest level): where it jumped (at a medial axis, between a ridge's
+  // width and a valley's) the blend of two levels' corrections jumped with it
+  // and cut a crease into the terrain.
+  Heightfield logSigma(out.width, out.height, 0.0f);
+  for (std::size_t c = 0; c < out.size(); ++c)
+  {
+    const double want = c < sigma.size() ? sigma[c] : largestSigma;
+    logSigma.z[c] = static_cast<float>(std::log(std::clamp(want, levels.back(), levels.front())));
+  }
+  logSigma = smoothLarge(logSigma, levels.back());
+  std::vector<std::vector<float>> change(levels.size());
+  for (std::size_t l = 0; l < levels.size(); ++l)
+  {
+    const Heightfield lowOut = smoothLarge(out, levels[l]);
+    const Heightfield lowTarget = smoothLarge(target, levels[l]);
+    change[l].assign(out.size(), 0.0f);
+    for (std::size_t c = 0; c < out.size(); ++c)
+    {
+      if (out.isValid(c) && lowTarget.isValid(c) && lowOut.isValid(c))
+      {
+        change[l][c] = lowTarget.z[c] - lowOut.z[c];
+      }
+    }
+  }
+  double largest = 0.0;
+  for (std::size_t c = 0; c < out.size(); ++c)
+  {
+    if (!out.isValid(c))
+    {
+      continue;
+    }
+    const double want =
+      std::clamp(std::exp(static_cast<double>(logSigma.z[c])), levels.back(), levels.front());
+    // Between levels l - 1 (coarser) and l.
+    std::size_t l = 1;
+    while (l + 1 < levels.size() && levels[l] > want)
+    {
+      ++l;
+    }
+    double value = change.front()[c];
+    if (levels.size() > 1)
+    {
+      const double t =
+        std::clamp(std::log(levels[l - 1] / want) / std::log(levels[l - 1] / levels[l]), 0.0, 1.0);
+      value = (1.0 - t) * change[l - 1][c] + t * change[l][c];
+    }
+    const double w = confidence.empty() ? 1.0 : confidence[c];
+    out.z[c] = static_cast<float>(out.z[c] + w * value);
+    largest = std::max(largest, std::abs(w * value));
+  }
+  return largest;
+}
+
 DrainageReport drainValleys(Heightfield& out,
   const std::vector<float>& downstream,
   const DrainageOptions& o)

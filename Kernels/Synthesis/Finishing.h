@@ -21,6 +21,19 @@ double correctLandform(Heightfield& out,
   const std::vector<float>& confidence,
   double sigma);
 
+// The same at a scale that varies from cell to cell: the relief coarser than
+// sigma[c] cells is pulled towards the target's at cell c (`target` itself,
+// not smoothed). The corrections are made at scales a factor two apart from
+// `largestSigma` down to `finestSigma` and interpolated between them in log
+// sigma; sigmas outside that range are taken as its ends. Returns the largest
+// change, metres.
+double correctLandformAtScales(Heightfield& out,
+  const Heightfield& target,
+  const std::vector<float>& confidence,
+  const std::vector<float>& sigma,
+  double largestSigma,
+  double finestSigma);
+
 struct DrainageOptions
 {
   // The floor falls at least this much per metre along a valley (0.1%: gentle

@@ -33,6 +33,16 @@ constexpr int kMaxAttempts = 4;        // placements tried at one fill site
 // landforms more strongly but flattened the land (slope distance 0.18-0.21
 // against 0.04-0.08 on the bundled sketches).
 constexpr double kCorrectionScaleInPatches = 0.25;
+// Where sketched landforms are narrower than that (strokes drawn close), the
+// correction works at this share of their half width (a valley 25 cells wide
+// each side: relief coarser than 8 cells), so each one is drawn at its own
+// scale; the texture finer than it stays the patches'.
+constexpr double kCorrectionShareOfHalfWidth = 1.0 / 3.0;
+// ... but never finer than this (in patches: 8 cells at 80): relief finer
+// than it is the exemplars' own character, which a finer correction would
+// replace by the target's (a DEM target's whole shape, a drawing's smooth
+// flanks).
+constexpr double kFinestCorrectionInPatches = 0.1;
 // The merge spreads the seam's gradient mismatch this far (in patches: Tasse's
 // 20 cells at 80); a fixed 20 cells on smaller patches tilted them by up to
 // kilometres on steep exemplars (Mont Blanc at 40-cell patches: 112-8615 m
@@ -78,6 +88,15 @@ constexpr float kFreeLandWeight = 0.05f;
 // to stop drift along a line of patches, small enough that the seams the
 // merge has to absorb stay small.
 constexpr double kTargetPull = 1.0;
+// A feature patch owns a disc of this radius (in patches) round its centre ...
+constexpr double kCoreDiscInPatches = 0.125;
+// ... and its lines (the drawn one and its own) this far from the centre; so
+// far Placement::lineOffset looks at them.
+constexpr double kLineOffsetReachInPatches = 0.25;
+// Feature candidates laying their own line more than this many cells (median)
+// farther from the drawn one than the best-aligned candidate are passed over:
+// a crest a few cells beside the stroke reads as a second line.
+constexpr float kLineOffsetSlack = 2.0f;
 // Overlap this small (a share of the window) says too little about a patch's
 // height: the target decides its vertical offset instead.
 constexpr double kMinOverlapForOffset = 0.05;
@@ -91,9 +110,13 @@ double secondsSince(Clock::time_point t0)
 class SynthesisState
 {
 public:
-  SynthesisState(const SynthesisTarget& target, PatchMatcher& matcher, const SynthesisOptions& o)
+  SynthesisState(const SynthesisTarget& target,
+    PatchMatcher& matcher,
+    const std::vector<const FeatureGraph*>& graphs,
+    const SynthesisOptions& o)
     : target_(target)
     , matcher_(matcher)
+    , graphs_(graphs)
     , o_(o)
     , P_(o.patchSize)
     , out_(target.field.width, target.field.height, std::numeric_limits<float>::quiet_NaN())
@@ -121,6 +144,85 @@ public:
     {
       line_[c] = d[c] <= kLineHalfWidth ? 1 : 0;
     }
+    for (FeatureType type : { FeatureType::Ridge, FeatureType::Valley })
+    {
+      FeatureGraph ofType = target.graph;
+      ofType.chains.erase(std::remove_if(ofType.chains.begin(),
+                            ofType.chains.end(),
+                            [&](const FeatureChain& c) { return c.type != type; }),
+        ofType.chains.end());
+      (type == FeatureType::Ridge ? toRidge_ : toValley_) = distanceTransform(
+        rasteriseChains(ofType, out_.width, out_.height), out_.width, out_.height);
+    }
+  }
+
+  // A feature candidate's own lines of its site's kind within
+  // kLineOffsetReachInPatches of its centre, as placed: offsets (cells) from
+  // the patch centre.
+  struct OwnLine
+  {
+    int type = 0; // +1 ridge, -1 valley; 0 for a dense candidate
+    std::vector<Point2> cells;
+  };
+
+  OwnLine ownLine(const PatchCandidate& c) const
+  {
+    OwnLine own;
+    const CandidatePool& pool = matcher_.pool();
+    if (!c.feature || c.poolIndex >= pool.size() ||
+      static_cast<std::size_t>(c.exemplar) >= graphs_.size())
+    {
+      return own;
+    }
+    own.type = pool.type[c.poolIndex];
+    const Variant v = variant(c.variant);
+    const double det = v.m[0] * v.m[3] - v.m[1] * v.m[2];
+    const double reach = kLineOffsetReachInPatches * P_;
+    for (const FeatureChain& chain : graphs_[static_cast<std::size_t>(c.exemplar)]->chains)
+    {
+      if (static_cast<int>(chain.type) != own.type)
+      {
+        continue;
+      }
+      for (const Point2& q : chain.points)
+      {
+        const double dx = q.x - c.centreX;
+        const double dy = q.y - c.centreY;
+        if (std::hypot(dx, dy) <= reach)
+        {
+          // Source offset = m (u, v): the placed offset is m^-1 times the source one.
+          own.cells.push_back(
+            { (v.m[3] * dx - v.m[1] * dy) / det, (-v.m[2] * dx + v.m[0] * dy) / det });
+        }
+      }
+    }
+    return own;
+  }
+
+  // Placement::lineOffset of a candidate's own line placed at (x0, y0).
+  float lineOffset(const OwnLine& own, int x0, int y0) const
+  {
+    if (own.type == 0)
+    {
+      return std::numeric_limits<float>::quiet_NaN();
+    }
+    const std::vector<float>& toStroke = own.type > 0 ? toRidge_ : toValley_;
+    std::vector<float> offsets;
+    for (const Point2& q : own.cells)
+    {
+      const int x = x0 + P_ / 2 + static_cast<int>(std::lround(q.x));
+      const int y = y0 + P_ / 2 + static_cast<int>(std::lround(q.y));
+      if (x >= 0 && y >= 0 && x < out_.width && y < out_.height)
+      {
+        offsets.push_back(toStroke[out_.index(x, y)]);
+      }
+    }
+    if (offsets.empty())
+    {
+      return std::numeric_limits<float>::quiet_NaN();
+    }
+    std::nth_element(offsets.begin(), offsets.begin() + offsets.size() / 2, offsets.end());
+    return offsets[offsets.size() / 2];
   }
 
   // The patch-sized window of the output at (x0, y0): its known cells, and
@@ -372,92 +474,140 @@ public:
       .push_back(placement);
   }
 
-  // Returns how many empty cells the placement filled (0 if none could be).
-  std::size_t place(const std::vector<PatchCandidate>& candidates, int x0, int y0, bool feature)
+  // The cells a feature patch owns whatever the seam: the sketched line near
+  // its centre (where its own feature was matched) and a small disc around
+  // the centre.
+  std::vector<std::uint8_t> strokeCore(int x0, int y0) const
   {
-    if (candidates.empty())
+    std::vector<std::uint8_t> core(static_cast<std::size_t>(P_ * P_), 0);
+    for (int j = 0; j < P_; ++j)
     {
-      return 0;
-    }
-    std::vector<std::uint8_t> core;
-    if (feature)
-    {
-      // The patch owns the sketched line near its centre (where its own feature
-      // was matched) and a small disc around the centre.
-      core.assign(static_cast<std::size_t>(P_ * P_), 0);
-      for (int j = 0; j < P_; ++j)
+      for (int i = 0; i < P_; ++i)
       {
-        for (int i = 0; i < P_; ++i)
+        const double r = std::hypot(i - 0.5 * (P_ - 1), j - 0.5 * (P_ - 1));
+        const int x = x0 + i;
+        const int y = y0 + j;
+        const bool onLine =
+          x >= 0 && y >= 0 && x < out_.width && y < out_.height && line_[out_.index(x, y)] != 0;
+        if (r <= kCoreDiscInPatches * P_ || (onLine && r <= kLineOffsetReachInPatches * P_))
         {
-          const double r = std::hypot(i - 0.5 * (P_ - 1), j - 0.5 * (P_ - 1));
-          const int x = x0 + i;
-          const int y = y0 + j;
-          const bool onLine =
-            x >= 0 && y >= 0 && x < out_.width && y < out_.height && line_[out_.index(x, y)] != 0;
-          if (r <= P_ / 8.0 || (onLine && r <= P_ / 4.0))
-          {
-            core[static_cast<std::size_t>(j * P_ + i)] = 1;
-          }
+          core[static_cast<std::size_t>(j * P_ + i)] = 1;
         }
       }
     }
-    // Every candidate's dry-run seam cost, in parallel (one merger workspace per
-    // thread); the choice below reads them in candidate order, so it does not
-    // depend on the thread count.
-    std::vector<Heightfield> patches(candidates.size());
-    std::vector<float> offsets(candidates.size(), 0.0f);
-    std::vector<MergeResult> dry(candidates.size());
-    const long count = static_cast<long>(candidates.size());
-#pragma omp parallel for schedule(dynamic)                                                         \
-  num_threads(static_cast <int>(std::min <std::size_t>(candidates.size(), mergers_.size())))
-    for (long n = 0; n < count; ++n)
+    return core;
+  }
+
+  // One candidate tried at a window: its patch at the fitted height, the
+  // merge's dry run, and for a feature patch the cells it owns.
+  struct Trial
+  {
+    Heightfield patch;
+    float offset = 0.0f;
+    MergeResult dry;
+    std::vector<std::uint8_t> core;
+    float lineOffset = std::numeric_limits<float>::quiet_NaN();
+  };
+
+  Trial tryCandidate(const PatchCandidate& candidate,
+    int x0,
+    int y0,
+    bool feature,
+    const std::vector<std::uint8_t>& strokeCells,
+    PatchMerger& merger) const
+  {
+    Trial t;
+    t.patch = extract(candidate);
+    if (!feature)
     {
-      const std::size_t c = static_cast<std::size_t>(n);
-      Heightfield patch = extract(candidates[c]);
-      if (!feature)
-      {
-        protectLines(patch, x0, y0);
-      }
-      offsets[c] = o_.verticalOffset ? fitOffset(patch, x0, y0) : 0.0f;
-      for (float& z : patch.z)
-      {
-        z += offsets[c];
-      }
-      PatchMerger& merger = mergers_[static_cast<std::size_t>(omp_get_thread_num())];
-      dry[c] = merger.seamCost(out_, filled_, patch, x0, y0, feature ? &core : nullptr);
-      patches[c] = std::move(patch);
+      protectLines(t.patch, x0, y0);
     }
-    std::size_t bestIndex = 0;
-    double bestSeam = std::numeric_limits<double>::infinity();
+    t.offset = o_.verticalOffset ? fitOffset(t.patch, x0, y0) : 0.0f;
+    for (float& z : t.patch.z)
+    {
+      z += t.offset;
+    }
+    if (feature)
+    {
+      // The patch also owns its own ridge or valley near the centre, where it
+      // strays from the drawn line: the crest stays one line, not two.
+      t.core = strokeCells;
+      const OwnLine own = ownLine(candidate);
+      // A strip as wide as the drawn line's (kLineHalfWidth each side): a
+      // one-cell strip forced into the old content left seams along the crest.
+      const int half = static_cast<int>(kLineHalfWidth);
+      for (const Point2& q : own.cells)
+      {
+        const int ci = static_cast<int>(std::lround(q.x)) + P_ / 2;
+        const int cj = static_cast<int>(std::lround(q.y)) + P_ / 2;
+        for (int j = std::max(0, cj - half); j <= std::min(P_ - 1, cj + half); ++j)
+        {
+          for (int i = std::max(0, ci - half); i <= std::min(P_ - 1, ci + half); ++i)
+          {
+            if ((i - ci) * (i - ci) + (j - cj) * (j - cj) <= half * half)
+            {
+              t.core[static_cast<std::size_t>(j * P_ + i)] = 1;
+            }
+          }
+        }
+      }
+      t.lineOffset = lineOffset(own, x0, y0);
+    }
+    t.dry = merger.seamCost(out_, filled_, t.patch, x0, y0, feature ? &t.core : nullptr);
+    return t;
+  }
+
+  // The candidate to place: the lowest seam cost (plus the repetition penalty,
+  // near-ties by the seed), among feature candidates only those that lay their
+  // own line within kLineOffsetSlack cells of the best-aligned one.
+  std::size_t choose(const std::vector<PatchCandidate>& candidates,
+    const std::vector<Trial>& trials,
+    double& bestSeam) const
+  {
+    float aligned = std::numeric_limits<float>::infinity();
+    for (const Trial& t : trials)
+    {
+      if (!std::isnan(t.lineOffset))
+      {
+        aligned = std::min(aligned, t.lineOffset);
+      }
+    }
+    std::size_t best = 0;
+    bestSeam = std::numeric_limits<double>::infinity();
     for (std::size_t c = 0; c < candidates.size(); ++c)
     {
+      const Trial& t = trials[c];
+      if (std::isfinite(aligned) && !(t.lineOffset <= aligned + kLineOffsetSlack))
+      {
+        continue;
+      }
       // Anti-repetition: a source already used nearby costs more, so the same
       // exemplar patch is not copied over and over.
       // Near-ties: the seed's jitter of up to kNearTie decides.
       const double jitter = 1.0 +
         kNearTie *
           seededUniform(o_.seed, kStreamChoice, result_.placements.size() * kMaxCandidates + c);
-      const double seam = ((dry[c].overlapCells > 0 ? dry[c].normalisedCost : 0.0) +
+      const double seam = ((t.dry.overlapCells > 0 ? t.dry.normalisedCost : 0.0) +
                             o_.repetitionPenalty * reuses(candidates[c])) *
         jitter;
       if (seam < bestSeam)
       {
         bestSeam = seam;
-        bestIndex = c;
+        best = c;
       }
     }
-    const Heightfield& best = patches[bestIndex];
-    const float bestOffset = offsets[bestIndex];
-    MergeOptions mo;
-    mo.mode = o_.merge;
-    mo.shepardRadius = kShepardRadiusInPatches * P_;
-    mo.lowestHeight = lowest_;
-    mo.highestHeight = highest_;
-    const MergeResult r = mergers_[0].merge(
-      out_, filled_, best, x0, y0, feature ? &core : nullptr, mo, &dry[bestIndex]);
-    result_.anchoredMerges += r.anchored ? 1 : 0;
+    return best;
+  }
+
+  // Writes the placement's ids, costs and seams.
+  void record(const PatchCandidate& chosen,
+    const Trial& t,
+    const MergeResult& r,
+    int x0,
+    int y0,
+    double seam)
+  {
     const int id = static_cast<int>(result_.placements.size());
-    const PatchCandidate& chosen = candidates[bestIndex];
     for (int j = 0; j < r.height; ++j)
     {
       for (int i = 0; i < r.width; ++i)
@@ -487,10 +637,52 @@ public:
     p.y0 = y0;
     p.matchCost = chosen.cost;
     p.landformMisfit = chosen.landformMisfit;
-    p.seamCost = bestSeam;
-    p.offset = bestOffset;
+    p.seamCost = seam;
+    p.offset = t.offset;
+    p.lineOffset = t.lineOffset;
     result_.placements.push_back(p);
     recordSource(result_.placements.size() - 1);
+  }
+
+  // Chooses among candidates and merges the winner at (x0, y0). Returns how
+  // many empty cells the placement filled (0 if none could be).
+  std::size_t place(const std::vector<PatchCandidate>& candidates, int x0, int y0, bool feature)
+  {
+    if (candidates.empty())
+    {
+      return 0;
+    }
+    const std::vector<std::uint8_t> strokeCells =
+      feature ? strokeCore(x0, y0) : std::vector<std::uint8_t>();
+    // Every candidate's dry run, in parallel (one merger workspace per thread);
+    // choose() reads them in candidate order, so it does not depend on the
+    // thread count.
+    std::vector<Trial> trials(candidates.size());
+    const long count = static_cast<long>(candidates.size());
+#pragma omp parallel for schedule(dynamic)                                                         \
+  num_threads(static_cast <int>(std::min <std::size_t>(candidates.size(), mergers_.size())))
+    for (long n = 0; n < count; ++n)
+    {
+      const std::size_t c = static_cast<std::size_t>(n);
+      trials[c] = tryCandidate(candidates[c],
+        x0,
+        y0,
+        feature,
+        strokeCells,
+        mergers_[static_cast<std::size_t>(omp_get_thread_num())]);
+    }
+    double seam = 0.0;
+    const std::size_t chosen = choose(candidates, trials, seam);
+    const Trial& t = trials[chosen];
+    MergeOptions mo;
+    mo.mode = o_.merge;
+    mo.shepardRadius = kShepardRadiusInPatches * P_;
+    mo.lowestHeight = lowest_;
+    mo.highestHeight = highest_;
+    const MergeResult r =
+      mergers_[0].merge(out_, filled_, t.patch, x0, y0, feature ? &t.core : nullptr, mo, &t.dry);
+    result_.anchoredMerges += r.anchored ? 1 : 0;
+    record(candidates[chosen], t, r, x0, y0, seam);
     return r.newCells;
   }
 
@@ -533,8 +725,12 @@ public:
       const FeatureSite& site = sites[s];
       const int x0 = static_cast<int>(std::lround(site.centre.x)) - P_ / 2;
       const int y0 = static_cast<int>(std::lround(site.centre.y)) - P_ / 2;
-      const FeatureQuery q = makeFeatureQuery(
+      FeatureQuery q = makeFeatureQuery(
         site, target_.field, noise_, &out_, &filled_, P_, &lowTarget_, &confidence_);
+      if (!target_.detailed)
+      {
+        q.noise = typicalNoise_; // a drawing says nothing of roughness (see window())
+      }
       const DenseQuery fallback = window(x0, y0);
       place(allowed(
               matcher_.matchFeature(q, &fallback), x0, y0, o_.k * matcher_.pool().exemplars.size()),
@@ -718,19 +914,28 @@ public:
     }
   }
 
-  // The target smoothed at the correction's scale, computed once.
-  const Heightfield& correctionTarget()
-  {
-    if (correctionTarget_.size() == 0 && correctionScale() > 0.0)
-    {
-      correctionTarget_ = smoothLarge(target_.field, correctionScale());
-    }
-    return correctionTarget_;
-  }
-
+  // The coarsest scale of the final correction, cells.
   double correctionScale() const
   {
     return o_.correctionScale < 0.0 ? kCorrectionScaleInPatches * P_ : o_.correctionScale;
+  }
+
+  // Per cell, the scale the final correction pulls the relief coarser than
+  // towards the target: kCorrectionShareOfHalfWidth of the sketched
+  // landform's half width there, at most correctionScale().
+  std::vector<float> correctionScales() const
+  {
+    const float largest = static_cast<float>(correctionScale());
+    std::vector<float> sigma(out_.size(), largest);
+    if (target_.halfWidth.size() == sigma.size())
+    {
+      for (std::size_t c = 0; c < sigma.size(); ++c)
+      {
+        sigma[c] =
+          std::min(largest, static_cast<float>(kCorrectionShareOfHalfWidth * target_.halfWidth[c]));
+      }
+    }
+    return sigma;
   }
 
   SynthesisResult finish()
@@ -752,8 +957,12 @@ public:
     }
     normaliseMask(out_);
     result_.patches = out_;
-    result_.finishing.landformCorrection =
-      correctLandform(out_, correctionTarget(), confidence_, correctionScale());
+    result_.finishing.landformCorrection = correctLandformAtScales(out_,
+      target_.field,
+      confidence_,
+      correctionScales(),
+      correctionScale(),
+      kFinestCorrectionInPatches * P_);
     // Free land: only the drift at the scale of several patches.
     std::vector<float> free(confidence_.size());
     std::transform(
@@ -858,6 +1067,8 @@ private:
 
   const SynthesisTarget& target_;
   PatchMatcher& matcher_;
+  const std::vector<const FeatureGraph*>& graphs_;
+  std::vector<float> toRidge_, toValley_; // cells to the sketched ridges, valleys
   const SynthesisOptions& o_;
   int P_;
   Heightfield out_;
@@ -868,7 +1079,6 @@ private:
   std::array<float, kNoiseLevels> typicalNoise_{};
   float highest_ = std::numeric_limits<float>::infinity();
   Heightfield lowTarget_;                // the target through the landform term's low-pass
-  Heightfield correctionTarget_;         // ... through the landform correction's
   std::vector<float> ownConfidence_;     // 1 everywhere, for targets that give none
   const std::vector<float>& confidence_; // the target's confidence per cell
   // One per OpenMP thread.
@@ -926,7 +1136,7 @@ SynthesisResult synthesize(const SynthesisTarget& target,
   mo.k = o.k;
   mo.weights.verticalOffset = o.verticalOffset;
   PatchMatcher matcher(exemplars, graphs, mo);
-  SynthesisState state(target, matcher, o);
+  SynthesisState state(target, matcher, graphs, o);
   state.boundHeights(exemplars);
   state.setTypicalNoise(matcher.dense().typicalNoise());
   const double setup = secondsSince(t0);

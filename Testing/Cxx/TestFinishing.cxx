@@ -381,3 +381,75 @@ TEST(MeetConstraints, ConstrainedLinesSitAtTheirHeights)
     kReach);
   EXPECT_EQ(free.z, before.z);
 }
+
+TEST(CorrectLandformAtScales, EachCellIsCorrectedAtItsOwnScale)
+{
+  const Heightfield before = detailedRamp();
+  const Heightfield goal = target();
+  // The west half asks for 4 cells, the east half for 16; the largest is 16.
+  std::vector<float> sigma(before.size());
+  for (int j = 0; j < kSide; ++j)
+  {
+    for (int i = 0; i < kSide; ++i)
+    {
+      sigma[before.index(i, j)] = i < kSide / 2 ? 4.0f : 16.0f;
+    }
+  }
+  Heightfield out = before;
+  const double largest = correctLandformAtScales(out, goal, {}, sigma, 16.0, 2.0);
+  EXPECT_GT(largest, 40.0);
+  // Where 16 was asked the change is exactly the single-scale correction at 16
+  // (the scales asked are blended over the finest level, 4 cells: 3 of them
+  // from the boundary they are as asked).
+  Heightfield single = before;
+  correctLandform(single, smoothLarge(goal, 16.0), {}, 16.0);
+  const int blend = 12;
+  for (int j = 0; j < kSide; j += 7)
+  {
+    for (int i = kSide / 2 + blend; i < kSide; i += 7)
+    {
+      ASSERT_NEAR(out.at(i, j), single.at(i, j), 1e-3) << i << ", " << j;
+    }
+  }
+  // Where 4 was asked it is the correction at 4: the output's low-pass at 4
+  // becomes the target's (its 15 m detail at about 1.3 cells stays).
+  Heightfield fine = before;
+  correctLandform(fine, smoothLarge(goal, 4.0), {}, 4.0);
+  for (int j = 0; j < kSide; j += 7)
+  {
+    for (int i = 0; i < kSide / 2 - blend; i += 7)
+    {
+      ASSERT_NEAR(out.at(i, j), fine.at(i, j), 1e-3) << i << ", " << j;
+    }
+  }
+  // Across the boundary the change moves smoothly from one to the other: no
+  // step larger than the corrections' own slope.
+  for (int i = kSide / 2 - blend; i < kSide / 2 + blend; ++i)
+  {
+    EXPECT_LT(
+      std::abs((out.at(i + 1, 80) - before.at(i + 1, 80)) - (out.at(i, 80) - before.at(i, 80))),
+      3.0)
+      << i;
+  }
+  // A scale under the finest allowed is taken as the finest.
+  std::vector<float> tiny(before.size(), 0.5f);
+  Heightfield a = before;
+  Heightfield b = before;
+  correctLandformAtScales(a, goal, {}, tiny, 16.0, 4.0);
+  correctLandformAtScales(b, goal, {}, std::vector<float>(before.size(), 4.0f), 16.0, 4.0);
+  EXPECT_EQ(a.z, b.z);
+  // A scale between the levels, everywhere: that scale exactly.
+  const float between = 8.0f * std::sqrt(2.0f);
+  Heightfield mid = before;
+  correctLandformAtScales(mid, goal, {}, std::vector<float>(before.size(), between), 16.0, 8.0);
+  Heightfield exact = before;
+  correctLandform(exact, smoothLarge(goal, between), {}, between);
+  EXPECT_NEAR(mid.at(80, 80), exact.at(80, 80), 1e-3);
+  // Confidence scales it; no largest scale, no change.
+  Heightfield none = before;
+  EXPECT_EQ(correctLandformAtScales(none, goal, {}, sigma, 0.0, 2.0), 0.0);
+  EXPECT_EQ(none.z, before.z);
+  Heightfield zero = before;
+  correctLandformAtScales(zero, goal, std::vector<float>(before.size(), 0.0f), sigma, 16.0, 2.0);
+  EXPECT_EQ(zero.z, before.z);
+}

@@ -168,14 +168,18 @@ TEST(Orientation, FeatureAnglesFollowTheVariant)
 TEST(FeatureCost, HandMadeCandidateHasTheExpectedCost)
 {
   const CandidatePool pool = handPool();
-  const FeatureQuery q = handQuery();
+  FeatureQuery q = handQuery();
+  q.noise = { 50.0f, 0.0f, 0.0f }; // half the candidate's 100 m^2 at the first level
   const MatchWeights w;
   // c_f: profiles differ by 2 m, scale 10 m -> 0.04; c_a: both arms off by 0.1 rad
-  // -> (0.1 / pi)^2; c_n: 100 m^2 vs 0, scale^2 100 -> 1; c_o: 5 m -> 0.25;
-  // c_l: one sample off by 20 m with weight 0.5, over 25 samples, scale^2 100
-  // -> 0.5 * 400 / 25 / 100 = 0.08.
+  // -> (0.1 / pi)^2; c_n: 50 m^2 asked, 100 found -> ((50 - 100) / 150)^2 = 1/9,
+  // the levels asked as 0 left out; c_o: 5 m -> 0.25; c_l: one sample off by
+  // 20 m with weight 0.5, over 25 samples, scale^2 100 -> 0.5 * 400 / 25 / 100 = 0.08.
   const double expected =
-    5.0 * 0.04 + 2.0 * std::pow(0.1 / kPi, 2) + 0.001 * 1.0 + 1.0 * 0.25 + 5.0 * 0.08;
+    5.0 * 0.04 + 2.0 * std::pow(0.1 / kPi, 2) + 1.0 / 9.0 + 1.0 * 0.25 + 5.0 * 0.08;
+  // Nothing asked of roughness, nothing paid for it (the scale-free term has
+  // no meaning for a level asked as 0).
+  EXPECT_NEAR(scoreFeatureCandidates(pool, handQuery(), w)[0], expected - 1.0 / 9.0, 1e-5);
   const std::vector<float> costs = scoreFeatureCandidates(pool, q, w);
   ASSERT_EQ(costs.size(), 1u);
   EXPECT_NEAR(costs[0], expected, 1e-5);

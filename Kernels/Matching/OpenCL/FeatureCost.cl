@@ -106,8 +106,13 @@ __kernel void featureCost(__global const int* kind, __global const int* type,
   float cn = 0.0f;
   for (int l = 0; l < NOISE; ++l)
   {
-    const float dn = (q[Q_NOISE + l] - noise[c * NOISE + l]) * invScale2;
-    cn += dn * dn;
+    const float a = q[Q_NOISE + l];
+    const float f = noise[c * NOISE + l];
+    if (a > 0.0f)
+    {
+      const float d = (a - f) / (a + f);
+      cn += d * d;
+    }
   }
   // Landform: 16 lanes over samples k, k + 16.
   float16 swl216 = (float16)(0.0f);
