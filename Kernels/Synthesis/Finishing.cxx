@@ -257,6 +257,14 @@ double correctLandformAtScales(Heightfield& out,
     logSigma.z[c] = static_cast<float>(std::log(std::clamp(want, levels.back(), levels.front())));
   }
   logSigma = smoothLarge(logSigma, levels.back());
+  // The confidence too: it kinks where the nearest landform changes (a medial
+  // axis), and times a correction of hundreds of metres the kink is a crease.
+  Heightfield sure(out.width, out.height, 1.0f);
+  if (!confidence.empty())
+  {
+    std::copy(confidence.begin(), confidence.end(), sure.z.begin());
+    sure = smoothLarge(sure, levels.back());
+  }
   std::vector<std::vector<float>> change(levels.size());
   for (std::size_t l = 0; l < levels.size(); ++l)
   {
@@ -293,7 +301,7 @@ double correctLandformAtScales(Heightfield& out,
         std::clamp(std::log(levels[l - 1] / want) / std::log(levels[l - 1] / levels[l]), 0.0, 1.0);
       value = (1.0 - t) * change[l - 1][c] + t * change[l][c];
     }
-    const double w = confidence.empty() ? 1.0 : confidence[c];
+    const double w = sure.z[c];
     out.z[c] = static_cast<float>(out.z[c] + w * value);
     largest = std::max(largest, std::abs(w * value));
   }

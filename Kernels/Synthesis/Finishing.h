@@ -25,8 +25,9 @@ double correctLandform(Heightfield& out,
 // sigma[c] cells is pulled towards the target's at cell c (`target` itself,
 // not smoothed). The corrections are made at scales a factor two apart from
 // `largestSigma` down to `finestSigma` and interpolated between them in log
-// sigma; sigmas outside that range are taken as its ends. Returns the largest
-// change, metres.
+// sigma; sigmas outside that range are taken as its ends. The scales and the
+// confidence are smoothed over the finest level first, so the correction has
+// no crease where they kink. Returns the largest change, metres.
 double correctLandformAtScales(Heightfield& out,
   const Heightfield& target,
   const std::vector<float>& confidence,
