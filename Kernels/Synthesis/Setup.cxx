@@ -1,5 +1,7 @@
 #include "Setup.h"
 
+#include "Synthesizer.h"
+
 #include "../Core/Error.h"
 #include "../Core/Resample.h"
 #include "../Features/Ppa.h"
@@ -494,6 +496,29 @@ void checkPatchSize(int patchSize, const std::string& name)
   }
 }
 
+std::optional<std::string> finenessWarning(const SynthesisTarget& target, int patchSize, bool dem)
+{
+  // Closer than this, a stroke's own scale is finer than the final correction
+  // draws (Synthesizer.h).
+  const double finest = 2.0 * kCorrectionSigmasPerHalfWidth * kFinestCorrectionInPatches;
+  const double spacing = 2.0 * typicalHalfWidth(target);
+  if (!(spacing > 0.0) || spacing >= finest * patchSize)
+  {
+    return std::nullopt;
+  }
+  const int serving = static_cast<int>(spacing / finest) / kPatchSizeStep * kPatchSizeStep;
+  const std::string apart = std::to_string(static_cast<int>(std::lround(spacing)));
+  const std::string what = dem ? "The target's ridges and valleys are about " + apart +
+      " cells apart, finer than " + std::to_string(patchSize) + "-cell patches follow"
+                               : "The sketch's strokes are about " + apart +
+      " cells apart, closer than " + std::to_string(patchSize) + "-cell patches draw";
+  const std::string remedy = serving >= kMinSynthesisPatch
+    ? "give a patch of " + std::to_string(serving) + " cells (or a larger output) to follow them"
+    : "give a larger output, or " + std::string(dem ? "a target" : "strokes") +
+      " with more room between them";
+  return what + ": they will read faintly; " + remedy + ".";
+}
+
 SynthesisSetup prepareSynthesis(SetupInputs in)
 {
   if (in.exemplars.empty())
@@ -536,6 +561,10 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
     heights,
     in.seed,
     in.landformRelief);
+  if (const auto warning = finenessWarning(s.target, in.patchSize, heights == SketchHeights::Dem))
+  {
+    s.target.warnings.push_back(*warning);
+  }
   return s;
 }
 

@@ -14,6 +14,7 @@
 #include "Target.h"
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -188,6 +189,11 @@ struct SynthesisSetup
   std::vector<const Heightfield*> exemplarPointers() const;
   std::vector<const FeatureGraph*> graphPointers() const;
 };
+
+// A warning when the target's strokes (a DEM target's ridges and valleys) are
+// closer together than patches of this size can draw them at their own scale,
+// naming the spacing found and the patch that would follow them.
+std::optional<std::string> finenessWarning(const SynthesisTarget& target, int patchSize, bool dem);
 
 // The whole set-up. Throws tsynth::Error, one sentence saying what was found and
 // what to change: no exemplar, a bad grid (see outputGrid), a sketch smaller

@@ -37,12 +37,8 @@ constexpr double kCorrectionScaleInPatches = 0.25;
 // correction works at this share of their half width (a valley 25 cells wide
 // each side: relief coarser than 8 cells), so each one is drawn at its own
 // scale; the texture finer than it stays the patches'.
-constexpr double kCorrectionShareOfHalfWidth = 1.0 / 3.0;
-// ... but never finer than this (in patches: 8 cells at 80): relief finer
-// than it is the exemplars' own character, which a finer correction would
-// replace by the target's (a DEM target's whole shape, a drawing's smooth
-// flanks).
-constexpr double kFinestCorrectionInPatches = 0.1;
+constexpr double kCorrectionShareOfHalfWidth = 1.0 / kCorrectionSigmasPerHalfWidth;
+// ... but never finer than kFinestCorrectionInPatches (Synthesizer.h).
 // The merge spreads the seam's gradient mismatch this far (in patches: Tasse's
 // 20 cells at 80); a fixed 20 cells on smaller patches tilted them by up to
 // kilometres on steep exemplars (Mont Blanc at 40-cell patches: 112-8615 m

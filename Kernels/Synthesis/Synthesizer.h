@@ -27,6 +27,15 @@ enum class FillOrder
   Concentric // confidence only: layer by layer around what is filled
 };
 
+// The final correction draws the target down to this share of a patch
+// (Gaussian sigma; 8 cells for 80-cell patches): relief finer than it is the
+// exemplars' own character, which a finer correction would replace by the
+// target's (a DEM target's whole shape, a drawing's smooth flanks).
+constexpr double kFinestCorrectionInPatches = 0.1;
+// It follows landforms this many sigmas wide each side: strokes closer than
+// 2 x 3 x 0.1 = 0.6 patches apart cannot be drawn at their own scale.
+constexpr double kCorrectionSigmasPerHalfWidth = 3.0;
+
 struct SynthesisOptions
 {
   int patchSize = 80;

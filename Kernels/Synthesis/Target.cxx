@@ -74,6 +74,24 @@ std::vector<std::uint8_t> rasteriseChains(const FeatureGraph& graph, int width, 
   return cells;
 }
 
+double typicalHalfWidth(const SynthesisTarget& t)
+{
+  if (t.halfWidth.size() != t.field.size())
+  {
+    return 0.0;
+  }
+  const std::vector<std::uint8_t> lines = rasteriseChains(t.graph, t.field.width, t.field.height);
+  std::vector<float> widths;
+  for (std::size_t k = 0; k < lines.size(); ++k)
+  {
+    if (lines[k] != 0 && std::isfinite(t.halfWidth[k]))
+    {
+      widths.push_back(t.halfWidth[k]);
+    }
+  }
+  return widths.empty() ? 0.0 : percentile(widths, 0.5);
+}
+
 ExemplarStatistics exemplarStatistics(const std::vector<const Heightfield*>& exemplars,
   const std::vector<const FeatureGraph*>& graphs,
   int patchSize)

@@ -123,4 +123,9 @@ SynthesisTarget makeTarget(const FeatureGraph& sketchGraph,
   std::uint64_t seed = 0,
   double landformRelief = 1.0);
 
+// The median over the target's line cells of its half width (cells): half the
+// typical spacing of its strokes, or of a DEM target's ridges and valleys; 0
+// without lines.
+double typicalHalfWidth(const SynthesisTarget& target);
+
 } // namespace tsynth
