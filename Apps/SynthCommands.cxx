@@ -113,6 +113,8 @@ A figure that does not apply (no ridge sketched, a flat exemplar) is shown as "-
 // The synthesis' default patch: the random-patch baseline's patch, and the
 // smallest sketch evaluate accepts.
 constexpr int kEvaluationPatch = 80;
+// A stroke no other faces is read half a patch each side (LegibilityOptions).
+constexpr double kLoneHalfWidthInPatches = 0.5;
 constexpr double kBytesPerGB = 1.0e9;
 
 // Every value of a repeatable option, removed from the arguments.
@@ -484,10 +486,58 @@ std::size_t featurePlacements(const SynthesisResult& r)
     r.placements.begin(), r.placements.end(), [](const Placement& p) { return p.feature; }));
 }
 
+// The quality figures of a synthesis: of the terrain, and of the patches
+// before the final corrections (do the patches themselves follow the sketch?).
+struct SynthFigures
+{
+  TerrainEvaluation quality;
+  LandformMeasures landforms;
+  Legibility legibility;
+  Legibility patchLegibility;
+  std::vector<BandCorrelation> correlation; // DEM targets only
+  std::vector<BandCorrelation> patchCorrelation;
+  // Feature placements' line offsets (cells): median and 90th percentile.
+  double lineOffset = std::numeric_limits<double>::quiet_NaN();
+  double lineOffset90 = std::numeric_limits<double>::quiet_NaN();
+};
+
+SynthFigures measureSynthesis(const SynthesisSetup& setup, const SynthesisResult& r, int patchSize)
+{
+  SynthFigures f;
+  f.quality = evaluateTerrain(r.terrain, setup.exemplarPointers(), &setup.target.graph);
+  LandformOptions lo;
+  lo.patchSize = patchSize;
+  f.landforms = evaluateLandforms(
+    r.terrain, setup.target.graph, setup.exemplarPointers(), setup.graphPointers(), lo);
+  LegibilityOptions go;
+  go.loneHalfWidth = kLoneHalfWidthInPatches * patchSize;
+  f.legibility = evaluateLegibility(r.terrain, setup.target.graph, setup.landform.land, go);
+  f.patchLegibility = evaluateLegibility(r.patches, setup.target.graph, setup.landform.land, go);
+  if (setup.sketchKind == "DEM")
+  {
+    f.correlation = bandPassCorrelation(r.terrain, setup.target.field, defaultCorrelationScales());
+    f.patchCorrelation =
+      bandPassCorrelation(r.patches, setup.target.field, defaultCorrelationScales());
+  }
+  std::vector<float> offsets;
+  for (const Placement& p : r.placements)
+  {
+    if (p.feature && !std::isnan(p.lineOffset))
+    {
+      offsets.push_back(p.lineOffset);
+    }
+  }
+  if (!offsets.empty())
+  {
+    f.lineOffset = percentile(offsets, 0.5);
+    f.lineOffset90 = percentile(offsets, 0.9);
+  }
+  return f;
+}
+
 void printSummary(const SynthesisSetup& setup,
   const SynthesisResult& r,
-  const TerrainEvaluation& quality,
-  const LandformMeasures& landforms,
+  const SynthFigures& figures,
   double prepare,
   const std::string& output)
 {
@@ -518,8 +568,22 @@ void printSummary(const SynthesisSetup& setup,
               << r.finishing.largestDrainageLowering << " m, mean "
               << r.finishing.meanDrainageChange << " m.\n";
   }
-  printEvaluation("Quality:", quality);
-  printLandforms("", landforms);
+  printEvaluation("Quality:", figures.quality);
+  printLandforms("", figures.landforms);
+  printLegibility("", figures.legibility);
+  printLegibility("  before corrections", figures.patchLegibility);
+  if (!std::isnan(figures.lineOffset))
+  {
+    std::cout << std::left << std::setw(22) << ""
+              << " feature patches lay their own lines " << figure(figures.lineOffset, 1)
+              << " cells from the strokes (median; 90% within " << figure(figures.lineOffset90, 1)
+              << ")\n";
+  }
+  if (!figures.correlation.empty())
+  {
+    printCorrelation("", figures.correlation);
+    printCorrelation("  before corrections", figures.patchCorrelation);
+  }
   std::cout << "Wrote " << output << "\n";
 }
 
@@ -527,8 +591,7 @@ void writeReport(const std::string& path,
   const SynthArguments& a,
   const SynthesisSetup& setup,
   const SynthesisResult& r,
-  const TerrainEvaluation& quality,
-  const LandformMeasures& measures,
+  const SynthFigures& figures,
   double prepare)
 {
   double seamSum = 0.0;
@@ -578,7 +641,7 @@ void writeReport(const std::string& path,
       { "mean_change_m", r.finishing.meanDrainageChange } };
   }
   const double n = static_cast<double>(r.placements.size());
-  const nlohmann::json report = { { "output", a.output },
+  nlohmann::json report = { { "output", a.output },
     { "size", { setup.grid.width, setup.grid.height } },
     { "cell_size_m", { setup.grid.cellX, setup.grid.cellY } },
     { "sketch", a.sketch },
@@ -598,11 +661,22 @@ void writeReport(const std::string& path,
     { "anchored_merges", r.anchoredMerges },
     { "feature_placements", featurePlacements(r) },
     { "mean_seam_cost", n > 0 ? seamSum / n : 0.0 },
-    { "quality", evaluationJson(quality) },
-    { "landform_quality", landformJson(measures) },
+    { "quality", evaluationJson(figures.quality) },
+    { "landform_quality", landformJson(figures.landforms) },
+    { "legibility", legibilityJson(figures.legibility) },
+    { "legibility_before_corrections", legibilityJson(figures.patchLegibility) },
+    { "feature_line_offset_cells",
+      { { "median", figures.lineOffset }, { "p90", figures.lineOffset90 } } },
+    { "landform_raise",
+      { { "ridge", setup.target.ridgeRaise }, { "valley", setup.target.valleyRaise } } },
     { "landforms", landforms },
     { "finishing", finishing },
     { "placement_list", list } };
+  if (!figures.correlation.empty())
+  {
+    report["target_correlation"] = correlationJson(figures.correlation);
+    report["target_correlation_before_corrections"] = correlationJson(figures.patchCorrelation);
+  }
   OutputFile file(path);
   std::ofstream out(file.temporaryPath());
   // Paths are escaped by nlohmann; bytes that are not UTF-8 are replaced rather
@@ -726,16 +800,11 @@ int runSynth(std::vector<std::string> args)
     return kInterruptedExit;
   }
   writeTerrainFile(a.output, r.terrain);
-  const TerrainEvaluation quality =
-    evaluateTerrain(r.terrain, setup.exemplarPointers(), &setup.target.graph);
-  LandformOptions lo;
-  lo.patchSize = a.options.patchSize;
-  const LandformMeasures landforms = evaluateLandforms(
-    r.terrain, setup.target.graph, setup.exemplarPointers(), setup.graphPointers(), lo);
-  printSummary(setup, r, quality, landforms, prepare, a.output);
+  const SynthFigures figures = measureSynthesis(setup, r, a.options.patchSize);
+  printSummary(setup, r, figures, prepare, a.output);
   if (a.report)
   {
-    writeReport(*a.report, a, setup, r, quality, landforms, prepare);
+    writeReport(*a.report, a, setup, r, figures, prepare);
   }
   if (a.debugDir)
   {
@@ -813,8 +882,10 @@ int runEvaluate(std::vector<std::string> args)
   const LandformMeasures lt = landforms(tiledTerrain);
   const LandformMeasures lr = landforms(randomTerrain);
   const LandRelief land(pooled);
+  LegibilityOptions go;
+  go.loneHalfWidth = kLoneHalfWidthInPatches * lo.patchSize;
   auto legibility = [&](const Heightfield& t)
-  { return sketch ? evaluateLegibility(t, *sketch, land) : Legibility{}; };
+  { return sketch ? evaluateLegibility(t, *sketch, land, go) : Legibility{}; };
   const Legibility ge = legibility(terrain);
   const Legibility gr = legibility(randomTerrain);
   auto correlation = [&](const Heightfield& t)
