@@ -83,6 +83,7 @@ without one tsynth re-runs itself under xvfb-run).
 
   -o, --output PNG       the picture to write (.png)
   --3d                   oblique 3D view
+  --grey                 the hillshade alone, in grey (the map only)
   --exaggeration F       vertical exaggeration (default 1 for the map, 2 for --3d)
   --altitude DEG         sun elevation for the map (default 45)
   --azimuth DEG          single light from this direction, clockwise from north
@@ -269,6 +270,7 @@ int runRender(std::vector<std::string> args, int argc, char** argv)
   CommandLine cl(std::move(args));
   const std::optional<std::string> output = cl.take("--output", "-o");
   const bool threeD = cl.takeFlag("--3d");
+  const bool grey = cl.takeFlag("--grey");
   const std::optional<double> exaggeration = cl.takeNumber("--exaggeration");
   const std::optional<double> altitude = cl.takeNumber("--altitude");
   const std::optional<double> azimuth = cl.takeNumber("--azimuth");
@@ -294,6 +296,10 @@ int runRender(std::vector<std::string> args, int argc, char** argv)
   if (size && !threeD)
   {
     throw UsageError("--size applies to the 3D view (--3d); the map has one pixel per cell.");
+  }
+  if (grey && threeD)
+  {
+    throw UsageError("--grey shades the map; the 3D view has its own colours.");
   }
   if ((altitude || azimuth) && threeD)
   {
@@ -332,7 +338,10 @@ int runRender(std::vector<std::string> args, int argc, char** argv)
       shading.azimuthDeg = *azimuth;
     }
     const tsynth::ShadedRelief relief = tsynth::computeHillshade(hf, shading);
-    tsynth::writeRgbPng(*output, hf.width, hf.height, tsynth::renderRelief(hf, relief));
+    tsynth::writeRgbPng(*output,
+      hf.width,
+      hf.height,
+      grey ? tsynth::renderGreyRelief(hf, relief) : tsynth::renderRelief(hf, relief));
   }
   std::cout << "Wrote " << *output << "\n";
   return 0;

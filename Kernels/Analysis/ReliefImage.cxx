@@ -5,6 +5,16 @@
 
 namespace tsynth
 {
+namespace
+{
+
+// Nodata in a flat blue-grey, apart from any land colour.
+constexpr std::array<double, 3> kNodataColour = { 0.55, 0.60, 0.68 };
+// The tint is lit from a quarter (full shadow) to 1.1 times (full light) its colour.
+constexpr double kShadowLight = 0.25;
+constexpr double kLitLight = 0.85;
+
+} // namespace
 
 std::array<double, 3> terrainColour(double t)
 {
@@ -31,10 +41,13 @@ std::array<double, 3> terrainColour(double t)
   return { stops.back()[1], stops.back()[2], stops.back()[3] };
 }
 
-std::vector<std::uint8_t> renderRelief(const Heightfield& hf, const ShadedRelief& relief)
+namespace
 {
-  const HeightRange range = computeHeightRange(hf);
-  const double span = range.max > range.min ? range.max - range.min : 1.0;
+
+// The picture's pixels, first row at the top, from a colour per valid cell.
+template<typename Colour>
+std::vector<std::uint8_t> paint(const Heightfield& hf, Colour colour)
+{
   std::vector<std::uint8_t> rgb(hf.size() * 3);
   for (int r = 0; r < hf.height; ++r)
   {
@@ -42,27 +55,46 @@ std::vector<std::uint8_t> renderRelief(const Heightfield& hf, const ShadedRelief
     for (int i = 0; i < hf.width; ++i)
     {
       const std::size_t k = hf.index(i, j);
-      std::array<double, 3> c = { 0.55, 0.60, 0.68 };
-      if (hf.isValid(k))
-      {
-        c = terrainColour((hf.z[k] - range.min) / span);
-        const double light = 0.25 + 0.85 * relief.shade[k];
-        for (double& v : c)
-        {
-          v *= light;
-        }
-      }
+      const std::array<double, 3> c = hf.isValid(k) ? colour(k) : kNodataColour;
       const std::size_t o = (static_cast<std::size_t>(r) * static_cast<std::size_t>(hf.width) +
                               static_cast<std::size_t>(i)) *
         3;
-      for (int ch = 0; ch < 3; ++ch)
+      for (std::size_t ch = 0; ch < 3; ++ch)
       {
-        rgb[o + static_cast<std::size_t>(ch)] = static_cast<std::uint8_t>(
-          std::lround(std::clamp(c[static_cast<std::size_t>(ch)], 0.0, 1.0) * 255.0));
+        rgb[o + ch] = static_cast<std::uint8_t>(std::lround(std::clamp(c[ch], 0.0, 1.0) * 255.0));
       }
     }
   }
   return rgb;
+}
+
+} // namespace
+
+std::vector<std::uint8_t> renderGreyRelief(const Heightfield& hf, const ShadedRelief& relief)
+{
+  return paint(hf,
+    [&](std::size_t k)
+    {
+      const double g = relief.shade[k];
+      return std::array<double, 3>{ g, g, g };
+    });
+}
+
+std::vector<std::uint8_t> renderRelief(const Heightfield& hf, const ShadedRelief& relief)
+{
+  const HeightRange range = computeHeightRange(hf);
+  const double span = range.max > range.min ? range.max - range.min : 1.0;
+  return paint(hf,
+    [&](std::size_t k)
+    {
+      std::array<double, 3> c = terrainColour((hf.z[k] - range.min) / span);
+      const double light = kShadowLight + kLitLight * relief.shade[k];
+      for (double& v : c)
+      {
+        v *= light;
+      }
+      return c;
+    });
 }
 
 } // namespace tsynth

@@ -18,4 +18,9 @@ std::array<double, 3> terrainColour(double t);
 // Invalid cells are drawn in a flat blue-grey.
 std::vector<std::uint8_t> renderRelief(const Heightfield& hf, const ShadedRelief& relief);
 
+// The same picture without the tint: the hillshade alone in grey, the way
+// landforms are judged by eye (height colours can read as relief that is not
+// there). Invalid cells as in renderRelief.
+std::vector<std::uint8_t> renderGreyRelief(const Heightfield& hf, const ShadedRelief& relief);
+
 } // namespace tsynth
