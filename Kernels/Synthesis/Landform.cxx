@@ -718,10 +718,17 @@ struct ValleyFloors
   std::vector<double> downstream; // per vertex: flow distance to the outlet, metres
 };
 
+// `raised`: the statistics with the relief raised to stand out; a network
+// that drains out through the border takes them, one whose outlet lies
+// inside the map keeps the `measured` depth: its outlet is a closed basin
+// (the land beyond it is the base), and a deeper one filled to a lake that
+// drowned the lower valley (drainage along the meander's valley 0.54 raised
+// against 0.72 unraised on Colorado).
 ValleyFloors valleyFloors(const LineNetwork& net,
   const std::vector<double>& given,
   const std::vector<double>& baseAt,
-  const LandformStatistics& s,
+  const LandformStatistics& raised,
+  const LandformStatistics& measured,
   const LandformFieldOptions& o,
   int w,
   int h,
@@ -737,6 +744,9 @@ ValleyFloors valleyFloors(const LineNetwork& net,
   {
     loop = loop || net.edgesWithin(component) >= component.size();
     const std::size_t outlet = chooseOutlet(net, component, given, w, h, o.patchSize, rng);
+    const bool drainsOut =
+      borderDistance(net.position(outlet), w, h) <= kBorderReachInPatches * o.patchSize;
+    const LandformStatistics& s = drainsOut ? raised : measured;
     const std::vector<double> d = net.distances({ outlet });
     double longest = 0.0;
     for (std::size_t v : component)
@@ -1110,8 +1120,15 @@ LandformField landformField(const FeatureGraph& sketch,
   const LineNetwork valleys(graph, FeatureType::Valley, cellX, cellY);
   const std::vector<double> crest =
     crestHeights(ridges, vertexValues(ridges, graph, heights), baseOf(ridges), s, o, cell, w, h);
-  const ValleyFloors floors = valleyFloors(
-    valleys, vertexValues(valleys, graph, heights), baseOf(valleys), s, o, w, h, out.warnings);
+  const ValleyFloors floors = valleyFloors(valleys,
+    vertexValues(valleys, graph, heights),
+    baseOf(valleys),
+    s,
+    measured,
+    o,
+    w,
+    h,
+    out.warnings);
   const RasterLines ridgeCells = rasteriseNetwork(graph, ridges, crest, w, h);
   const RasterLines valleyCells = rasteriseNetwork(graph, valleys, floors.floor, w, h);
   const RasterLines valleyRims = rasteriseNetwork(graph, valleys, floors.rim, w, h);
