@@ -719,11 +719,12 @@ struct ValleyFloors
 };
 
 // `raised`: the statistics with the relief raised to stand out; a network
-// that drains out through the border takes them, one whose outlet lies
-// inside the map keeps the `measured` depth: its outlet is a closed basin
-// (the land beyond it is the base), and a deeper one filled to a lake that
-// drowned the lower valley (drainage along the meander's valley 0.54 raised
-// against 0.72 unraised on Colorado).
+// that drains out through the border takes them, and so does a loop (a moat
+// with no outlet at all); one whose outlet end lies inside the map keeps the
+// `measured` depth: that end is a closed basin (the land beyond it is the
+// base), and a deeper one filled to a lake that drowned the lower valley
+// (drainage along the meander's valley 0.54 raised against 0.72 unraised on
+// Colorado).
 ValleyFloors valleyFloors(const LineNetwork& net,
   const std::vector<double>& given,
   const std::vector<double>& baseAt,
@@ -746,7 +747,9 @@ ValleyFloors valleyFloors(const LineNetwork& net,
     const std::size_t outlet = chooseOutlet(net, component, given, w, h, o.patchSize, rng);
     const bool drainsOut =
       borderDistance(net.position(outlet), w, h) <= kBorderReachInPatches * o.patchSize;
-    const LandformStatistics& s = drainsOut ? raised : measured;
+    const bool endless = std::none_of(
+      component.begin(), component.end(), [&](std::size_t v) { return net.isEnd(v); });
+    const LandformStatistics& s = drainsOut || endless ? raised : measured;
     const std::vector<double> d = net.distances({ outlet });
     double longest = 0.0;
     for (std::size_t v : component)
