@@ -55,6 +55,9 @@ constexpr double kNarrowestHalfWidthCells = 4.0;
 // A landform is seen out to this far from its line at most (in patches; the
 // legibility measure's loneHalfWidth at 80-cell patches).
 constexpr double kSeenHalfWidthInPatches = 0.5;
+// A valley whose outlet end is a closed basin takes its raised relief (on its
+// rims) from this many patches upstream of that end on.
+constexpr double kOutletTaperInPatches = 0.5;
 // An end within this share of a patch of the border drains out of the map.
 constexpr double kBorderReachInPatches = 0.125;
 // Outlet candidates whose flow paths differ by less than this share are
@@ -720,17 +723,19 @@ struct ValleyFloors
 
 // `raised`: the statistics with the relief raised to stand out; a network
 // that drains out through the border takes them, and so does a loop (a moat
-// with no outlet at all); one whose outlet end lies inside the map keeps the
-// `measured` depth: that end is a closed basin (the land beyond it is the
-// base), and a deeper one filled to a lake that drowned the lower valley
-// (drainage along the meander's valley 0.54 raised against 0.72 unraised on
-// Colorado).
+// with no outlet at all). One whose outlet end lies inside the map keeps the
+// `measured` floor and, at that end, the measured depth, raised only upstream
+// (its rim rising to the raised depth over kOutletTaperInPatches): the end is
+// a closed basin (the land beyond it is the base), and a deeper one filled to
+// a lake that drowned the lower valley (drainage along the meander's valley
+// on Colorado 0.54 raised all along, 0.72 not at all).
 ValleyFloors valleyFloors(const LineNetwork& net,
   const std::vector<double>& given,
   const std::vector<double>& baseAt,
   const LandformStatistics& raised,
   const LandformStatistics& measured,
   const LandformFieldOptions& o,
+  double cell,
   int w,
   int h,
   std::vector<std::string>& warnings)
@@ -747,9 +752,11 @@ ValleyFloors valleyFloors(const LineNetwork& net,
     const std::size_t outlet = chooseOutlet(net, component, given, w, h, o.patchSize, rng);
     const bool drainsOut =
       borderDistance(net.position(outlet), w, h) <= kBorderReachInPatches * o.patchSize;
-    const bool endless = std::none_of(
-      component.begin(), component.end(), [&](std::size_t v) { return net.isEnd(v); });
-    const LandformStatistics& s = drainsOut || endless ? raised : measured;
+    const bool endless =
+      std::none_of(component.begin(), component.end(), [&](std::size_t v) { return net.isEnd(v); });
+    const bool closedOutlet = !drainsOut && !endless;
+    const LandformStatistics& s = closedOutlet ? measured : raised;
+    const double taper = kOutletTaperInPatches * o.patchSize * cell;
     const std::vector<double> d = net.distances({ outlet });
     double longest = 0.0;
     for (std::size_t v : component)
@@ -765,7 +772,14 @@ ValleyFloors valleyFloors(const LineNetwork& net,
       f.floor[v] = std::isnan(given[v])
         ? s.valley.level + rise * (kOutletSlope * t + (1.0 - kOutletSlope) * t * t)
         : given[v];
-      f.rim[v] = f.floor[v] + depth * (1.0 - (1.0 - o.headDepth) * t);
+      double rimDepth = depth;
+      if (closedOutlet)
+      {
+        const double u = taper > 0.0 ? std::min(1.0, d[v] / taper) : 1.0;
+        const double smooth = u * u * (3.0 - 2.0 * u);
+        rimDepth += smooth * std::max(0.0, raised.valley.relief - measured.valley.relief);
+      }
+      f.rim[v] = f.floor[v] + rimDepth * (1.0 - (1.0 - o.headDepth) * t);
     }
   }
   if (loop)
@@ -1129,6 +1143,7 @@ LandformField landformField(const FeatureGraph& sketch,
     s,
     measured,
     o,
+    cell,
     w,
     h,
     out.warnings);
