@@ -18,6 +18,8 @@ namespace
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Rounds of drainage smoothing, each at half the radius of the one before.
 constexpr int kSmoothingRounds = 3;
+// The cuts that make the lines exact are widened this many cells each side.
+constexpr double kCutWideningCells = 4.0;
 constexpr std::array<int, 8> kDx{ 1, 1, 0, -1, -1, -1, 0, 1 };
 constexpr std::array<int, 8> kDy{ 0, 1, 1, 1, 0, -1, -1, -1 };
 
@@ -102,6 +104,35 @@ void cutChannel(Heightfield& out,
   for (std::size_t c : order)
   {
     out.z[c] = static_cast<float>(channelFloor(out, line, c, depth, maxCut));
+  }
+}
+
+// Cells beside the lines take part of the cut their nearest line cell took
+// after the smoothing (`before`: the terrain then): the full cut at the line,
+// fading to none `radius` cells away, never down to less than `depth` above
+// that line cell, so the line stays the lowest and water keeps to it.
+void widenCuts(Heightfield& out,
+  const Heightfield& before,
+  const std::vector<std::uint8_t>& line,
+  const NearestSeeds& near,
+  double depth,
+  double radius)
+{
+  for (std::size_t c = 0; c < out.size(); ++c)
+  {
+    if (line[c] != 0 || !out.isValid(c) || near.nearest[c] < 0 || !(near.distance[c] < radius))
+    {
+      continue;
+    }
+    const std::size_t at = static_cast<std::size_t>(near.nearest[c]);
+    const double cut = static_cast<double>(before.z[at]) - out.z[at];
+    if (cut > 0.0)
+    {
+      const double t = 1.0 - near.distance[c] / radius;
+      const double lowered = out.z[c] - cut * t * t;
+      out.z[c] =
+        static_cast<float>(std::max(lowered, std::min<double>(out.z[c], out.z[at] + depth)));
+    }
   }
 }
 
@@ -374,9 +405,12 @@ DrainageReport drainValleys(Heightfield& out,
     }
   }
   // 3. What the smoothing left: the channel and the descent made exact by
-  // lowering line cells (small now).
+  // lowering line cells, and those cuts widened into a narrow V beside the
+  // line (a one-cell slot through a bump was the sharpest crease of the map).
+  const Heightfield smoothed = out;
   cutChannel(out, order, line, depth, maxCut);
   descendAlongLines(out, order, downstream, o.minimumGradient);
+  widenCuts(out, smoothed, line, near, depth, kCutWideningCells);
 
   report.cells = order.size();
   double sum = 0.0;

@@ -725,7 +725,11 @@ public:
         site, target_.field, noise_, &out_, &filled_, P_, &lowTarget_, &confidence_);
       if (!target_.detailed)
       {
-        q.noise = typicalNoise_; // a drawing says nothing of roughness (see window())
+        // A drawing says nothing of roughness: nothing is asked (the fill asks
+        // for the exemplars' typical roughness to undo its SSD's preference for
+        // smooth windows; the profiles here have no such bias, and asking
+        // raised the seam index, 0.893 -> 0.910 on six Colorado terrains).
+        q.noise.fill(0.0f);
       }
       const DenseQuery fallback = window(x0, y0);
       place(allowed(
