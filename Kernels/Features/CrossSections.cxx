@@ -120,6 +120,28 @@ double sectionRelief(const std::vector<double>& z)
   return l.at(0) - 0.5 * (l.side(-1) + l.side(1));
 }
 
+double sectionSlope(const std::vector<double>& z)
+{
+  // The least-squares slope under the smoothing's Gaussian centred on the
+  // middle: exact on a plane (the smoothed values beside the middle lose a
+  // sample of their kernel at the section's ends, and read 1% flatter).
+  const int half = static_cast<int>(z.size() / 2);
+  const double sigma = kLandformSigmaShare * half;
+  if (!(sigma > 0.0))
+  {
+    return 0.0;
+  }
+  double moment = 0.0;
+  double spread = 0.0;
+  for (int s = -half; s <= half; ++s)
+  {
+    const double w = std::exp(-0.5 * s * s / (sigma * sigma));
+    moment += w * s * z[static_cast<std::size_t>(s + half)];
+    spread += w * s * s;
+  }
+  return std::abs(moment / spread);
+}
+
 LandRelief::LandRelief(const std::vector<const Heightfield*>& exemplars, int sectionsPerExemplar)
   : halfWidths_(std::begin(kReferenceHalfWidths), std::end(kReferenceHalfWidths))
 {
@@ -133,6 +155,7 @@ LandRelief::LandRelief(const std::vector<const Heightfield*>& exemplars, int sec
     const int half = static_cast<int>(halfWidths_[level]);
     double squares = 0.0;
     std::size_t count = 0;
+    std::vector<float> slopes;
     for (std::size_t e = 0; e < exemplars.size(); ++e)
     {
       const Heightfield& ex = *exemplars[e];
@@ -150,24 +173,36 @@ LandRelief::LandRelief(const std::vector<const Heightfield*>& exemplars, int sec
         {
           const double r = sectionRelief(z);
           squares += r * r;
+          slopes.push_back(static_cast<float>(sectionSlope(z)));
           ++count;
           ++found;
         }
       }
     }
     relief_.push_back(count > 0 ? std::sqrt(squares / static_cast<double>(count)) : 0.0);
+    steep_.push_back(slopes.empty() ? 0.0 : percentile(slopes, kSteepShare));
   }
 }
 
 double LandRelief::at(double h) const
 {
-  if (relief_.empty())
+  return interpolate(relief_, h);
+}
+
+double LandRelief::steepSlope(double h) const
+{
+  return interpolate(steep_, h);
+}
+
+double LandRelief::interpolate(const std::vector<double>& levels, double h) const
+{
+  if (levels.empty())
   {
     return 0.0;
   }
   if (h <= halfWidths_.front())
   {
-    return relief_.front();
+    return levels.front();
   }
   for (std::size_t k = 1; k < halfWidths_.size(); ++k)
   {
@@ -175,10 +210,10 @@ double LandRelief::at(double h) const
     {
       const double t =
         std::log(h / halfWidths_[k - 1]) / std::log(halfWidths_[k] / halfWidths_[k - 1]);
-      return (1.0 - t) * relief_[k - 1] + t * relief_[k];
+      return (1.0 - t) * levels[k - 1] + t * levels[k];
     }
   }
-  return relief_.back();
+  return levels.back();
 }
 
 } // namespace tsynth

@@ -38,6 +38,10 @@ struct SectionReading
 // Positive when both sides are lower (higher), metres.
 double sectionProminence(const std::vector<double>& z, double sign, const SectionReading& r = {});
 
+// The same section's slope at its middle, at the smoothing's scale (metres
+// per cell, unsigned).
+double sectionSlope(const std::vector<double>& z);
+
 // The same section's middle over the mean of both sides (signed, no search for
 // the line): the relief a cross-section of land shows at its scale.
 double sectionRelief(const std::vector<double>& z);
@@ -54,10 +58,20 @@ public:
   explicit LandRelief(const std::vector<const Heightfield*>& exemplars,
     int sectionsPerExemplar = 1500);
   double at(double halfWidth) const; // metres, for a half width in cells
+  // The steep end of the land's slopes at that scale: the kSteepShare
+  // quantile of the smoothed sections' slope at their middle (metres per
+  // cell), the steepest flank a landform of that half width may have and
+  // still look like the exemplars' land.
+  double steepSlope(double halfWidth) const;
   bool empty() const { return relief_.empty(); }
 
 private:
-  std::vector<double> halfWidths_, relief_;
+  double interpolate(const std::vector<double>& levels, double halfWidth) const;
+  std::vector<double> halfWidths_, relief_, steep_;
 };
+
+// The quantile of the land's slopes LandRelief::steepSlope reads: one section
+// in thirty is steeper.
+constexpr double kSteepShare = 0.99;
 
 } // namespace tsynth

@@ -1025,10 +1025,14 @@ double unitProminence(const CrossSection& section,
   return sectionProminence(z, sign);
 }
 
-// The factor one kind of landform's relief is raised by so that it stands
-// out (LandformFieldOptions::standOut): at least 1, at most what keeps its
-// crest (floor) within the exemplars' heights.
-double standOutRaise(const LandformProfile& p,
+// The factor one kind of landform's relief is scaled by: raised so that it
+// stands out (LandformFieldOptions::standOut), but never so steep that its
+// flank (the relief over the room it has, at most its width) is steeper than
+// the exemplars' own land at that scale (LandRelief::steepSlope: a grid of
+// ridges and valleys 20 cells apart raised to stand out had 50-degree flanks
+// and twice the exemplars' slopes), nor past their highest (lowest) land.
+// Below 1 where even the exemplars' relief is too steep for the room.
+double reliefFactor(const LandformProfile& p,
   const CrossSection& section,
   FeatureType type,
   double room,
@@ -1036,20 +1040,26 @@ double standOutRaise(const LandformProfile& p,
   const LandformFieldOptions& o,
   double cell)
 {
-  if (!(o.standOut > 0.0) || !(room > 0.0) || !(p.relief > 0.0) || s.land.empty())
+  if (!(room > 0.0) || !(p.relief > 0.0) || s.land.empty())
   {
     return 1.0;
   }
+  const double flank = std::min(room, p.width);
   const int half =
     std::max(1, static_cast<int>(std::min(room / cell, kSeenHalfWidthInPatches * o.patchSize)));
   const double unit = unitProminence(section, room, half, cell, type);
-  if (!(unit > 0.0))
+  double factor = 1.0;
+  if (o.standOut > 0.0 && unit > 0.0)
   {
-    return 1.0;
+    factor = std::max(1.0, o.standOut * s.land.at(half) / unit / p.relief);
   }
-  const double wanted = o.standOut * s.land.at(half) / unit;
-  const double room_ = type == FeatureType::Ridge ? s.highest - s.base : s.base - s.lowest;
-  return std::clamp(wanted / p.relief, 1.0, std::max(1.0, room_ / p.relief));
+  const double steepest = s.land.steepSlope(flank / cell) / cell * flank;
+  if (steepest > 0.0)
+  {
+    factor = std::max(1.0, std::min(factor, steepest / p.relief));
+  }
+  const double highest = type == FeatureType::Ridge ? s.highest - s.base : s.base - s.lowest;
+  return std::min(factor, std::max(1.0, highest / p.relief));
 }
 
 // The statistics with each kind's relief raised by its factor.
@@ -1090,14 +1100,14 @@ LandformField landformField(const FeatureGraph& sketch,
     const MonotoneProfile valleyShape = measured.valley.section.normalised();
     const CrossSection ridgeSection(ridgeShape, measured.ridge.width, narrowest);
     const CrossSection valleySection(valleyShape, measured.valley.width, narrowest);
-    out.ridgeRaise = standOutRaise(measured.ridge,
+    out.ridgeRaise = reliefFactor(measured.ridge,
       ridgeSection,
       FeatureType::Ridge,
       typicalRoom(graph, FeatureType::Ridge, spacing, measured.ridge.width),
       measured,
       o,
       cell);
-    out.valleyRaise = standOutRaise(measured.valley,
+    out.valleyRaise = reliefFactor(measured.valley,
       valleySection,
       FeatureType::Valley,
       typicalRoom(graph, FeatureType::Valley, spacing, measured.valley.width),

@@ -165,8 +165,9 @@ struct SetupInputs
   // The matcher may run on OpenCL (backend auto or opencl): its memory counts too.
   bool openClMatcher = true;
   std::uint64_t seed = 0; // breaks ties in the target (valley outlets)
-  // Sketched ridges and valleys get this times the relief of the exemplars'
-  // own major ones (1: like them); a DEM target keeps its own.
+  // Sketched ridges and valleys get this times the relief they are given to
+  // stand out of the exemplars' own land (the exemplars' major ones', raised
+  // on rugged land: LandformFieldOptions::standOut); a DEM target keeps its own.
   double landformRelief = 1.0;
   SetupOptionNames names;
 };

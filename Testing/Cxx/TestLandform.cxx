@@ -682,6 +682,16 @@ TEST(LandformField, LandformsAreRaisedToStandOutOfRuggedLandOnlyAndKeepWithinIt)
   const LandformField capped = landformField(g, kW, kH2, kCell, kCell, rugged, fieldOptions());
   EXPECT_NEAR(capped.ridgeRaise, 1.2, 1e-9);
   EXPECT_NEAR(capped.field.at(60, 80), kBase + 1.2 * kRelief, 1e-2);
+  // However much it is asked to stand out, a flank is never steeper than the
+  // steep end of the land's slopes at its width (one section in a hundred).
+  LandformFieldOptions bold = fieldOptions();
+  bold.standOut = 50.0;
+  rugged.highest = kBase + 50.0 * kRelief;
+  const double width = handStatistics().ridge.width;
+  const double steepest = rugged.land.steepSlope(width / kCell) / kCell * width;
+  const LandformField steep = landformField(g, kW, kH2, kCell, kCell, rugged, bold);
+  EXPECT_NEAR(steep.ridgeRaise, std::max(1.0, steepest / kRelief), 1e-9);
+  EXPECT_LT(steep.ridgeRaise, 50.0);
   // standOut 0 turns the rule off.
   LandformFieldOptions off = fieldOptions();
   off.standOut = 0.0;

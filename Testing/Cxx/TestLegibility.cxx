@@ -188,6 +188,9 @@ TEST(CrossSections, LandReliefGrowsWithRoughnessAndIsZeroOnAPlane)
     EXPECT_NEAR(hard.at(h) / soft.at(h), 4.0, 1e-3) << h;
   }
   EXPECT_GT(soft.at(30.0), soft.at(4.0)); // wider sections see more of the relief
+  // A plane's steepest sections run down its gradient: 3.6 m per cell.
+  EXPECT_NEAR(flat.steepSlope(10.0), std::hypot(3.0, 2.0), 0.02);
+  EXPECT_NEAR(hard.steepSlope(10.0) / soft.steepSlope(10.0), 4.0, 1e-3);
   EXPECT_EQ(LandRelief({ &gentle }).at(16.0), soft.at(16.0)); // a fixed seed
   EXPECT_EQ(LandRelief().at(16.0), 0.0);
 }
