@@ -76,11 +76,14 @@ struct LandformFieldOptions
   int patchSize = 80;
   // A sketched ridge's crest (valley's floor) stands out of its sides by at
   // least this many times the land's own relief at its half width (as
-  // sectionProminence measures both), its relief raised where need be (never
-  // past LandformStatistics::lowest/highest). The legibility measure calls a
+  // sectionProminence measures both), its relief raised where need be, but
+  // never so far that its flank is steeper than the land's steep end at that
+  // width (LandRelief::steepSlope) or its crest (floor) passes
+  // LandformStatistics::highest (lowest). The legibility measure calls a
   // stroke legible at 1 (Metrics/Legibility.h); the texture the patches lay
   // over the landform scatters it by about 1 more, and the eye wants it to
-  // stand out at a glance: 0 turns the rule off.
+  // stand out at a glance; on the bundled rugged exemplars the slope limit
+  // binds first. 0 turns the rule off.
   double standOut = 4.0;
   std::uint64_t seed = 0; // breaks ties between equally good valley outlets
   // A ridge's crest keeps this share of its relief at a free end (a spur ends
