@@ -78,8 +78,10 @@ writes them: its output works directly as a sketch of the same DEM.
                          --region L=E1,E2 says otherwise (repeatable)
   --no-vertical-offset   place patches at their own heights (default: fitted to the overlap)
   --repetition P         seam-cost penalty for reusing a nearby source (default 0.5; 0 = off)
-  --landform-relief F    sketched ridges and valleys get F times the relief of the exemplars'
-                         own major ones (default 1; 0.1 to 5: above 1 for bolder landforms)
+  --landform-relief F    sketched ridges and valleys get F times the relief they are given
+                         to stand out of the exemplars' own land (the exemplars' major ones',
+                         raised on rugged land; default 1; 0.1 to 5: above 1 bolder, below
+                         softer)
   --max-memory GB        refuse a synthesis estimated to need more (default: 80% of the
                          machine's memory)
   --no-progress          no progress bar on the terminal

@@ -27,12 +27,16 @@ using Clock = std::chrono::steady_clock;
 constexpr float kLineHalfWidth = 3.0f; // cells each side of a sketched line
 constexpr int kMaxAttempts = 4;        // placements tried at one fill site
 // Scale of the final landform correction, in patches: relief coarser than a
-// quarter patch is pulled towards the target (what the patches missed or
+// sixth of a patch is pulled towards the target (what the patches missed or
 // drifted off); the detail within it stays the patches' own. Applied once, at
 // the end: also pulling what was placed during the synthesis drew the
 // landforms more strongly but flattened the land (slope distance 0.18-0.21
-// against 0.04-0.08 on the bundled sketches).
-constexpr double kCorrectionScaleInPatches = 0.25;
+// against 0.04-0.08 on the bundled sketches). A quarter patch left lone
+// strokes to the texture (legible 0.55 and 0.36 on Everest's letters and
+// Colorado's spiral; 0.64 and 0.47 at a sixth); an eighth (0.77, 0.60) made
+// the bundled sketches flatter than the exemplars (slope distance 0.063 over
+// 44 terrains against 0.043 at a sixth, 0.039 at a quarter) and drain worse.
+constexpr double kCorrectionScaleInPatches = 1.0 / 6.0;
 // Where sketched landforms are narrower than that (strokes drawn close), the
 // correction works at this share of their half width (a valley 25 cells wide
 // each side: relief coarser than 8 cells), so each one is drawn at its own

@@ -54,10 +54,11 @@ struct SynthesisOptions
   // Added to a candidate's seam cost (per seam edge) for every earlier placement
   // that took a source within half a patch of it: discourages visible repeats.
   double repetitionPenalty = 0.5;
-  // The final, gentle correction (Tasse's final deformation): the output's
-  // relief coarser than this Gaussian sigma (cells) is pulled towards the
-  // target's, as far as the target is confident. The landforms' cross-sections
-  // are finer and stay the patches' own. <0: half a patch; 0: off.
+  // The final correction (Tasse's final deformation): the output's relief
+  // coarser than this Gaussian sigma (cells) is pulled towards the target's,
+  // as far as the target is confident; where sketched landforms are narrower
+  // it works at a third of their half width, down to kFinestCorrectionInPatches.
+  // The detail finer stays the patches' own. <0: a sixth of a patch; 0: off.
   double correctionScale = -1.0;
   // Sketched valleys are made to drain: floors descend to their outlets and a
   // channel runs along them (Finishing.h).
