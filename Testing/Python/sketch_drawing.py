@@ -138,3 +138,38 @@ def valley_loop():
     c = Canvas(192, 192)
     c.circle(96, 96, 55, VALLEY)
     return c
+
+
+# The legibility sketches (issue 20): strokes closer together than a patch, 320 x 320 for 40-cell
+# patches, as a person draws them to get them back as land.
+
+def valley_network():
+    """A trunk valley running out through the south border, ten side valleys 25-35 pixels apart
+    leaving it at a slant, and a bounding ridge each side."""
+    c = Canvas(SIZE, SIZE)
+    c.polyline([(38, 12), (25, 125), (38, 238), (62, 312)], RIDGE)
+    c.polyline([(282, 12), (295, 125), (282, 238), (258, 312)], RIDGE)
+    c.polyline([(160, 25), (157, 95), (163, 162), (157, 238), (160, SIZE + 10)], VALLEY)
+    for y0, side, length in ((50, -1, 95), (75, 1, 100), (106, -1, 105), (131, 1, 105), (162, -1, 100),
+                             (188, 1, 103), (219, -1, 95), (244, 1, 90), (269, -1, 75), (288, 1, 70)):
+        x1 = 158 + side * length
+        c.polyline([(158, y0), ((158 + x1) / 2, y0 - 11), (x1, y0 - 34)], VALLEY)
+    return c
+
+
+def letters_in_a_ring():
+    """Block letters T and S in ridge strokes inside a ring valley."""
+    c = Canvas(SIZE, SIZE)
+    c.circle(160, 160, 144, VALLEY)
+    c.polyline([(69, 94), (150, 94)], RIDGE)
+    c.polyline([(109, 94), (109, 231)], RIDGE)
+    c.polyline([(250, 94), (181, 94), (181, 162), (250, 162), (250, 231), (181, 231)], RIDGE)
+    return c
+
+
+def grid():
+    """Ridges and valleys in turn, 40 pixels apart, across the whole map."""
+    c = Canvas(SIZE, SIZE)
+    for k, y in enumerate(range(40, SIZE, 40)):
+        c.polyline([(-5, y), (SIZE + 5, y)], RIDGE if k % 2 == 0 else VALLEY)
+    return c

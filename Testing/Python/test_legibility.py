@@ -1,0 +1,173 @@
+"""Issue 20: the sketch reads off the terrain. Drawn sketches whose strokes are closer together than a
+patch (a branching valley network between bounding ridges, block letters in a ring valley, rings, a
+grid), each with two exemplars, must be legible at each stroke's own scale (LegibilityOptions: the
+share of stroke length whose cross-section, out to half the spacing to the facing stroke, stands out
+of the exemplars' own relief at that half width); a DEM target must be followed at its own scales at
+least as well as Tasse's code follows it; strokes finer than the patches draw get a warning."""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import harness  # noqa: E402
+from harness import PATHS  # noqa: E402
+import sketch_drawing  # noqa: E402
+
+PATCH = "40"  # the drawings are 320 x 320 (sketch_drawing.SIZE)
+BOTH = ("colorado.png", "alps-montblanc.png")
+
+# Least legible shares (whole stroke length, ridges, valleys) each drawing must reach with both
+# exemplars. Measured over seeds 0-2 (the least in the comment, then the previous landing's best, whose
+# tsynth ignored the stroke spacing: that landing fails each bar); each bar is set a little below the
+# least so that another seed passes too.
+BARS = {
+    # least 0.64 (ridges 0.88, valleys 0.53); previous landing's best 0.57 (valleys 0.44)
+    "valley_network": {"all": 0.6, "valley": 0.5},
+    # least 0.82 (ridges 0.73, valleys 0.85); previous 0.72 (valleys 0.70)
+    "letters_in_a_ring": {"all": 0.78, "valley": 0.8},
+    # least 0.92 (ridges 0.97, valleys 0.89); previous 0.74 (valleys 0.66)
+    "rings": {"all": 0.85, "valley": 0.85},
+    # least 0.88 (ridges 0.89, valleys 0.80); previous 0.96 with Colorado but 0.89 (ridges 0.82) with
+    # Mont Blanc: the grid already read well, and still does
+    "grid": {"all": 0.85, "ridge": 0.86},
+}
+
+
+def tsynth(*args):
+    return subprocess.run([PATHS.tsynth, *args], capture_output=True, text=True, timeout=600)
+
+
+class LegibilityTest(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.mkdtemp(prefix="tsynth-legibility-")
+        self.dems = os.path.join(PATHS.bundled_data, "dems")
+
+    def tearDown(self):
+        shutil.rmtree(self.tmp)
+
+    def synthesise(self, exemplar, sketch, out, *extra):
+        result = tsynth("synth", "--exemplar", exemplar, "--sketch", sketch, "-o", out, "--report",
+                        out + ".json", "--no-progress", *extra)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        with open(out + ".json") as f:
+            return json.load(f), result.stderr
+
+    def evaluate(self, terrain, exemplar, sketch, *extra):
+        result = tsynth("evaluate", terrain, "--exemplar", exemplar, "--sketch", sketch, "--json", *extra)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        return json.loads(result.stdout)
+
+    def assert_legible(self, draw):
+        sketch = draw().save(os.path.join(self.tmp, draw.__name__ + ".png"))
+        bar = BARS[draw.__name__]
+        for exemplar in BOTH:
+            with self.subTest(exemplar=exemplar):
+                dem = os.path.join(self.dems, exemplar)
+                out = os.path.join(self.tmp, exemplar + ".tif")
+                report, _ = self.synthesise(dem, sketch, out, "--patch", PATCH)
+                ours = report["legibility"]
+                figures = {"all": ours["legible_share"], "ridge": ours["ridge"]["legible_share"],
+                           "valley": ours["valley"]["legible_share"]}
+                for kind, least in bar.items():
+                    self.assertGreaterEqual(figures[kind], least, "%s: %s" % (kind, ours))
+                # tsynth evaluate reads the same from the file, and the random-patch baseline (the
+                # exemplar pasted at random: no sketch in it) reads far less.
+                evaluated = self.evaluate(out, dem, sketch, "--patch", PATCH)
+                self.assertAlmostEqual(evaluated["terrain"]["legibility"]["legible_share"],
+                                       ours["legible_share"], delta=1e-6)
+                self.assertLess(evaluated["random_patches"]["legibility"]["legible_share"],
+                                ours["legible_share"] - 0.3)
+                # The patches carry their own ridges and valleys onto the strokes before any
+                # correction: their PPA lines lie within a few cells of the drawn ones (measured on
+                # 40-cell patches: median 1.0 cells, 90th percentile 1.0-2.0; on the letters with
+                # 80-cell patches and Everest 2.0 and 3.7, against 5.0 and 8.2 when the seam cost
+                # alone chose among 8 candidates).
+                offsets = report["feature_line_offset_cells"]
+                self.assertLessEqual(offsets["median"], 1.5)
+                self.assertLessEqual(offsets["p90"], 3.0)
+                self.assertGreater(report["legibility_before_corrections"]["legible_share"],
+                                   evaluated["random_patches"]["legibility"]["legible_share"])
+
+    def test_valley_network_between_bounding_ridges(self):
+        self.assert_legible(sketch_drawing.valley_network)
+
+    def test_letters_in_a_ring_valley(self):
+        self.assert_legible(sketch_drawing.letters_in_a_ring)
+
+    def test_rings(self):
+        self.assert_legible(sketch_drawing.rings)
+
+    def test_grid_stays_legible(self):
+        self.assert_legible(sketch_drawing.grid)
+
+    def test_strokes_closer_than_the_patches_draw_get_a_warning_naming_the_spacing_and_patch(self):
+        # Ridges 15 pixels apart: 40-cell patches draw strokes 24 cells apart at the finest (the final
+        # correction goes down to a tenth of a patch, and follows three times that each side).
+        c = sketch_drawing.Canvas(sketch_drawing.SIZE, sketch_drawing.SIZE)
+        for y in range(20, 310, 15):
+            c.polyline([(10, y), (310, y)], sketch_drawing.RIDGE, pen=4)
+        sketch = c.save(os.path.join(self.tmp, "fine.png"))
+        dem = os.path.join(self.dems, "colorado.png")
+        _, stderr = self.synthesise(dem, sketch, os.path.join(self.tmp, "fine.tif"), "--patch", PATCH)
+        found = re.search(r"strokes are about (\d+) cells apart, closer than 40-cell patches draw: "
+                          r"they will read faintly; give a patch of (\d+) cells", stderr)
+        self.assertIsNotNone(found, stderr)
+        spacing, patch = int(found.group(1)), int(found.group(2))
+        self.assertLessEqual(abs(spacing - 15), 1)  # drawn 15 apart, read off skeletons of 4-pixel pens
+        # The largest patch (a multiple of 4) whose finest correction, 0.6 of it, fits that spacing.
+        self.assertEqual(patch, int(spacing / 0.6) // 4 * 4)
+        # The drawings above leave their strokes room: no such warning.
+        sketch = sketch_drawing.valley_network().save(os.path.join(self.tmp, "network.png"))
+        _, stderr = self.synthesise(dem, sketch, os.path.join(self.tmp, "network.tif"), "--patch", PATCH)
+        self.assertNotIn("cells apart", stderr)
+
+
+# Band-pass correlation (sigma 2, 4, 8, 16, 32 cells) with the target of Tasse's code (the peer) on a
+# 320 x 320 window of the bundled Mount Jackson DEM as the target, 80-cell patches, measured with
+# ../shared/peers/tasse/run.sh and tsynth evaluate (README, "Legibility"). Ours must reach at least the
+# peer's at every scale once corrected, and before the corrections at the finer two.
+PEER_CORRELATION = {
+    "colorado.png": (0.06, 0.18, 0.40, 0.69, 0.84),
+    "alps-montblanc.png": (0.06, 0.20, 0.46, 0.81, 0.93),
+}
+
+
+class DemTargetTest(unittest.TestCase):
+    def test_a_dem_target_is_followed_at_its_own_scales_at_least_as_well_as_by_the_peer(self):
+        tmp = tempfile.mkdtemp(prefix="tsynth-dem-target-")
+        try:
+            full = os.path.join(tmp, "jackson.tif")
+            target = os.path.join(tmp, "target.tif")
+            subprocess.run([PATHS.tsynth, "convert", os.path.join(PATHS.bundled_data, "dems",
+                                                                  "mount_jackson_crop601.tif"), "-o", full],
+                           check=True, stdout=subprocess.DEVNULL)
+            subprocess.run(["gdal_translate", "-q", "-srcwin", "100", "100", "320", "320", full, target],
+                           check=True)
+            for exemplar, peer in PEER_CORRELATION.items():
+                with self.subTest(exemplar=exemplar):
+                    out = os.path.join(tmp, exemplar + ".tif")
+                    result = tsynth("synth", "--exemplar", os.path.join(PATHS.bundled_data, "dems", exemplar),
+                                    "--sketch", target, "-o", out, "--report", out + ".json", "--no-progress")
+                    self.assertEqual(result.returncode, 0, result.stderr)
+                    # Its ridges and valleys are about 10 cells apart: finer than 80-cell patches follow.
+                    self.assertIn("cells apart, finer than 80-cell patches follow", result.stderr)
+                    with open(out + ".json") as f:
+                        report = json.load(f)
+                    final = [c["correlation"] for c in report["target_correlation"]]
+                    before = [c["correlation"] for c in report["target_correlation_before_corrections"]]
+                    self.assertEqual([c["sigma_cells"] for c in report["target_correlation"]], [2, 4, 8, 16, 32])
+                    for ours, theirs in zip(final, peer):
+                        self.assertGreaterEqual(ours, theirs)
+                    for ours, theirs in zip(before[:2], peer[:2]):
+                        self.assertGreaterEqual(ours, theirs)
+        finally:
+            shutil.rmtree(tmp)
+
+
+if __name__ == "__main__":
+    harness.run(__name__)
