@@ -513,8 +513,9 @@ SynthFigures measureSynthesis(const SynthesisSetup& setup, const SynthesisResult
     r.terrain, setup.target.graph, setup.exemplarPointers(), setup.graphPointers(), lo);
   LegibilityOptions go;
   go.loneHalfWidth = kLoneHalfWidthInPatches * patchSize;
-  f.legibility = evaluateLegibility(r.terrain, setup.target.graph, setup.landform.land, go);
-  f.patchLegibility = evaluateLegibility(r.patches, setup.target.graph, setup.landform.land, go);
+  const LegibilityMeter legibility(setup.target.graph, setup.landform.land, go);
+  f.legibility = legibility.measure(r.terrain);
+  f.patchLegibility = legibility.measure(r.patches);
   if (setup.sketchKind == "DEM")
   {
     f.correlation = bandPassCorrelation(r.terrain, setup.target.field, defaultCorrelationScales());
@@ -886,8 +887,9 @@ int runEvaluate(std::vector<std::string> args)
   const LandRelief land(pooled);
   LegibilityOptions go;
   go.loneHalfWidth = kLoneHalfWidthInPatches * lo.patchSize;
-  auto legibility = [&](const Heightfield& t)
-  { return sketch ? evaluateLegibility(t, *sketch, land, go) : Legibility{}; };
+  const std::optional<LegibilityMeter> meter =
+    sketch ? std::make_optional<LegibilityMeter>(*sketch, land, go) : std::nullopt;
+  auto legibility = [&](const Heightfield& t) { return meter ? meter->measure(t) : Legibility{}; };
   const Legibility ge = legibility(terrain);
   const Legibility gr = legibility(randomTerrain);
   auto correlation = [&](const Heightfield& t)

@@ -49,6 +49,24 @@ void forEachChainCell(const FeatureChain& chain,
   }
 }
 
+std::vector<std::uint8_t> rasteriseChains(const FeatureGraph& graph, int width, int height)
+{
+  std::vector<std::uint8_t> cells(
+    static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0);
+  for (const FeatureChain& c : graph.chains)
+  {
+    forEachChainCell(c,
+      width,
+      height,
+      [&](int i, int j, std::size_t, double)
+      {
+        cells[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) +
+          static_cast<std::size_t>(i)] = 1;
+      });
+  }
+  return cells;
+}
+
 double FeatureChain::length() const
 {
   double sum = 0.0;

@@ -110,6 +110,10 @@ void forEachChainCell(const FeatureChain& chain,
   int height,
   const std::function<void(int i, int j, std::size_t k, double t)>& visit);
 
+// The cells under the chains of a graph (forEachChainCell's), 1 on a
+// width x height grid of 0.
+std::vector<std::uint8_t> rasteriseChains(const FeatureGraph& graph, int width, int height);
+
 // Appends b's nodes and chains to a (renumbered) and recomputes the order.
 void appendGraph(FeatureGraph& a, const FeatureGraph& b);
 

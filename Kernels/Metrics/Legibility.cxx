@@ -29,25 +29,6 @@ double median(std::vector<double> v)
   return v[mid];
 }
 
-// The cells under every chain of the graph.
-std::vector<std::uint8_t> strokeCells(const FeatureGraph& g)
-{
-  std::vector<std::uint8_t> cells(
-    static_cast<std::size_t>(g.width) * static_cast<std::size_t>(g.height), 0);
-  for (const FeatureChain& c : g.chains)
-  {
-    forEachChainCell(c,
-      g.width,
-      g.height,
-      [&](int i, int j, std::size_t, double)
-      {
-        cells[static_cast<std::size_t>(j) * static_cast<std::size_t>(g.width) +
-          static_cast<std::size_t>(i)] = 1;
-      });
-  }
-  return cells;
-}
-
 struct Sample
 {
   double prominence = 0.0;
@@ -59,13 +40,13 @@ class SectionReader
 {
 public:
   SectionReader(const Heightfield& terrain,
-    const FeatureGraph& sketch,
+    const StrokeSpacing& spacing,
     const LandRelief& land,
     const LegibilityOptions& o)
     : terrain_(terrain)
     , land_(land)
     , o_(o)
-    , spacing_(strokeSpacing(strokeCells(sketch), sketch.width, sketch.height))
+    , spacing_(spacing)
   {
   }
 
@@ -112,7 +93,7 @@ private:
   const Heightfield& terrain_;
   const LandRelief& land_;
   const LegibilityOptions& o_;
-  StrokeSpacing spacing_;
+  const StrokeSpacing& spacing_;
 };
 
 StrokeLegibility summarise(const std::vector<Sample>& samples)
@@ -188,25 +169,33 @@ std::vector<float> bandPass(const Heightfield& hf, double sigma)
 
 } // namespace
 
-Legibility evaluateLegibility(const Heightfield& terrain,
-  const FeatureGraph& sketch,
+LegibilityMeter::LegibilityMeter(const FeatureGraph& sketch,
   const LandRelief& land,
   const LegibilityOptions& o)
+  : sketch_(sketch)
+  , land_(land)
+  , options_(o)
 {
-  if (sketch.width != terrain.width || sketch.height != terrain.height)
-  {
-    throw Error("The sketch's lines are on a " + std::to_string(sketch.width) + " x " +
-      std::to_string(sketch.height) + " grid, the terrain is " + std::to_string(terrain.width) +
-      " x " + std::to_string(terrain.height) + " cells.");
-  }
   if (!(o.loneHalfWidth >= o.minHalfWidth && o.minHalfWidth >= 1.0 && o.margin >= 0.0 &&
         o.reading.lineShare >= 0.0 && o.reading.lineShare < 1.0 && o.reading.tolerance >= 0.0))
   {
     throw Error("Legibility options out of range.");
   }
-  const SectionReader reader(terrain, sketch, land, o);
+  spacing_ = strokeSpacing(
+    rasteriseChains(sketch, sketch.width, sketch.height), sketch.width, sketch.height);
+}
+
+Legibility LegibilityMeter::measure(const Heightfield& terrain) const
+{
+  if (sketch_.width != terrain.width || sketch_.height != terrain.height)
+  {
+    throw Error("The sketch's lines are on a " + std::to_string(sketch_.width) + " x " +
+      std::to_string(sketch_.height) + " grid, the terrain is " + std::to_string(terrain.width) +
+      " x " + std::to_string(terrain.height) + " cells.");
+  }
+  const SectionReader reader(terrain, spacing_, land_, options_);
   std::vector<Sample> ridge, valley;
-  for (const FeatureChain& c : sketch.chains)
+  for (const FeatureChain& c : sketch_.chains)
   {
     if (c.points.size() < 2)
     {
@@ -234,6 +223,14 @@ Legibility evaluateLegibility(const Heightfield& terrain,
     l.share = (r + v) / static_cast<double>(all);
   }
   return l;
+}
+
+Legibility evaluateLegibility(const Heightfield& terrain,
+  const FeatureGraph& sketch,
+  const LandRelief& land,
+  const LegibilityOptions& options)
+{
+  return LegibilityMeter(sketch, land, options).measure(terrain);
 }
 
 std::vector<double> defaultCorrelationScales()

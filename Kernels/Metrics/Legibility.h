@@ -11,6 +11,7 @@
 #include "../Core/Heightfield.h"
 #include "../Features/CrossSections.h"
 #include "../Features/FeatureGraph.h"
+#include "../Features/StrokeSpacing.h"
 
 #include <cstddef>
 #include <limits>
@@ -56,9 +57,28 @@ struct Legibility
   double share = StrokeLegibility::kNaN;
 };
 
-// `sketch` on the terrain's grid (as scaled for a synthesis); `land` the
-// exemplars' relief the strokes must stand out of (at the terrain's cell
-// size). Throws tsynth::Error for a graph on another grid or options out of range.
+// Measures terrains against one sketch: the strokes' spacing (StrokeSpacing,
+// the costly part) is read once, for all the terrains measured. `sketch` on the
+// terrains' grid (as scaled for a synthesis); `land` the exemplars' relief the
+// strokes must stand out of (at the terrains' cell size). Both must outlive the
+// meter. Throws tsynth::Error for options out of range.
+class LegibilityMeter
+{
+public:
+  LegibilityMeter(const FeatureGraph& sketch,
+    const LandRelief& land,
+    const LegibilityOptions& options = {});
+  // Throws tsynth::Error for a terrain on another grid than the sketch's.
+  Legibility measure(const Heightfield& terrain) const;
+
+private:
+  const FeatureGraph& sketch_;
+  const LandRelief& land_;
+  LegibilityOptions options_;
+  StrokeSpacing spacing_;
+};
+
+// One terrain: LegibilityMeter(sketch, land, options).measure(terrain).
 Legibility evaluateLegibility(const Heightfield& terrain,
   const FeatureGraph& sketch,
   const LandRelief& land,

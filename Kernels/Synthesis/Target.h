@@ -92,9 +92,6 @@ SynthesisTarget targetFromGreySketch(const Heightfield& grey,
   int patchSize,
   std::uint64_t seed = 0);
 
-// Cells under the chains of a graph (8-connected lines between their points).
-std::vector<std::uint8_t> rasteriseChains(const FeatureGraph& graph, int width, int height);
-
 // What the sketch's heights are, when it has them.
 enum class SketchHeights
 {

@@ -218,6 +218,11 @@ TEST(Legibility, AGaussianRidgeOnTheStrokeIsLegibleAndTheLandBesideItIsNot)
   EXPECT_LT(evaluateLegibility(ridged, asValley, relief).valley.share, 0.05);
   // The bare land reads about as often as chance would have it.
   EXPECT_LT(evaluateLegibility(land, onIt, relief).ridge.share, 0.35);
+  // One meter measures terrain after terrain as one evaluation each would.
+  const LegibilityMeter meter(onIt, relief);
+  EXPECT_EQ(meter.measure(land).ridge.share, evaluateLegibility(land, onIt, relief).ridge.share);
+  EXPECT_EQ(meter.measure(ridged).ridge.share, good.ridge.share);
+  EXPECT_EQ(meter.measure(ridged).ridge.prominence, good.ridge.prominence);
 }
 
 TEST(Legibility, NeighbouringStrokesAreReadAtHalfTheirSpacing)
