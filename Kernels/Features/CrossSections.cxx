@@ -149,39 +149,51 @@ LandRelief::LandRelief(const std::vector<const Heightfield*>& exemplars, int sec
   {
     throw Error("No exemplar to measure the land's relief on.");
   }
-  std::vector<double> z;
-  for (std::size_t level = 0; level < halfWidths_.size(); ++level)
+  // Each level draws from its own streams: the levels run in parallel and give
+  // the same figures on any number of threads.
+  const long levels = static_cast<long>(halfWidths_.size());
+  relief_.assign(halfWidths_.size(), 0.0);
+  steep_.assign(halfWidths_.size(), 0.0);
+#pragma omp parallel for schedule(dynamic)
+  for (long level = 0; level < levels; ++level)
   {
-    const int half = static_cast<int>(halfWidths_[level]);
-    double squares = 0.0;
-    std::size_t count = 0;
-    std::vector<float> slopes;
-    for (std::size_t e = 0; e < exemplars.size(); ++e)
+    measureLevel(exemplars, static_cast<std::size_t>(level), sectionsPerExemplar);
+  }
+}
+
+void LandRelief::measureLevel(const std::vector<const Heightfield*>& exemplars,
+  std::size_t level,
+  int sectionsPerExemplar)
+{
+  const int half = static_cast<int>(halfWidths_[level]);
+  double squares = 0.0;
+  std::size_t count = 0;
+  std::vector<float> slopes;
+  std::vector<double> z;
+  for (std::size_t e = 0; e < exemplars.size(); ++e)
+  {
+    const Heightfield& ex = *exemplars[e];
+    const std::uint64_t stream = (level * exemplars.size() + e) << 8;
+    int found = 0;
+    for (int draw = 0; draw < kDrawsPerSection * sectionsPerExemplar && found < sectionsPerExemplar;
+         ++draw)
     {
-      const Heightfield& ex = *exemplars[e];
-      const std::uint64_t stream = (level * exemplars.size() + e) << 8;
-      int found = 0;
-      for (int draw = 0;
-           draw < kDrawsPerSection * sectionsPerExemplar && found < sectionsPerExemplar;
-           ++draw)
+      const std::uint64_t k = static_cast<std::uint64_t>(draw);
+      const double x = seededUniform(kSectionSeed, stream | kStreamX, k) * (ex.width - 1);
+      const double y = seededUniform(kSectionSeed, stream | kStreamY, k) * (ex.height - 1);
+      const double a = seededUniform(kSectionSeed, stream | kStreamAngle, k) * kTwoPi;
+      if (readSection(ex, x, y, std::cos(a), std::sin(a), half, z))
       {
-        const std::uint64_t k = static_cast<std::uint64_t>(draw);
-        const double x = seededUniform(kSectionSeed, stream | kStreamX, k) * (ex.width - 1);
-        const double y = seededUniform(kSectionSeed, stream | kStreamY, k) * (ex.height - 1);
-        const double a = seededUniform(kSectionSeed, stream | kStreamAngle, k) * kTwoPi;
-        if (readSection(ex, x, y, std::cos(a), std::sin(a), half, z))
-        {
-          const double r = sectionRelief(z);
-          squares += r * r;
-          slopes.push_back(static_cast<float>(sectionSlope(z)));
-          ++count;
-          ++found;
-        }
+        const double r = sectionRelief(z);
+        squares += r * r;
+        slopes.push_back(static_cast<float>(sectionSlope(z)));
+        ++count;
+        ++found;
       }
     }
-    relief_.push_back(count > 0 ? std::sqrt(squares / static_cast<double>(count)) : 0.0);
-    steep_.push_back(slopes.empty() ? 0.0 : percentile(slopes, kSteepShare));
   }
+  relief_[level] = count > 0 ? std::sqrt(squares / static_cast<double>(count)) : 0.0;
+  steep_[level] = slopes.empty() ? 0.0 : percentile(slopes, kSteepShare);
 }
 
 double LandRelief::at(double h) const

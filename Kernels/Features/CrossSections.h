@@ -67,6 +67,11 @@ public:
 
 private:
   double interpolate(const std::vector<double>& levels, double halfWidth) const;
+  // One reference half width: its relief_ and steep_ entries.
+  void measureLevel(const std::vector<const Heightfield*>& exemplars,
+    std::size_t level,
+    int sectionsPerExemplar);
+
   std::vector<double> halfWidths_, relief_, steep_;
 };
 
