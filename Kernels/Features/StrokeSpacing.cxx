@@ -6,7 +6,6 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <queue>
 
 namespace tsynth
 {
@@ -25,16 +24,6 @@ constexpr double kFacingRatio = 1.5;
 // ... and at least this many cells apart: on a stroke itself neighbouring cells
 // have neighbouring nearest points.
 constexpr double kMinFacingCells = 3.0;
-
-struct Cell
-{
-  float distance;
-  std::size_t index;
-  bool operator>(const Cell& o) const
-  {
-    return distance != o.distance ? distance > o.distance : index > o.index;
-  }
-};
 
 class Grid
 {
@@ -107,70 +96,100 @@ std::vector<std::uint8_t> medialAxis(const NearestSeeds& near,
   return medial;
 }
 
-// Metres from every cell to the nearest medial cell along paths that do not
-// cross a stroke (stroke cells are walls; a diagonal step between two stroke
-// cells that touch at a corner is one too).
-std::vector<float> distanceToMedial(const std::vector<std::uint8_t>& medial,
-  const std::vector<std::uint8_t>& strokes,
-  const Grid& g)
+// Metres from every cell to the nearest medial cell along 8-connected paths
+// that do not cross a stroke (stroke cells are walls: they get a distance but
+// pass none on; a diagonal step between two stroke cells that touch at a corner
+// is blocked too). Raster sweeps, forward then backward, relax each cell from
+// its four neighbours already swept until nothing changes: the shortest paths
+// of the same graph as a Dijkstra search over it, the same sums, without its
+// priority queue (a few sweeps; a path turning many times, round a spiral,
+// takes one sweep pair per turn or so).
+class MedialDistance
 {
-  std::vector<float> d(medial.size(), kInfinity);
-  std::priority_queue<Cell, std::vector<Cell>, std::greater<Cell>> open;
-  for (std::size_t k = 0; k < medial.size(); ++k)
+public:
+  MedialDistance(const std::vector<std::uint8_t>& strokes, const Grid& g, int w, int h)
+    : strokes_(strokes)
+    , g_(g)
+    , w_(w)
+    , h_(h)
+    , straight_{ g.step(1, 0), g.step(0, 1) }
+    , diagonal_(g.step(1, 1))
   {
-    if (medial[k] != 0 && strokes[k] == 0)
-    {
-      d[k] = 0.0f;
-      open.push({ 0.0f, k });
-    }
   }
-  const double steps[8] = { g.step(1, 0),
-    g.step(0, 1),
-    g.step(1, 1),
-    g.step(1, 1),
-    g.step(1, 0),
-    g.step(0, 1),
-    g.step(1, 1),
-    g.step(1, 1) };
-  const int di[8] = { 1, 0, 1, -1, -1, 0, -1, 1 };
-  const int dj[8] = { 0, 1, 1, 1, 0, -1, -1, -1 };
-  while (!open.empty())
+
+  std::vector<float> from(const std::vector<std::uint8_t>& medial) const
   {
-    const Cell c = open.top();
-    open.pop();
-    if (c.distance > d[c.index])
+    std::vector<float> d(medial.size(), kInfinity);
+    for (std::size_t k = 0; k < medial.size(); ++k)
     {
-      continue;
+      if (medial[k] != 0 && strokes_[k] == 0)
+      {
+        d[k] = 0.0f;
+      }
     }
-    const int i = g.column(c.index);
-    const int j = g.row(c.index);
-    for (int s = 0; s < 8; ++s)
+    bool changed = true;
+    while (changed)
     {
-      const int x = i + di[s];
-      const int y = j + dj[s];
-      if (!g.inside(x, y))
+      changed = sweep(d, 1);
+      changed = sweep(d, -1) || changed;
+    }
+    return d;
+  }
+
+private:
+  // One raster sweep in direction `dir` (1: rows and columns ascending);
+  // true when a distance fell.
+  bool sweep(std::vector<float>& d, int dir) const
+  {
+    // The neighbours a sweep has passed: behind in the row, and three in the
+    // row before.
+    const int di[4] = { -dir, -dir, 0, dir };
+    const int dj[4] = { 0, -dir, -dir, -dir };
+    bool changed = false;
+    for (int r = 0; r < h_; ++r)
+    {
+      const int j = dir > 0 ? r : h_ - 1 - r;
+      for (int c = 0; c < w_; ++c)
       {
-        continue;
-      }
-      const std::size_t m = g.index(x, y);
-      const bool diagonal = di[s] != 0 && dj[s] != 0;
-      if (diagonal && strokes[g.index(x, j)] != 0 && strokes[g.index(i, y)] != 0)
-      {
-        continue; // between two stroke cells touching at a corner
-      }
-      const float next = static_cast<float>(c.distance + steps[s]);
-      if (next < d[m])
-      {
-        d[m] = next;
-        if (strokes[m] == 0)
+        const int i = dir > 0 ? c : w_ - 1 - c;
+        const std::size_t k = g_.index(i, j);
+        for (int s = 0; s < 4; ++s)
         {
-          open.push({ next, m }); // a stroke cell gets a value but passes nothing on
+          const int x = i + di[s];
+          const int y = j + dj[s];
+          if (!g_.inside(x, y))
+          {
+            continue;
+          }
+          const std::size_t m = g_.index(x, y);
+          if (strokes_[m] != 0 || !(d[m] < kInfinity))
+          {
+            continue;
+          }
+          const bool diagonal = di[s] != 0 && dj[s] != 0;
+          if (diagonal && strokes_[g_.index(x, j)] != 0 && strokes_[g_.index(i, y)] != 0)
+          {
+            continue; // between two stroke cells touching at a corner
+          }
+          const double step = diagonal ? diagonal_ : straight_[di[s] != 0 ? 0 : 1];
+          const float next = static_cast<float>(d[m] + step);
+          if (next < d[k])
+          {
+            d[k] = next;
+            changed = true;
+          }
         }
       }
     }
+    return changed;
   }
-  return d;
-}
+
+  const std::vector<std::uint8_t>& strokes_;
+  const Grid& g_;
+  int w_, h_;
+  double straight_[2]; // along a row, along a column
+  double diagonal_;
+};
 
 } // namespace
 
@@ -194,7 +213,7 @@ StrokeSpacing strokeSpacing(const std::vector<std::uint8_t>& strokes,
   }
   const Grid g(width, height, cellX, cellY);
   s.medial = medialAxis(near, g, width, height, std::min(cellX, cellY));
-  const std::vector<float> toMedial = distanceToMedial(s.medial, strokes, g);
+  const std::vector<float> toMedial = MedialDistance(strokes, g, width, height).from(s.medial);
   for (std::size_t k = 0; k < n; ++k)
   {
     s.halfSpacing[k] = strokes[k] != 0 ? toMedial[k] : s.toStroke[k] + toMedial[k];
