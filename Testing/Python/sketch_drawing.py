@@ -140,30 +140,39 @@ def valley_loop():
     return c
 
 
-# The legibility sketches (issue 20): strokes closer together than a patch, 320 x 320 for 40-cell
-# patches, as a person draws them to get them back as land.
+# The legibility sketches (issue 20): strokes closer together than a patch, as a person draws them
+# to get them back as land. Drawn on a 512-pixel frame (the README's comparison, Examples/legibility)
+# and scaled to `size`: the tests draw them at 320 x 320 for 40-cell patches.
+LEGIBILITY_FRAME = 512
 
-def valley_network():
-    """A trunk valley running out through the south border, ten side valleys 25-35 pixels apart
-    leaving it at a slant, and a bounding ridge each side."""
-    c = Canvas(SIZE, SIZE)
-    c.polyline([(38, 12), (25, 125), (38, 238), (62, 312)], RIDGE)
-    c.polyline([(282, 12), (295, 125), (282, 238), (258, 312)], RIDGE)
-    c.polyline([(160, 25), (157, 95), (163, 162), (157, 238), (160, SIZE + 10)], VALLEY)
-    for y0, side, length in ((50, -1, 95), (75, 1, 100), (106, -1, 105), (131, 1, 105), (162, -1, 100),
-                             (188, 1, 103), (219, -1, 95), (244, 1, 90), (269, -1, 75), (288, 1, 70)):
-        x1 = 158 + side * length
-        c.polyline([(158, y0), ((158 + x1) / 2, y0 - 11), (x1, y0 - 34)], VALLEY)
+
+def _scaled(points, size):
+    s = size / LEGIBILITY_FRAME
+    return [(x * s, y * s) for x, y in points]
+
+
+def valley_network(size=SIZE):
+    """A trunk valley running out through the south border, ten side valleys 40-50 pixels apart (of
+    512) leaving it at a slant, and a bounding ridge each side."""
+    c = Canvas(size, size)
+    c.polyline(_scaled([(60, 20), (40, 200), (60, 380), (100, 500)], size), RIDGE)
+    c.polyline(_scaled([(450, 20), (470, 200), (450, 380), (410, 500)], size), RIDGE)
+    c.polyline(_scaled([(255, 40), (250, 150), (260, 260), (250, 380), (256, 515)], size), VALLEY)
+    for y0, side, length in ((80, -1, 150), (120, 1, 160), (170, -1, 170), (210, 1, 170), (260, -1, 160),
+                             (300, 1, 165), (350, -1, 150), (390, 1, 145), (430, -1, 120), (460, 1, 110)):
+        x1 = 253 + side * length
+        c.polyline(_scaled([(253, y0), ((253 + x1) / 2, y0 - 18), (x1, y0 - 55)], size), VALLEY)
     return c
 
 
-def letters_in_a_ring():
+def letters_in_a_ring(size=SIZE):
     """Block letters T and S in ridge strokes inside a ring valley."""
-    c = Canvas(SIZE, SIZE)
-    c.circle(160, 160, 144, VALLEY)
-    c.polyline([(69, 94), (150, 94)], RIDGE)
-    c.polyline([(109, 94), (109, 231)], RIDGE)
-    c.polyline([(250, 94), (181, 94), (181, 162), (250, 162), (250, 231), (181, 231)], RIDGE)
+    c = Canvas(size, size)
+    s = size / LEGIBILITY_FRAME
+    c.circle(256 * s, 256 * s, 230 * s, VALLEY)
+    c.polyline(_scaled([(110, 150), (240, 150)], size), RIDGE)
+    c.polyline(_scaled([(175, 150), (175, 370)], size), RIDGE)
+    c.polyline(_scaled([(400, 150), (290, 150), (290, 260), (400, 260), (400, 370), (290, 370)], size), RIDGE)
     return c
 
 
