@@ -4,11 +4,9 @@ grid), each with two exemplars, must be legible at each stroke's own scale (Legi
 share of stroke length whose cross-section, out to half the spacing to the facing stroke, stands out
 of the exemplars' own relief at that half width); a DEM target must be followed at its own scales at
 least as well as Tasse's code follows it; strokes finer than the patches draw get a warning."""
-import json
 import os
 import re
 import shutil
-import subprocess
 import sys
 import tempfile
 import unittest
@@ -17,6 +15,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import harness  # noqa: E402
 from harness import PATHS  # noqa: E402
 import sketch_drawing  # noqa: E402
+from test_synth import crop_dem, evaluate, synthesise  # noqa: E402
 
 PATCH = "40"  # the drawings are 320 x 320 (sketch_drawing.SIZE)
 BOTH = ("colorado.png", "alps-montblanc.png")
@@ -39,10 +38,6 @@ BARS = {
 }
 
 
-def tsynth(*args):
-    return subprocess.run([PATHS.tsynth, *args], capture_output=True, text=True, timeout=600)
-
-
 class LegibilityTest(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.mkdtemp(prefix="tsynth-legibility-")
@@ -52,16 +47,10 @@ class LegibilityTest(unittest.TestCase):
         shutil.rmtree(self.tmp)
 
     def synthesise(self, exemplar, sketch, out, *extra):
-        result = tsynth("synth", "--exemplar", exemplar, "--sketch", sketch, "-o", out, "--report",
-                        out + ".json", "--no-progress", *extra)
-        self.assertEqual(result.returncode, 0, result.stderr)
-        with open(out + ".json") as f:
-            return json.load(f), result.stderr
+        return synthesise(self, exemplar, sketch, out, *extra)
 
     def evaluate(self, terrain, exemplar, sketch, *extra):
-        result = tsynth("evaluate", terrain, "--exemplar", exemplar, "--sketch", sketch, "--json", *extra)
-        self.assertEqual(result.returncode, 0, result.stderr)
-        return json.loads(result.stdout)
+        return evaluate(self, terrain, exemplar, sketch, *extra)
 
     def assert_legible(self, draw):
         sketch = draw().save(os.path.join(self.tmp, draw.__name__ + ".png"))
@@ -142,23 +131,14 @@ class DemTargetTest(unittest.TestCase):
     def test_a_dem_target_is_followed_at_its_own_scales_at_least_as_well_as_by_the_peer(self):
         tmp = tempfile.mkdtemp(prefix="tsynth-dem-target-")
         try:
-            full = os.path.join(tmp, "jackson.tif")
-            target = os.path.join(tmp, "target.tif")
-            subprocess.run([PATHS.tsynth, "convert", os.path.join(PATHS.bundled_data, "dems",
-                                                                  "mount_jackson_crop601.tif"), "-o", full],
-                           check=True, stdout=subprocess.DEVNULL)
-            subprocess.run(["gdal_translate", "-q", "-srcwin", "100", "100", "320", "320", full, target],
-                           check=True)
+            target = crop_dem(tmp, "mount_jackson_crop601.tif", (100, 100, 320, 320))
             for exemplar, peer in PEER_CORRELATION.items():
                 with self.subTest(exemplar=exemplar):
                     out = os.path.join(tmp, exemplar + ".tif")
-                    result = tsynth("synth", "--exemplar", os.path.join(PATHS.bundled_data, "dems", exemplar),
-                                    "--sketch", target, "-o", out, "--report", out + ".json", "--no-progress")
-                    self.assertEqual(result.returncode, 0, result.stderr)
+                    report, stderr = synthesise(
+                        self, os.path.join(PATHS.bundled_data, "dems", exemplar), target, out)
                     # Its ridges and valleys are about 10 cells apart: finer than 80-cell patches follow.
-                    self.assertIn("cells apart, finer than 80-cell patches follow", result.stderr)
-                    with open(out + ".json") as f:
-                        report = json.load(f)
+                    self.assertIn("cells apart, finer than 80-cell patches follow", stderr)
                     final = [c["correlation"] for c in report["target_correlation"]]
                     before = [c["correlation"] for c in report["target_correlation_before_corrections"]]
                     self.assertEqual([c["sigma_cells"] for c in report["target_correlation"]], [2, 4, 8, 16, 32])
