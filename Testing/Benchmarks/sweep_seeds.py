@@ -1,0 +1,98 @@
+"""The many-seed quality sweep: a tsynth against another (the previous landing, say), run for run.
+
+The bundled stroke sketches (the Y of ridges and the valley meander) with Colorado and Mont Blanc,
+seeds 0-10 by default: 44 terrains per build, all at default settings, each measured by this build's
+`tsynth evaluate` (so a build without the newer measures is judged by the same ones). Prints the means
+of the legible share, the slope distance, the seam index and the valleys' drainage per build, and on
+how many of the runs A beats B (lower slope distance and seam index, higher legibility and drainage).
+
+    /usr/bin/python3 Testing/Benchmarks/sweep_seeds.py --tsynth build/bin/tsynth \\
+        [--a A_TSYNTH] [--b B_TSYNTH] [--data Data] [--seeds 0 1 ... 10]
+
+A defaults to --tsynth. About 2.5 minutes per build on two cores. Against the previous landing
+(4230cf3): legible 0.556 vs 0.300 (A better on 43 of 44), slope 0.043 vs 0.056 (35), seam 0.898 vs
+0.894 (20), drainage 0.537 vs 0.512 (25). Exits 0 whatever the figures: it
+reports; the tests assert.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+here = os.path.dirname(os.path.abspath(__file__))
+SKETCHES = ("strokes_y_ridges.png", "strokes_valley_meander.png")
+EXEMPLARS = ("colorado.png", "alps-montblanc.png")
+# figure: (where in evaluate's "terrain" JSON, True when higher is better)
+FIGURES = {
+    "legible": (("legibility", "legible_share"), True),
+    "slope": (("slope_distance",), False),
+    "seam": (("seam_index",), False),
+    "drainage": (("landforms", "valley_drainage"), True),
+}
+
+
+def run(command):
+    result = subprocess.run(command, capture_output=True, text=True, timeout=900)
+    if result.returncode != 0:
+        raise SystemExit("%s failed: %s" % (" ".join(command[:2]), result.stderr.strip()))
+    return result.stdout
+
+
+def figure(terrain, path):
+    value = terrain
+    for key in path:
+        value = value.get(key) if isinstance(value, dict) else None
+    return value
+
+
+def sweep(synth, measure, data, seeds, tmp, label):
+    """{(sketch, exemplar, seed): {figure: value}} for every run of one build."""
+    out = {}
+    for sketch in SKETCHES:
+        for exemplar in EXEMPLARS:
+            dem = os.path.join(data, "dems", exemplar)
+            drawn = os.path.join(data, "sketches", sketch)
+            for seed in seeds:
+                terrain = os.path.join(tmp, "%s_%s_%s_%d.tif" % (label, sketch, exemplar, seed))
+                run([synth, "synth", "--exemplar", dem, "--sketch", drawn, "--seed", str(seed), "-o", terrain,
+                     "--no-progress"])
+                t = json.loads(run([measure, "evaluate", terrain, "--exemplar", dem, "--sketch", drawn,
+                                    "--json"]))["terrain"]
+                out[(sketch, exemplar, seed)] = {name: figure(t, where) for name, (where, _) in FIGURES.items()}
+                os.remove(terrain)
+            print("%s: %s with %s done" % (label, sketch, exemplar), file=sys.stderr)
+    return out
+
+
+def mean(values):
+    values = [v for v in values if v is not None]
+    return sum(values) / len(values) if values else float("nan")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--tsynth", required=True, help="this build's tsynth (measures)")
+    parser.add_argument("--a", help="the tsynth swept (default: --tsynth)")
+    parser.add_argument("--b", help="the tsynth it is compared with, run for run")
+    parser.add_argument("--data", default=os.path.join(here, "..", "..", "Data"), help="the bundled Data/")
+    parser.add_argument("--seeds", type=int, nargs="+", default=list(range(11)))
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory(prefix="tsynth-sweep-") as tmp:
+        a = sweep(args.a or args.tsynth, args.tsynth, args.data, args.seeds, tmp, "A")
+        b = sweep(args.b, args.tsynth, args.data, args.seeds, tmp, "B") if args.b else None
+    print("%d runs per build (%d seeds x %d sketches x %d exemplars)" % (
+        len(a), len(args.seeds), len(SKETCHES), len(EXEMPLARS)))
+    print("%-9s %8s %8s %s" % ("figure", "A mean", "B mean", "A better"))
+    for name, (_, higher) in FIGURES.items():
+        line = "%-9s %8.3f" % (name, mean(r[name] for r in a.values()))
+        if b is not None:
+            pairs = [(a[k][name], b[k][name]) for k in a if a[k][name] is not None and b[k][name] is not None]
+            better = sum(1 for x, y in pairs if (x > y if higher else x < y))
+            line += " %8.3f %d of %d" % (mean(r[name] for r in b.values()), better, len(pairs))
+        print(line)
+
+
+if __name__ == "__main__":
+    main()
