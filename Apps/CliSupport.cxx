@@ -1,7 +1,5 @@
 #include "CliSupport.h"
 
-#include "Core/OutputFile.h"
-
 #include "FeatureGraphConversion.h"
 #include "TerrainFileIO.h"
 
@@ -19,6 +17,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <unistd.h>
 
@@ -27,11 +26,48 @@ namespace tsynth::cli
 namespace
 {
 
-std::atomic<bool> gInterrupted{ false };
+// The signal that stopped the run inside an InterruptGuard, 0 if none.
+std::atomic<int> gInterruptSignal{ 0 };
 
-extern "C" void onInterrupt(int)
+extern "C" void onInterrupt(int sig)
 {
-  gInterrupted = true;
+  gInterruptSignal = sig;
+}
+
+// The signals by which a user, a terminal or a job system asks a command to stop: inside an
+// InterruptGuard they stop it cleanly, between kernel steps.
+constexpr int kStopSignals[] = { SIGINT, SIGTERM, SIGHUP, SIGQUIT };
+static_assert(std::size(kStopSignals) == InterruptGuard::kStopSignalCount);
+
+// Every signal that ends a process by default, other than a crash: outside an InterruptGuard
+// (and for those a guard does not take) the temporaries are removed before the process dies.
+constexpr int kTerminatingSignals[] = { SIGHUP,
+  SIGINT,
+  SIGQUIT,
+  SIGTERM,
+  SIGPIPE,
+  SIGALRM,
+  SIGUSR1,
+  SIGUSR2,
+  SIGXCPU,
+  SIGXFSZ,
+  SIGVTALRM };
+
+using Handler = void (*)(int);
+
+Handler installHandler(int sig, Handler handler)
+{
+  struct sigaction action
+  {
+  };
+  struct sigaction previous
+  {
+  };
+  action.sa_handler = handler;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  sigaction(sig, &action, &previous);
+  return previous.sa_handler;
 }
 
 // A single-band raster that is not 8-bit (a DEM used as the target)?
@@ -307,32 +343,49 @@ namespace
 extern "C" void onFatalSignal(int sig)
 {
   OutputFile::removeLiveTemporaries();
-  std::signal(sig, SIG_DFL);
+  installHandler(sig, SIG_DFL);
   std::raise(sig);
 }
 } // namespace
 
 void removePartialFilesOnSignals()
 {
-  std::signal(SIGINT, onFatalSignal);
-  std::signal(SIGTERM, onFatalSignal);
+  for (int sig : kTerminatingSignals)
+  {
+    installHandler(sig, onFatalSignal);
+  }
 }
 
 InterruptGuard::InterruptGuard()
-  : previous_(std::signal(SIGINT, onInterrupt))
-  , scope_([] { return gInterrupted.load(); })
+  : scope_([] { return gInterruptSignal.load() != 0; })
 {
-  gInterrupted = false;
+  gInterruptSignal = 0;
+  for (std::size_t k = 0; k < std::size(kStopSignals); ++k)
+  {
+    previous_[k] = installHandler(kStopSignals[k], onInterrupt);
+  }
 }
 
 InterruptGuard::~InterruptGuard()
 {
-  std::signal(SIGINT, previous_);
+  for (std::size_t k = 0; k < std::size(kStopSignals); ++k)
+  {
+    installHandler(kStopSignals[k], previous_[k]);
+  }
+}
+
+void InterruptGuard::reclaim() const
+{
+  removePartialFilesOnSignals();
+  for (int sig : kStopSignals)
+  {
+    installHandler(sig, onInterrupt);
+  }
 }
 
 bool InterruptGuard::interrupted() const
 {
-  return gInterrupted.load();
+  return gInterruptSignal.load() != 0;
 }
 
 void InterruptGuard::check() const
@@ -341,6 +394,38 @@ void InterruptGuard::check() const
   {
     throw Cancelled();
   }
+}
+
+int interruptedExit()
+{
+  const int sig = gInterruptSignal.load();
+  return kSignalExitBase + (sig != 0 ? sig : SIGINT);
+}
+
+bool stopRequested()
+{
+  return gInterruptSignal.load() != 0;
+}
+
+int publishOutputs(int status, Publication& outputs)
+{
+  if (status != 0)
+  {
+    return status;
+  }
+  if (stopRequested())
+  {
+    std::cerr << "\ntsynth: stopped; nothing was written.\n";
+    return interruptedExit();
+  }
+  std::cout.flush();
+  if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout) != 0)
+  {
+    throw Error("Cannot write to standard output (closed, or its disk is full); nothing was "
+                "written.");
+  }
+  outputs.publish();
+  return 0;
 }
 
 void requireFolder(const std::string& path)

@@ -6,8 +6,10 @@
 
 #include "Core/Cancellation.h"
 #include "Core/HeightfieldIO.h"
+#include "Core/OutputFile.h"
 #include "Synthesis/Setup.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -67,17 +69,22 @@ void requireFolder(const std::string& path);
 // existing ancestor is a writable folder), checked before any work.
 void requireCreatableFolder(const std::string& path);
 
-// The exit status of a run stopped by Ctrl-C (128 + SIGINT, as shells report it).
+// A command stopped by a signal exits 128 + the signal's number, as shells report it.
+constexpr int kSignalExitBase = 128;
+// The exit status of a run stopped by Ctrl-C (128 + SIGINT).
 constexpr int kInterruptedExit = 130;
 
-// For the whole run of a command: Ctrl-C (SIGINT) or SIGTERM outside an InterruptGuard
-// removes the temporaries of the files being written (OutputFile) and ends the process as the
-// signal would, so no partial file is left behind.
+// For the whole run of a command: a terminating signal (SIGINT, SIGTERM, SIGHUP, SIGQUIT,
+// SIGPIPE, SIGALRM, SIGUSR1, SIGUSR2, SIGXCPU, SIGXFSZ, SIGVTALRM) outside an InterruptGuard
+// removes the temporaries of the files being written and staged (OutputFile, Publication)
+// and ends the process as the signal would, so no partial file is left behind.
 void removePartialFilesOnSignals();
 
-// While it lives, Ctrl-C (SIGINT) only sets a flag, which long commands poll
-// (check() throws tsynth::Cancelled), and so do the kernels' own long loops through the
-// cancellation scope it opens (Core/Cancellation.h); the previous handler comes back after.
+// While it lives, SIGINT (Ctrl-C), SIGTERM, SIGHUP and SIGQUIT only set a flag, which long
+// commands poll (check() throws tsynth::Cancelled), and so do the kernels' own long loops
+// through the cancellation scope it opens (Core/Cancellation.h); the previous handlers come
+// back after. The flag stays set after the guard: the command's outputs are then not
+// published (stopRequested).
 class InterruptGuard
 {
 public:
@@ -87,11 +94,29 @@ public:
   InterruptGuard& operator=(const InterruptGuard&) = delete;
   bool interrupted() const;
   void check() const;
+  // Installs this guard's handlers again, and the partial-file handlers for the other
+  // terminating signals: a library may have replaced them. LLVM (which PoCL compiles kernels
+  // with) does, and its handlers swallow SIGQUIT, SIGUSR1, SIGXCPU and SIGXFSZ.
+  void reclaim() const;
+
+  // SIGINT, SIGTERM, SIGHUP and SIGQUIT.
+  static constexpr std::size_t kStopSignalCount = 4;
 
 private:
-  void (*previous_)(int);
+  void (*previous_[kStopSignalCount])(int) = {};
   CancellationScope scope_;
 };
+
+// After a command returned `status`: its outputs (staged in `outputs`) are published if it
+// succeeded, no stop signal came, and standard output took everything printed to it;
+// otherwise they are discarded with the Publication. Returns the exit status; throws
+// tsynth::Error if standard output or a rename failed.
+int publishOutputs(int status, Publication& outputs);
+
+// True once a stop signal reached an InterruptGuard in this run.
+bool stopRequested();
+// 128 + the stop signal an InterruptGuard received (130 for Ctrl-C).
+int interruptedExit();
 
 // --max-memory GB, in bytes (0 if not given: the kernels' default budget, 80% of
 // this machine's memory); UsageError unless a positive finite number.

@@ -7,6 +7,7 @@
 #include "TerrainFileIO.h"
 
 #include "Core/Error.h"
+#include "Core/FileRoles.h"
 #include "Distance/CostScaling.h"
 #include "Distance/DistanceSynthesis.h"
 
@@ -15,7 +16,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <csignal>
 #include <iomanip>
 #include <iostream>
 #include <optional>
@@ -28,13 +28,6 @@ namespace
 
 // The thesis's default resolution, for poly-lines without --size.
 constexpr int kDefaultLineGrid = 512;
-
-std::atomic<bool> gInterrupted{ false };
-
-extern "C" void onDistanceInterrupt(int)
-{
-  gInterrupted = true;
-}
 
 std::string helpText()
 {
@@ -259,7 +252,19 @@ DistanceArguments parseDistanceArguments(std::vector<std::string> args)
   {
     throw UsageError("tsynth distance needs an output file: -o OUT.tif|.png|.vti.");
   }
-  requireFolder(a.output);
+  FileRoles files;
+  files.input(a.generators, "--generators");
+  for (const auto& [input, role] : { std::pair{ a.profiles, "--profiles" },
+         std::pair{ a.labels, "--labels" },
+         std::pair{ a.edgeWeights, "--edge-weights" } })
+  {
+    if (input)
+    {
+      files.input(*input, role);
+    }
+  }
+  files.output(a.output, "-o");
+  files.check();
   return a;
 }
 
@@ -325,7 +330,7 @@ DistanceTerrain synthesise(DistanceArguments& a)
   a.options.progress = [&](double f)
   {
     bar(f, "distance");
-    return !gInterrupted.load();
+    return !stopRequested();
   };
   DistanceTerrain t = synthesiseByDistance(inputs, a.options);
   printWarnings(t.warnings);
@@ -342,26 +347,18 @@ int runDistance(std::vector<std::string> args)
     return 0;
   }
   DistanceArguments a = parseDistanceArguments(std::move(args));
-  gInterrupted = false;
-  const auto previous = std::signal(SIGINT, onDistanceInterrupt);
   const auto t0 = std::chrono::steady_clock::now();
   DistanceTerrain t;
   try
   {
+    const InterruptGuard interrupt; // a stop signal ends the run between kernel steps
     t = synthesise(a);
   }
   catch (const Cancelled&)
   {
-    std::signal(SIGINT, previous);
     std::cerr << "\ntsynth: stopped; nothing was written.\n";
-    return 130;
+    return interruptedExit();
   }
-  catch (...)
-  {
-    std::signal(SIGINT, previous);
-    throw;
-  }
-  std::signal(SIGINT, previous);
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   writeTerrainFile(a.output, t.heights);

@@ -5,6 +5,7 @@
 #include "TerrainFileIO.h"
 
 #include "Core/Error.h"
+#include "Core/FileRoles.h"
 #include "Core/HeightfieldIO.h"
 #include "Hydrology/Flow.h"
 #include "Hydrology/PitRemoval.h"
@@ -69,7 +70,27 @@ void requireRasterOutput(const std::string& path, const char* what)
   {
     throw UsageError(std::string(what) + " must end in .tif, .png or .vti, not " + path + ".");
   }
-  requireFolder(path);
+}
+
+// The DEM and sink mask read against the terrain, flow and streams written.
+void checkPitsFiles(const PitsArguments& a)
+{
+  FileRoles files;
+  files.input(a.input, "the DEM", a.read.useSidecar);
+  if (a.sinks)
+  {
+    files.input(*a.sinks, "--sinks");
+  }
+  files.output(a.output, "-o");
+  if (a.flow)
+  {
+    files.output(*a.flow, "--flow");
+  }
+  if (a.streams)
+  {
+    files.output(*a.streams, "--streams");
+  }
+  files.check();
 }
 
 PitsArguments parsePitsArguments(std::vector<std::string> args)
@@ -128,6 +149,7 @@ PitsArguments parsePitsArguments(std::vector<std::string> args)
   {
     requireRasterOutput(*a.streams, "--streams");
   }
+  checkPitsFiles(a);
   return a;
 }
 

@@ -7,6 +7,7 @@
 #include "TerrainFileIO.h"
 
 #include "Core/Error.h"
+#include "Core/FileRoles.h"
 #include "Hydrology/PitRemoval.h"
 #include "Optimisation/OptimisationGuide.h"
 #include "Optimisation/TerrainOptimisation.h"
@@ -169,7 +170,11 @@ OptimiseArguments parseOptimiseArguments(std::vector<std::string> args)
   {
     throw UsageError("tsynth optimise needs an output file: -o OUT.tif|.png|.vti.");
   }
-  requireFolder(a.output);
+  FileRoles files;
+  files.input(a.source, "--exemplar");
+  files.input(a.guide, "--guide");
+  files.output(a.output, "-o");
+  files.check();
   return a;
 }
 
@@ -248,7 +253,7 @@ int runOptimise(std::vector<std::string> args)
   catch (const Cancelled&)
   {
     std::cerr << "\ntsynth: stopped; nothing was written.\n";
-    return kInterruptedExit;
+    return interruptedExit();
   }
 }
 

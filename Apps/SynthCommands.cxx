@@ -8,6 +8,7 @@
 #include "Analysis/Hillshade.h"
 #include "Analysis/ReliefImage.h"
 #include "Core/Error.h"
+#include "Core/FileRoles.h"
 #include "Core/HeightfieldIO.h"
 #include "Core/OutputFile.h"
 #include "Core/Resample.h"
@@ -30,7 +31,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -263,6 +263,23 @@ struct SynthArguments
   bool progress = true;
 };
 
+// The files --debug-dir writes (writeDebug), for the check that they replace no input.
+std::vector<std::string> debugFileNames(std::size_t exemplarCount)
+{
+  std::vector<std::string> names = { "target.tif",
+    "target.png",
+    "patches.tif",
+    "target-confidence.tif",
+    "sketch-features.vtp",
+    "patch-id.tif",
+    "seams.tif" };
+  for (std::size_t e = 0; e < exemplarCount; ++e)
+  {
+    names.push_back("exemplar" + std::to_string(e) + "-features.vtp");
+  }
+  return names;
+}
+
 void checkPaths(const SynthArguments& a)
 {
   if (a.exemplars.empty())
@@ -289,16 +306,35 @@ void checkPaths(const SynthArguments& a)
   {
     throw UsageError("--region needs --regions LABELS.");
   }
-  // Every output is written after the run: refuse unwritable places before it.
-  requireFolder(a.output);
-  if (a.report)
-  {
-    requireFolder(*a.report);
-  }
   if (a.debugDir)
   {
     requireCreatableFolder(*a.debugDir);
   }
+  // Every output is written after the run: refuse unwritable places, and outputs that would
+  // replace an input or each other, before it.
+  FileRoles files;
+  for (const std::string& exemplar : a.exemplars)
+  {
+    files.input(exemplar, "--exemplar");
+  }
+  files.input(a.sketch, "--sketch");
+  if (a.regions)
+  {
+    files.input(*a.regions, "--regions");
+  }
+  files.output(a.output, "-o");
+  if (a.report)
+  {
+    files.output(*a.report, "--report");
+  }
+  if (a.debugDir && std::filesystem::is_directory(*a.debugDir))
+  {
+    for (const std::string& name : debugFileNames(a.exemplars.size()))
+    {
+      files.output(*a.debugDir + "/" + name, "--debug-dir");
+    }
+  }
+  files.check();
 }
 
 // --patch, --backend, --merge, --fill, --seed, --no-vertical-offset, --repetition.
@@ -474,9 +510,11 @@ SynthesisResult runWithProgress(const SynthesisSetup& setup,
   o.progress = [&](double f, const std::string& stage)
   {
     bar(f, stage);
-    interrupt.check(); // Cancelled leaves synthesize() from its serial loop
+    interrupt.reclaim(); // PoCL's LLVM takes the signals when it compiles the matcher
+    interrupt.check();   // Cancelled leaves synthesize() from its serial loop
   };
   SynthesisResult r = synthesize(setup.target, setup.exemplarPointers(), setup.graphPointers(), o);
+  interrupt.reclaim();
   bar(1.0, "done");
   printWarnings(r.warnings);
   return r;
@@ -681,27 +719,16 @@ void writeReport(const std::string& path,
     report["target_correlation_before_corrections"] = correlationJson(figures.patchCorrelation);
   }
   OutputFile file(path);
-  std::ofstream out(file.temporaryPath());
   // Paths are escaped by nlohmann; bytes that are not UTF-8 are replaced rather
   // than throwing after the terrain was written.
-  out << report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
-  out.close();
-  if (!out)
-  {
-    throw Error("Cannot write " + path + ".");
-  }
+  file.write(report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   file.commit();
 }
 
 // Target field, feature trees, patch ids and seams, for looking at in ParaView.
 void writeDebug(const std::string& dir, const SynthesisSetup& setup, const SynthesisResult& r)
 {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec)
-  {
-    throw Error("Cannot create the debug folder " + dir + ": " + ec.message() + ".");
-  }
+  createOutputFolder(dir);
   writeTerrainFile(dir + "/target.tif", setup.target.field);
   const ShadedRelief shade = computeHillshade(setup.target.field, HillshadeOptions{});
   writeRgbPng(dir + "/target.png",
@@ -800,7 +827,7 @@ int runSynth(std::vector<std::string> args)
   catch (const Cancelled&)
   {
     std::cerr << "\ntsynth: stopped; nothing was written.\n";
-    return kInterruptedExit;
+    return interruptedExit();
   }
   writeTerrainFile(a.output, r.terrain);
   const SynthFigures figures = measureSynthesis(setup, r, a.options.patchSize);

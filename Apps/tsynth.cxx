@@ -11,6 +11,7 @@
 #include "Analysis/Hillshade.h"
 #include "Analysis/ReliefImage.h"
 #include "Core/Error.h"
+#include "Core/FileRoles.h"
 #include "Core/HeightfieldIO.h"
 #include "FeatureGraphConversion.h"
 #include "Features/Ppa.h"
@@ -318,7 +319,10 @@ int runRender(std::vector<std::string> args, int argc, char** argv)
     view.width = sides->first;
     view.height = sides->second;
   }
-  tsynth::cli::requireFolder(*output);
+  tsynth::FileRoles files;
+  files.input(path, "the DEM", options.useSidecar);
+  files.output(*output, "-o");
+  files.check();
 
   const tsynth::Heightfield hf = readDem(path, options);
   if (threeD)
@@ -366,7 +370,10 @@ int runConvert(std::vector<std::string> args)
   {
     throw UsageError("The output must end in .tif, .png or .vti, not " + *output + ".");
   }
-  tsynth::cli::requireFolder(*output);
+  tsynth::FileRoles files;
+  files.input(path, "the DEM", options.useSidecar);
+  files.output(*output, "-o");
+  files.check();
   const tsynth::Heightfield hf = readDem(path, options);
   tsynth::writeTerrainFile(*output, hf);
   std::cout << "Wrote " << *output << "\n";
@@ -483,11 +490,14 @@ int runFeatures(std::vector<std::string> args)
   {
     throw UsageError("Give --valleys or --both, not both.");
   }
-  tsynth::cli::requireFolder(*output);
+  tsynth::FileRoles files;
+  files.input(path, sketch ? "the sketch" : "the DEM", options.useSidecar);
+  files.output(*output, "-o");
   if (controlOutput)
   {
-    tsynth::cli::requireFolder(*controlOutput);
+    files.output(*controlOutput, "--control-points");
   }
+  files.check();
 
   // Ctrl-C stops the extraction (tsynth::Cancelled) before anything is written; once writing
   // has begun it only sets the flag, so no file is left half-written.
@@ -573,6 +583,54 @@ int runFeatures(std::vector<std::string> args)
   return 0;
 }
 
+// Runs the command; false in `known` if there is no such command (UsageError).
+int dispatch(const std::string& command,
+  std::vector<std::string> args,
+  int argc,
+  char** argv,
+  bool& known)
+{
+  if (command == "info")
+  {
+    return runInfo(std::move(args));
+  }
+  if (command == "render")
+  {
+    return runRender(std::move(args), argc, argv);
+  }
+  if (command == "convert")
+  {
+    return runConvert(std::move(args));
+  }
+  if (command == "features")
+  {
+    return runFeatures(std::move(args));
+  }
+  if (command == "synth")
+  {
+    preferPassiveOpenMp(args, argv);
+    return tsynth::cli::runSynth(std::move(args));
+  }
+  if (command == "pits")
+  {
+    return tsynth::cli::runPits(std::move(args));
+  }
+  if (command == "optimise" || command == "optimize")
+  {
+    return tsynth::cli::runOptimise(std::move(args));
+  }
+  if (command == "distance")
+  {
+    return tsynth::cli::runDistance(std::move(args));
+  }
+  if (command == "evaluate")
+  {
+    return tsynth::cli::runEvaluate(std::move(args));
+  }
+  known = false;
+  throw UsageError("Unknown command \"" + command + "\".");
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -587,47 +645,12 @@ int main(int argc, char** argv)
   args.erase(args.begin());
   tsynth::cli::removePartialFilesOnSignals();
   bool knownCommand = true; // until no command matched: then the help to see is the main one
+  // Every file the command writes is staged here and appears only when the command succeeded.
+  tsynth::Publication outputs;
   try
   {
-    if (command == "info")
-    {
-      return runInfo(std::move(args));
-    }
-    if (command == "render")
-    {
-      return runRender(std::move(args), argc, argv);
-    }
-    if (command == "convert")
-    {
-      return runConvert(std::move(args));
-    }
-    if (command == "features")
-    {
-      return runFeatures(std::move(args));
-    }
-    if (command == "synth")
-    {
-      preferPassiveOpenMp(args, argv);
-      return tsynth::cli::runSynth(std::move(args));
-    }
-    if (command == "pits")
-    {
-      return tsynth::cli::runPits(std::move(args));
-    }
-    if (command == "optimise" || command == "optimize")
-    {
-      return tsynth::cli::runOptimise(std::move(args));
-    }
-    if (command == "distance")
-    {
-      return tsynth::cli::runDistance(std::move(args));
-    }
-    if (command == "evaluate")
-    {
-      return tsynth::cli::runEvaluate(std::move(args));
-    }
-    knownCommand = false;
-    throw UsageError("Unknown command \"" + command + "\".");
+    const int status = dispatch(command, std::move(args), argc, argv, knownCommand);
+    return tsynth::cli::publishOutputs(status, outputs);
   }
   catch (const UsageError& e)
   {
@@ -639,7 +662,7 @@ int main(int argc, char** argv)
   catch (const tsynth::Cancelled&)
   {
     std::cerr << "\ntsynth: stopped; nothing was written.\n";
-    return tsynth::cli::kInterruptedExit;
+    return tsynth::cli::interruptedExit();
   }
   catch (const tsynth::Error& e)
   {

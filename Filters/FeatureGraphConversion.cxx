@@ -1,7 +1,6 @@
 #include "FeatureGraphConversion.h"
 
 #include "Core/Error.h"
-#include "Core/OutputFile.h"
 #include "VtkErrorObserver.h"
 #include "XmlDataFiles.h"
 
@@ -590,17 +589,8 @@ void readPolyDataFile(const std::string& path, vtkPolyData* out)
 
 void writePolyDataFile(const std::string& path, vtkPolyData* data)
 {
-  OutputFile file(path);
   vtkNew<vtkXMLPolyDataWriter> writer;
-  writer->SetInputData(data);
-  writer->SetFileName(file.temporaryPath().c_str());
-  writer->SetDataModeToBinary(); // inline: see DESIGN.md on Debian's expat and appended data
-  writer->SetCompressorTypeToZLib();
-  if (writer->Write() == 0)
-  {
-    throw Error("Cannot write " + path + ".");
-  }
-  file.commit();
+  writeXmlDataFile(writer, data, path);
 }
 
 } // namespace tsynth

@@ -5,7 +5,6 @@
 #include "XmlDataFiles.h"
 
 #include "Core/Error.h"
-#include "Core/OutputFile.h"
 
 #include <vtkCommand.h>
 #include <vtkImageData.h>
@@ -97,22 +96,10 @@ void writeTerrainFile(const std::string& path, const Heightfield& hf)
     writeHeightfield(path, hf);
     return;
   }
-  OutputFile file(path);
   vtkNew<vtkImageData> image;
   heightfieldToImage(hf, image);
   vtkNew<vtkXMLImageDataWriter> writer;
-  VtkErrorObserver catcher;
-  writer->AddObserver(vtkCommand::ErrorEvent, catcher.callback);
-  writer->SetInputData(image);
-  writer->SetFileName(file.temporaryPath().c_str());
-  // Inline binary: ParaView 5.11 with Debian 12's expat cannot read appended data.
-  writer->SetDataModeToBinary();
-  writer->SetCompressorTypeToZLib();
-  if (writer->Write() == 0 || catcher.failed)
-  {
-    throw Error("Cannot write " + path + ".");
-  }
-  file.commit();
+  writeXmlDataFile(writer, image, path);
 }
 
 } // namespace tsynth

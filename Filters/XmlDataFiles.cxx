@@ -3,13 +3,16 @@
 #include "VtkErrorObserver.h"
 
 #include "Core/Error.h"
+#include "Core/OutputFile.h"
 
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
+#include <vtkErrorCode.h>
 #include <vtkSetGet.h>
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
 #include <vtkXMLReader.h>
+#include <vtkXMLWriter.h>
 
 #include <array>
 #include <cstring>
@@ -332,6 +335,32 @@ void readXmlDataFile(vtkXMLReader* reader, const std::string& path, const std::s
   {
     throw Error(refusal);
   }
+}
+
+void writeXmlDataFile(vtkXMLWriter* writer, vtkDataObject* data, const std::string& path)
+{
+  OutputFile file(path);
+  // Into memory first: VTK 9.2's poly-data writer frees unset arrays (a crash) when a write
+  // to disk fails mid-piece, and its executive prints to the terminal. The bytes are then
+  // written with every write checked.
+  VtkErrorObserver catcher;
+  writer->AddObserver(vtkCommand::ErrorEvent, catcher.callback);
+  writer->SetInputData(data);
+  writer->WriteToOutputStringOn();
+  writer->SetDataModeToBinary();
+  writer->SetCompressorTypeToZLib();
+  const int written = writer->Write();
+  const unsigned long code = writer->GetErrorCode();
+  writer->RemoveObserver(catcher.callback);
+  if (written == 0 || code != vtkErrorCode::NoError || catcher.failed)
+  {
+    throw Error("Cannot write " + path +
+      (code != vtkErrorCode::NoError
+          ? std::string(": ") + vtkErrorCode::GetStringFromErrorCode(code) + "."
+          : std::string(".")));
+  }
+  file.write(writer->GetOutputString());
+  file.commit();
 }
 
 } // namespace tsynth

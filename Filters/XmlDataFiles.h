@@ -7,7 +7,9 @@
 
 #include <string>
 
+class vtkDataObject;
 class vtkXMLReader;
+class vtkXMLWriter;
 
 namespace tsynth
 {
@@ -16,5 +18,11 @@ namespace tsynth
 // `path` ("... is not a VTK <what> file that can be read", or which array is
 // too short) on any failure.
 void readXmlDataFile(vtkXMLReader* reader, const std::string& path, const std::string& what);
+
+// Writes `data` with `writer` (inline binary, zlib: ParaView 5.11 with Debian 12's expat
+// cannot read appended data) to a temporary beside `path` and publishes it (OutputFile).
+// Throws tsynth::Error naming `path`, with VTK's reason kept off the terminal, if any write
+// fails (a full disk included).
+void writeXmlDataFile(vtkXMLWriter* writer, vtkDataObject* data, const std::string& path);
 
 } // namespace tsynth

@@ -11,8 +11,10 @@
 #include <ogr_spatialref.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <memory>
@@ -40,13 +42,16 @@ void initialiseGdal()
 }
 
 // Silences GDAL's own printing while in scope; errors reach the user through
-// tsynth::Error with GDAL's last message appended.
+// tsynth::Error with GDAL's last message appended. It also keeps the errno of GDAL's first
+// failure in scope: a write that hit a full disk says ENOSPC there, while the message GDAL
+// posts last may be about reading back what it could not write.
 class QuietGdal
 {
 public:
   QuietGdal()
   {
-    CPLPushErrorHandler(CPLQuietErrorHandler);
+    firstFailureErrno() = 0;
+    CPLPushErrorHandler(record);
     CPLErrorReset();
   }
   ~QuietGdal() { CPLPopErrorHandler(); }
@@ -56,6 +61,21 @@ public:
   {
     const char* msg = CPLGetLastErrorMsg();
     return (msg != nullptr && *msg != '\0') ? std::string(" (GDAL: ") + msg + ")" : std::string();
+  }
+  // errno when GDAL first reported a failure in this scope (0 if none, or none was set).
+  static int& firstFailureErrno()
+  {
+    thread_local int error = 0;
+    return error;
+  }
+
+private:
+  static void CPL_STDCALL record(CPLErr level, CPLErrorNum, const char*)
+  {
+    if (level >= CE_Failure && firstFailureErrno() == 0)
+    {
+      firstFailureErrno() = errno;
+    }
   }
 };
 
@@ -374,15 +394,60 @@ GDALDriver* driverByName(const char* name)
 }
 
 // Copies a memory dataset into a file format that only supports CreateCopy (PNG).
-void createCopyTo(const char* driverName, GDALDataset& source, const std::string& path)
+// Why GDAL failed to write `target` through its temporary `tmp`, as the end of a sentence: a
+// full disk (the errno GDAL's writes left) in plain words, else GDAL's message with the
+// temporary's name replaced by the user's.
+std::string writeFailure(const std::string& target, const std::string& tmp, int error)
+{
+  if (QuietGdal::firstFailureErrno() != 0)
+  {
+    error = QuietGdal::firstFailureErrno();
+  }
+  if (error == ENOSPC || error == EDQUOT)
+  {
+    return "Cannot write " + target + ": " + std::strerror(error) + ".";
+  }
+  std::string message = QuietGdal::lastMessage();
+  for (std::size_t at = message.find(tmp); at != std::string::npos; at = message.find(tmp))
+  {
+    message.replace(at, tmp.size(), target);
+  }
+  return "Cannot write " + target + message + ".";
+}
+
+// Closes a dataset being written and throws tsynth::Error naming `target` if GDAL reported a
+// failure on the way or while flushing at the close (a full disk shows there). Call with a
+// QuietGdal in scope, errno cleared before the writes began.
+void closeWritten(DatasetPtr& ds, const std::string& target, const std::string& tmp)
+{
+  if (CPLGetLastErrorType() >= CE_Failure)
+  {
+    const int error = errno;
+    ds.reset();
+    throw Error(writeFailure(target, tmp, error));
+  }
+  ds.reset();
+  if (CPLGetLastErrorType() >= CE_Failure)
+  {
+    throw Error(writeFailure(target, tmp, errno));
+  }
+}
+
+// Copies `source` into a new file at `tmp` (the temporary of `target`) with GDAL's driver.
+void createCopyTo(const char* driverName,
+  GDALDataset& source,
+  const std::string& tmp,
+  const std::string& target)
 {
   QuietGdal quiet;
+  errno = 0;
   DatasetPtr out(
-    driverByName(driverName)->CreateCopy(path.c_str(), &source, FALSE, nullptr, nullptr, nullptr));
+    driverByName(driverName)->CreateCopy(tmp.c_str(), &source, FALSE, nullptr, nullptr, nullptr));
   if (!out)
   {
-    throw Error("Cannot write " + path + QuietGdal::lastMessage() + ".");
+    throw Error(writeFailure(target, tmp, errno));
   }
+  closeWritten(out, target, tmp);
 }
 
 DatasetPtr memoryDataset(int width, int height, int bands, GDALDataType type)
@@ -403,12 +468,13 @@ void writeGeoTiff(const std::string& target, const std::string& tmp, const Heigh
   opts = CSLSetNameValue(opts, "COMPRESS", "DEFLATE");
   opts = CSLSetNameValue(opts, "PREDICTOR", "3");
   opts = CSLSetNameValue(opts, "TILED", "YES");
+  errno = 0;
   DatasetPtr ds(
     driverByName("GTiff")->Create(tmp.c_str(), hf.width, hf.height, 1, GDT_Float32, opts));
   CSLDestroy(opts);
   if (!ds)
   {
-    throw Error("Cannot write " + target + QuietGdal::lastMessage() + ".");
+    throw Error(writeFailure(target, tmp, errno));
   }
   std::array<double, 6> gt{};
   if (hf.georef.hasGeoTransform)
@@ -444,14 +510,10 @@ void writeGeoTiff(const std::string& target, const std::string& tmp, const Heigh
           GF_Write, 0, r, hf.width, 1, row.data(), hf.width, 1, GDT_Float32, 0, 0, nullptr) !=
       CE_None)
     {
-      throw Error("Cannot write " + target + QuietGdal::lastMessage() + ".");
+      throw Error(writeFailure(target, tmp, errno));
     }
   }
-  ds->FlushCache();
-  if (CPLGetLastErrorType() == CE_Failure || CPLGetLastErrorType() == CE_Fatal)
-  {
-    throw Error("Cannot write " + target + QuietGdal::lastMessage() + ".");
-  }
+  closeWritten(ds, target, tmp);
 }
 
 void writePng16(const std::string& target, const std::string& tmp, const Heightfield& hf)
@@ -501,7 +563,7 @@ void writePng16(const std::string& target, const std::string& tmp, const Heightf
   {
     throw Error("Cannot write " + target + ".");
   }
-  createCopyTo("PNG", *mem, tmp);
+  createCopyTo("PNG", *mem, tmp, target);
 
   Sidecar sidecar;
   sidecar.zUnit = ZUnit::Metres;
@@ -513,9 +575,7 @@ void writePng16(const std::string& target, const std::string& tmp, const Heightf
   {
     sidecar.nodata = 0.0;
   }
-  OutputFile sidecarFile(sidecarPathFor(target));
-  writeSidecar(sidecarFile.temporaryPath(), sidecar);
-  sidecarFile.commit();
+  writeSidecar(sidecarPathFor(target), sidecar);
 }
 
 } // namespace
@@ -760,7 +820,7 @@ void writeRgbPng(const std::string& path,
   {
     throw Error("Cannot write " + path + ".");
   }
-  createCopyTo("PNG", *mem, file.temporaryPath());
+  createCopyTo("PNG", *mem, file.temporaryPath(), path);
   file.commit();
 }
 

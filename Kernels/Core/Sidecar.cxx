@@ -1,6 +1,7 @@
 #include "Sidecar.h"
 
 #include "Error.h"
+#include "OutputFile.h"
 
 #include <nlohmann/json.hpp>
 
@@ -190,12 +191,9 @@ void writeSidecar(const std::string& path, const Sidecar& s)
   {
     doc["nodata"] = *s.nodata;
   }
-  std::ofstream out(path);
-  out << doc.dump(2) << "\n";
-  if (!out)
-  {
-    throw Error("Cannot write sidecar " + path + ".");
-  }
+  OutputFile file(path);
+  file.write(doc.dump(2) + "\n");
+  file.commit();
 }
 
 } // namespace tsynth

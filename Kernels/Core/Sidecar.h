@@ -38,7 +38,8 @@ std::string sidecarPathFor(const std::string& rasterPath);
 // problem (bad JSON, wrong type, non-positive cell size, z_max <= z_min).
 Sidecar readSidecar(const std::string& path);
 
-// Writes a sidecar (overwriting). Throws tsynth::Error if the file cannot be written.
+// Writes a sidecar through an OutputFile (a temporary renamed over `path`, or staged in the
+// open Publication). Throws tsynth::Error naming `path` if the file cannot be written.
 void writeSidecar(const std::string& path, const Sidecar& sidecar);
 
 } // namespace tsynth
