@@ -666,5 +666,306 @@ class BadInputTest(unittest.TestCase):
                 self.check_case(case_id, args, status, pattern)
 
 
+
+# Issue 25, "nothing lost": an output never replaces an input or another output, a failed write
+# (a full disk at any byte) leaves no file and says so, a signal leaves no file, and names of any
+# legal length work. Each case runs in its own folder of inputs; every file there must be unchanged
+# (byte for byte) after a refusal, and no new file (a temporary included) may appear.
+
+# The write-fault shim (Testing/Fault/WriteFault.cxx), from CTest's environment.
+SHIM = os.environ.get("TSYNTH_WRITE_FAULT_SHIM", "")
+# The longest file name Linux file systems take (NAME_MAX).
+NAME_MAX = 255
+STROKES = ("sketches", "strokes_y_ridges.png")
+# A small synthesis: enough for every output the command writes, quick even under the sanitizers.
+SMALL_SYNTH = ["--size", "128x128", "--patch", "32", "--no-progress"]
+
+# (id, arguments, regex of the one sentence). Tokens: "dem.png" and the rest are the case folder's
+# files (make_case_folder); "$strokes" the bundled stroke map. Exit status 1 for all.
+SAME_FILE_CASES = [
+    ("render-onto-itself", ["render", "dem.png", "-o", "dem.png"], r"-o dem\.png: it is the same file as the DEM"),
+    ("synth-onto-exemplar", ["synth", "--exemplar", "t/dem.tif", "--sketch", "$strokes", "-o", "t/dem.tif"]
+     + SMALL_SYNTH, r"-o t/dem\.tif: it is the same file as --exemplar t/dem\.tif"),
+    ("synth-onto-sketch", ["synth", "--exemplar", "dem.png", "--sketch", "strokes.png", "-o", "strokes.png"]
+     + SMALL_SYNTH, r"same file as --sketch strokes\.png"),
+    ("pits-flow-is-output", ["pits", "t/dem.tif", "-o", "o.tif", "--flow", "o.tif"],
+     r"--flow o\.tif: it is the same file as -o o\.tif"),
+    ("pits-streams-is-input", ["pits", "t/dem.tif", "-o", "o.tif", "--streams", "t/dem.tif"],
+     r"--streams t/dem\.tif: it is the same file as the DEM"),
+    ("report-is-png-sidecar", ["synth", "--exemplar", "dem.png", "--sketch", "$strokes", "-o", "r.png",
+                               "--report", "r.json"] + SMALL_SYNTH,
+     r"--report r\.json: it is the same file as the sidecar of -o r\.png"),
+    ("report-is-exemplar-sidecar", ["synth", "--exemplar", "dem.png", "--sketch", "$strokes", "-o", "r.tif",
+                                    "--report", "dem.json"] + SMALL_SYNTH,
+     r"--report dem\.json: it is the same file as the sidecar of --exemplar dem\.png"),
+    ("debug-dir-holds-output", ["synth", "--exemplar", "dem.png", "--sketch", "$strokes", "-o", "dbg/patches.tif",
+                                "--debug-dir", "dbg"] + SMALL_SYNTH,
+     r"--debug-dir dbg/patches\.tif: it is the same file as -o dbg/patches\.tif"),
+    ("debug-dir-holds-exemplar", ["synth", "--exemplar", "dbg/target.tif", "--sketch", "$strokes", "-o", "o.tif",
+                                  "--debug-dir", "dbg"] + SMALL_SYNTH,
+     r"--debug-dir dbg/target\.tif: it is the same file as --exemplar dbg/target\.tif"),
+    ("convert-png-onto-input-sidecar", ["convert", "u/dem.tif", "-o", "u/dem.png"],
+     r"sidecar of -o u/dem\.png.*same file as the sidecar of the DEM u/dem\.tif"),
+    ("convert-through-symlink", ["convert", "t/dem.tif", "-o", "link.tif"], r"-o link\.tif: it is the same file as the DEM"),
+    ("convert-through-dotdot", ["convert", "t/dem.tif", "-o", "t/../t/dem.tif"], r"same file as the DEM t/dem\.tif"),
+    ("convert-onto-hard-link", ["convert", "t/dem.tif", "-o", "hard.tif"], r"-o hard\.tif: it is the same file as the DEM"),
+    ("convert-onto-symlinked-folder", ["convert", "t/dem.tif", "-o", "tl/dem.tif"], r"same file as the DEM t/dem\.tif"),
+    ("features-output-is-control-points", ["features", "t/dem.tif", "-o", "f.vtp", "--control-points", "f.vtp"],
+     r"--control-points f\.vtp: it is the same file as -o f\.vtp"),
+    ("features-onto-its-sketch", ["features", "lines.vtp", "--sketch", "-o", "lines.vtp"],
+     r"-o lines\.vtp: it is the same file as the sketch"),
+    ("optimise-onto-guide", ["optimise", "--exemplar", "dem.png", "--guide", "t/dem.tif", "-o", "t/dem.tif"],
+     r"same file as --guide t/dem\.tif"),
+    ("distance-onto-generators", ["distance", "--generators", "strokes.png", "-o", "strokes.png"],
+     r"same file as --generators strokes\.png"),
+    ("output-is-dev-null", ["convert", "t/dem.tif", "-o", "null.tif"], r"null\.tif: it is a device, which an output never replaces"),
+    ("output-is-fifo", ["render", "t/dem.tif", "-o", "fifo.png"], r"fifo\.png: it is a pipe \(FIFO\)"),
+    ("output-is-folder", ["convert", "t/dem.tif", "-o", "folder.tif"], r"folder\.tif: it is a folder"),
+    ("tif-beside-a-foreign-sidecar", ["convert", "dem.png", "-o", "dem.tif"],
+     r"-o dem\.tif: dem\.json beside it would be read as its sidecar"),
+]
+
+
+def file_digest(path):
+    import hashlib
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
+
+
+def snapshot(folder):
+    """Every regular file under folder (symlinks and special files by what they are) and its bytes."""
+    state = {}
+    for root, dirs, files in os.walk(folder):
+        for name in dirs + files:
+            path = os.path.join(root, name)
+            rel = os.path.relpath(path, folder)
+            if os.path.islink(path):
+                state[rel] = "link:" + os.readlink(path)
+            elif os.path.isfile(path):
+                state[rel] = file_digest(path)
+            else:
+                state[rel] = "special" if not os.path.isdir(path) else "folder"
+    return state
+
+
+def can_mount_tmpfs():
+    probe = tempfile.mkdtemp(prefix="tsynth-tmpfs-probe-")
+    try:
+        ok = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=64k", "tmpfs", probe],
+                            capture_output=True).returncode == 0
+        if ok:
+            subprocess.run(["umount", probe], capture_output=True)
+        return ok
+    except OSError:
+        return False
+    finally:
+        os.rmdir(probe)
+
+
+class NothingLostTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix="tsynth-lost-")
+        cls.dem = os.path.join(PATHS.bundled_data, "dems", "colorado.png")
+        cls.strokes = os.path.join(PATHS.bundled_data, *STROKES)
+        cls.tif = os.path.join(cls.tmp, "dem.tif")
+        r = subprocess.run([PATHS.tsynth, "convert", cls.dem, "-o", cls.tif], capture_output=True)
+        assert r.returncode == 0, r.stderr
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp)
+
+    def make_case_folder(self, name):
+        d = os.path.join(self.tmp, name)
+        os.makedirs(os.path.join(d, "t"))
+        os.makedirs(os.path.join(d, "u"))
+        os.makedirs(os.path.join(d, "dbg"))
+        os.makedirs(os.path.join(d, "folder.tif"))
+        shutil.copy(self.dem, os.path.join(d, "dem.png"))
+        shutil.copy(os.path.splitext(self.dem)[0] + ".json", os.path.join(d, "dem.json"))
+        shutil.copy(self.tif, os.path.join(d, "t", "dem.tif"))
+        shutil.copy(self.tif, os.path.join(d, "u", "dem.tif"))
+        with open(os.path.join(d, "u", "dem.json"), "w") as f:
+            f.write('{"cell_size_m": [30, 30]}\n')
+        shutil.copy(self.tif, os.path.join(d, "dbg", "target.tif"))
+        shutil.copy(self.strokes, os.path.join(d, "strokes.png"))
+        vtp(os.path.join(d, "lines.vtp"), [(100.0, 100.0, 0.0), (3000.0, 3000.0, 0.0)], [[0, 1]],
+            feature_types=[1])
+        os.symlink(os.path.join("t", "dem.tif"), os.path.join(d, "link.tif"))
+        os.symlink("t", os.path.join(d, "tl"))
+        os.link(os.path.join(d, "t", "dem.tif"), os.path.join(d, "hard.tif"))
+        os.symlink("/dev/null", os.path.join(d, "null.tif"))
+        os.mkfifo(os.path.join(d, "fifo.png"))
+        return d
+
+    def run_in(self, folder, args, env=None, stdout=subprocess.PIPE):
+        args = [self.strokes if a == "$strokes" else a for a in args]
+        return subprocess.run([PATHS.tsynth] + args, cwd=folder, stdout=stdout, stderr=subprocess.PIPE,
+                              text=True, errors="replace", timeout=CASE_TIMEOUT_S, env=env)
+
+    def assert_one_sentence(self, r, pattern):
+        lines = [line for line in r.stderr.splitlines() if line.strip()]
+        self.assertNotEqual(r.returncode, 0, r.stderr)
+        self.assertIsNone(FORBIDDEN.search(r.stderr), r.stderr)
+        self.assertEqual(len(lines), 1, "expected one sentence, got %r" % r.stderr)
+        self.assertTrue(lines[0].startswith("tsynth: ") and lines[0].endswith("."), lines[0])
+        self.assertNotIn(".tsynth-", lines[0], "names a temporary, not the user's file")
+        self.assertRegex(lines[0], pattern)
+
+    def test_an_output_never_replaces_an_input_or_another_output(self):
+        self.assertGreaterEqual(len(SAME_FILE_CASES), 20)
+        for case_id, args, pattern in SAME_FILE_CASES:
+            with self.subTest(case=case_id):
+                folder = self.make_case_folder("same-" + case_id)
+                before = snapshot(folder)
+                r = self.run_in(folder, args)
+                self.assert_one_sentence(r, pattern)
+                self.assertEqual(r.returncode, 1, r.stderr)
+                self.assertEqual(snapshot(folder), before, "a refused command changed the folder")
+        self.assertTrue(os.path.exists("/dev/null") and not os.path.isfile("/dev/null"))
+
+    def test_names_of_any_legal_length_are_written(self):
+        folder = os.path.join(self.tmp, "long-names")
+        os.mkdir(folder)
+        for name in ("a" * (NAME_MAX - 4) + ".tif", "b" * (NAME_MAX - 5) + ".png", "c" * (NAME_MAX - 4) + ".vti"):
+            with self.subTest(length=len(name), ext=name[-4:]):
+                r = self.run_in(folder, ["convert", self.tif, "-o", name])
+                self.assertEqual(r.returncode, 0, r.stderr)
+                self.assertTrue(os.path.isfile(os.path.join(folder, name)))
+        self.assertEqual([n for n in os.listdir(folder) if n.startswith(".")], [])
+
+    def outputs_of(self, kind):
+        """A command writing `kind` into the current folder: its arguments and the files it makes."""
+        synth = ["synth", "--exemplar", self.tif, "--sketch", self.strokes] + SMALL_SYNTH
+        return {
+            "tif": (["convert", self.tif, "-o", "o.tif"], ["o.tif"]),
+            "png": (["convert", self.tif, "-o", "o.png"], ["o.json", "o.png"]),
+            "vti": (["convert", self.tif, "-o", "o.vti"], ["o.vti"]),
+            "vtp": (["features", self.tif, "-o", "o.vtp", "--control-points", "c.vtp"], ["c.vtp", "o.vtp"]),
+            "picture": (["render", self.tif, "-o", "o.png"], ["o.png"]),
+            "synth": (synth + ["-o", "o.png", "--report", "r.json", "--debug-dir", "dbg"],
+                      ["dbg", "o.json", "o.png", "r.json"]),
+        }[kind]
+
+    def written_bytes(self, kind):
+        folder = tempfile.mkdtemp(dir=self.tmp, prefix="sizes-")
+        args, files = self.outputs_of(kind)
+        r = self.run_in(folder, args)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(sorted(os.listdir(folder)), files)
+        total = 0
+        for root, _, names in os.walk(folder):
+            total += sum(os.path.getsize(os.path.join(root, n)) for n in names)
+        return total
+
+    @unittest.skipIf(harness.INSTRUMENTED, "the shim is preloaded before ASan's runtime, which ASan refuses")
+    def test_a_write_failing_at_any_byte_leaves_nothing(self):
+        """The write-fault shim fails every write to tsynth's temporaries past byte N, as a disk that
+        fills up there: for N from the first byte to the last of every format and of a command that
+        writes several files, one sentence saying the disk is full, exit 1, and no file at all."""
+        self.assertTrue(SHIM and os.path.exists(SHIM), "TSYNTH_WRITE_FAULT_SHIM is not set by CTest")
+        cases = 0
+        for kind in ("tif", "png", "vti", "vtp", "picture", "synth"):
+            total = self.written_bytes(kind)
+            for limit in sorted({0, 1, 100, 4096, total // 3, total // 2, total - 4096, total - 1}):
+                if limit < 0:
+                    continue
+                with self.subTest(kind=kind, fail_after=limit, of=total):
+                    folder = tempfile.mkdtemp(dir=self.tmp, prefix="fault-%s-%d-" % (kind, limit))
+                    env = dict(os.environ, LD_PRELOAD=SHIM, TSYNTH_FAULT_FAIL_AFTER=str(limit))
+                    r = self.run_in(folder, self.outputs_of(kind)[0], env=env)
+                    self.assert_one_sentence(r, r"Cannot write .*: No space left on device\.$")
+                    self.assertEqual(r.returncode, 1)
+                    self.assertEqual(os.listdir(folder), [], "a failed write left files behind")
+                    cases += 1
+        self.assertGreaterEqual(cases, 40)
+
+    @unittest.skipUnless(os.geteuid() == 0 and can_mount_tmpfs(), "mounting a small tmpfs needs root")
+    def test_a_full_disk_leaves_nothing(self):
+        """On a real full file system (a tmpfs of a few pages): every format, and a PNG that fits
+        while its sidecar does not."""
+        mount = tempfile.mkdtemp(dir=self.tmp, prefix="tmpfs-")
+        def remount(kilobytes):
+            subprocess.run(["umount", mount], capture_output=True)
+            subprocess.run(["mount", "-t", "tmpfs", "-o", "size=%dk" % kilobytes, "tmpfs", mount], check=True)
+        try:
+            for kind in ("tif", "png", "vti", "vtp", "synth"):
+                with self.subTest(kind=kind):
+                    remount(64)
+                    r = self.run_in(mount, self.outputs_of(kind)[0])
+                    self.assert_one_sentence(r, r"Cannot write .*: No space left on device\.$")
+                    self.assertEqual(os.listdir(mount), [])
+            # The PNG alone, then a tmpfs of exactly its pages: the sidecar finds no room.
+            remount(4096)
+            self.assertEqual(self.run_in(mount, ["convert", self.tif, "-o", "o.png"]).returncode, 0)
+            pages = (os.path.getsize(os.path.join(mount, "o.png")) + 4095) // 4096
+            remount(4 * pages)
+            r = self.run_in(mount, ["convert", self.tif, "-o", "o.png"])
+            self.assert_one_sentence(r, r"Cannot write o\.json: No space left on device\.$")
+            self.assertEqual(os.listdir(mount), [], "the PNG was left without its sidecar")
+        finally:
+            subprocess.run(["umount", mount], capture_output=True)
+
+    def test_a_full_standard_output_fails_and_publishes_nothing(self):
+        folder = tempfile.mkdtemp(dir=self.tmp, prefix="stdout-")
+        for args in (["info", self.tif, "--json"], ["evaluate", self.tif, "--exemplar", self.tif, "--json"],
+                     ["convert", self.tif, "-o", "o.tif"]):
+            with self.subTest(command=args[0]):
+                with open("/dev/full", "w") as full:
+                    r = self.run_in(folder, args, stdout=full)
+                self.assert_one_sentence(r, r"Cannot write to standard output")
+                self.assertEqual(r.returncode, 1)
+                self.assertEqual(os.listdir(folder), [])
+
+    def signal_mid_write(self, args, pause_file, sig):
+        """Runs args with the shim pausing at the first write of temporary number pause_file, sends
+        sig once it is there, and returns the result and the folder."""
+        import signal
+        import time
+        folder = tempfile.mkdtemp(dir=self.tmp, prefix="signal-")
+        marker = os.path.join(self.tmp, "marker-%d" % os.getpid())
+        if os.path.exists(marker):
+            os.remove(marker)
+        env = dict(os.environ, LD_PRELOAD=SHIM, TSYNTH_FAULT_PAUSE_FILE=str(pause_file),
+                   TSYNTH_FAULT_MARKER=marker)
+        args = [self.strokes if a == "$strokes" else a for a in args]
+        p = subprocess.Popen([PATHS.tsynth] + args, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             text=True, env=env)
+        deadline = time.monotonic() + CASE_TIMEOUT_S
+        while not os.path.exists(marker) and p.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.02)
+        self.assertTrue(os.path.exists(marker), "the command never reached temporary %d" % pause_file)
+        p.send_signal(sig)
+        out, err = p.communicate(timeout=CASE_TIMEOUT_S)
+        os.remove(marker)
+        return p.returncode, err, folder
+
+    @unittest.skipIf(harness.INSTRUMENTED, "the shim is preloaded before ASan's runtime, which ASan refuses")
+    def test_a_signal_while_writing_leaves_nothing(self):
+        """A stop signal (SIGHUP, SIGTERM, SIGINT, SIGQUIT) in the middle of any file of a command's
+        outputs, the first or one after others are complete, leaves no file: a long command (synth)
+        stops cleanly with 128 + the signal, a short one (convert) and any other terminating signal
+        (SIGUSR1, SIGPIPE) remove the temporaries and end as the signal would."""
+        import signal
+        self.assertTrue(SHIM and os.path.exists(SHIM), "TSYNTH_WRITE_FAULT_SHIM is not set by CTest")
+        synth = ["synth", "--exemplar", self.tif, "--sketch", "$strokes"] + SMALL_SYNTH + [
+            "-o", "o.png", "--report", "r.json", "--debug-dir", "dbg"]
+        convert = ["convert", self.tif, "-o", "o.png"]
+        for args, pause_file, sig, status in (
+                (convert, 1, signal.SIGHUP, -signal.SIGHUP),
+                (convert, 2, signal.SIGTERM, -signal.SIGTERM),  # the PNG complete, its sidecar not
+                (synth, 1, signal.SIGTERM, 128 + signal.SIGTERM),
+                (synth, 3, signal.SIGINT, 128 + signal.SIGINT),    # the terrain and sidecar complete
+                (synth, 6, signal.SIGQUIT, 128 + signal.SIGQUIT),  # inside the debug folder
+                (synth, 4, signal.SIGUSR1, -signal.SIGUSR1),
+                (convert, 2, signal.SIGPIPE, -signal.SIGPIPE)):
+            with self.subTest(command=args[0], file=pause_file, signal=sig.name):
+                code, err, folder = self.signal_mid_write(args, pause_file, sig)
+                self.assertEqual(code, status, err)
+                self.assertIsNone(FORBIDDEN.search(err), err)
+                self.assertEqual(os.listdir(folder), [], "a signalled command left files behind")
+
+
 if __name__ == "__main__":
     harness.run(__name__)
