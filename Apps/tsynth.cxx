@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <dlfcn.h>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -203,12 +204,44 @@ int runInfo(std::vector<std::string> args)
 }
 
 // Re-runs this command under xvfb-run when there is no X display for --3d.
+// True if an X server answers at $DISPLAY. Asked through libX11 (loaded here, as VTK's
+// window would load it): VTK's own attempt aborts the process when nothing answers.
+bool displayAnswers()
+{
+  void* x11 = dlopen("libX11.so.6", RTLD_NOW | RTLD_LOCAL);
+  if (x11 == nullptr)
+  {
+    return false;
+  }
+  using OpenDisplay = void* (*)(const char*);
+  using CloseDisplay = int (*)(void*);
+  const auto open = reinterpret_cast<OpenDisplay>(dlsym(x11, "XOpenDisplay"));
+  const auto close = reinterpret_cast<CloseDisplay>(dlsym(x11, "XCloseDisplay"));
+  void* connection = open != nullptr && close != nullptr ? open(nullptr) : nullptr;
+  if (connection != nullptr)
+  {
+    close(connection);
+  }
+  dlclose(x11);
+  return connection != nullptr;
+}
+
 void ensureDisplay(int argc, char** argv)
 {
   const char* display = std::getenv("DISPLAY");
   if (display != nullptr && *display != '\0')
   {
-    return;
+    if (displayAnswers())
+    {
+      return;
+    }
+    if (std::getenv("TSYNTH_UNDER_XVFB") != nullptr)
+    {
+      throw tsynth::Error("--3d needs an X display and xvfb-run did not provide one.");
+    }
+    std::cerr << "tsynth: warning: no X server answers at DISPLAY=" << display
+              << "; rendering under xvfb-run instead.\n";
+    unsetenv("DISPLAY");
   }
   if (std::getenv("TSYNTH_UNDER_XVFB") != nullptr)
   {

@@ -96,6 +96,7 @@ void writeTerrainFile(const std::string& path, const Heightfield& hf)
     writeHeightfield(path, hf);
     return;
   }
+  checkWritableHeights(hf, path);
   vtkNew<vtkImageData> image;
   heightfieldToImage(hf, image);
   vtkNew<vtkXMLImageDataWriter> writer;

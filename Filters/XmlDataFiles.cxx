@@ -8,17 +8,24 @@
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkErrorCode.h>
+#include <vtkLogger.h>
+#include <vtkNew.h>
+#include <vtkOutputWindow.h>
 #include <vtkSetGet.h>
+#include <vtkStringOutputWindow.h>
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
 #include <vtkXMLReader.h>
 #include <vtkXMLWriter.h>
 
 #include <array>
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <limits>
 #include <new>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -27,21 +34,38 @@ namespace tsynth
 namespace
 {
 
-// While it lives, VTK prints no error or warning (they still reach observers).
+// While it lives, VTK prints no error or warning: those of objects with an error observer reach
+// the observer, the others (a reader's data compressor) are kept in text() instead of printed.
 class QuietVtk
 {
 public:
   QuietVtk()
-    : previous_(vtkObject::GetGlobalWarningDisplay())
+    : previous_(vtkOutputWindow::GetInstance())
+    , display_(vtkObject::GetGlobalWarningDisplay())
+    , stderrLevel_(vtkLogger::GetCurrentVerbosityCutoff())
   {
-    vtkObject::GlobalWarningDisplayOff();
+    previous_->Register(nullptr);
+    vtkOutputWindow::SetInstance(capture_);
+    vtkObject::GlobalWarningDisplayOn();
+    // VTK 9 also logs each unobserved error to stderr through vtkLogger.
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
   }
-  ~QuietVtk() { vtkObject::SetGlobalWarningDisplay(previous_); }
+  ~QuietVtk()
+  {
+    vtkLogger::SetStderrVerbosity(stderrLevel_);
+    vtkObject::SetGlobalWarningDisplay(display_);
+    vtkOutputWindow::SetInstance(previous_);
+    previous_->UnRegister(nullptr);
+  }
   QuietVtk(const QuietVtk&) = delete;
   QuietVtk& operator=(const QuietVtk&) = delete;
+  std::string text() const { return capture_->GetOutput(); }
 
 private:
-  int previous_;
+  vtkNew<vtkStringOutputWindow> capture_;
+  vtkOutputWindow* previous_;
+  int display_;
+  vtkLogger::Verbosity stderrLevel_;
 };
 
 vtkIdType countAttribute(vtkXMLDataElement* piece, const char* name)
@@ -303,6 +327,50 @@ void checkArrayLengths(vtkXMLReader* reader, const std::string& path, const std:
 
 } // namespace
 
+// VTK reads an image's Spacing or Origin it cannot parse ("nan", "1e999") as its default (1 m
+// cells at 0): each of the three numbers must be finite, and the spacing not zero.
+void checkImageFrame(vtkXMLReader* reader, const std::string& path)
+{
+  vtkXMLDataParser* parser = reader->GetXMLParser();
+  vtkXMLDataElement* root = parser != nullptr ? parser->GetRootElement() : nullptr;
+  vtkXMLDataElement* image =
+    root != nullptr ? root->FindNestedElementWithName("ImageData") : nullptr;
+  if (image == nullptr)
+  {
+    return;
+  }
+  for (const char* name : { "Spacing", "Origin" })
+  {
+    const char* text = image->GetAttribute(name);
+    if (text == nullptr)
+    {
+      continue;
+    }
+    std::istringstream tokens(text);
+    std::string token;
+    int count = 0;
+    while (tokens >> token)
+    {
+      char* end = nullptr;
+      const double v = std::strtod(token.c_str(), &end);
+      const bool zeroSpacing = std::string(name) == "Spacing" && v == 0.0;
+      if (end == token.c_str() || *end != '\0' || !std::isfinite(v) || zeroSpacing)
+      {
+        throw Error(path + " has " + name + " \"" + text + "\": the image's " +
+          (std::string(name) == "Spacing" ? "cell size" : "origin") +
+          " must be three finite numbers" +
+          (std::string(name) == "Spacing" ? ", none of them zero." : "."));
+      }
+      ++count;
+    }
+    if (count != 3)
+    {
+      throw Error(
+        path + " has " + name + " \"" + text + "\"; an image's " + name + " is three numbers.");
+    }
+  }
+}
+
 void readXmlDataFile(vtkXMLReader* reader, const std::string& path, const std::string& what)
 {
   const QuietVtk quiet;
@@ -314,6 +382,14 @@ void readXmlDataFile(vtkXMLReader* reader, const std::string& path, const std::s
   if (observer.failed)
   {
     throw Error(refusal);
+  }
+  checkImageFrame(reader, path);
+  // A block that does not decompress is reported by the parser's compressor alone (VTK then
+  // reads on with the array missing), in the captured text: named as damage.
+  const auto damaged = [&] { return quiet.text().find("uncompress") != std::string::npos; };
+  if (damaged())
+  {
+    throw Error(path + " is damaged: some of its compressed data does not decompress.");
   }
   // VTK's parser sizes its buffers from the headers it reads: a header it
   // decodes to an absurd size ends in std::length_error or std::bad_alloc.
@@ -330,6 +406,10 @@ void readXmlDataFile(vtkXMLReader* reader, const std::string& path, const std::s
   {
     throw Error("Reading " + path +
       " needs more memory than this machine has: its array headers are probably damaged.");
+  }
+  if (damaged())
+  {
+    throw Error(path + " is damaged: some of its compressed data does not decompress.");
   }
   if (observer.failed || reader->GetOutputDataObject(0) == nullptr)
   {

@@ -123,4 +123,49 @@ void checkPlausibleHeights(const Heightfield& hf, const std::string& name)
   throw Error(o.str());
 }
 
+bool hasValidWindow(const Heightfield& hf, int side)
+{
+  if (side <= 0 || hf.width < side || hf.height < side)
+  {
+    return false;
+  }
+  if (!hf.hasMask())
+  {
+    return true;
+  }
+  // Runs of valid cells: down each column, then along each row of "column run >= side".
+  const auto w = static_cast<std::size_t>(hf.width);
+  std::vector<int> columnRun(w, 0);
+  for (int j = 0; j < hf.height; ++j)
+  {
+    int rowRun = 0;
+    for (int i = 0; i < hf.width; ++i)
+    {
+      int& run = columnRun[static_cast<std::size_t>(i)];
+      run = hf.isValid(i, j) ? run + 1 : 0;
+      rowRun = run >= side ? rowRun + 1 : 0;
+      if (rowRun >= side)
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+void checkWritableHeights(const Heightfield& hf, const std::string& path)
+{
+  for (std::size_t k = 0; k < hf.size(); ++k)
+  {
+    if (hf.isValid(k) && !(std::abs(hf.z[k]) <= kMaxPlausibleHeight))
+    {
+      std::ostringstream o;
+      o << "Cannot write " << path << ": its heights reach " << hf.z[k] << " m, beyond the +-"
+        << kMaxPlausibleHeight << " m that any terrain (and tsynth's reader) holds; "
+        << "lower the height scale.";
+      throw Error(o.str());
+    }
+  }
+}
+
 } // namespace tsynth

@@ -81,4 +81,11 @@ constexpr double kMaxPlausibleHeight = 1.0e12;
 // beyond +-kMaxPlausibleHeight, saying how many and how to declare the nodata.
 void checkPlausibleHeights(const Heightfield& hf, const std::string& name);
 
+// True if some side x side window of `hf` holds no nodata cell (a patch can be cut there).
+bool hasValidWindow(const Heightfield& hf, int side);
+
+// Throws tsynth::Error naming `path` before a terrain whose valid heights are not finite or lie
+// beyond kMaxPlausibleHeight is written: tsynth would refuse to read it back.
+void checkWritableHeights(const Heightfield& hf, const std::string& path);
+
 } // namespace tsynth

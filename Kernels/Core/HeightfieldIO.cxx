@@ -69,14 +69,45 @@ public:
     return error;
   }
 
-private:
-  static void CPL_STDCALL record(CPLErr level, CPLErrorNum, const char*)
+  // GDAL's warnings while a GdalWarnings scope is open on this thread (nullptr if none).
+  static std::vector<std::string>*& warningSink()
+  {
+    thread_local std::vector<std::string>* sink = nullptr;
+    return sink;
+  }
+
+  static void CPL_STDCALL record(CPLErr level, CPLErrorNum, const char* message)
   {
     if (level >= CE_Failure && firstFailureErrno() == 0)
     {
       firstFailureErrno() = errno;
     }
+    if (level == CE_Warning && warningSink() != nullptr && message != nullptr)
+    {
+      warningSink()->emplace_back(message);
+    }
   }
+};
+
+// Collects GDAL's warnings while in scope (GDAL prints nothing), so that a reader can pass
+// them on as one warning line of its own.
+class GdalWarnings
+{
+public:
+  GdalWarnings()
+    : outer_(QuietGdal::warningSink())
+  {
+    QuietGdal::warningSink() = &messages_;
+  }
+  ~GdalWarnings() { QuietGdal::warningSink() = outer_; }
+  GdalWarnings(const GdalWarnings&) = delete;
+  GdalWarnings& operator=(const GdalWarnings&) = delete;
+  const std::vector<std::string>& messages() const { return messages_; }
+
+private:
+  QuietGdal quiet_;
+  std::vector<std::string>* outer_;
+  std::vector<std::string> messages_;
 };
 
 struct DatasetCloser
@@ -152,7 +183,20 @@ GDALRasterBand* heightBand(GDALDataset& ds, const std::string& path)
   {
     throw Error(path + " is a palette (colour-indexed) image, not a heightfield.");
   }
+  if (GDALDataTypeIsComplex(band->GetRasterDataType()) != 0)
+  {
+    throw Error(path + " stores complex values (" + GDALGetDataTypeName(band->GetRasterDataType()) +
+      "); a heightfield stores real heights, and the imaginary part would be lost.");
+  }
   return band;
+}
+
+// GDAL 3.6 reads signed 8-bit rasters as Byte, marked PIXELTYPE=SIGNEDBYTE.
+bool isSignedByte(GDALRasterBand& band)
+{
+  const char* type = band.GetMetadataItem("PIXELTYPE", "IMAGE_STRUCTURE");
+  return band.GetRasterDataType() == GDT_Byte && type != nullptr &&
+    std::string(type) == "SIGNEDBYTE";
 }
 
 double integerTypeMax(GDALDataType t)
@@ -224,7 +268,43 @@ void checkTextRasterSize(const std::string& driver, const std::string& path, int
   }
 }
 
+RasterInfo describeRaster(GDALDataset& ds, const std::string& path, const ReadOptions& options);
+
+// GDAL's longest message kept in a warning line; its longer explanations follow a first sentence.
+constexpr std::size_t kLongestGdalWarning = 160;
+
+// The raster's size, type, nodata, units and georeferencing, with GDAL's own warnings about
+// them (an unknown EPSG code, damaged GeoTIFF keys, a negative pixel scale) passed on as one
+// warning line instead of GDAL's "Warning 1:" lines.
 RasterInfo describe(GDALDataset& ds, const std::string& path, const ReadOptions& options)
+{
+  GdalWarnings gdal;
+  RasterInfo info = describeRaster(ds, path, options);
+  if (!gdal.messages().empty())
+  {
+    std::string first = gdal.messages().front();
+    std::replace(first.begin(), first.end(), '\n', ' ');
+    const std::size_t sentence = first.find(". ");
+    if (!first.empty() && first.back() == '.')
+    {
+      first.pop_back();
+    }
+    if (sentence != std::string::npos && sentence < kLongestGdalWarning)
+    {
+      first.resize(sentence); // the first sentence: GDAL's advice on options follows it
+    }
+    else if (first.size() > kLongestGdalWarning)
+    {
+      first = first.substr(0, kLongestGdalWarning) + "...";
+    }
+    info.warnings.push_back(path + ": GDAL read it with " + std::to_string(gdal.messages().size()) +
+      " warning(s), the first: \"" + first +
+      "\"; heights and georeferencing are as GDAL reads them.");
+  }
+  return info;
+}
+
+RasterInfo describeRaster(GDALDataset& ds, const std::string& path, const ReadOptions& options)
 {
   RasterInfo info;
   info.path = path;
@@ -233,7 +313,7 @@ RasterInfo describe(GDALDataset& ds, const std::string& path, const ReadOptions&
   info.height = ds.GetRasterYSize();
   info.bands = ds.GetRasterCount();
   GDALRasterBand* band = heightBand(ds, path);
-  info.dataType = GDALGetDataTypeName(band->GetRasterDataType());
+  info.dataType = isSignedByte(*band) ? "Int8" : GDALGetDataTypeName(band->GetRasterDataType());
 
   int hasNodata = 0;
   const double nodata = band->GetNoDataValue(&hasNodata);
@@ -620,6 +700,14 @@ Heightfield readHeightfield(const std::string& path, const ReadOptions& options,
 
   const double unitScale = info.zUnit == ZUnit::Feet ? kMetresPerFoot : 1.0;
   const double typeMax = integerTypeMax(band->GetRasterDataType());
+  if (isSignedByte(*band))
+  {
+    constexpr float kByteWrap = 256.0f; // two's complement: stored 128..255 are -128..-1
+    for (float& v : raw)
+    {
+      v = v > 127.0f ? v - kByteWrap : v;
+    }
+  }
   const bool sidecarNodata = info.nodata && !info.sidecarPath.empty();
   const float nodataValue = info.nodata ? static_cast<float>(*info.nodata) : 0.0f;
 
@@ -771,6 +859,7 @@ void writeHeightfield(const std::string& path, const Heightfield& hf)
   {
     throw Error("Cannot write " + path + ": the heightfield is empty or inconsistent.");
   }
+  checkWritableHeights(hf, path);
   const std::string ext = lowerExtension(path);
   if (!isHeightfieldWriteExtension(path))
   {

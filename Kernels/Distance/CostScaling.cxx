@@ -235,6 +235,13 @@ std::vector<MonotoneProfile> readProfileCsv(const std::string& path)
       }
       row.profile = static_cast<int>(id);
     }
+    std::string extra;
+    fields.clear();
+    if (fields >> extra)
+    {
+      throw Error(rowName(path, line) + ": \"" + extra +
+        "\" is one column too many; a row is \"distance,height[,profile]\".");
+    }
     rows.push_back(row);
   }
   return profilesFromRows(rows, path);

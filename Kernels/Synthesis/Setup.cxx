@@ -237,7 +237,15 @@ void prepareExemplars(SetupInputs& in, SynthesisSetup& s)
     {
       throw Error(exemplarName(in, e) + " is " + sizeText(hf.width, hf.height) + " cells of " +
         cellText(g.cellX, g.cellY) + ", smaller than one patch (" + std::to_string(in.patchSize) +
-        " cells); give a larger exemplar or a smaller " + in.names.patch + ".");
+        " cells); give a larger exemplar or reduce " + in.names.patch + ".");
+    }
+    if (!hasValidWindow(hf, in.patchSize))
+    {
+      throw Error(exemplarName(in, e) + " holds no " + std::to_string(in.patchSize) + " x " +
+        std::to_string(in.patchSize) + " window without nodata (" +
+        std::to_string(hf.validCount()) + " valid cells of " + std::to_string(hf.size()) +
+        "), so no patch can be cut from it; " +
+        "give an exemplar with more valid heights or reduce " + in.names.patch + ".");
     }
     s.graphs.push_back(ridgesAndValleys(hf, exemplarPpaOptions()));
     s.exemplars.push_back(std::move(hf));
@@ -432,7 +440,7 @@ OutputGrid outputGrid(const SketchExtent& sketch,
   {
     throw Error("The output (" + sizeText(g.width, g.height) +
       " cells) is smaller than one patch (" + std::to_string(patchSize) + "); give a larger " +
-      names.size + " or a smaller " + names.patch + ".");
+      names.size + " or reduce " + names.patch + ".");
   }
   return g;
 }
