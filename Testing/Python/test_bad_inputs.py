@@ -57,6 +57,25 @@ CASES = [
     ("text-as-dem", ["info", "@readme.tif"], 1, r"readme\.tif is not a raster"),
     ("fifo-as-dem", ["info", "@pipe.tif"], 1, r"pipe\.tif.*not a (regular file|raster)"),
     ("dev-zero-as-dem", ["info", "/dev/zero"], 1, r"/dev/zero.*not a (regular file|raster)"),
+    # Odd rasters (issue 25) -----------------------------------------------------------------------
+    ("complex-raster", ["info", "@complex.tif"], 1, r"complex\.tif stores complex values \(CFloat32\)"),
+    ("complex-exemplar", ["synth", "--exemplar", "@complex.tif", "--sketch", "$strokes", "-o", "^out.tif"], 1,
+     r"complex values"),
+    ("one-valid-cell-exemplar", ["synth", "--exemplar", "@onecell.tif", "--sketch", "$strokes", "--patch", "32",
+                                 "-o", "^out.tif"], 1,
+     r"onecell\.tif holds no 32 x 32 window without nodata \(1 valid cells of 14400\)"),
+    ("vti-nan-spacing", ["info", "@nan-spacing.vti"], 1, r"nan-spacing\.vti has Spacing \"nan nan 1\""),
+    ("vtp-zlib-damaged", ["synth", "--exemplar", "$dem", "--sketch", "@zlib-damaged.vtp", "-o", "^out.tif"], 1,
+     r"zlib-damaged\.vtp is damaged: some of its compressed data does not decompress"),
+    ("vtp-zlib-damaged-features", ["features", "@zlib-damaged.vtp", "--sketch", "-o", "^out.vtp"], 1,
+     r"zlib-damaged\.vtp is damaged"),
+    ("profile-extra-column", ["distance", "--generators", "$distance", "--profiles", "@extra-column.csv",
+                              "-o", "^out.tif"], 1, r"extra-column\.csv line 2: \"7\" is one column too many"),
+    ("height-scale-beyond-any-terrain", ["distance", "--generators", "$distance", "--height-scale", "1e30",
+                                         "-o", "^out.tif"], 1,
+     r"Cannot write .*out\.tif: its heights reach .* beyond the \+-1e\+12 m"),
+    ("optimise-source-smaller-than-scale", ["optimise", "--exemplar", "@small-slope.tif", "--guide", "$grey", "-o",
+                                            "^out.tif"], 1, r"reduce the guide's landform scale\.$"),
     # Sidecars -----------------------------------------------------------------------------------
     ("sidecar-bad-json", ["info", "@badjson/dem.png"], 1, r"not valid JSON"),
     ("sidecar-wrong-unit", ["convert", "@badunit/dem.png", "-o", "^out.tif"], 1, r"z_unit.*\"m\" or \"ft\""),
@@ -279,7 +298,8 @@ EXAMPLES = {
 
 # Anything of these in stderr is a crash or garbage, never a sentence for a user.
 FORBIDDEN = re.compile(r"Traceback|terminate called|Sanitizer|runtime error|Segmentation|core dumped|"
-                       r"unexpected failure|std::|basic_string|what\(\)|Assertion|ERROR: In ")
+                       r"unexpected failure|std::|basic_string|what\(\)|Assertion|ERROR: In |"
+                       r"ERROR \d+:|Warning \d+:|ERR\||\.tsynth-")
 
 
 def png_bytes(width, height, rows, colour_type=2, bit_depth=8):
@@ -326,6 +346,48 @@ def float_tiff(path, width, height, value, nodata=None):
     ifd += struct.pack("<I", 0)
     with open(path, "wb") as f:
         f.write(b"II*\x00" + struct.pack("<I", 8) + ifd + pixels + extra)
+
+
+def tiff(path, width, height, bits, sample_format, pixels, tags=()):
+    """A little-endian baseline TIFF of one strip and one sample per pixel (SampleFormat 1 unsigned,
+    2 signed, 3 float, 6 complex float), with extra tags as (tag, type, values): type 3 SHORT or
+    12 DOUBLE, the values written after the pixels."""
+    entries = [(256, 4, [width]), (257, 4, [height]), (258, 3, [bits]), (259, 3, [1]), (262, 3, [1]),
+               (273, 4, None), (277, 3, [1]), (278, 4, [height]), (279, 4, [len(pixels)]),
+               (339, 3, [sample_format])] + list(tags)
+    entries.sort(key=lambda e: e[0])
+    ifd_size = 2 + 12 * len(entries) + 4
+    data_offset = 8 + ifd_size
+    extra = b""
+    ifd = struct.pack("<H", len(entries))
+    for tag, kind, values in entries:
+        if tag == 273:
+            ifd += struct.pack("<HHII", tag, 4, 1, data_offset)
+            continue
+        packed = b"".join(struct.pack({3: "<H", 4: "<I", 12: "<d"}[kind], v) for v in values)
+        if len(packed) <= 4:
+            ifd += struct.pack("<HHI", tag, kind, len(values)) + packed.ljust(4, b"\0")
+        else:
+            offset = data_offset + len(pixels) + len(extra)
+            ifd += struct.pack("<HHII", tag, kind, len(values), offset)
+            extra += packed
+    ifd += struct.pack("<I", 0)
+    with open(path, "wb") as f:
+        f.write(b"II*\x00" + struct.pack("<I", 8) + ifd + pixels + extra)
+
+
+def geotiff(path, geokeys, scale=(30.0, 30.0, 0.0)):
+    """A 64 x 64 float32 GeoTIFF (UTM-like tie point) with the given GeoKeyDirectory shorts."""
+    pixels = b"".join(struct.pack("<f", 1000.0 + 3.0 * x + 2.0 * y) for y in range(64) for x in range(64))
+    tiff(path, 64, 64, 32, 3, pixels, [(33550, 12, list(scale)),
+                                       (33922, 12, [0.0, 0.0, 0.0, 500000.0, 4500000.0, 0.0]),
+                                       (34735, 3, geokeys)])
+
+
+# GeoKeyDirectory: version 1.1.0, then (key, location, count, value): projected model, pixel is
+# area, ProjectedCSTypeGeoKey = the EPSG code.
+def projected_geokeys(epsg):
+    return [1, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, epsg]
 
 
 def sidecar(path, text):
@@ -527,6 +589,39 @@ def make_fixtures(d, bundled):
     with open(join("nanprofile.csv"), "w") as f:
         f.write("0,1\n5,nan\n10,0\n")
     open(join("emptyprofile.csv"), "w").close()
+    # Odd rasters (issue 25): signed bytes, complex values, one valid cell, unusual georeferencing.
+    signed = [(x * 7 + y * 3) % 200 - 100 for y in range(80) for x in range(80)]
+    tiff(join("int8.tif"), 80, 80, 8, 2, struct.pack("<%db" % len(signed), *signed))
+    tiff(join("complex.tif"), 32, 32, 64, 6, struct.pack("<%df" % (2 * 32 * 32), *([1.0, 2.0] * 32 * 32)))
+    float_tiff(join("onecell.tif"), 120, 120, lambda x, y: 5.0 if (x, y) == (60, 60) else float("nan"), "nan")
+    float_tiff(join("small-slope.tif"), 12, 12, lambda x, y: 100.0 + 3.0 * x + 5.0 * y)
+    geotiff(join("geo-ok.tif"), projected_geokeys(32613))
+    geotiff(join("geo-unknown-epsg.tif"), projected_geokeys(30999))
+    geotiff(join("geo-corrupt-keys.tif"), [1, 1, 0, 900, 1024, 0, 1, 1])
+    geotiff(join("geo-negative-scale.tif"), projected_geokeys(32613), scale=(30.0, -30.0, 0.0))
+    with open(join("extra-column.csv"), "w") as f:
+        f.write("distance,height,profile\n0,1,0,7\n5,0.5,0,7\n")
+
+
+def make_written_fixtures(d, bundled):
+    """Damaged copies of files tsynth writes: a .vti with a NaN spacing, a .vtp whose zlib blocks are
+    damaged."""
+    colorado = os.path.join(bundled, "dems", "colorado.png")
+    vti = os.path.join(d, "written.vti")
+    vtp_path = os.path.join(d, "written.vtp")
+    for args in (["convert", colorado, "-o", vti], ["features", colorado, "-o", vtp_path]):
+        r = subprocess.run([PATHS.tsynth] + args, capture_output=True)
+        assert r.returncode == 0, r.stderr
+    with open(vti) as f:
+        text = f.read()
+    with open(os.path.join(d, "nan-spacing.vti"), "w") as f:
+        f.write(re.sub(r'Spacing="[^"]*"', 'Spacing="nan nan 1"', text, count=1))
+    with open(vtp_path, "rb") as f:
+        data = f.read()
+    payload = re.search(rb'format="binary"[^>]*>\s*([A-Za-z0-9+/=]{200,})', data)
+    middle = (payload.start(1) + payload.end(1)) // 2
+    with open(os.path.join(d, "zlib-damaged.vtp"), "wb") as f:
+        f.write(data[:middle] + b"QUJD" * 8 + data[middle + 32:])
 
 
 class BadInputTest(unittest.TestCase):
@@ -534,6 +629,7 @@ class BadInputTest(unittest.TestCase):
     def setUpClass(cls):
         cls.tmp = tempfile.mkdtemp(prefix="tsynth-bad-")
         make_fixtures(cls.tmp, PATHS.bundled_data)
+        make_written_fixtures(cls.tmp, PATHS.bundled_data)
         examples = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Examples")
         cls.data = {k: os.path.join(PATHS.bundled_data, *v) for k, v in DATA.items()}
         cls.data.update({k: os.path.join(examples, *v) for k, v in EXAMPLES.items()})
@@ -650,6 +746,31 @@ class BadInputTest(unittest.TestCase):
                 self.assertEqual(others, [], r.stderr)
                 self.assertIsNone(FORBIDDEN.search(r.stderr), r.stderr)
                 self.assertEqual(sorted(os.listdir(out_dir)), sorted(outputs))
+
+    def test_unusual_georeferencing_reads_with_one_warning(self):
+        """GDAL's own "Warning 1:" lines never reach the user: an unknown EPSG code, damaged GeoTIFF
+        keys and a negative pixel scale read with one tsynth warning naming the file; a sound file
+        reads with none."""
+        for name, warned in (("geo-ok.tif", False), ("geo-unknown-epsg.tif", True),
+                             ("geo-corrupt-keys.tif", True), ("geo-negative-scale.tif", True)):
+            with self.subTest(file=name):
+                r = subprocess.run([PATHS.tsynth, "info", os.path.join(self.tmp, name), "--json"],
+                                   capture_output=True, text=True, timeout=CASE_TIMEOUT_S)
+                self.assertEqual(r.returncode, 0, r.stderr)
+                lines = [line for line in r.stderr.splitlines() if line.strip()]
+                self.assertIsNone(FORBIDDEN.search(r.stderr), r.stderr)
+                self.assertEqual(len(lines), 1 if warned else 0, r.stderr)
+                if warned:
+                    self.assertRegex(lines[0], r"^tsynth: warning: .*%s: GDAL read it with \d warning" % re.escape(name))
+                self.assertEqual(json.loads(r.stdout)["width"], 64)
+
+    def test_signed_bytes_are_read_signed(self):
+        r = subprocess.run([PATHS.tsynth, "info", os.path.join(self.tmp, "int8.tif"), "--json"],
+                           capture_output=True, text=True, timeout=CASE_TIMEOUT_S)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        doc = json.loads(r.stdout)
+        self.assertEqual(doc["data_type"], "Int8")
+        self.assertEqual((doc["z_min_m"], doc["z_max_m"]), (-100.0, 99.0))
 
     def test_catalogue(self):
         self.assertGreaterEqual(len(CASES), 40)
@@ -917,6 +1038,19 @@ class NothingLostTest(unittest.TestCase):
                 self.assert_one_sentence(r, r"Cannot write to standard output")
                 self.assertEqual(r.returncode, 1)
                 self.assertEqual(os.listdir(folder), [])
+
+    def test_3d_view_with_a_display_nobody_answers(self):
+        """DISPLAY naming no X server used to abort (SIGABRT) inside VTK: now one warning, and the
+        view is rendered under xvfb-run as without a DISPLAY."""
+        number = next(n for n in range(4000, 5000) if not os.path.exists("/tmp/.X11-unix/X%d" % n))
+        folder = tempfile.mkdtemp(dir=self.tmp, prefix="display-")
+        env = dict(os.environ, DISPLAY=":%d" % number)
+        r = self.run_in(folder, ["render", "--3d", self.tif, "-o", "view.png", "--size", "160x120"], env=env)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        lines = [line for line in r.stderr.splitlines() if line.strip()]
+        self.assertEqual(lines, ["tsynth: warning: no X server answers at DISPLAY=:%d; rendering under "
+                                 "xvfb-run instead." % number])
+        self.assertGreater(os.path.getsize(os.path.join(folder, "view.png")), 1000)
 
     def signal_mid_write(self, args, pause_file, sig):
         """Runs args with the shim pausing at the first write of temporary number pause_file, sends
