@@ -38,7 +38,7 @@ export LSAN_OPTIONS="suppressions=$root/Testing/lsan.supp:print_suppressions=0${
 # Tests whose timing an instrumented tsynth cannot meet skip themselves (Testing/Python/harness.py).
 export TSYNTH_TEST_INSTRUMENTED=1
 # Mesa unloads its GL driver when VTK closes the display; test_cli's 3D render preloads it so that
-# LeakSanitizer still sees the driver's globals at exit (gl_preload_environment in test_cli.py).
+# LeakSanitizer still sees the driver's globals at exit (gl_preload_environment in harness.py).
 gl_driver="/usr/lib/$(gcc -print-multiarch)/dri/swrast_dri.so"
 if [ -f "$gl_driver" ]; then
   export TSYNTH_TEST_GL_PRELOAD="$gl_driver"

@@ -1044,7 +1044,7 @@ class NothingLostTest(unittest.TestCase):
         view is rendered under xvfb-run as without a DISPLAY."""
         number = next(n for n in range(4000, 5000) if not os.path.exists("/tmp/.X11-unix/X%d" % n))
         folder = tempfile.mkdtemp(dir=self.tmp, prefix="display-")
-        env = dict(os.environ, DISPLAY=":%d" % number)
+        env = dict(harness.gl_preload_environment() or os.environ, DISPLAY=":%d" % number)
         r = self.run_in(folder, ["render", "--3d", self.tif, "-o", "view.png", "--size", "160x120"], env=env)
         self.assertEqual(r.returncode, 0, r.stderr)
         lines = [line for line in r.stderr.splitlines() if line.strip()]
