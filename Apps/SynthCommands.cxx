@@ -331,7 +331,11 @@ void checkPaths(const SynthArguments& a)
   {
     for (const std::string& name : debugFileNames(a.exemplars.size()))
     {
-      files.output(*a.debugDir + "/" + name, "--debug-dir");
+      // target.png is the target's picture, written without a sidecar.
+      const bool picture = hasExtension(name, ".png");
+      files.output(*a.debugDir + "/" + name,
+        "--debug-dir",
+        picture ? FileRoles::Content::Other : FileRoles::Content::Heights);
     }
   }
   files.check();

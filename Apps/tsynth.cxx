@@ -354,7 +354,7 @@ int runRender(std::vector<std::string> args, int argc, char** argv)
   }
   tsynth::FileRoles files;
   files.input(path, "the DEM", options.useSidecar);
-  files.output(*output, "-o");
+  files.output(*output, "-o", tsynth::FileRoles::Content::Other);
   files.check();
 
   const tsynth::Heightfield hf = readDem(path, options);

@@ -97,18 +97,22 @@ void FileRoles::input(const std::string& path, const std::string& role, bool sid
   }
 }
 
-void FileRoles::output(const std::string& path, const std::string& role)
+void FileRoles::output(const std::string& path, const std::string& role, Content content)
 {
   outputs_.push_back({ path, role });
   const std::string side = sidecarPathFor(path);
-  if (isPng(path))
+  if (content == Content::Heights && isPng(path))
   {
     outputs_.push_back({ side, "the sidecar of " + describe(role, path) });
   }
   std::error_code ec;
-  if (readsSidecarWithoutOne(path) && side != path && fs::exists(side, ec))
+  if (readsSidecarWithoutOne(path) && side != path)
   {
-    strays_.push_back({ path, side, describe(role, path) });
+    if (fs::exists(side, ec))
+    {
+      strays_.push_back({ path, side, describe(role, path) });
+    }
+    sidecarSpots_.push_back({ side, describe(role, path) });
   }
 }
 
@@ -131,6 +135,18 @@ void FileRoles::check() const
   {
     checkOutputPath(e.path);
     outputs.push_back({ e.path, describe(e.role, e.path), identityOf(e.path) });
+  }
+  for (const Entry& spot : sidecarSpots_)
+  {
+    const Identity id = identityOf(spot.path);
+    for (const Named& out : outputs)
+    {
+      if (out.id == id)
+      {
+        throw Error("Cannot write " + out.description + ": readers of " + spot.role +
+          " would take it for that terrain's sidecar; give it another name.");
+      }
+    }
   }
   for (std::size_t o = 0; o < outputs.size(); ++o)
   {

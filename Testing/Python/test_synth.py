@@ -382,9 +382,9 @@ class SynthTest(unittest.TestCase):
         done = tsynth("features", dem, "-o", features, "--both")
         self.assertEqual(done.returncode, 0, done.stderr)
         result = tsynth("synth", "--exemplar", dem, "--sketch", features, "--patch", "32",
-                        "-o", self.path("again.tif"), "--report", self.path("again.json"), "--no-progress")
+                        "-o", self.path("again.tif"), "--report", self.path("again-report.json"), "--no-progress")
         self.assertEqual(result.returncode, 0, result.stderr)
-        with open(self.path("again.json")) as f:
+        with open(self.path("again-report.json")) as f:
             report = json.load(f)
         self.assertEqual(report["sketch_kind"], "poly-lines")
         self.assertEqual(report["size"], [192, 160])
@@ -392,7 +392,7 @@ class SynthTest(unittest.TestCase):
         self.assertGreater(report["feature_placements"], 20)
         # At half the cell size the same ground needs twice the cells a side.
         result = tsynth("synth", "--exemplar", dem, "--sketch", features, "--patch", "32", "--cell", "45",
-                        "-o", self.path("fine.tif"), "--report", self.path("fine.json"), "--no-progress",
+                        "-o", self.path("fine.tif"), "--report", self.path("fine-report.json"), "--no-progress",
                         "--max-memory", "0.001")
         self.assertEqual(result.returncode, 1)
         self.assertIn("384 x 320 cells", result.stderr)  # refused by the budget, after sizing
