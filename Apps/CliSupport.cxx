@@ -428,11 +428,6 @@ int publishOutputs(int status, Publication& outputs)
   return 0;
 }
 
-void requireFolder(const std::string& path)
-{
-  checkOutputPath(path);
-}
-
 void requireCreatableFolder(const std::string& path)
 {
   std::filesystem::path existing(path);

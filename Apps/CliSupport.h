@@ -60,11 +60,6 @@ std::string oneInput(const CommandLine& cl, const char* command);
 // A whole-number option from lo to hi, if given (UsageError otherwise).
 std::optional<int> takeCount(CommandLine& cl, const std::string& name, int lo, int hi);
 
-// tsynth::Error unless a file can be written at `path` (checkOutputPath: its
-// folder exists and takes a new file), checked before any work, so that a long
-// run never ends in an unwritable path.
-void requireFolder(const std::string& path);
-
 // tsynth::Error unless the folder `path` exists or can be created (its nearest
 // existing ancestor is a writable folder), checked before any work.
 void requireCreatableFolder(const std::string& path);

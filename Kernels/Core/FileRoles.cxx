@@ -1,10 +1,10 @@
 #include "FileRoles.h"
 
 #include "Error.h"
+#include "HeightfieldIO.h"
 #include "OutputFile.h"
 #include "Sidecar.h"
 
-#include <cctype>
 #include <filesystem>
 #include <optional>
 #include <sys/stat.h>
@@ -16,16 +16,6 @@ namespace tsynth
 
 namespace
 {
-
-std::string lowerExtension(const std::string& path)
-{
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext)
-  {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return ext;
-}
 
 bool isPng(const std::string& path)
 {

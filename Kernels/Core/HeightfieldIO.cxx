@@ -452,16 +452,6 @@ RasterInfo describeRaster(GDALDataset& ds, const std::string& path, const ReadOp
   return info;
 }
 
-std::string lowerExtension(const std::string& path)
-{
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(),
-    ext.end(),
-    ext.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
 GDALDriver* driverByName(const char* name)
 {
   initialiseGdal();
@@ -659,6 +649,16 @@ void writePng16(const std::string& target, const std::string& tmp, const Heightf
 }
 
 } // namespace
+
+std::string lowerExtension(const std::string& path)
+{
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(),
+    ext.end(),
+    ext.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
 
 RasterInfo readRasterInfo(const std::string& path, const ReadOptions& options)
 {

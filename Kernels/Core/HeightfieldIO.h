@@ -96,4 +96,7 @@ ColourImage readColourImage(const std::string& path);
 // True if the extension names a format writeHeightfield writes.
 bool isHeightfieldWriteExtension(const std::string& path);
 
+// The file name's extension in lower case, with its dot (".tif"), or "".
+std::string lowerExtension(const std::string& path);
+
 } // namespace tsynth

@@ -14,6 +14,7 @@
 #include <pthread.h>
 #include <sys/stat.h>
 #include <system_error>
+#include <vector>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -423,18 +424,6 @@ void createOutputFolder(const std::string& path)
   {
     throw Error("Cannot create the folder " + path + ": a file of that name is in the way.");
   }
-}
-
-std::vector<std::string> Publication::staged() const
-{
-  PublicationState& pub = publication();
-  const std::lock_guard<std::mutex> lock(pub.mutex);
-  std::vector<std::string> targets;
-  for (const Staged& s : pub.staged)
-  {
-    targets.push_back(s.target);
-  }
-  return targets;
 }
 
 bool Publication::isOpen()

@@ -5,7 +5,6 @@
 #pragma once
 
 #include <string>
-#include <vector>
 
 namespace tsynth
 {
@@ -73,8 +72,6 @@ public:
   // Renames every staged temporary onto its target. Throws tsynth::Error on the first failure
   // (the files not yet renamed are removed).
   void publish();
-  // The targets staged so far, in the order they were committed.
-  std::vector<std::string> staged() const;
   // True while a Publication is open.
   static bool isOpen();
 };
