@@ -271,6 +271,7 @@ std::vector<std::string> debugFileNames(std::size_t exemplarCount)
     "patches.tif",
     "target-confidence.tif",
     "sketch-features.vtp",
+    "implied-features.vtp",
     "patch-id.tif",
     "seams.tif" };
   for (std::size_t e = 0; e < exemplarCount; ++e)
@@ -747,6 +748,9 @@ void writeDebug(const std::string& dir, const SynthesisSetup& setup, const Synth
   vtkNew<vtkPolyData> tree;
   featureGraphToPolyData(setup.target.graph, tree);
   writePolyDataFile(dir + "/sketch-features.vtp", tree);
+  vtkNew<vtkPolyData> implied;
+  featureGraphToPolyData(setup.target.implied, implied);
+  writePolyDataFile(dir + "/implied-features.vtp", implied);
   for (std::size_t e = 0; e < setup.graphs.size(); ++e)
   {
     vtkNew<vtkPolyData> t;

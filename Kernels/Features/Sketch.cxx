@@ -313,6 +313,16 @@ SketchFeatures greyFeatures(const ColourImage& image, const SketchOptions& o)
 
 } // namespace
 
+FeatureGraph centreLines(std::vector<std::uint8_t> mask,
+  int width,
+  int height,
+  FeatureType type,
+  const SketchOptions& options)
+{
+  double strokeWidth = 0.0;
+  return strokeGraph(std::move(mask), width, height, type, options, strokeWidth);
+}
+
 Heightfield greyField(const ColourImage& image)
 {
   Heightfield hf(image.width, image.height);

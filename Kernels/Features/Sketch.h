@@ -50,6 +50,15 @@ SketchFeatures sketchFeatures(const ColourImage& image, const SketchOptions& opt
 // The first channel of an image as heights (row 0 south), cell size 1.
 Heightfield greyField(const ColourImage& image);
 
+// The centre lines of the strokes in a binary mask (row-major, width x height,
+// row 0 south) as a graph of the given type: the mask's outline smoothed,
+// thinned, short spurs and specks removed (as for a stroke map's strokes).
+FeatureGraph centreLines(std::vector<std::uint8_t> mask,
+  int width,
+  int height,
+  FeatureType type,
+  const SketchOptions& options = {});
+
 // Zhang-Suen thinning of a binary mask (row-major, width x height), in place.
 void thinMask(std::vector<std::uint8_t>& mask, int width, int height);
 

@@ -748,7 +748,9 @@ ValleyFloors valleyFloors(const LineNetwork& net,
   bool loop = false;
   for (const std::vector<std::size_t>& component : net.components())
   {
-    loop = loop || net.edgesWithin(component) >= component.size();
+    const bool drawn = std::any_of(
+      component.begin(), component.end(), [&](std::size_t v) { return v < o.impliedNodesFrom; });
+    loop = loop || (drawn && net.edgesWithin(component) >= component.size());
     const std::size_t outlet = chooseOutlet(net, component, given, w, h, o.patchSize, rng);
     const bool drainsOut =
       borderDistance(net.position(outlet), w, h) <= kBorderReachInPatches * o.patchSize;
@@ -1092,7 +1094,17 @@ LandformField landformField(const FeatureGraph& sketch,
   const LineHeights* heights = sketchHeights != nullptr ? &dense.heights : nullptr;
   const double cell = std::min(cellX, cellY);
   const double narrowest = kNarrowestHalfWidthCells * cell;
+  // Each landform's shape takes the room all the lines leave it (a valley
+  // reaches up to the divide implied beside it); its raise and the scale the
+  // result follows it at, the room the drawn lines leave.
   const StrokeSpacing spacing = strokeSpacing(chainCells(graph, w, h, nullptr), w, h, cellX, cellY);
+  FeatureGraph drawn = graph;
+  drawn.chains.resize(std::min(drawn.chains.size(), o.impliedChainsFrom));
+  const bool anyImplied = drawn.chains.size() < graph.chains.size();
+  const StrokeSpacing drawnSpacing = anyImplied
+    ? strokeSpacing(chainCells(drawn, w, h, nullptr), w, h, cellX, cellY)
+    : StrokeSpacing();
+  const StrokeSpacing& drawnRoom = anyImplied ? drawnSpacing : spacing;
   LandformField out;
   // Each kind's relief raised to stand out at the room the drawing leaves it.
   {
@@ -1103,14 +1115,14 @@ LandformField landformField(const FeatureGraph& sketch,
     out.ridgeRaise = reliefFactor(measured.ridge,
       ridgeSection,
       FeatureType::Ridge,
-      typicalRoom(graph, FeatureType::Ridge, spacing, measured.ridge.width),
+      typicalRoom(drawn, FeatureType::Ridge, drawnRoom, measured.ridge.width),
       measured,
       o,
       cell);
     out.valleyRaise = reliefFactor(measured.valley,
       valleySection,
       FeatureType::Valley,
-      typicalRoom(graph, FeatureType::Valley, spacing, measured.valley.width),
+      typicalRoom(drawn, FeatureType::Valley, drawnRoom, measured.valley.width),
       measured,
       o,
       cell);
@@ -1161,6 +1173,18 @@ LandformField landformField(const FeatureGraph& sketch,
   const RasterLines valleyCells = rasteriseNetwork(graph, valleys, floors.floor, w, h);
   const RasterLines valleyRims = rasteriseNetwork(graph, valleys, floors.rim, w, h);
   const RasterLines flow = rasteriseNetwork(graph, valleys, floors.downstream, w, h);
+  // Implied valleys part two drawn ridges: they cut no gorge, which would
+  // cut into both crests.
+  std::vector<double> impliedVertex(valleys.size(), 0.0);
+  for (std::size_t c = std::min(graph.chains.size(), o.impliedChainsFrom); c < graph.chains.size();
+       ++c)
+  {
+    for (std::size_t v : valleys.chainVertices(c))
+    {
+      impliedVertex[v] = 1.0;
+    }
+  }
+  const RasterLines impliedValley = rasteriseNetwork(graph, valleys, impliedVertex, w, h);
   const NearestSeeds nearRidge = nearestSeeds(ridgeCells.seeds, w, h, cellX, cellY);
   const NearestSeeds nearValley = nearestSeeds(valleyCells.seeds, w, h, cellX, cellY);
   const MonotoneProfile ridgeShape = s.ridge.section.normalised();
@@ -1205,7 +1229,10 @@ LandformField landformField(const FeatureGraph& sketch,
       sum += a * (bottom + (top - bottom) * valleySection.shape(nearValley.distance[k], room));
       weights += a;
       conf = std::max(conf, confidence(d, valleyConfident, fade));
-      gorge = bottom + gorgeSlope * d;
+      if (!(impliedValley.value[at] > 0.5f))
+      {
+        gorge = bottom + gorgeSlope * d;
+      }
       if (nearValley.distance[k] < nearest)
       {
         width = s.valley.width;
@@ -1216,7 +1243,8 @@ LandformField landformField(const FeatureGraph& sketch,
       out.field.z[k] = static_cast<float>(std::min(gorge, sum / weights));
     }
     out.weight[k] = static_cast<float>(conf);
-    out.halfWidth[k] = static_cast<float>(std::max(narrowest, std::min(width, room)) / cell);
+    out.halfWidth[k] = static_cast<float>(
+      std::max(narrowest, std::min<double>(width, drawnRoom.halfSpacing[k])) / cell);
     if (flow.seeds[k] != 0)
     {
       out.downstream[k] = flow.value[k];

@@ -509,7 +509,9 @@ std::optional<std::string> finenessWarning(const SynthesisTarget& target, int pa
   // Closer than this, a stroke's own scale is finer than the final correction
   // draws (Synthesizer.h).
   const double finest = 2.0 * kCorrectionSigmasPerHalfWidth * kFinestCorrectionInPatches;
-  const double spacing = 2.0 * typicalHalfWidth(target);
+  // A drawing's own lines, not the ones it implies between them.
+  const double spacing =
+    2.0 * (target.lineHalfSpacing > 0.0 ? target.lineHalfSpacing : typicalHalfWidth(target));
   if (!(spacing > 0.0) || spacing >= finest * patchSize)
   {
     return std::nullopt;

@@ -3,6 +3,7 @@
 #include "../Core/Error.h"
 #include "../Core/Resample.h"
 #include "../Distance/DistanceField.h"
+#include "../Features/ImpliedLines.h"
 #include "../Features/Ppa.h"
 #include "../Features/Profiles.h"
 #include "../Features/StrokeSpacing.h"
@@ -52,6 +53,65 @@ std::vector<float> featureHalfWidths(const FeatureGraph& graph, int width, int h
 {
   StrokeSpacing s = strokeSpacing(rasteriseChains(graph, width, height), width, height);
   return std::move(s.halfSpacing);
+}
+
+// The implied lines worth shaping: at least half a patch long (shorter, the
+// bisector at a junction, or the inside of a meander's bend, which shaped as
+// a ridge stood as a small cross in the bend) and within a patch of the
+// strokes they part (farther, the land is free); control points at half a
+// patch, as the drawn lines'.
+ImpliedLineOptions impliedLineOptions(int patchSize)
+{
+  ImpliedLineOptions o;
+  o.minLength = 0.5 * patchSize;
+  o.maxDistance = patchSize;
+  o.controlRadius = 0.5 * patchSize;
+  return o;
+}
+
+// What the drawn lines say beyond themselves: the lines they imply, and how
+// far apart they are (the median over their cells of half the spacing to the
+// facing line, cells; +inf where most face none).
+struct DrawnLines
+{
+  FeatureGraph implied;
+  double halfSpacing = 0.0;
+};
+
+DrawnLines readDrawnLines(const FeatureGraph& graph, int patchSize)
+{
+  const std::vector<std::uint8_t> cells = rasteriseChains(graph, graph.width, graph.height);
+  const StrokeSpacing spacing = strokeSpacing(cells, graph.width, graph.height);
+  DrawnLines d;
+  d.implied = impliedLines(graph, spacing, impliedLineOptions(patchSize));
+  std::vector<float> half;
+  for (std::size_t k = 0; k < cells.size(); ++k)
+  {
+    if (cells[k] != 0)
+    {
+      half.push_back(spacing.halfSpacing[k]);
+    }
+  }
+  d.halfSpacing = half.empty() ? 0.0 : percentile(half, 0.5);
+  return d;
+}
+
+// The drawn lines and the lines they imply, as the landform field shapes
+// them: a divide between two drawn valleys is a ridge with a ridge's
+// cross-section (left a bare meeting of two slopes, it was lost among the
+// exemplars' own knobs). `heights`, per drawn chain, gets an empty entry per
+// implied chain (their heights are the field's own).
+FeatureGraph withImplied(const FeatureGraph& drawn,
+  const FeatureGraph& implied,
+  LineHeights* heights)
+{
+  FeatureGraph all = drawn;
+  appendGraph(all, implied);
+  if (heights != nullptr)
+  {
+    heights->resize(all.chains.size());
+  }
+  return all;
 }
 
 } // namespace
@@ -172,13 +232,19 @@ SynthesisTarget targetFromStrokes(const FeatureGraph& graph,
       c.constraint.size() == c.points.size() ? c.constraint : std::vector<float>());
     constrained = constrained || !constraints.back().empty();
   }
+  DrawnLines drawn = readDrawnLines(graph, patchSize);
+  const FeatureGraph shaped = withImplied(graph, drawn.implied, &constraints);
   LandformFieldOptions lo;
   lo.patchSize = patchSize;
   lo.seed = seed;
+  lo.impliedNodesFrom = graph.nodes.size();
+  lo.impliedChainsFrom = graph.chains.size();
   LandformField f = landformField(
-    graph, w, h, cellX, cellY, stats.landform, lo, nullptr, constrained ? &constraints : nullptr);
+    shaped, w, h, cellX, cellY, stats.landform, lo, nullptr, constrained ? &constraints : nullptr);
   SynthesisTarget t;
   t.graph = graph;
+  t.implied = std::move(drawn.implied);
+  t.lineHalfSpacing = drawn.halfSpacing;
   t.field = std::move(f.field);
   t.weight = std::move(f.weight);
   t.halfWidth = std::move(f.halfWidth);
@@ -322,10 +388,14 @@ SynthesisTarget targetFromGreySketch(const Heightfield& grey,
     heights.push_back(std::move(h));
   }
   const Heightfield background = greyBackground(mapped.field, graph, patchSize);
+  DrawnLines drawn = readDrawnLines(graph, patchSize);
+  const FeatureGraph shaped = withImplied(graph, drawn.implied, &heights);
   LandformFieldOptions lo;
   lo.patchSize = patchSize;
   lo.seed = seed;
-  LandformField f = landformField(graph,
+  lo.impliedNodesFrom = graph.nodes.size();
+  lo.impliedChainsFrom = graph.chains.size();
+  LandformField f = landformField(shaped,
     grey.width,
     grey.height,
     grey.cellX,
@@ -336,6 +406,8 @@ SynthesisTarget targetFromGreySketch(const Heightfield& grey,
     &heights);
   SynthesisTarget t;
   t.graph = graph;
+  t.implied = std::move(drawn.implied);
+  t.lineHalfSpacing = drawn.halfSpacing;
   t.field = std::move(f.field);
   t.field.georef = grey.georef;
   t.weight = std::move(f.weight);

@@ -35,6 +35,15 @@ struct SynthesisTarget
 {
   Heightfield field;  // T_tar, metres, on the output grid
   FeatureGraph graph; // on the output grid
+  // The lines a drawing implies (ImpliedLines.h): the divides between drawn
+  // valleys, the troughs between drawn ridges, shaped in `field` like drawn
+  // lines (for looking at: nothing is placed, measured or constrained on
+  // them). Empty for a DEM target, whose own lines are all in `graph`.
+  FeatureGraph implied;
+  // How far apart the drawn lines are: the median over their cells of half
+  // the spacing to the facing line (cells; +inf when most face none). 0 for a
+  // DEM target, whose lines' spacing is its halfWidth (typicalHalfWidth).
+  double lineHalfSpacing = 0.0;
   // Confidence in T_tar per cell (0..1): 1 near the sketched lines (or all over
   // a DEM target), 0 where the sketch leaves the land free.
   std::vector<float> weight;

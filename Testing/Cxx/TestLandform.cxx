@@ -3,6 +3,7 @@
 // target field a sketch's lines make from hand-made statistics.
 #include "Core/Error.h"
 #include "Core/HeightfieldIO.h"
+#include "Features/ImpliedLines.h"
 #include "Features/Ppa.h"
 #include "Features/Sketch.h"
 #include "Synthesis/Landform.h"
@@ -657,6 +658,42 @@ TEST(LandformField, ValleysCloserThanTheirWidthMakeADivideBetweenThem)
   }
   // Beyond the pair the sections have their own width.
   EXPECT_NEAR(f.halfWidth[cell(60, 130)], handStatistics().valley.width / kCell, 0.5);
+}
+
+TEST(LandformField, TheDivideBetweenTwoValleysIsShapedAsARidgeAndTakesNoRoomFromThem)
+{
+  // Two valleys 40 cells apart (rows 50 and 90), wide enough apart that the
+  // land between them is a gentle meeting of two flanks; their implied divide
+  // at row 70, shaped as a ridge, stands well above it.
+  const FeatureGraph drawn =
+    sketch({ valley({ { 0, 50 }, { 119, 50 } }), valley({ { 0, 90 }, { 119, 90 } }) });
+  const StrokeSpacing spacing = strokeSpacing(rasteriseChains(drawn, kW, kH2), kW, kH2);
+  ImpliedLineOptions io;
+  io.maxDistance = kPatch;
+  const FeatureGraph implied = impliedLines(drawn, spacing, io);
+  ASSERT_FALSE(implied.chains.empty());
+  FeatureGraph both = drawn;
+  appendGraph(both, implied);
+  LandformFieldOptions o = fieldOptions();
+  o.impliedNodesFrom = drawn.nodes.size();
+  o.impliedChainsFrom = drawn.chains.size();
+  const LandformField bare =
+    landformField(drawn, kW, kH2, kCell, kCell, handStatistics(), fieldOptions());
+  const LandformField shaped = landformField(both, kW, kH2, kCell, kCell, handStatistics(), o);
+  for (int i : { 30, 60, 90 })
+  {
+    // A ridge's crest (base + relief), where the bare flanks met below the base.
+    EXPECT_NEAR(shaped.field.at(i, 70), kBase + kRelief, 0.05 * kRelief) << i;
+    EXPECT_GT(shaped.field.at(i, 70) - bare.field.at(i, 70), 0.9 * kRelief) << i;
+    EXPECT_GT(shaped.field.at(i, 70), shaped.field.at(i, 62)) << i; // a crest, not a step
+    EXPECT_GT(shaped.field.at(i, 70), shaped.field.at(i, 78)) << i;
+    // The valleys keep their floors and the room the drawing gives them.
+    EXPECT_NEAR(shaped.field.at(i, 50), bare.field.at(i, 50), 1.0) << i;
+    EXPECT_EQ(shaped.halfWidth[cell(i, 50)], bare.halfWidth[cell(i, 50)]) << i;
+    EXPECT_EQ(shaped.halfWidth[cell(i, 70)], bare.halfWidth[cell(i, 70)]) << i;
+  }
+  EXPECT_EQ(shaped.valleyRaise, bare.valleyRaise);
+  EXPECT_TRUE(shaped.warnings.empty());
 }
 
 TEST(LandformField, LandformsAreRaisedToStandOutOfRuggedLandOnlyAndKeepWithinIt)
