@@ -30,7 +30,9 @@ struct ImpliedLineOptions
   // Also the troughs between two drawn ridges. Off by default: water must
   // part between two valleys, so a divide is always there, but two ridges
   // may have a saddle, a basin or a plateau between them, and a trough there
-  // would need an outlet the drawing does not give.
+  // would need an outlet the drawing does not give. (The landform field
+  // takes implied lines as ridges only: an implied valley would still cut
+  // gorges and warn of loops as a drawn one does.)
   bool troughs = false;
 };
 

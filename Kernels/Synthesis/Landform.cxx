@@ -748,9 +748,7 @@ ValleyFloors valleyFloors(const LineNetwork& net,
   bool loop = false;
   for (const std::vector<std::size_t>& component : net.components())
   {
-    const bool drawn = std::any_of(
-      component.begin(), component.end(), [&](std::size_t v) { return v < o.impliedNodesFrom; });
-    loop = loop || (drawn && net.edgesWithin(component) >= component.size());
+    loop = loop || net.edgesWithin(component) >= component.size();
     const std::size_t outlet = chooseOutlet(net, component, given, w, h, o.patchSize, rng);
     const bool drainsOut =
       borderDistance(net.position(outlet), w, h) <= kBorderReachInPatches * o.patchSize;
@@ -1173,18 +1171,6 @@ LandformField landformField(const FeatureGraph& sketch,
   const RasterLines valleyCells = rasteriseNetwork(graph, valleys, floors.floor, w, h);
   const RasterLines valleyRims = rasteriseNetwork(graph, valleys, floors.rim, w, h);
   const RasterLines flow = rasteriseNetwork(graph, valleys, floors.downstream, w, h);
-  // Implied valleys part two drawn ridges: they cut no gorge, which would
-  // cut into both crests.
-  std::vector<double> impliedVertex(valleys.size(), 0.0);
-  for (std::size_t c = std::min(graph.chains.size(), o.impliedChainsFrom); c < graph.chains.size();
-       ++c)
-  {
-    for (std::size_t v : valleys.chainVertices(c))
-    {
-      impliedVertex[v] = 1.0;
-    }
-  }
-  const RasterLines impliedValley = rasteriseNetwork(graph, valleys, impliedVertex, w, h);
   const NearestSeeds nearRidge = nearestSeeds(ridgeCells.seeds, w, h, cellX, cellY);
   const NearestSeeds nearValley = nearestSeeds(valleyCells.seeds, w, h, cellX, cellY);
   const MonotoneProfile ridgeShape = s.ridge.section.normalised();
@@ -1229,10 +1215,7 @@ LandformField landformField(const FeatureGraph& sketch,
       sum += a * (bottom + (top - bottom) * valleySection.shape(nearValley.distance[k], room));
       weights += a;
       conf = std::max(conf, confidence(d, valleyConfident, fade));
-      if (!(impliedValley.value[at] > 0.5f))
-      {
-        gorge = bottom + gorgeSlope * d;
-      }
+      gorge = bottom + gorgeSlope * d;
       if (nearValley.distance[k] < nearest)
       {
         width = s.valley.width;

@@ -97,15 +97,13 @@ struct LandformFieldOptions
   // ... and the valley becomes shallower towards its heads, keeping this share
   // of its depth at the farthest head.
   double headDepth = 0.6;
-  // Nodes and chains from these indices on belong to lines the drawing
-  // implies (the divides between its valleys, ImpliedLines.h). They are
-  // shaped like drawn ones, and squeeze them as drawn ones do, but the relief
-  // raise and the scale the result follows each landform at (halfWidth) are
-  // read off the drawn lines alone: at half a valley's width, the final
-  // correction drew the target's smooth flanks finer and the terrain came
-  // out flatter (slope distance 0.061 against 0.043 over the 44-run sweep).
-  // A loop among them is none the user drew, and gets no warning.
-  std::size_t impliedNodesFrom = std::numeric_limits<std::size_t>::max();
+  // Chains from this index on are lines the drawing implies (the divides
+  // between its valleys, ImpliedLines.h). They are shaped like drawn ones,
+  // and squeeze them as drawn ones do, but the relief raise and the scale
+  // the result follows each landform at (halfWidth) are read off the drawn
+  // lines alone: at half a valley's width, the final correction drew the
+  // target's smooth flanks finer and the terrain came out flatter (slope
+  // distance 0.061 against 0.043 over the 44-run sweep).
   std::size_t impliedChainsFrom = std::numeric_limits<std::size_t>::max();
 };
 

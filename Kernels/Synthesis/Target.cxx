@@ -237,7 +237,6 @@ SynthesisTarget targetFromStrokes(const FeatureGraph& graph,
   LandformFieldOptions lo;
   lo.patchSize = patchSize;
   lo.seed = seed;
-  lo.impliedNodesFrom = graph.nodes.size();
   lo.impliedChainsFrom = graph.chains.size();
   LandformField f = landformField(
     shaped, w, h, cellX, cellY, stats.landform, lo, nullptr, constrained ? &constraints : nullptr);
@@ -393,7 +392,6 @@ SynthesisTarget targetFromGreySketch(const Heightfield& grey,
   LandformFieldOptions lo;
   lo.patchSize = patchSize;
   lo.seed = seed;
-  lo.impliedNodesFrom = graph.nodes.size();
   lo.impliedChainsFrom = graph.chains.size();
   LandformField f = landformField(shaped,
     grey.width,

@@ -675,7 +675,6 @@ TEST(LandformField, TheDivideBetweenTwoValleysIsShapedAsARidgeAndTakesNoRoomFrom
   FeatureGraph both = drawn;
   appendGraph(both, implied);
   LandformFieldOptions o = fieldOptions();
-  o.impliedNodesFrom = drawn.nodes.size();
   o.impliedChainsFrom = drawn.chains.size();
   const LandformField bare =
     landformField(drawn, kW, kH2, kCell, kCell, handStatistics(), fieldOptions());
