@@ -397,7 +397,13 @@ namespace
 class LineNetwork
 {
 public:
-  LineNetwork(const FeatureGraph& g, FeatureType type, double cellX, double cellY)
+  // The chains of `type` among chains [firstChain, lastChain) of g.
+  LineNetwork(const FeatureGraph& g,
+    FeatureType type,
+    double cellX,
+    double cellY,
+    std::size_t firstChain = 0,
+    std::size_t lastChain = std::numeric_limits<std::size_t>::max())
     : graph_(g)
     , vertexOf_(g.chains.size())
   {
@@ -410,7 +416,7 @@ public:
     edges_.resize(next);
     degree_.assign(next, 0);
     used_.assign(next, 0);
-    for (std::size_t c = 0; c < g.chains.size(); ++c)
+    for (std::size_t c = firstChain; c < std::min(lastChain, g.chains.size()); ++c)
     {
       const FeatureChain& ch = g.chains[c];
       if (ch.type != type || ch.points.size() < 2 || ch.from < 0 || ch.to < 0)
@@ -1153,8 +1159,20 @@ LandformField landformField(const FeatureGraph& sketch,
     return b;
   };
 
+  // Implied troughs (valleys between two drawn ridges) are a term of their
+  // own: no outlet, no flow, a floor the valley relief below the base and the
+  // base itself for a rim. Sharing the drawn valleys' nearest line, the field
+  // jumped where the nearest changed from a drawn valley's rim to a trough's.
   const LineNetwork ridges(graph, FeatureType::Ridge, cellX, cellY);
-  const LineNetwork valleys(graph, FeatureType::Valley, cellX, cellY);
+  const LineNetwork valleys(graph, FeatureType::Valley, cellX, cellY, 0, o.impliedChainsFrom);
+  const LineNetwork troughs(graph, FeatureType::Valley, cellX, cellY, o.impliedChainsFrom);
+  std::vector<double> troughFloor = baseOf(troughs);
+  for (double& z : troughFloor)
+  {
+    z -= s.valley.relief;
+  }
+  const RasterLines troughCells = rasteriseNetwork(graph, troughs, troughFloor, w, h);
+  const NearestSeeds nearTrough = nearestSeeds(troughCells.seeds, w, h, cellX, cellY);
   const std::vector<double> crest =
     crestHeights(ridges, vertexValues(ridges, graph, heights), baseOf(ridges), s, o, cell, w, h);
   const ValleyFloors floors = valleyFloors(valleys,
@@ -1220,6 +1238,15 @@ LandformField landformField(const FeatureGraph& sketch,
       {
         width = s.valley.width;
       }
+    }
+    if (!nearTrough.empty())
+    {
+      const double d = valleySection.distance(nearTrough.distance[k], room);
+      const double bottom = troughCells.value[static_cast<std::size_t>(nearTrough.nearest[k])];
+      const double a = 1.0 / (d * d + valleySoft2);
+      sum += a * (bottom + (b - bottom) * valleySection.shape(nearTrough.distance[k], room));
+      weights += a;
+      conf = std::max(conf, confidence(d, valleyConfident, fade));
     }
     if (weights > 0.0)
     {

@@ -98,8 +98,10 @@ struct LandformFieldOptions
   // of its depth at the farthest head.
   double headDepth = 0.6;
   // Chains from this index on are lines the drawing implies (the divides
-  // between its valleys, ImpliedLines.h). They are shaped like drawn ones,
-  // and squeeze them as drawn ones do, but the relief raise and the scale
+  // between its valleys and the troughs between its ridges, ImpliedLines.h).
+  // They are shaped like drawn ones (a trough as a valley with no outlet:
+  // floor the valley relief below the base, rim the base), and squeeze them
+  // as drawn ones do, but the relief raise and the scale
   // the result follows each landform at (halfWidth) are read off the drawn
   // lines alone: at half a valley's width, the final correction drew the
   // target's smooth flanks finer and the terrain came out flatter (slope

@@ -695,6 +695,49 @@ TEST(LandformField, TheDivideBetweenTwoValleysIsShapedAsARidgeAndTakesNoRoomFrom
   EXPECT_TRUE(shaped.warnings.empty());
 }
 
+TEST(LandformField, TheTroughBetweenTwoRidgesIsAValleyWithoutAnOutlet)
+{
+  // Two ridges 40 cells apart (rows 50 and 90) whose ends face a drawn valley
+  // (column 105); their implied trough runs at row 70 towards the valley.
+  const FeatureGraph drawn = sketch({ ridge({ { 0, 50 }, { 80, 50 } }),
+    ridge({ { 0, 90 }, { 80, 90 } }),
+    valley({ { 105, 0 }, { 105, 159 } }) });
+  const StrokeSpacing spacing = strokeSpacing(rasteriseChains(drawn, kW, kH2), kW, kH2);
+  ImpliedLineOptions io;
+  io.maxDistance = kPatch;
+  const FeatureGraph implied = impliedLines(drawn, spacing, io);
+  ASSERT_FALSE(implied.chains.empty());
+  for (const FeatureChain& c : implied.chains)
+  {
+    EXPECT_EQ(c.type, FeatureType::Valley);
+  }
+  FeatureGraph both = drawn;
+  appendGraph(both, implied);
+  LandformFieldOptions o = fieldOptions();
+  o.impliedChainsFrom = drawn.chains.size();
+  const LandformField bare =
+    landformField(drawn, kW, kH2, kCell, kCell, handStatistics(), fieldOptions());
+  const LandformField shaped = landformField(both, kW, kH2, kCell, kCell, handStatistics(), o);
+  for (int i : { 20, 40, 60 })
+  {
+    // A valley's floor (base - relief) where the bare land rose to the base.
+    EXPECT_NEAR(shaped.field.at(i, 70), kBase - kRelief, 0.05 * kRelief) << i;
+    EXPECT_GT(bare.field.at(i, 70) - shaped.field.at(i, 70), 0.9 * kRelief) << i;
+    EXPECT_LT(shaped.field.at(i, 70), shaped.field.at(i, 62)) << i;
+    EXPECT_LT(shaped.field.at(i, 70), shaped.field.at(i, 78)) << i;
+    // The ridges keep their crests and the room the drawing gives them; the
+    // trough carries no flow (nothing drains it: it has no outlet).
+    EXPECT_NEAR(shaped.field.at(i, 50), bare.field.at(i, 50), 1.0) << i;
+    EXPECT_EQ(shaped.halfWidth[cell(i, 50)], bare.halfWidth[cell(i, 50)]) << i;
+    EXPECT_TRUE(std::isnan(shaped.downstream[cell(i, 70)])) << i;
+  }
+  // The drawn valley keeps its floor and its flow.
+  EXPECT_NEAR(shaped.field.at(105, 70), bare.field.at(105, 70), 1.0);
+  EXPECT_FALSE(std::isnan(shaped.downstream[cell(105, 70)]));
+  EXPECT_EQ(shaped.valleyRaise, bare.valleyRaise);
+  EXPECT_TRUE(shaped.warnings.empty());
+}
+
 TEST(LandformField, LandformsAreRaisedToStandOutOfRuggedLandOnlyAndKeepWithinIt)
 {
   const FeatureGraph g = sketch({ ridge({ { 0, 80 }, { 119, 80 } }) });
