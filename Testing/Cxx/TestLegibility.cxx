@@ -199,9 +199,7 @@ TEST(ImpliedLines, TwoValleysArePartedByARidgeAndTwoRidgesByAValley)
     // cells at kFacingRatio 1.5), not more.
     const FeatureGraph g =
       drawnLines(w, h, { { 20, 30, 140, 30 }, { 20, 70, 140, 70 } }, { drawnType, drawnType });
-    ImpliedLineOptions both;
-    both.troughs = true;
-    const FeatureGraph i = implied(g, both);
+    const FeatureGraph i = implied(g);
     const FeatureType other =
       drawnType == FeatureType::Valley ? FeatureType::Ridge : FeatureType::Valley;
     const auto [length, row] = lengthAndMeanRow(i, other);
@@ -213,13 +211,16 @@ TEST(ImpliedLines, TwoValleysArePartedByARidgeAndTwoRidgesByAValley)
   }
 }
 
-TEST(ImpliedLines, TwoRidgesGetNoTroughUnlessAsked)
+TEST(ImpliedLines, TwoRidgesGetATroughUnlessTurnedOff)
 {
   const FeatureGraph g = drawnLines(160,
     100,
     { { 20, 30, 140, 30 }, { 20, 70, 140, 70 } },
     { FeatureType::Ridge, FeatureType::Ridge });
-  EXPECT_TRUE(implied(g).chains.empty());
+  EXPECT_GT(lengthAndMeanRow(implied(g), FeatureType::Valley).first, 120.0);
+  ImpliedLineOptions divides;
+  divides.troughs = false;
+  EXPECT_TRUE(implied(g, divides).chains.empty());
 }
 
 TEST(ImpliedLines, NoneBetweenARidgeAndAValleyFarApartOrAtABend)
