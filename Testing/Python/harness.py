@@ -2,6 +2,7 @@
 import argparse
 import os
 import sys
+import time
 import unittest
 
 PATHS = argparse.Namespace()
@@ -15,6 +16,29 @@ INSTRUMENTED = os.environ.get("TSYNTH_TEST_INSTRUMENTED") == "1"
 def skip_if_instrumented(why):
     """Skips a test whose timing an instrumented tsynth cannot meet; why says what it times."""
     return unittest.skipIf(INSTRUMENTED, "instrumented tsynth (TSYNTH_TEST_INSTRUMENTED=1): " + why)
+
+
+# "Stops promptly" is judged against the same work run to its end in the same test, never against
+# a wall-clock constant: load on a shared machine slows both alike (a fixed second failed at a load
+# average of 3-4). Stopping takes under this share of the whole run: one abort check's worth of
+# work, where an unchecked loop would run on for most of it.
+PROMPT_SHARE = 0.1
+
+
+def seconds_to_run(action):
+    """Runs action() and returns the seconds it took (monotonic clock)."""
+    start = time.monotonic()
+    action()
+    return time.monotonic() - start
+
+
+def assert_stopped_promptly(test, what, latency, whole):
+    """latency: seconds from the request to stop to the end; whole: seconds of the same work run
+    uninterrupted, measured in the same test."""
+    print("%s stopped %.3f s after the request; the whole run took %.3f s" % (what, latency, whole))
+    test.assertLess(latency, PROMPT_SHARE * whole,
+                    "%s stopped %.2f s after the request, more than %.0f%% of the %.2f s of the whole run"
+                    % (what, latency, 100 * PROMPT_SHARE, whole))
 
 
 def gl_preload_environment():

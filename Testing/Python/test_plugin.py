@@ -682,7 +682,7 @@ class PluginTest(unittest.TestCase):
                         clamped += 1
         self.assertGreater(clamped, 40)
 
-    def test_abort_stops_the_synthesis_within_a_second_with_an_empty_output(self):
+    def test_abort_stops_the_synthesis_promptly_with_an_empty_output(self):
         import time
         sys.path.insert(0, PATHS.python_dir)
         from terrainsynthesis import vtkTerrainReader, vtkTerrainSynthesis
@@ -692,10 +692,18 @@ class PluginTest(unittest.TestCase):
         exemplar.SetFileName(os.path.join(PATHS.bundled_data, "dems", "colorado.png"))
         sketch = vtkPNGReader()
         sketch.SetFileName(os.path.join(PATHS.bundled_data, "sketches", "strokes_valley_tree.png"))
-        synth = vtkTerrainSynthesis()
-        synth.AddInputConnection(0, exemplar.GetOutputPort())
-        synth.SetSketchConnection(sketch.GetOutputPort())
-        synth.SetOutputSize(1024, 1024)
+        exemplar.Update()
+        sketch.Update()
+
+        def synthesis():
+            synth = vtkTerrainSynthesis()
+            synth.AddInputConnection(0, exemplar.GetOutputPort())
+            synth.SetSketchConnection(sketch.GetOutputPort())
+            synth.SetOutputSize(1024, 1024)
+            return synth
+
+        whole = harness.seconds_to_run(synthesis().Update)
+        synth = synthesis()
         stopped_at = []
 
         def abort_at_a_quarter(caller, _event):
@@ -706,10 +714,10 @@ class PluginTest(unittest.TestCase):
         synth.AddObserver("ProgressEvent", abort_at_a_quarter)
         synth.Update()
         self.assertTrue(stopped_at, "no progress was reported")
-        self.assertLess(time.monotonic() - stopped_at[0], 1.0)
+        harness.assert_stopped_promptly(self, "the synthesis", time.monotonic() - stopped_at[0], whole)
         self.assertEqual(synth.GetTerrain().GetNumberOfPoints(), 0)
 
-    def test_abort_stops_the_long_filters_within_a_second_with_an_empty_output(self):
+    def test_abort_stops_the_long_filters_promptly_with_an_empty_output(self):
         import time
         sys.path.insert(0, PATHS.python_dir)
         from terrainsynthesis import (vtkTerrainFeatureExtractor, vtkTerrainPitRemoval,
@@ -733,6 +741,8 @@ class PluginTest(unittest.TestCase):
                                      ("poisson", poisson, 0.1)):
             with self.subTest(filter=name):
                 filter_.SetInputData(big)
+                whole = harness.seconds_to_run(filter_.Update)
+                filter_.Modified()
                 stopped_at = []
 
                 def abort_once(caller, _event, start=start, stopped_at=stopped_at):
@@ -746,8 +756,7 @@ class PluginTest(unittest.TestCase):
                 filter_.Update()
                 self.assertEqual(errors, [], "the filter failed instead of stopping")
                 self.assertTrue(stopped_at, "no progress was reported")
-                print("%s stopped %.3f s after the abort" % (name, time.monotonic() - stopped_at[0]))
-                self.assertLess(time.monotonic() - stopped_at[0], 1.0)
+                harness.assert_stopped_promptly(self, name, time.monotonic() - stopped_at[0], whole)
                 self.assertEqual(filter_.GetOutputDataObject(0).GetNumberOfPoints(), 0)
 
     def test_sketch_lines_mark_drawn_lines_for_the_synthesis(self):
