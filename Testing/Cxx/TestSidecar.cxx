@@ -96,7 +96,8 @@ TEST(Sidecar, BadInputGetsOneClearSentence)
     std::string::npos);
   EXPECT_NE(errorOf(writeText("array.json", R"([1, 2])")).find("JSON object"), std::string::npos);
   // Found by fuzzing: the JSON parser's number overflow escaped as its own exception type.
-  EXPECT_NE(errorOf(writeText("huge.json", R"({"nodata": 1e999})")).find("too large for a double"),
+  EXPECT_NE(
+    errorOf(writeText("overflowing.json", R"({"nodata": 1e999})")).find("too large for a double"),
     std::string::npos);
 }
 
