@@ -1,6 +1,13 @@
 // Seeded randomness that does not depend on the order of the calls: each
 // decision hashes (seed, stream, index) to its own number, so threads, backends
-// and the order of a loop never change what a seed gives.
+// and the order of a loop never change what a seed gives, and work split into
+// tiles or redone in part can derive the same numbers from coordinates.
+//
+// The project's one scheme: every seeded choice goes through seededUniform or
+// seededIndex, never a sequential engine (std::mt19937 and its distributions,
+// whose results differ between standard libraries and depend on how many
+// numbers were drawn before). The streams of a synthesis seed are listed here,
+// so that no two kinds of decision share one.
 #pragma once
 
 #include <cstdint>
@@ -24,5 +31,23 @@ constexpr double seededUniform(std::uint64_t seed, std::uint64_t stream, std::ui
   const std::uint64_t h = mixBits(mixBits(mixBits(seed) ^ stream) ^ index);
   return static_cast<double>(h >> 11) * (1.0 / 9007199254740992.0); // 53 bits
 }
+
+// An index in [0, n) for decision `index` of kind `stream` under `seed`; n > 0.
+constexpr std::uint64_t seededIndex(std::uint64_t seed,
+  std::uint64_t stream,
+  std::uint64_t index,
+  std::uint64_t n)
+{
+  const auto k =
+    static_cast<std::uint64_t>(seededUniform(seed, stream, index) * static_cast<double>(n));
+  return k < n ? k : n - 1;
+}
+
+// Streams of the synthesis seed (SynthesisOptions::seed, LandformFieldOptions::seed).
+constexpr std::uint64_t kStreamGrid = 1;      // the fill grid's jitter
+constexpr std::uint64_t kStreamFillOrder = 2; // ties in the best-first fill order
+constexpr std::uint64_t kStreamChoice = 3;    // the choice among equally good candidates
+constexpr std::uint64_t kStreamSites = 4;     // phases of the sites along features
+constexpr std::uint64_t kStreamOutlet = 5;    // a valley network's outlet among near-ties
 
 } // namespace tsynth

@@ -1,10 +1,10 @@
 #include "TerrainMetrics.h"
 
+#include "../Core/Random.h"
 #include "../Features/Profiles.h"
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <utility>
 
 namespace tsynth
@@ -321,15 +321,18 @@ Heightfield randomPatchBaseline(const Heightfield& ex,
   Heightfield out(width, height);
   out.cellX = ex.cellX;
   out.cellY = ex.cellY;
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> px(0, std::max(0, ex.width - patch));
-  std::uniform_int_distribution<int> py(0, std::max(0, ex.height - patch));
+  // Streams of the baseline's seed (Random.h): a patch's source column, row.
+  constexpr std::uint64_t kStreamSourceX = 1;
+  constexpr std::uint64_t kStreamSourceY = 2;
+  const std::uint64_t columns = static_cast<std::uint64_t>(std::max(0, ex.width - patch)) + 1;
+  const std::uint64_t rows = static_cast<std::uint64_t>(std::max(0, ex.height - patch)) + 1;
+  std::uint64_t placed = 0;
   for (int y0 = 0; y0 < height; y0 += patch)
   {
-    for (int x0 = 0; x0 < width; x0 += patch)
+    for (int x0 = 0; x0 < width; x0 += patch, ++placed)
     {
-      const int sx = px(rng);
-      const int sy = py(rng);
+      const int sx = static_cast<int>(seededIndex(seed, kStreamSourceX, placed, columns));
+      const int sy = static_cast<int>(seededIndex(seed, kStreamSourceY, placed, rows));
       for (int j = 0; j < patch && y0 + j < height; ++j)
       {
         for (int i = 0; i < patch && x0 + i < width; ++i)

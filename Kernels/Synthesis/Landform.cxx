@@ -1,6 +1,7 @@
 #include "Landform.h"
 
 #include "../Core/Error.h"
+#include "../Core/Random.h"
 #include "../Distance/DistanceField.h"
 #include "../Features/StrokeSpacing.h"
 
@@ -12,7 +13,6 @@
 #include <limits>
 #include <numeric>
 #include <queue>
-#include <random>
 
 namespace tsynth
 {
@@ -580,10 +580,12 @@ double borderDistance(const Point2& p, int w, int h)
   return std::min({ p.x, p.y, (w - 1) - p.x, (h - 1) - p.y });
 }
 
-// Among candidate vertices with scores, the best (highest), near-ties by the seed.
+// Among candidate vertices with scores, the best (highest), near-ties by the
+// seed: decision `key` of the outlet stream (Random.h).
 std::size_t pickBest(const std::vector<std::size_t>& candidates,
   const std::vector<double>& scores,
-  std::mt19937_64& rng)
+  std::uint64_t seed,
+  std::uint64_t key)
 {
   const double best = *std::max_element(scores.begin(), scores.end());
   std::vector<std::size_t> tied;
@@ -594,7 +596,7 @@ std::size_t pickBest(const std::vector<std::size_t>& candidates,
       tied.push_back(candidates[k]);
     }
   }
-  return tied[std::uniform_int_distribution<std::size_t>(0, tied.size() - 1)(rng)];
+  return tied[seededIndex(seed, kStreamOutlet, key, tied.size())];
 }
 
 // Where a piece of the valley network drains: the lowest end when heights are
@@ -607,8 +609,11 @@ std::size_t chooseOutlet(const LineNetwork& net,
   int w,
   int h,
   int patch,
-  std::mt19937_64& rng)
+  std::uint64_t seed)
 {
+  // The component's first vertex names its decision, whatever order the
+  // components come in.
+  const std::uint64_t key = *std::min_element(component.begin(), component.end());
   std::vector<std::size_t> ends;
   for (std::size_t v : component)
   {
@@ -629,7 +634,7 @@ std::size_t chooseOutlet(const LineNetwork& net,
   }
   if (!known.empty())
   {
-    return pickBest(known, score, rng);
+    return pickBest(known, score, seed, key);
   }
   auto farthest = [&](std::size_t from)
   {
@@ -653,7 +658,7 @@ std::size_t chooseOutlet(const LineNetwork& net,
   }
   if (!atBorder.empty())
   {
-    return pickBest(atBorder, score, rng);
+    return pickBest(atBorder, score, seed, key);
   }
   std::vector<std::size_t> candidates = ends.empty() ? component : ends;
   if (!ends.empty())
@@ -674,7 +679,7 @@ std::size_t chooseOutlet(const LineNetwork& net,
   {
     score.push_back(-borderDistance(net.position(v), w, h));
   }
-  return pickBest(candidates, score, rng);
+  return pickBest(candidates, score, seed, key);
 }
 
 // Crest height per ridge vertex: the ridge's relief over the base, tapering
@@ -750,12 +755,11 @@ ValleyFloors valleyFloors(const LineNetwork& net,
   f.floor.assign(net.size(), std::numeric_limits<double>::quiet_NaN());
   f.rim.assign(net.size(), std::numeric_limits<double>::quiet_NaN());
   f.downstream.assign(net.size(), std::numeric_limits<double>::quiet_NaN());
-  std::mt19937_64 rng(o.seed ^ 0x76616c6c6579ULL); // "valley": its own stream of the seed
   bool loop = false;
   for (const std::vector<std::size_t>& component : net.components())
   {
     loop = loop || net.edgesWithin(component) >= component.size();
-    const std::size_t outlet = chooseOutlet(net, component, given, w, h, o.patchSize, rng);
+    const std::size_t outlet = chooseOutlet(net, component, given, w, h, o.patchSize, o.seed);
     const bool drainsOut =
       borderDistance(net.position(outlet), w, h) <= kBorderReachInPatches * o.patchSize;
     const bool endless =

@@ -59,11 +59,6 @@ constexpr double kGridJitterInPatches = 0.125;
 constexpr std::uint64_t kMaxGridWindows = 1u << 20;
 // The data term samples the target's slope every few cells: plenty for a mean.
 constexpr int kDataTermStride = 4;
-// Streams of the seed (Random.h): one per kind of decision.
-constexpr std::uint64_t kStreamGrid = 1;
-constexpr std::uint64_t kStreamFillOrder = 2;
-constexpr std::uint64_t kStreamChoice = 3;
-constexpr std::uint64_t kStreamSites = 4;
 // Candidates compared per placement are fewer than this (it spaces the
 // seed's draws of different placements apart).
 constexpr std::size_t kMaxCandidates = 4096;
