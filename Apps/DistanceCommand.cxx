@@ -327,11 +327,7 @@ DistanceTerrain synthesise(DistanceArguments& a)
   const DistanceInputs inputs = assembleDistanceInputs(a.sources, warnings);
   printWarnings(warnings);
   ProgressBar bar(a.progress);
-  a.options.progress = [&](double f)
-  {
-    bar(f, "distance");
-    return !stopRequested();
-  };
+  a.options.progress = [&](double f, const std::string& stage) { bar(f, stage); };
   DistanceTerrain t = synthesiseByDistance(inputs, a.options);
   printWarnings(t.warnings);
   return t;

@@ -196,11 +196,7 @@ OptimisationResult optimiseFromFiles(OptimiseArguments& a, const InterruptGuard&
   std::cout << "Optimising " << guide.field.width << " x " << guide.field.height
             << " cells (guide: " << guide.kind << ")" << std::endl;
   ProgressBar bar(a.progress);
-  a.options.progress = [&](double f)
-  {
-    bar(f, "optimise");
-    return !interrupt.interrupted();
-  };
+  a.options.progress = [&](double f, const std::string& stage) { bar(f, stage); };
   a.options.guideConfidence = guide.confidence;
   const auto t0 = std::chrono::steady_clock::now();
   OptimisationResult r = optimiseTerrain(source, guide.field, a.options);

@@ -516,7 +516,6 @@ SynthesisResult runWithProgress(const SynthesisSetup& setup,
   {
     bar(f, stage);
     interrupt.reclaim(); // PoCL's LLVM takes the signals when it compiles the matcher
-    interrupt.check();   // Cancelled leaves synthesize() from its serial loop
   };
   SynthesisResult r = synthesize(setup.target, setup.exemplarPointers(), setup.graphPointers(), o);
   interrupt.reclaim();

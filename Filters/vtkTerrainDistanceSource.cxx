@@ -174,6 +174,7 @@ int vtkTerrainDistanceSource::RequestData(vtkInformation*,
   }
   try
   {
+    const tsynth::AbortScope abortScope(this); // abort stops the kernels (Core/Progress.h)
     tsynth::DistanceSources sources;
     if (table != nullptr && !this->ProfileFileName.empty())
     {
@@ -241,11 +242,7 @@ int vtkTerrainDistanceSource::RequestData(vtkInformation*,
     o.memoryBudget = this->MemoryBudget * kBytesPerGB;
     o.memoryOption = "MemoryBudget";
     o.sizeOption = sources.strokes != nullptr ? "stroke map" : "OutputSize";
-    o.progress = [this](double f)
-    {
-      this->UpdateProgress(f);
-      return !this->CheckAbort();
-    };
+    o.progress = [this](double f, const std::string&) { this->UpdateProgress(f); };
     const tsynth::DistanceTerrain t = tsynth::synthesiseByDistance(inputs, o);
     warnings.insert(warnings.end(), t.warnings.begin(), t.warnings.end());
     for (const std::string& w : warnings)

@@ -162,6 +162,7 @@ int vtkTerrainOptimisation::RequestData(vtkInformation*,
   }
   try
   {
+    const tsynth::AbortScope abortScope(this); // abort stops the kernels (Core/Progress.h)
     const tsynth::Heightfield dem =
       tsynth::imageToHeightfield(source, this->GetInputArrayToProcess(0, inputVector));
     std::vector<std::string> warnings;
@@ -175,11 +176,8 @@ int vtkTerrainOptimisation::RequestData(vtkInformation*,
     }
     this->UpdateProgress(kGuideProgress);
     o.guideConfidence = guide.confidence;
-    o.progress = [this](double f)
-    {
-      this->UpdateProgress(kGuideProgress + (1.0 - kGuideProgress) * f);
-      return !this->CheckAbort();
-    };
+    o.progress = [this](double f, const std::string&)
+    { this->UpdateProgress(kGuideProgress + (1.0 - kGuideProgress) * f); };
     const tsynth::OptimisationResult r = tsynth::optimiseTerrain(dem, guide.field, o);
     tsynth::heightfieldToImage(r.terrain, output);
   }

@@ -215,13 +215,7 @@ tsynth::SynthesisOptions synthesisOptions(vtkTerrainSynthesis* filter)
   o.repetitionPenalty = filter->GetRepetition();
   o.seed = static_cast<std::uint64_t>(filter->GetSeed());
   o.progress = [filter](double f, const std::string&)
-  {
-    filter->UpdateProgress(kSetupProgress + kSynthesisProgress * f);
-    if (filter->CheckAbort())
-    {
-      throw tsynth::Cancelled(); // from the synthesiser's serial loop, once per placement
-    }
-  };
+  { filter->UpdateProgress(kSetupProgress + kSynthesisProgress * f); };
   return o;
 }
 
@@ -273,6 +267,7 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
 {
   try
   {
+    const tsynth::AbortScope abortScope(this); // abort stops the kernels (Core/Progress.h)
     tsynth::ExemplarInputs ex = tsynth::gatherExemplarImages(inputVector[0],
       tsynth::exemplarHeightsNamed(
         this->GetInputArrayInformation(kExemplarHeights), inputVector[0]));

@@ -167,10 +167,7 @@ std::vector<Source> flatten(const std::vector<std::vector<Source>>& perFeature,
 
 void reportProgress(const DistanceOptions& o, double fraction)
 {
-  if (o.progress && !o.progress(fraction))
-  {
-    throw Cancelled();
-  }
+  tsynth::reportProgress(o.progress, fraction, "distance");
 }
 
 Lattice buildLattice(const DistanceInputs& in, const DistanceOptions& o)

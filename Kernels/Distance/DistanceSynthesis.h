@@ -34,6 +34,7 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/Progress.h"
 #include "CostScaling.h"
 #include "Generators.h"
 #include "Lattice.h"
@@ -106,8 +107,9 @@ struct DistanceOptions
   std::uint64_t seed = 1;       // edge weights, fBm and ridge cells
   bool approximateOnly = false; // steps 1-6 only: the fast preview of §7 (seams and all)
   DijkstraQueue queue = DijkstraQueue::Bucket;
-  // Called with the fraction done; returning false stops with tsynth::Cancelled.
-  std::function<bool(double)> progress;
+  // Told the fraction done (0..1, stage "distance"; Core/Progress.h); the
+  // caller's CancellationScope stops the synthesis with tsynth::Cancelled.
+  ProgressReport progress;
   // A synthesis whose distanceMemoryEstimate (DistanceMemory.h) is above this
   // many bytes (0: defaultMemoryBudget()) is refused before any work, naming the
   // front end's options.
@@ -140,7 +142,7 @@ struct DistanceTerrain
 // parameter out of range, profiles that do not fall, a profile or region id out
 // of range, images (node weights) of the wrong size, costs that are not finite
 // or so large that float costs would swallow the smallest edge step; throws
-// tsynth::Cancelled if the progress callback says stop. The result depends only
+// tsynth::Cancelled if the open CancellationScope says stop. The result depends only
 // on the inputs, the options and the seed, never on the number of threads.
 DistanceTerrain synthesiseByDistance(const DistanceInputs& inputs, const DistanceOptions& options);
 

@@ -139,7 +139,7 @@ double guideWeight(double alpha, int k, int levels)
 class Progress
 {
 public:
-  Progress(const std::function<bool(double)>& callback, double total)
+  Progress(const ProgressReport& callback, double total)
     : callback_(callback)
     , total_(total)
   {
@@ -149,16 +149,10 @@ public:
     done_ += work;
     report(std::min(1.0, done_ / total_));
   }
-  void report(double fraction) const
-  {
-    if (callback_ && !callback_(fraction))
-    {
-      throw Cancelled();
-    }
-  }
+  void report(double fraction) const { reportProgress(callback_, fraction, "optimise"); }
 
 private:
-  const std::function<bool(double)>& callback_;
+  const ProgressReport& callback_;
   double total_;
   double done_ = 0.0;
 };

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/Progress.h"
 #include "../Hydrology/PitRemoval.h"
 
 #include <cstdint>
@@ -87,9 +88,9 @@ struct OptimisationOptions
   // A stroke sketch's target is confident near the lines only
   // (SynthesisTarget::weight); the land between them is left to the source.
   std::vector<float> guideConfidence;
-  // Called with the fraction done (0..1); return false to stop (the call then
-  // throws tsynth::Cancelled).
-  std::function<bool(double)> progress;
+  // Told the fraction done (0..1, stage "optimise"; Core/Progress.h); the
+  // caller's CancellationScope stops the optimisation with tsynth::Cancelled.
+  ProgressReport progress;
   // A run whose optimisationMemoryEstimate is above this many bytes (0:
   // defaultMemoryBudget()) is refused before any work (by buildOptimisationGuide
   // and optimiseTerrain), naming the front end's options to change.

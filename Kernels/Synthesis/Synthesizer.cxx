@@ -1004,10 +1004,7 @@ public:
 
   void report(double fraction, const char* stage) const
   {
-    if (o_.progress)
-    {
-      o_.progress(fraction, stage);
-    }
+    reportProgress(o_.progress, fraction, stage);
   }
 
 private:
@@ -1125,10 +1122,7 @@ SynthesisResult synthesize(const SynthesisTarget& target,
     }
   }
   auto t0 = Clock::now();
-  if (o.progress)
-  {
-    o.progress(0.0, "setup");
-  }
+  reportProgress(o.progress, 0.0, "setup");
   MatcherOptions mo;
   mo.patchSize = o.patchSize;
   mo.backend = o.backend;

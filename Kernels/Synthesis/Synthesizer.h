@@ -5,6 +5,7 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/Progress.h"
 #include "../Features/FeatureGraph.h"
 #include "../Hydrology/PitRemoval.h"
 #include "../Matching/PatchMatcher.h"
@@ -73,8 +74,9 @@ struct SynthesisOptions
   // label missing from the map may use every exemplar).
   std::vector<int> regionLabels;
   std::vector<std::vector<int>> regionExemplars;
-  // Called with the fraction done (0..1) and the stage name.
-  std::function<void(double, const std::string&)> progress;
+  // Told the fraction done (0..1) and the stage's name (Core/Progress.h); the
+  // caller's CancellationScope stops the synthesis with tsynth::Cancelled.
+  ProgressReport progress;
 };
 
 struct Placement

@@ -3,6 +3,7 @@
 // linear profile, the blend of eq. 3.7 against its formula, the minimum-
 // scaling fix, region profiles, dendritic ridges, determinism over seeds and
 // threads, and each bad input's message.
+#include "Core/Cancellation.h"
 #include "Core/Error.h"
 #include "Distance/CostScaling.h"
 #include "Distance/DistanceSynthesis.h"
@@ -746,8 +747,14 @@ TEST(DistanceSynthesis, BadInputMessages)
   in.nodeWeights.assign(31 * 32, 1.0f);
   expectThrowsWith([&] { synthesiseByDistance(in, o); }, "edge-weight image has 992 cells");
   in.nodeWeights.clear();
-  o.progress = [](double) { return false; };
-  EXPECT_THROW(synthesiseByDistance(in, o), Cancelled);
+  // A scope that says stop ends the run at its first report (Core/Progress.h).
+  std::vector<std::string> stages;
+  o.progress = [&](double, const std::string& stage) { stages.push_back(stage); };
+  {
+    const CancellationScope stop([] { return true; });
+    EXPECT_THROW(synthesiseByDistance(in, o), Cancelled);
+  }
+  EXPECT_EQ(stages, std::vector<std::string>{ "distance" }) << "stopped at the first report";
 }
 
 TEST(DistanceSynthesis, EdgeWeightsFromAnImage)

@@ -118,11 +118,7 @@ TEST(MemoryBudget, OptimisationIsRefusedBeforeAnyWork)
   o.memoryOption = "MemoryBudget";
   o.sizeOption = "OutputSize";
   bool progressed = false;
-  o.progress = [&](double)
-  {
-    progressed = true;
-    return true;
-  };
+  o.progress = [&](double, const std::string&) { progressed = true; };
   const std::string m = errorOf([&] { optimiseTerrain(source, guide, o); });
   EXPECT_NE(m.find("This optimisation of 80 x 80 cells from a source of 9216 cells " +
               about(optimisationMemoryEstimate(80, 80, 96 * 96, o)) +
@@ -149,11 +145,7 @@ TEST(MemoryBudget, DistanceSynthesisIsRefusedBeforeAnyWork)
   o.memoryOption = "--max-memory";
   o.sizeOption = "--size";
   bool progressed = false;
-  o.progress = [&](double)
-  {
-    progressed = true;
-    return true;
-  };
+  o.progress = [&](double, const std::string&) { progressed = true; };
   const std::string m = errorOf([&] { synthesiseByDistance(in, o); });
   EXPECT_NE(m.find("This distance synthesis of 300 x 200 cells " +
               about(distanceMemoryEstimate(300, 200, omp_get_max_threads())) +

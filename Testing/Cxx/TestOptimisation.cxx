@@ -2,6 +2,7 @@
 // orientation maps, the E-step and up-sampling on exact matches, energy and
 // pit behaviour of the EM loop, fidelity to the guide, determinism, the search
 // options, progress and cancellation, and the input checks.
+#include "Core/Cancellation.h"
 #include "Core/Error.h"
 #include "Core/HeightfieldIO.h"
 #include "Core/Resample.h"
@@ -360,10 +361,10 @@ TEST(Optimisation, ProgressReachesOneAndCancellingStopsPromptly)
 {
   OptimisationOptions o = fillOptions();
   std::vector<double> seen;
-  o.progress = [&](double f)
+  o.progress = [&](double f, const std::string& stage)
   {
+    EXPECT_EQ(stage, "optimise");
     seen.push_back(f);
-    return true;
   };
   optimiseTerrain(source(), guide(), o);
   ASSERT_GT(seen.size(), 10u);
@@ -373,15 +374,15 @@ TEST(Optimisation, ProgressReachesOneAndCancellingStopsPromptly)
   {
     EXPECT_GE(seen[i], seen[i - 1]);
   }
-  // Stop at the first report past 0.3: no report after it, and the call ends
-  // within one PatchMatch iteration of it.
+  // A scope that says stop once a report passed 0.3 (as ParaView's abort,
+  // Core/Progress.h): no report after it, and the call ends within one
+  // PatchMatch iteration of it.
   std::vector<double> after;
-  o.progress = [&](double f)
+  o.progress = [&](double f, const std::string&) { after.push_back(f); };
   {
-    after.push_back(f);
-    return f < 0.3;
-  };
-  EXPECT_THROW(optimiseTerrain(source(), guide(), o), Cancelled);
+    const CancellationScope stop([&] { return !after.empty() && after.back() >= 0.3; });
+    EXPECT_THROW(optimiseTerrain(source(), guide(), o), Cancelled);
+  }
   ASSERT_FALSE(after.empty());
   EXPECT_GE(after.back(), 0.3);
   EXPECT_LT(after.back(), 0.5);
