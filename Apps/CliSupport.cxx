@@ -5,6 +5,7 @@
 
 #include "Core/Error.h"
 #include "Core/HeightfieldIO.h"
+#include "Core/Memory.h"
 #include "Core/OutputFile.h"
 
 #include <vtkNew.h>
@@ -85,16 +86,6 @@ bool isDemRaster(const std::string& path)
 }
 
 } // namespace
-
-bool hasExtension(const std::string& path, const char* wanted)
-{
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext)
-  {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return ext == wanted;
-}
 
 bool wantsHelp(const std::vector<std::string>& args)
 {
@@ -220,7 +211,6 @@ GridRequest parseSize(const std::string& text, GridRequest grid)
 
 double takeMemoryBudget(CommandLine& cl)
 {
-  constexpr double kBytesPerGB = 1.0e9;
   const std::optional<double> budget = cl.takeNumber(kMemoryOption);
   if (!budget)
   {

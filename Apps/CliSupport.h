@@ -19,9 +19,6 @@
 namespace tsynth::cli
 {
 
-// True if the file name ends in `wanted` (".json"), ignoring case.
-bool hasExtension(const std::string& path, const char* wanted);
-
 // True if the arguments ask for --help (or -h).
 bool wantsHelp(const std::vector<std::string>& args);
 

@@ -3,6 +3,7 @@
 #include "TerrainImageConversion.h"
 
 #include "Analysis/ReliefImage.h"
+#include "Core/Constants.h"
 #include "Core/Error.h"
 #include "Core/OutputFile.h"
 
@@ -126,7 +127,7 @@ void render3D(const Heightfield& input, const std::string& pngPath, const Render
     range.min * options.exaggeration };
   // Sun 70 degrees to the right of the camera and 40 degrees high: the slopes
   // facing the viewer are lit from the side, so relief reads clearly.
-  constexpr double kRad = 3.14159265358979323846 / 180.0;
+  constexpr double kRad = kPi / 180.0;
   const double sunAz = (options.viewAzimuthDeg + 70.0) * kRad;
   const double sunEl = 40.0 * kRad;
   sun->SetFocalPoint(centre);

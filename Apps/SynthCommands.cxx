@@ -10,6 +10,7 @@
 #include "Core/Error.h"
 #include "Core/FileRoles.h"
 #include "Core/HeightfieldIO.h"
+#include "Core/Memory.h"
 #include "Core/OutputFile.h"
 #include "Core/Resample.h"
 #include "Features/Sketch.h"
@@ -117,7 +118,6 @@ A figure that does not apply (no ridge sketched, a flat exemplar) is shown as "-
 constexpr int kEvaluationPatch = 80;
 // A stroke no other faces is read half a patch each side (LegibilityOptions).
 constexpr double kLoneHalfWidthInPatches = 0.5;
-constexpr double kBytesPerGB = 1.0e9;
 
 // Every value of a repeatable option, removed from the arguments.
 std::vector<std::string> takeRepeated(std::vector<std::string>& args, const std::string& name)

@@ -39,6 +39,7 @@
 namespace
 {
 
+using tsynth::hasExtension;
 using tsynth::cli::CommandLine;
 using tsynth::cli::kReadOptionsHelp;
 using tsynth::cli::oneInput;
@@ -282,16 +283,6 @@ void preferPassiveOpenMp(const std::vector<std::string>& args, char** argv)
   }
   setenv("OMP_WAIT_POLICY", "passive", 1);
   execv("/proc/self/exe", argv); // returns only on failure: carry on as we are
-}
-
-bool hasExtension(const std::string& path, const char* wanted)
-{
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext)
-  {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return ext == wanted;
 }
 
 int runRender(std::vector<std::string> args, int argc, char** argv)

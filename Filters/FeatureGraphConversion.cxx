@@ -1,5 +1,6 @@
 #include "FeatureGraphConversion.h"
 
+#include "Core/Constants.h"
 #include "Core/Error.h"
 #include "VtkErrorObserver.h"
 #include "XmlDataFiles.h"
@@ -193,7 +194,7 @@ void controlPointsToPolyData(const FeatureGraph& g, vtkPolyData* out, double ox,
       node->InsertNextValue(static_cast<int>(n));
       chain->InsertNextValue(cp.chain);
       reached->InsertNextValue(cp.reached ? 1 : 0);
-      angle->InsertNextValue(static_cast<float>(cp.angle * 180.0 / 3.14159265358979323846));
+      angle->InsertNextValue(static_cast<float>(cp.angle * 180.0 / kPi));
     }
   }
   out->SetPoints(points);

@@ -24,12 +24,7 @@ namespace tsynth
 
 bool isVtiPath(const std::string& path)
 {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(),
-    ext.end(),
-    ext.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".vti";
+  return hasExtension(path, ".vti");
 }
 
 Heightfield readTerrainFile(const std::string& path, const ReadOptions& options, RasterInfo* info)

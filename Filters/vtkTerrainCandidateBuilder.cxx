@@ -4,6 +4,7 @@
 #include "MatchingInputs.h"
 #include "TerrainImageConversion.h"
 
+#include "Core/Constants.h"
 #include "Core/Error.h"
 #include "Matching/CandidatePool.h"
 
@@ -113,7 +114,7 @@ int vtkTerrainCandidateBuilder::RequestData(vtkInformation*,
         angle->SetValue(c,
           used ? static_cast<float>(pool.angles[static_cast<std::size_t>(c) * tsynth::kMaxArms +
                                       static_cast<std::size_t>(a)] *
-                   180.0 / 3.14159265358979323846)
+                   180.0 / tsynth::kPi)
                : std::nanf(""));
       }
       table->AddColumn(angle);

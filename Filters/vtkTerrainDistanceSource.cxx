@@ -5,6 +5,7 @@
 #include "TerrainImageConversion.h"
 
 #include "Core/Error.h"
+#include "Core/Memory.h"
 #include "Distance/CostScaling.h"
 #include "Distance/DistanceSynthesis.h"
 
@@ -28,7 +29,6 @@ namespace
 
 constexpr int kGeneratorsPort = 0;
 constexpr int kProfilesPort = 1;
-constexpr double kBytesPerGB = 1.0e9;
 
 std::string lowerCase(std::string s)
 {
@@ -239,7 +239,7 @@ int vtkTerrainDistanceSource::RequestData(vtkInformation*,
     o.ridgeCost = this->RidgeCost == SCALED_COST ? tsynth::RidgeCost::ScaledCost
                                                  : tsynth::RidgeCost::ScaledRise;
     o.approximateOnly = this->ApproximateOnly;
-    o.memoryBudget = this->MemoryBudget * kBytesPerGB;
+    o.memoryBudget = this->MemoryBudget * tsynth::kBytesPerGB;
     o.memoryOption = "MemoryBudget";
     o.sizeOption = sources.strokes != nullptr ? "stroke map" : "OutputSize";
     o.progress = [this](double f, const std::string&) { this->UpdateProgress(f); };

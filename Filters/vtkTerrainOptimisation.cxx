@@ -6,6 +6,7 @@
 #include "TerrainImageConversion.h"
 
 #include "Core/Error.h"
+#include "Core/Memory.h"
 #include "Optimisation/OptimisationGuide.h"
 #include "Optimisation/TerrainOptimisation.h"
 
@@ -28,7 +29,6 @@ constexpr int kSourcePort = 0;
 constexpr int kGuidePort = 1;
 // Share of the progress bar taken by the guide (the source's features for a sketch).
 constexpr double kGuideProgress = 0.05;
-constexpr double kBytesPerGB = 1.0e9;
 
 tsynth::SetupOptionNames propertyNames()
 {
@@ -66,7 +66,7 @@ tsynth::OptimisationOptions optimisationOptions(vtkTerrainOptimisation* f)
   o.pitRemoval.method = pits.value_or(tsynth::PitRemovalMethod::Breach);
   o.drainOutput = f->GetDrainOutput();
   o.seed = static_cast<std::uint64_t>(f->GetSeed());
-  o.memoryBudget = f->GetMemoryBudget() * kBytesPerGB;
+  o.memoryBudget = f->GetMemoryBudget() * tsynth::kBytesPerGB;
   o.memoryOption = "MemoryBudget";
   o.sizeOption = "OutputSize";
   return o;

@@ -5,6 +5,7 @@
 #include "TerrainImageConversion.h"
 
 #include "Core/Error.h"
+#include "Core/Memory.h"
 #include "Hydrology/Flow.h"
 #include "Hydrology/PitRemoval.h"
 
@@ -31,7 +32,6 @@ namespace
 {
 
 constexpr int kSinksPort = 1;
-constexpr double kBytesPerGB = 1.0e9;
 constexpr int kSinksArrayIndex = 1; // SetInputArrayToProcess index of the sink array
 
 template<typename ArrayType, typename Value>
@@ -103,7 +103,7 @@ int vtkTerrainPitRemoval::RequestData(vtkInformation*,
     options.method = tsynth::pitRemovalMethodFromProperty(this->Method);
     options.maxBreachDepth = this->MaxBreachDepth;
     options.maxBreachLength = this->MaxBreachLength;
-    options.memoryBudget = this->MemoryBudget * kBytesPerGB;
+    options.memoryBudget = this->MemoryBudget * tsynth::kBytesPerGB;
     options.memoryOption = "MemoryBudget";
     tsynth::checkDemToDrain(dem, options, true); // the flow arrays are always made
     if (sinkImage != nullptr)

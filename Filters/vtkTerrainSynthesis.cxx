@@ -8,6 +8,7 @@
 #include "TerrainImageConversion.h"
 
 #include "Core/Error.h"
+#include "Core/Memory.h"
 #include "Synthesis/Regions.h"
 #include "Synthesis/Setup.h"
 #include "Synthesis/Synthesizer.h"
@@ -110,7 +111,6 @@ vtkTypeBool vtkTerrainSynthesis::ProcessRequest(vtkInformation* request,
 namespace
 {
 
-constexpr double kBytesPerGB = 1.0e9;
 // Share of the progress bar taken by the set-up (features of sketch and exemplars).
 constexpr double kSetupProgress = 0.05;
 constexpr double kSynthesisProgress = 0.9;
@@ -278,7 +278,7 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
     in.patchSize = this->PatchSize;
     in.seed = static_cast<std::uint64_t>(this->Seed);
     in.landformRelief = this->LandformRelief;
-    in.memoryBudget = this->MemoryBudget * kBytesPerGB;
+    in.memoryBudget = this->MemoryBudget * tsynth::kBytesPerGB;
     in.openClMatcher = tsynth::backendFromProperty(this->Backend) != tsynth::Backend::Cpu;
     in.names = propertyNames();
     for (const auto& w : ex.warnings)

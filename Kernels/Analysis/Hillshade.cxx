@@ -1,5 +1,7 @@
 #include "Hillshade.h"
 
+#include "../Core/Constants.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -10,7 +12,7 @@ namespace tsynth
 namespace
 {
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+constexpr double kDegToRad = kPi / 180.0;
 
 double lightOn(double p, double q, double azimuthDeg, double altitudeDeg)
 {

@@ -19,7 +19,7 @@ namespace
 
 bool isPng(const std::string& path)
 {
-  return lowerExtension(path) == ".png";
+  return hasExtension(path, ".png");
 }
 
 // A raster written without a sidecar that readers still look for one beside (GeoTIFF).

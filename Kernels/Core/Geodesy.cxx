@@ -1,5 +1,7 @@
 #include "Geodesy.h"
 
+#include "Constants.h"
+
 #include <cmath>
 
 namespace tsynth
@@ -7,7 +9,6 @@ namespace tsynth
 
 MetresPerDegree metresPerDegree(double latitudeDeg, double a, double invF)
 {
-  constexpr double kPi = 3.14159265358979323846;
   const double f = invF > 0.0 ? 1.0 / invF : 0.0;
   const double e2 = f * (2.0 - f);
   const double phi = latitudeDeg * kPi / 180.0;

@@ -660,6 +660,11 @@ std::string lowerExtension(const std::string& path)
   return ext;
 }
 
+bool hasExtension(const std::string& path, const char* wanted)
+{
+  return lowerExtension(path) == wanted;
+}
+
 RasterInfo readRasterInfo(const std::string& path, const ReadOptions& options)
 {
   DatasetPtr ds = openRaster(path);

@@ -99,4 +99,8 @@ bool isHeightfieldWriteExtension(const std::string& path);
 // The file name's extension in lower case, with its dot (".tif"), or "".
 std::string lowerExtension(const std::string& path);
 
+// True if the file name ends in `wanted` (lower case, with its dot: ".vtp"),
+// in any case ("A.VTP" too).
+bool hasExtension(const std::string& path, const char* wanted);
+
 } // namespace tsynth

@@ -12,7 +12,6 @@ namespace
 {
 
 constexpr double kBytesPerMB = 1.0e6;
-constexpr double kBytesPerGB = 1.0e9;
 // One decimal is noise above this many GB.
 constexpr double kWholeGBFrom = 100.0;
 

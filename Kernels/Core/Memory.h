@@ -7,6 +7,9 @@
 namespace tsynth
 {
 
+// Bytes in a gigabyte, as memory options (--max-memory, MemoryBudget) count them.
+constexpr double kBytesPerGB = 1.0e9;
+
 // This machine's physical memory, in bytes.
 double physicalMemory();
 

@@ -1,5 +1,6 @@
 #include "CrossSections.h"
 
+#include "../Core/Constants.h"
 #include "../Core/Error.h"
 #include "../Core/Random.h"
 #include "Profiles.h"
@@ -27,7 +28,6 @@ constexpr std::uint64_t kStreamY = 2;
 constexpr std::uint64_t kStreamAngle = 3;
 // Draws per wanted section: some land on nodata or reach past the edge.
 constexpr int kDrawsPerSection = 4;
-constexpr double kTwoPi = 6.283185307179586;
 
 // Gaussian smoothing of a short profile (sigma in samples), the kernel
 // renormalised where it leaves the section.

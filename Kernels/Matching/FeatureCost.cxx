@@ -1,5 +1,7 @@
 #include "FeatureCost.h"
 
+#include "../Core/Constants.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -9,7 +11,7 @@ namespace tsynth
 namespace
 {
 
-constexpr float kPi = 3.14159265358979f;
+constexpr float kPiF = static_cast<float>(kPi);
 
 // One candidate's cost; the OpenCL kernel (OpenCL/FeatureCost.cl) follows this
 // function line by line so both backends give the same numbers.
@@ -71,7 +73,7 @@ float candidateCost(const CandidatePool& pool,
       const int b = (a + s) % arms;
       float da = q.angles[static_cast<std::size_t>(a)] -
         pool.angles[c * kMaxArms + static_cast<std::size_t>(b)];
-      da = std::remainder(da, 2.0f * kPi) / kPi;
+      da = std::remainder(da, 2.0f * kPiF) / kPiF;
       angle += da * da;
       const float* ca =
         pool.along.data() + (c * kMaxArms + static_cast<std::size_t>(b)) * kAlongSamples;

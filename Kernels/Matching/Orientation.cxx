@@ -1,5 +1,6 @@
 #include "Orientation.h"
 
+#include "../Core/Constants.h"
 #include "../Features/Profiles.h"
 
 #include <cmath>
@@ -26,7 +27,7 @@ Variant variant(int k)
   if (k < 8)
   {
     // Content rotated by +theta as placed is read through R(-theta).
-    const double theta = k * 3.14159265358979323846 / 4.0;
+    const double theta = k * kPi / 4.0;
     double c = std::cos(theta);
     double s = std::sin(theta);
     if (k % 2 == 0)

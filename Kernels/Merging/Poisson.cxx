@@ -1,6 +1,7 @@
 #include "Poisson.h"
 
 #include "../Core/Cancellation.h"
+#include "../Core/Constants.h"
 #include "../Core/Error.h"
 
 #include <Eigen/Dense>
@@ -107,16 +108,15 @@ void DstPoissonSolver::solveZeroBoundary(int nx, int ny, double cellX, double ce
   if (buf.nx != nx || buf.ny != ny || buf.cellX != cellX || buf.cellY != cellY)
   {
     // Eigenvalues of -L for the sine modes.
-    const double pi = 3.14159265358979323846;
     buf.lambdaX.resize(nx);
     buf.lambdaY.resize(ny);
     for (int k = 0; k < nx; ++k)
     {
-      buf.lambdaX[k] = (2.0 - 2.0 * std::cos(pi * (k + 1) / (nx + 1))) / (cellX * cellX);
+      buf.lambdaX[k] = (2.0 - 2.0 * std::cos(kPi * (k + 1) / (nx + 1))) / (cellX * cellX);
     }
     for (int k = 0; k < ny; ++k)
     {
-      buf.lambdaY[k] = (2.0 - 2.0 * std::cos(pi * (k + 1) / (ny + 1))) / (cellY * cellY);
+      buf.lambdaY[k] = (2.0 - 2.0 * std::cos(kPi * (k + 1) / (ny + 1))) / (cellY * cellY);
     }
     buf.nx = nx;
     buf.ny = ny;

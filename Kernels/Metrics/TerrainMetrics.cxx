@@ -1,5 +1,6 @@
 #include "TerrainMetrics.h"
 
+#include "../Core/Constants.h"
 #include "../Core/Random.h"
 #include "../Features/Profiles.h"
 
@@ -143,7 +144,7 @@ void addSlopes(const Heightfield& hf, std::vector<double>& h, double& sum, doubl
       }
       const double p = (hf.at(i + 1, j) - hf.at(i, j)) / hf.cellX;
       const double q = (hf.at(i, j + 1) - hf.at(i, j)) / hf.cellY;
-      const double deg = std::atan(std::hypot(p, q)) * 180.0 / 3.14159265358979323846;
+      const double deg = std::atan(std::hypot(p, q)) * 180.0 / kPi;
       h[std::min<std::size_t>(899, static_cast<std::size_t>(deg * 10.0))] += 1.0;
       sum += deg;
       n += 1.0;

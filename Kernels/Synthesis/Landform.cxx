@@ -1,5 +1,6 @@
 #include "Landform.h"
 
+#include "../Core/Constants.h"
 #include "../Core/Error.h"
 #include "../Core/Random.h"
 #include "../Distance/DistanceField.h"
@@ -967,7 +968,7 @@ double confidence(double d, double width, double fade)
   {
     return 0.0;
   }
-  const double c = std::cos(0.5 * 3.14159265358979323846 * (d - width) / fade);
+  const double c = std::cos(0.5 * kPi * (d - width) / fade);
   return c * c;
 }
 
