@@ -4,6 +4,10 @@
 #include "Core/Cancellation.h"
 
 #include <vtkAlgorithm.h>
+#include <vtkSetGet.h>
+
+#include <exception>
+#include <new>
 
 class vtkInformation;
 class vtkInformationVector;
@@ -28,5 +32,39 @@ public:
   {
   }
 };
+
+// A filter's RequestData body run the one way every filter runs it: under an
+// AbortScope, with tsynth::Cancelled (ParaView's abort) turned into empty outputs
+// (clearOutputs) and a request that succeeds, running out of memory into the error
+// `outOfMemory` (one sentence naming what to make smaller), and any other failure
+// into its own sentence; both fail the request. Returns what RequestData returns.
+template<class ClearOutputs, class Body>
+int runFilterRequest(vtkAlgorithm* filter,
+  const char* outOfMemory,
+  const ClearOutputs& clearOutputs,
+  const Body& body)
+{
+  try
+  {
+    const AbortScope abortScope(filter);
+    body();
+    return 1;
+  }
+  catch (const Cancelled&)
+  {
+    clearOutputs();
+    return 1;
+  }
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorWithObjectMacro(filter, << outOfMemory);
+    return 0;
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorWithObjectMacro(filter, << e.what());
+    return 0;
+  }
+}
 
 } // namespace tsynth

@@ -172,101 +172,88 @@ int vtkTerrainDistanceSource::RequestData(vtkInformation*,
     vtkErrorMacro("Connect a stroke map or generator poly-lines.");
     return 0;
   }
-  try
-  {
-    const tsynth::AbortScope abortScope(this); // abort stops the kernels (Core/Progress.h)
-    tsynth::DistanceSources sources;
-    if (table != nullptr && !this->ProfileFileName.empty())
+  return tsynth::runFilterRequest(
+    this,
+    "Out of memory: use a smaller stroke map or OutputSize.",
+    [&] { output->Initialize(); },
+    [&]
     {
-      throw tsynth::Error(
-        "Give the profiles as a table on input 1 or as ProfileFileName, not both.");
-    }
-    if (table != nullptr)
-    {
-      sources.profiles = profilesFromTable(table);
-    }
-    else if (!this->ProfileFileName.empty())
-    {
-      sources.profiles =
-        endsWith(this->ProfileFileName, ".csv") || endsWith(this->ProfileFileName, ".txt")
-        ? tsynth::readProfileCsv(this->ProfileFileName)
-        : std::vector<tsynth::MonotoneProfile>{ tsynth::profileFromImage(
-            tsynth::readColourImage(this->ProfileFileName)) };
-    }
-    sources.assignment = this->ProfileAssignment == BY_FEATURE
-      ? tsynth::ProfileAssignment::ByFeature
-      : tsynth::ProfileAssignment::ByColour;
-    sources.regionProfile = this->RegionProfile < 0 ? tsynth::kNoProfile : this->RegionProfile;
-    tsynth::ColourImage strokes;
-    std::vector<tsynth::GeneratorLine> lines;
-    if (auto* image = vtkImageData::SafeDownCast(generators))
-    {
-      strokes = tsynth::imageToColourImage(image);
-      sources.strokes = &strokes;
-    }
-    else if (auto* poly = vtkPolyData::SafeDownCast(generators))
-    {
-      lines = tsynth::polyDataToGeneratorLines(poly, this->CellSize);
-      sources.lines = &lines;
-      sources.width = this->OutputSize[0];
-      sources.height = this->OutputSize[1];
-    }
-    std::vector<std::string> warnings;
-    const tsynth::DistanceInputs inputs = tsynth::assembleDistanceInputs(sources, warnings);
-    tsynth::DistanceOptions o;
-    o.cellSize = this->CellSize;
-    o.heightScale = this->HeightScale;
-    o.seed = static_cast<std::uint64_t>(this->Seed);
-    o.meanWeight = this->MeanWeight;
-    o.roughness = this->Roughness;
-    o.sqrt2Diagonals = this->Sqrt2Diagonals;
-    o.seaLevelScale = this->SeaLevelScale;
-    o.blendBias = this->BlendBias;
-    o.seaLevelEpsilon = this->SeaLevelEpsilon;
-    o.approximateFraction = this->ApproximateFraction;
-    o.minScaling = this->MinScaling;
-    o.profileScale = this->ProfileScale;
-    o.profileBins = this->ProfileBins;
-    o.fbm.h = this->FbmH;
-    o.fbm.lacunarity = this->FbmLacunarity;
-    o.fbm.octaves = this->FbmOctaves;
-    o.fbm.domain = this->FbmDomain;
-    o.fbm.scale = this->FbmScale;
-    o.fbm.low = this->FbmRange[0];
-    o.fbm.high = this->FbmRange[1];
-    o.ridgeCount = this->RidgeCount;
-    o.ridgeFraction = this->RidgeFraction;
-    o.ridgeCost = this->RidgeCost == SCALED_COST ? tsynth::RidgeCost::ScaledCost
-                                                 : tsynth::RidgeCost::ScaledRise;
-    o.approximateOnly = this->ApproximateOnly;
-    o.memoryBudget = this->MemoryBudget * tsynth::kBytesPerGB;
-    o.memoryOption = "MemoryBudget";
-    o.sizeOption = sources.strokes != nullptr ? "stroke map" : "OutputSize";
-    o.progress = [this](double f, const std::string&) { this->UpdateProgress(f); };
-    const tsynth::DistanceTerrain t = tsynth::synthesiseByDistance(inputs, o);
-    warnings.insert(warnings.end(), t.warnings.begin(), t.warnings.end());
-    for (const std::string& w : warnings)
-    {
-      vtkWarningMacro(<< w);
-    }
-    tsynth::heightfieldToImage(t.heights, output);
-  }
-  catch (const tsynth::Cancelled&)
-  {
-    output->Initialize();
-    return 1;
-  }
-  catch (const std::bad_alloc&)
-  {
-    vtkErrorMacro("Out of memory: use a smaller stroke map or OutputSize.");
-    return 0;
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
-  return 1;
+      tsynth::DistanceSources sources;
+      if (table != nullptr && !this->ProfileFileName.empty())
+      {
+        throw tsynth::Error(
+          "Give the profiles as a table on input 1 or as ProfileFileName, not both.");
+      }
+      if (table != nullptr)
+      {
+        sources.profiles = profilesFromTable(table);
+      }
+      else if (!this->ProfileFileName.empty())
+      {
+        sources.profiles =
+          endsWith(this->ProfileFileName, ".csv") || endsWith(this->ProfileFileName, ".txt")
+          ? tsynth::readProfileCsv(this->ProfileFileName)
+          : std::vector<tsynth::MonotoneProfile>{ tsynth::profileFromImage(
+              tsynth::readColourImage(this->ProfileFileName)) };
+      }
+      sources.assignment = this->ProfileAssignment == BY_FEATURE
+        ? tsynth::ProfileAssignment::ByFeature
+        : tsynth::ProfileAssignment::ByColour;
+      sources.regionProfile = this->RegionProfile < 0 ? tsynth::kNoProfile : this->RegionProfile;
+      tsynth::ColourImage strokes;
+      std::vector<tsynth::GeneratorLine> lines;
+      if (auto* image = vtkImageData::SafeDownCast(generators))
+      {
+        strokes = tsynth::imageToColourImage(image);
+        sources.strokes = &strokes;
+      }
+      else if (auto* poly = vtkPolyData::SafeDownCast(generators))
+      {
+        lines = tsynth::polyDataToGeneratorLines(poly, this->CellSize);
+        sources.lines = &lines;
+        sources.width = this->OutputSize[0];
+        sources.height = this->OutputSize[1];
+      }
+      std::vector<std::string> warnings;
+      const tsynth::DistanceInputs inputs = tsynth::assembleDistanceInputs(sources, warnings);
+      tsynth::DistanceOptions o;
+      o.cellSize = this->CellSize;
+      o.heightScale = this->HeightScale;
+      o.seed = static_cast<std::uint64_t>(this->Seed);
+      o.meanWeight = this->MeanWeight;
+      o.roughness = this->Roughness;
+      o.sqrt2Diagonals = this->Sqrt2Diagonals;
+      o.seaLevelScale = this->SeaLevelScale;
+      o.blendBias = this->BlendBias;
+      o.seaLevelEpsilon = this->SeaLevelEpsilon;
+      o.approximateFraction = this->ApproximateFraction;
+      o.minScaling = this->MinScaling;
+      o.profileScale = this->ProfileScale;
+      o.profileBins = this->ProfileBins;
+      o.fbm.h = this->FbmH;
+      o.fbm.lacunarity = this->FbmLacunarity;
+      o.fbm.octaves = this->FbmOctaves;
+      o.fbm.domain = this->FbmDomain;
+      o.fbm.scale = this->FbmScale;
+      o.fbm.low = this->FbmRange[0];
+      o.fbm.high = this->FbmRange[1];
+      o.ridgeCount = this->RidgeCount;
+      o.ridgeFraction = this->RidgeFraction;
+      o.ridgeCost = this->RidgeCost == SCALED_COST ? tsynth::RidgeCost::ScaledCost
+                                                   : tsynth::RidgeCost::ScaledRise;
+      o.approximateOnly = this->ApproximateOnly;
+      o.memoryBudget = this->MemoryBudget * tsynth::kBytesPerGB;
+      o.memoryOption = "MemoryBudget";
+      o.sizeOption = sources.strokes != nullptr ? "stroke map" : "OutputSize";
+      o.progress = [this](double f, const std::string&) { this->UpdateProgress(f); };
+      const tsynth::DistanceTerrain t = tsynth::synthesiseByDistance(inputs, o);
+      warnings.insert(warnings.end(), t.warnings.begin(), t.warnings.end());
+      for (const std::string& w : warnings)
+      {
+        vtkWarningMacro(<< w);
+      }
+      tsynth::heightfieldToImage(t.heights, output);
+    });
 }
 
 void vtkTerrainDistanceSource::PrintSelf(ostream& os, vtkIndent indent)

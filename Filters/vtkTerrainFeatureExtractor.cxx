@@ -38,77 +38,67 @@ int vtkTerrainFeatureExtractor::RequestData(vtkInformation*,
   vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
   vtkPolyData* tree = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* controls = vtkPolyData::GetData(outputVector, 1);
-  try
-  {
-    const tsynth::AbortScope abortScope(this);
-    const tsynth::Heightfield hf =
-      tsynth::imageToHeightfield(input, this->GetInputArrayToProcess(0, inputVector));
-    tsynth::requireValidHeights(hf);
-    tsynth::PpaOptions o;
-    o.halfProfileLength = this->HalfProfileLength;
-    o.minDip = this->MinimumDip;
-    o.relativeDip = this->RelativeDip;
-    o.significance = this->Significance;
-    o.significanceNoise = this->SignificanceNoise;
-    o.significanceRadius = this->SignificanceRadius;
-    o.presmoothSigma = this->PresmoothSigma;
-    o.endReductions = this->EndReductions;
-    o.minBranchLength = this->MinimumBranchLength;
-    o.minTreeSize = this->MinimumTreeSize;
-    o.smoothingPasses = this->SmoothingPasses;
-    o.controlRadius = this->ControlRadius;
+  return tsynth::runFilterRequest(
+    this,
+    "Out of memory: give a smaller input.",
+    [&]
+    {
+      tree->Initialize();
+      controls->Initialize(); // aborted: empty outputs
+    },
+    [&]
+    {
+      const tsynth::Heightfield hf =
+        tsynth::imageToHeightfield(input, this->GetInputArrayToProcess(0, inputVector));
+      tsynth::requireValidHeights(hf);
+      tsynth::PpaOptions o;
+      o.halfProfileLength = this->HalfProfileLength;
+      o.minDip = this->MinimumDip;
+      o.relativeDip = this->RelativeDip;
+      o.significance = this->Significance;
+      o.significanceNoise = this->SignificanceNoise;
+      o.significanceRadius = this->SignificanceRadius;
+      o.presmoothSigma = this->PresmoothSigma;
+      o.endReductions = this->EndReductions;
+      o.minBranchLength = this->MinimumBranchLength;
+      o.minTreeSize = this->MinimumTreeSize;
+      o.smoothingPasses = this->SmoothingPasses;
+      o.controlRadius = this->ControlRadius;
 
-    tsynth::FeatureGraph graph;
-    graph.width = hf.width;
-    graph.height = hf.height;
-    graph.cellX = hf.cellX;
-    graph.cellY = hf.cellY;
-    const bool ridges = this->Features != VALLEYS;
-    const bool valleys = this->Features != RIDGES;
-    if (ridges)
-    {
-      const auto r = tsynth::extractFeatures(hf, tsynth::FeatureType::Ridge, o);
-      for (const auto& w : r.warnings)
+      tsynth::FeatureGraph graph;
+      graph.width = hf.width;
+      graph.height = hf.height;
+      graph.cellX = hf.cellX;
+      graph.cellY = hf.cellY;
+      const bool ridges = this->Features != VALLEYS;
+      const bool valleys = this->Features != RIDGES;
+      if (ridges)
       {
-        vtkWarningMacro(<< w);
+        const auto r = tsynth::extractFeatures(hf, tsynth::FeatureType::Ridge, o);
+        for (const auto& w : r.warnings)
+        {
+          vtkWarningMacro(<< w);
+        }
+        tsynth::appendGraph(graph, r.graph);
       }
-      tsynth::appendGraph(graph, r.graph);
-    }
-    this->UpdateProgress(0.5);
-    if (valleys)
-    {
-      const auto v = tsynth::extractFeatures(hf, tsynth::FeatureType::Valley, o);
-      for (const auto& w : v.warnings)
+      this->UpdateProgress(0.5);
+      if (valleys)
       {
-        vtkWarningMacro(<< w);
+        const auto v = tsynth::extractFeatures(hf, tsynth::FeatureType::Valley, o);
+        for (const auto& w : v.warnings)
+        {
+          vtkWarningMacro(<< w);
+        }
+        tsynth::appendGraph(graph, v.graph);
       }
-      tsynth::appendGraph(graph, v.graph);
-    }
-    this->UpdateProgress(0.9);
-    // Points sit on the input's grid: its origin plus the extent's offset.
-    double ox = 0.0;
-    double oy = 0.0;
-    tsynth::gridOrigin(input, ox, oy);
-    tsynth::featureGraphToPolyData(graph, tree, ox, oy);
-    tsynth::controlPointsToPolyData(graph, controls, ox, oy);
-  }
-  catch (const tsynth::Cancelled&)
-  {
-    tree->Initialize();
-    controls->Initialize(); // aborted: empty outputs
-    return 1;
-  }
-  catch (const std::bad_alloc&)
-  {
-    vtkErrorMacro("Out of memory: give a smaller input.");
-    return 0;
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
-  return 1;
+      this->UpdateProgress(0.9);
+      // Points sit on the input's grid: its origin plus the extent's offset.
+      double ox = 0.0;
+      double oy = 0.0;
+      tsynth::gridOrigin(input, ox, oy);
+      tsynth::featureGraphToPolyData(graph, tree, ox, oy);
+      tsynth::controlPointsToPolyData(graph, controls, ox, oy);
+    });
 }
 
 void vtkTerrainFeatureExtractor::PrintSelf(ostream& os, vtkIndent indent)

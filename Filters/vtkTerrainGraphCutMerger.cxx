@@ -70,122 +70,116 @@ int vtkTerrainGraphCutMerger::RequestData(vtkInformation*,
     vtkErrorMacro("No patch: connect the patch image to the second input.");
     return 0;
   }
-  try
-  {
-    tsynth::Heightfield terrain =
-      tsynth::imageToHeightfield(terrainImage, this->GetInputArrayToProcess(0, inputVector));
-    const tsynth::Heightfield patch =
-      tsynth::imageToHeightfield(patchImage, this->GetInputArrayToProcess(1, inputVector));
-    std::vector<std::uint8_t> filled = tsynth::pointFlags(terrainImage, "Filled", 1);
-    for (std::size_t k = 0; k < filled.size(); ++k)
+  return tsynth::runFilterRequest(
+    this,
+    "Out of memory: give a smaller input.",
+    [&] { output->Initialize(); },
+    [&]
     {
-      filled[k] = filled[k] != 0 && terrain.isValid(k) ? 1 : 0;
-    }
-    const std::vector<std::uint8_t> core = tsynth::pointFlags(patchImage, "Core", 0);
-    int x0 = this->PatchCell[0];
-    int y0 = this->PatchCell[1];
-    if (this->UsePatchOrigin)
-    {
-      double tx = 0.0;
-      double ty = 0.0;
-      double px = 0.0;
-      double py = 0.0;
-      tsynth::gridOrigin(terrainImage, tx, ty);
-      tsynth::gridOrigin(patchImage, px, py);
-      const double cx = (px - tx) / terrain.cellX;
-      const double cy = (py - ty) / terrain.cellY;
-      // Beyond this many cells from the terrain no patch overlaps it (and the
-      // cell would not fit an int).
-      constexpr double kFarthestCell = 1.0e9;
-      if (!(std::abs(cx) < kFarthestCell && std::abs(cy) < kFarthestCell))
+      tsynth::Heightfield terrain =
+        tsynth::imageToHeightfield(terrainImage, this->GetInputArrayToProcess(0, inputVector));
+      const tsynth::Heightfield patch =
+        tsynth::imageToHeightfield(patchImage, this->GetInputArrayToProcess(1, inputVector));
+      std::vector<std::uint8_t> filled = tsynth::pointFlags(terrainImage, "Filled", 1);
+      for (std::size_t k = 0; k < filled.size(); ++k)
       {
-        std::ostringstream where;
-        where << cx << ", " << cy;
-        throw tsynth::Error("The patch's origin lies " + where.str() +
-          " cells from the terrain's: it cannot overlap it.");
+        filled[k] = filled[k] != 0 && terrain.isValid(k) ? 1 : 0;
       }
-      x0 = static_cast<int>(std::lround(cx));
-      y0 = static_cast<int>(std::lround(cy));
-    }
-    tsynth::MergeOptions options;
-    options.mode = tsynth::mergeModeFromProperty(this->Mode);
-    options.shepardRadius = this->ShepardRadius;
-    this->UpdateProgress(0.2);
-    tsynth::PatchMerger merger;
-    const tsynth::MergeResult r = merger.merge(terrain, filled, patch, x0, y0, &core, options);
-    this->UpdateProgress(0.9);
+      const std::vector<std::uint8_t> core = tsynth::pointFlags(patchImage, "Core", 0);
+      int x0 = this->PatchCell[0];
+      int y0 = this->PatchCell[1];
+      if (this->UsePatchOrigin)
+      {
+        double tx = 0.0;
+        double ty = 0.0;
+        double px = 0.0;
+        double py = 0.0;
+        tsynth::gridOrigin(terrainImage, tx, ty);
+        tsynth::gridOrigin(patchImage, px, py);
+        const double cx = (px - tx) / terrain.cellX;
+        const double cy = (py - ty) / terrain.cellY;
+        // Beyond this many cells from the terrain no patch overlaps it (and the
+        // cell would not fit an int).
+        constexpr double kFarthestCell = 1.0e9;
+        if (!(std::abs(cx) < kFarthestCell && std::abs(cy) < kFarthestCell))
+        {
+          std::ostringstream where;
+          where << cx << ", " << cy;
+          throw tsynth::Error("The patch's origin lies " + where.str() +
+            " cells from the terrain's: it cannot overlap it.");
+        }
+        x0 = static_cast<int>(std::lround(cx));
+        y0 = static_cast<int>(std::lround(cy));
+      }
+      tsynth::MergeOptions options;
+      options.mode = tsynth::mergeModeFromProperty(this->Mode);
+      options.shepardRadius = this->ShepardRadius;
+      this->UpdateProgress(0.2);
+      tsynth::PatchMerger merger;
+      const tsynth::MergeResult r = merger.merge(terrain, filled, patch, x0, y0, &core, options);
+      this->UpdateProgress(0.9);
 
-    output->CopyStructure(terrainImage);
-    output->GetFieldData()->PassData(terrainImage->GetFieldData());
-    vtkNew<vtkImageData> converted;
-    tsynth::heightfieldToImage(terrain, converted);
-    output->GetPointData()->AddArray(converted->GetPointData()->GetArray(tsynth::kElevationArray));
-    output->GetPointData()->SetActiveScalars(tsynth::kElevationArray);
-    if (vtkDataArray* valid = converted->GetPointData()->GetArray(tsynth::kValidArray))
-    {
-      output->GetPointData()->AddArray(valid);
-    }
-    const vtkIdType n = static_cast<vtkIdType>(terrain.size());
-    vtkNew<vtkUnsignedCharArray> filledArray;
-    filledArray->SetName("Filled");
-    filledArray->SetNumberOfTuples(n);
-    std::copy(filled.begin(), filled.end(), filledArray->GetPointer(0));
-    output->GetPointData()->AddArray(filledArray);
-    vtkNew<vtkUnsignedCharArray> seam;
-    seam->SetName("SeamMask");
-    seam->SetNumberOfTuples(n);
-    seam->Fill(0);
-    vtkNew<vtkIntArray> patchId;
-    patchId->SetName("PatchId");
-    patchId->SetNumberOfTuples(n);
-    patchId->Fill(0);
-    if (vtkDataArray* previous = terrainImage->GetPointData()->GetArray("PatchId"))
-    {
-      for (vtkIdType k = 0; k < n && k < previous->GetNumberOfTuples(); ++k)
+      output->CopyStructure(terrainImage);
+      output->GetFieldData()->PassData(terrainImage->GetFieldData());
+      vtkNew<vtkImageData> converted;
+      tsynth::heightfieldToImage(terrain, converted);
+      output->GetPointData()->AddArray(
+        converted->GetPointData()->GetArray(tsynth::kElevationArray));
+      output->GetPointData()->SetActiveScalars(tsynth::kElevationArray);
+      if (vtkDataArray* valid = converted->GetPointData()->GetArray(tsynth::kValidArray))
       {
-        patchId->SetValue(k, static_cast<int>(previous->GetComponent(k, 0)));
+        output->GetPointData()->AddArray(valid);
       }
-    }
-    for (int j = 0; j < r.height; ++j)
-    {
-      for (int i = 0; i < r.width; ++i)
+      const vtkIdType n = static_cast<vtkIdType>(terrain.size());
+      vtkNew<vtkUnsignedCharArray> filledArray;
+      filledArray->SetName("Filled");
+      filledArray->SetNumberOfTuples(n);
+      std::copy(filled.begin(), filled.end(), filledArray->GetPointer(0));
+      output->GetPointData()->AddArray(filledArray);
+      vtkNew<vtkUnsignedCharArray> seam;
+      seam->SetName("SeamMask");
+      seam->SetNumberOfTuples(n);
+      seam->Fill(0);
+      vtkNew<vtkIntArray> patchId;
+      patchId->SetName("PatchId");
+      patchId->SetNumberOfTuples(n);
+      patchId->Fill(0);
+      if (vtkDataArray* previous = terrainImage->GetPointData()->GetArray("PatchId"))
       {
-        const std::size_t w = static_cast<std::size_t>(j * r.width + i);
-        const vtkIdType k = static_cast<vtkIdType>(terrain.index(r.x0 + i, r.y0 + j));
-        if (r.seam[w] != 0)
+        for (vtkIdType k = 0; k < n && k < previous->GetNumberOfTuples(); ++k)
         {
-          seam->SetValue(k, 1);
-        }
-        if (r.takeNew[w] != 0)
-        {
-          patchId->SetValue(k, this->PatchIdValue);
+          patchId->SetValue(k, static_cast<int>(previous->GetComponent(k, 0)));
         }
       }
-    }
-    output->GetPointData()->AddArray(seam);
-    output->GetPointData()->AddArray(patchId);
-    auto fieldValue = [&](const char* name, double v)
-    {
-      vtkNew<vtkDoubleArray> a;
-      a->SetName(name);
-      a->InsertNextValue(v);
-      output->GetFieldData()->AddArray(a);
-    };
-    fieldValue("CutCost", r.cutCost);
-    fieldValue("CutEdges", r.cutEdges);
-    fieldValue("NormalisedCutCost", r.normalisedCost);
-  }
-  catch (const std::bad_alloc&)
-  {
-    vtkErrorMacro("Out of memory: give a smaller input.");
-    return 0;
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
-  return 1;
+      for (int j = 0; j < r.height; ++j)
+      {
+        for (int i = 0; i < r.width; ++i)
+        {
+          const std::size_t w = static_cast<std::size_t>(j * r.width + i);
+          const vtkIdType k = static_cast<vtkIdType>(terrain.index(r.x0 + i, r.y0 + j));
+          if (r.seam[w] != 0)
+          {
+            seam->SetValue(k, 1);
+          }
+          if (r.takeNew[w] != 0)
+          {
+            patchId->SetValue(k, this->PatchIdValue);
+          }
+        }
+      }
+      output->GetPointData()->AddArray(seam);
+      output->GetPointData()->AddArray(patchId);
+      auto fieldValue = [&](const char* name, double v)
+      {
+        vtkNew<vtkDoubleArray> a;
+        a->SetName(name);
+        a->InsertNextValue(v);
+        output->GetFieldData()->AddArray(a);
+      };
+      fieldValue("CutCost", r.cutCost);
+      fieldValue("CutEdges", r.cutEdges);
+      fieldValue("NormalisedCutCost", r.normalisedCost);
+    });
 }
 
 void vtkTerrainGraphCutMerger::PrintSelf(ostream& os, vtkIndent indent)

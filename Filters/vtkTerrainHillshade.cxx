@@ -1,5 +1,6 @@
 #include "vtkTerrainHillshade.h"
 
+#include "PipelineRequests.h"
 #include "TerrainImageConversion.h"
 
 #include "Analysis/Hillshade.h"
@@ -36,35 +37,28 @@ int vtkTerrainHillshade::RequestData(vtkInformation*,
     return 0;
   }
   vtkDataArray* heights = this->GetInputArrayToProcess(0, inputVector);
-  try
-  {
-    const tsynth::Heightfield hf = tsynth::imageToHeightfield(input, heights);
-    tsynth::requireValidHeights(hf);
-    this->UpdateProgress(0.1);
-    tsynth::HillshadeOptions options;
-    options.altitudeDeg = this->Altitude;
-    options.azimuthDeg = this->Azimuth;
-    options.multidirectional = this->Multidirectional;
-    options.zFactor = this->ZFactor;
-    const tsynth::ShadedRelief relief = tsynth::computeHillshade(hf, options);
-    this->UpdateProgress(0.9);
+  return tsynth::runFilterRequest(
+    this,
+    "Out of memory: give a smaller input.",
+    [&] { output->Initialize(); },
+    [&]
+    {
+      const tsynth::Heightfield hf = tsynth::imageToHeightfield(input, heights);
+      tsynth::requireValidHeights(hf);
+      this->UpdateProgress(0.1);
+      tsynth::HillshadeOptions options;
+      options.altitudeDeg = this->Altitude;
+      options.azimuthDeg = this->Azimuth;
+      options.multidirectional = this->Multidirectional;
+      options.zFactor = this->ZFactor;
+      const tsynth::ShadedRelief relief = tsynth::computeHillshade(hf, options);
+      this->UpdateProgress(0.9);
 
-    output->ShallowCopy(input);
-    tsynth::addPointArray(output, "Slope", relief.slopeDeg.data());
-    tsynth::addPointArray(output, "Hillshade", relief.shade.data());
-    output->GetPointData()->SetActiveScalars("Hillshade");
-  }
-  catch (const std::bad_alloc&)
-  {
-    vtkErrorMacro("Out of memory: give a smaller input.");
-    return 0;
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
-  return 1;
+      output->ShallowCopy(input);
+      tsynth::addPointArray(output, "Slope", relief.slopeDeg.data());
+      tsynth::addPointArray(output, "Hillshade", relief.shade.data());
+      output->GetPointData()->SetActiveScalars("Hillshade");
+    });
 }
 
 void vtkTerrainHillshade::PrintSelf(ostream& os, vtkIndent indent)

@@ -160,43 +160,30 @@ int vtkTerrainOptimisation::RequestData(vtkInformation*,
     vtkErrorMacro("Connect a source DEM and a guide.");
     return 0;
   }
-  try
-  {
-    const tsynth::AbortScope abortScope(this); // abort stops the kernels (Core/Progress.h)
-    const tsynth::Heightfield dem =
-      tsynth::imageToHeightfield(source, this->GetInputArrayToProcess(0, inputVector));
-    std::vector<std::string> warnings;
-    const tsynth::SketchInput sketch = tsynth::sketchInput(guideData, warnings);
-    tsynth::OptimisationOptions o = optimisationOptions(this);
-    const tsynth::OptimisationGuide guide = tsynth::buildOptimisationGuide(
-      dem, sketch, gridRequest(this->OutputSize), o, propertyNames());
-    for (const std::string& w : guide.warnings)
+  return tsynth::runFilterRequest(
+    this,
+    "Out of memory optimising the terrain: use a smaller OutputSize.",
+    [&] { output->Initialize(); },
+    [&]
     {
-      vtkWarningMacro(<< w);
-    }
-    this->UpdateProgress(kGuideProgress);
-    o.guideConfidence = guide.confidence;
-    o.progress = [this](double f, const std::string&)
-    { this->UpdateProgress(kGuideProgress + (1.0 - kGuideProgress) * f); };
-    const tsynth::OptimisationResult r = tsynth::optimiseTerrain(dem, guide.field, o);
-    tsynth::heightfieldToImage(r.terrain, output);
-  }
-  catch (const tsynth::Cancelled&)
-  {
-    output->Initialize();
-    return 1;
-  }
-  catch (const std::bad_alloc&)
-  {
-    vtkErrorMacro("Out of memory optimising the terrain: use a smaller OutputSize.");
-    return 0;
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
-  return 1;
+      const tsynth::Heightfield dem =
+        tsynth::imageToHeightfield(source, this->GetInputArrayToProcess(0, inputVector));
+      std::vector<std::string> warnings;
+      const tsynth::SketchInput sketch = tsynth::sketchInput(guideData, warnings);
+      tsynth::OptimisationOptions o = optimisationOptions(this);
+      const tsynth::OptimisationGuide guide = tsynth::buildOptimisationGuide(
+        dem, sketch, gridRequest(this->OutputSize), o, propertyNames());
+      for (const std::string& w : guide.warnings)
+      {
+        vtkWarningMacro(<< w);
+      }
+      this->UpdateProgress(kGuideProgress);
+      o.guideConfidence = guide.confidence;
+      o.progress = [this](double f, const std::string&)
+      { this->UpdateProgress(kGuideProgress + (1.0 - kGuideProgress) * f); };
+      const tsynth::OptimisationResult r = tsynth::optimiseTerrain(dem, guide.field, o);
+      tsynth::heightfieldToImage(r.terrain, output);
+    });
 }
 
 void vtkTerrainOptimisation::PrintSelf(ostream& os, vtkIndent indent)

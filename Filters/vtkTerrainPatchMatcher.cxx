@@ -111,100 +111,102 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
   vtkImageData* targetImage = vtkImageData::GetData(inputVector[0], 0);
   vtkTable* table = vtkTable::GetData(outputVector, 0);
   vtkImageData* map = vtkImageData::GetData(outputVector, 1);
-  try
-  {
-    const tsynth::Heightfield target =
-      tsynth::imageToHeightfield(targetImage, this->GetInputArrayToProcess(0, inputVector));
-    std::vector<std::uint8_t> known(target.size(), 1);
-    if (vtkDataArray* k =
-          tsynth::chosenPointArray(targetImage, this->KnownArray, kDefaultKnownArray))
+  return tsynth::runFilterRequest(
+    this,
+    "Out of memory: give a smaller input.",
+    [&]
     {
-      for (std::size_t c = 0; c < known.size(); ++c)
+      table->Initialize();
+      map->Initialize();
+    },
+    [&]
+    {
+      const tsynth::Heightfield target =
+        tsynth::imageToHeightfield(targetImage, this->GetInputArrayToProcess(0, inputVector));
+      std::vector<std::uint8_t> known(target.size(), 1);
+      if (vtkDataArray* k =
+            tsynth::chosenPointArray(targetImage, this->KnownArray, kDefaultKnownArray))
       {
-        known[c] = k->GetComponent(static_cast<vtkIdType>(c), 0) != 0.0 ? 1 : 0;
+        for (std::size_t c = 0; c < known.size(); ++c)
+        {
+          known[c] = k->GetComponent(static_cast<vtkIdType>(c), 0) != 0.0 ? 1 : 0;
+        }
       }
-    }
-    const tsynth::ExemplarInputs in = tsynth::gatherExemplars(inputVector[1],
-      inputVector[2],
-      tsynth::exemplarHeightsNamed(
-        this->GetInputArrayInformation(kExemplarHeights), inputVector[1]));
-    this->UpdateProgress(0.2);
-    tsynth::MatcherOptions o;
-    o.patchSize = this->PatchSize;
-    o.k = static_cast<std::size_t>(this->K);
-    o.backend = tsynth::backendFromProperty(this->Backend);
-    o.weights.feature = this->FeatureWeight;
-    o.weights.angle = this->AngleWeight;
-    o.weights.noise = this->NoiseWeight;
-    o.weights.overlap = this->OverlapWeight;
-    o.weights.verticalOffset = this->VerticalOffset;
-    tsynth::PatchMatcher matcher(in.heightPointers(), in.graphPointers(), o);
-    this->BackendUsed = matcher.backendName();
-    this->UpdateProgress(0.6);
+      const tsynth::ExemplarInputs in = tsynth::gatherExemplars(inputVector[1],
+        inputVector[2],
+        tsynth::exemplarHeightsNamed(
+          this->GetInputArrayInformation(kExemplarHeights), inputVector[1]));
+      this->UpdateProgress(0.2);
+      tsynth::MatcherOptions o;
+      o.patchSize = this->PatchSize;
+      o.k = static_cast<std::size_t>(this->K);
+      o.backend = tsynth::backendFromProperty(this->Backend);
+      o.weights.feature = this->FeatureWeight;
+      o.weights.angle = this->AngleWeight;
+      o.weights.noise = this->NoiseWeight;
+      o.weights.overlap = this->OverlapWeight;
+      o.weights.verticalOffset = this->VerticalOffset;
+      tsynth::PatchMatcher matcher(in.heightPointers(), in.graphPointers(), o);
+      this->BackendUsed = matcher.backendName();
+      this->UpdateProgress(0.6);
 
-    double tx = 0.0;
-    double ty = 0.0;
-    tsynth::gridOrigin(targetImage, tx, ty);
-    const tsynth::SiteMatchResult match = tsynth::matchAtSite(matcher,
-      target,
-      known,
-      (this->Site[0] - tx) / target.cellX,
-      (this->Site[1] - ty) / target.cellY,
-      this->Mode == FEATURE,
-      this->PatchSize);
-    for (const auto& w : match.warnings)
-    {
-      vtkWarningMacro(<< w);
-    }
-    const std::vector<tsynth::PatchCandidate>& found = match.candidates;
+      double tx = 0.0;
+      double ty = 0.0;
+      tsynth::gridOrigin(targetImage, tx, ty);
+      const tsynth::SiteMatchResult match = tsynth::matchAtSite(matcher,
+        target,
+        known,
+        (this->Site[0] - tx) / target.cellX,
+        (this->Site[1] - ty) / target.cellY,
+        this->Mode == FEATURE,
+        this->PatchSize);
+      for (const auto& w : match.warnings)
+      {
+        vtkWarningMacro(<< w);
+      }
+      const std::vector<tsynth::PatchCandidate>& found = match.candidates;
 
-    // Table of matches.
-    vtkNew<vtkIntArray> rank, exemplar, variantColumn, feature;
-    vtkNew<vtkDoubleArray> x, y;
-    vtkNew<vtkFloatArray> cost;
-    rank->SetName("Rank");
-    exemplar->SetName("Exemplar");
-    variantColumn->SetName("Variant");
-    feature->SetName("Feature");
-    x->SetName("X");
-    y->SetName("Y");
-    cost->SetName("Cost");
-    for (std::size_t r = 0; r < found.size(); ++r)
-    {
-      const auto e = static_cast<std::size_t>(found[r].exemplar);
-      rank->InsertNextValue(static_cast<int>(r));
-      exemplar->InsertNextValue(found[r].exemplar);
-      variantColumn->InsertNextValue(found[r].variant);
-      feature->InsertNextValue(found[r].feature ? 1 : 0);
-      x->InsertNextValue(in.originX[e] + found[r].centreX * in.heights[e].cellX);
-      y->InsertNextValue(in.originY[e] + found[r].centreY * in.heights[e].cellY);
-      cost->InsertNextValue(found[r].cost);
-    }
-    table->AddColumn(rank);
-    table->AddColumn(exemplar);
-    table->AddColumn(variantColumn);
-    table->AddColumn(x);
-    table->AddColumn(y);
-    table->AddColumn(cost);
-    table->AddColumn(feature);
+      // Table of matches.
+      vtkNew<vtkIntArray> rank, exemplar, variantColumn, feature;
+      vtkNew<vtkDoubleArray> x, y;
+      vtkNew<vtkFloatArray> cost;
+      rank->SetName("Rank");
+      exemplar->SetName("Exemplar");
+      variantColumn->SetName("Variant");
+      feature->SetName("Feature");
+      x->SetName("X");
+      y->SetName("Y");
+      cost->SetName("Cost");
+      for (std::size_t r = 0; r < found.size(); ++r)
+      {
+        const auto e = static_cast<std::size_t>(found[r].exemplar);
+        rank->InsertNextValue(static_cast<int>(r));
+        exemplar->InsertNextValue(found[r].exemplar);
+        variantColumn->InsertNextValue(found[r].variant);
+        feature->InsertNextValue(found[r].feature ? 1 : 0);
+        x->InsertNextValue(in.originX[e] + found[r].centreX * in.heights[e].cellX);
+        y->InsertNextValue(in.originY[e] + found[r].centreY * in.heights[e].cellY);
+        cost->InsertNextValue(found[r].cost);
+      }
+      table->AddColumn(rank);
+      table->AddColumn(exemplar);
+      table->AddColumn(variantColumn);
+      table->AddColumn(x);
+      table->AddColumn(y);
+      table->AddColumn(cost);
+      table->AddColumn(feature);
 
-    // Cost map over the first exemplar: lowest cost of a candidate centred on each cell.
-    const tsynth::Heightfield& first = in.heights.front();
-    map->SetExtent(0, first.width - 1, 0, first.height - 1, 0, 0);
-    map->SetSpacing(first.cellX, first.cellY, 1.0);
-    map->SetOrigin(in.originX.front(), in.originY.front(), 0.0);
-    vtkNew<vtkFloatArray> costMap;
-    costMap->SetName("MatchCost");
-    costMap->SetNumberOfTuples(static_cast<vtkIdType>(match.costMap.size()));
-    std::copy(match.costMap.begin(), match.costMap.end(), costMap->GetPointer(0));
-    map->GetPointData()->SetScalars(costMap);
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
-  return 1;
+      // Cost map over the first exemplar: lowest cost of a candidate centred on each cell.
+      const tsynth::Heightfield& first = in.heights.front();
+      map->SetExtent(0, first.width - 1, 0, first.height - 1, 0, 0);
+      map->SetSpacing(first.cellX, first.cellY, 1.0);
+      map->SetOrigin(in.originX.front(), in.originY.front(), 0.0);
+      vtkNew<vtkFloatArray> costMap;
+      costMap->SetName("MatchCost");
+      costMap->SetNumberOfTuples(static_cast<vtkIdType>(match.costMap.size()));
+      std::copy(match.costMap.begin(), match.costMap.end(), costMap->GetPointer(0));
+      map->GetPointData()->SetScalars(costMap);
+    });
 }
 
 void vtkTerrainPatchMatcher::PrintSelf(ostream& os, vtkIndent indent)

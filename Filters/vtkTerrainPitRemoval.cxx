@@ -93,65 +93,55 @@ int vtkTerrainPitRemoval::RequestData(vtkInformation*,
     vtkErrorMacro("Pit removal needs a heightfield image on its first input.");
     return 0;
   }
-  try
-  {
-    const tsynth::AbortScope abortScope(this);
-    const tsynth::Heightfield dem =
-      tsynth::imageToHeightfield(input, this->GetInputArrayToProcess(0, inputVector));
-    std::vector<std::uint8_t> sinks;
-    tsynth::PitRemovalOptions options;
-    options.method = tsynth::pitRemovalMethodFromProperty(this->Method);
-    options.maxBreachDepth = this->MaxBreachDepth;
-    options.maxBreachLength = this->MaxBreachLength;
-    options.memoryBudget = this->MemoryBudget * tsynth::kBytesPerGB;
-    options.memoryOption = "MemoryBudget";
-    tsynth::checkDemToDrain(dem, options, true); // the flow arrays are always made
-    if (sinkImage != nullptr)
+  return tsynth::runFilterRequest(
+    this,
+    "Out of memory removing pits: use a smaller DEM.",
+    [&]
     {
-      const tsynth::Heightfield mask = tsynth::imageToHeightfield(
-        sinkImage, this->GetInputArrayToProcess(kSinksArrayIndex, inputVector));
-      sinks = tsynth::sinkMaskFromRaster(mask, dem.width, dem.height);
-      options.sinks = &sinks;
-    }
-    this->UpdateProgress(0.1);
-    const tsynth::PitRemovalResult result = tsynth::removePits(dem, options);
-    this->UpdateProgress(0.6);
-    const std::vector<std::int8_t> directions = tsynth::flowDirections(result.dem, options.sinks);
-    const std::vector<std::uint32_t> accumulation = tsynth::flowAccumulation(
-      directions, dem.width, dem.height, dem.hasMask() ? &dem.valid : nullptr);
-    this->UpdateProgress(0.9);
+      output->Initialize(); // aborted: empty outputs
+    },
+    [&]
+    {
+      const tsynth::Heightfield dem =
+        tsynth::imageToHeightfield(input, this->GetInputArrayToProcess(0, inputVector));
+      std::vector<std::uint8_t> sinks;
+      tsynth::PitRemovalOptions options;
+      options.method = tsynth::pitRemovalMethodFromProperty(this->Method);
+      options.maxBreachDepth = this->MaxBreachDepth;
+      options.maxBreachLength = this->MaxBreachLength;
+      options.memoryBudget = this->MemoryBudget * tsynth::kBytesPerGB;
+      options.memoryOption = "MemoryBudget";
+      tsynth::checkDemToDrain(dem, options, true); // the flow arrays are always made
+      if (sinkImage != nullptr)
+      {
+        const tsynth::Heightfield mask = tsynth::imageToHeightfield(
+          sinkImage, this->GetInputArrayToProcess(kSinksArrayIndex, inputVector));
+        sinks = tsynth::sinkMaskFromRaster(mask, dem.width, dem.height);
+        options.sinks = &sinks;
+      }
+      this->UpdateProgress(0.1);
+      const tsynth::PitRemovalResult result = tsynth::removePits(dem, options);
+      this->UpdateProgress(0.6);
+      const std::vector<std::int8_t> directions = tsynth::flowDirections(result.dem, options.sinks);
+      const std::vector<std::uint32_t> accumulation = tsynth::flowAccumulation(
+        directions, dem.width, dem.height, dem.hasMask() ? &dem.valid : nullptr);
+      this->UpdateProgress(0.9);
 
-    output->ShallowCopy(input);
-    vtkPointData* points = output->GetPointData();
-    points->RemoveArray(tsynth::kElevationArray);
-    tsynth::addPointArray(output, tsynth::kElevationArray, result.dem.z.data());
-    points->SetActiveScalars(tsynth::kElevationArray);
-    addArray<vtkUnsignedCharArray>(output, "Changed", result.changed);
-    addArray<vtkCharArray>(output, "FlowDirection", directions);
-    addArray<vtkTypeUInt32Array>(output, "FlowAccumulation", accumulation);
-    if (this->StreamThreshold > 0)
-    {
-      addArray<vtkUnsignedCharArray>(output,
-        "Streams",
-        tsynth::streamNetwork(accumulation, static_cast<std::uint32_t>(this->StreamThreshold)));
-    }
-  }
-  catch (const tsynth::Cancelled&)
-  {
-    output->Initialize(); // aborted: empty outputs
-    return 1;
-  }
-  catch (const std::bad_alloc&)
-  {
-    vtkErrorMacro("Out of memory removing pits: use a smaller DEM.");
-    return 0;
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
-  return 1;
+      output->ShallowCopy(input);
+      vtkPointData* points = output->GetPointData();
+      points->RemoveArray(tsynth::kElevationArray);
+      tsynth::addPointArray(output, tsynth::kElevationArray, result.dem.z.data());
+      points->SetActiveScalars(tsynth::kElevationArray);
+      addArray<vtkUnsignedCharArray>(output, "Changed", result.changed);
+      addArray<vtkCharArray>(output, "FlowDirection", directions);
+      addArray<vtkTypeUInt32Array>(output, "FlowAccumulation", accumulation);
+      if (this->StreamThreshold > 0)
+      {
+        addArray<vtkUnsignedCharArray>(output,
+          "Streams",
+          tsynth::streamNetwork(accumulation, static_cast<std::uint32_t>(this->StreamThreshold)));
+      }
+    });
 }
 
 void vtkTerrainPitRemoval::PrintSelf(ostream& os, vtkIndent indent)

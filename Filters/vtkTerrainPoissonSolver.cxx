@@ -124,72 +124,67 @@ int vtkTerrainPoissonSolver::RequestData(vtkInformation*,
     ? vtkImageData::GetData(inputVector[1], 0)
     : nullptr;
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
-  try
-  {
-    const tsynth::AbortScope abortScope(this);
-    const tsynth::Heightfield dst =
-      tsynth::imageToHeightfield(destination, this->GetInputArrayToProcess(0, inputVector));
-    this->UpdateProgress(0.1);
-    tsynth::PoissonEditResult r;
-    if (this->Mode == SEAMLESS_CLONE)
+  return tsynth::runFilterRequest(
+    this,
+    "Out of memory: give a smaller input.",
+    [&]
     {
-      if (source == nullptr)
+      output->Initialize(); // aborted: empty outputs
+    },
+    [&]
+    {
+      const tsynth::Heightfield dst =
+        tsynth::imageToHeightfield(destination, this->GetInputArrayToProcess(0, inputVector));
+      this->UpdateProgress(0.1);
+      tsynth::PoissonEditResult r;
+      if (this->Mode == SEAMLESS_CLONE)
       {
-        throw tsynth::Error("Seamless cloning needs a source heightfield on the second input.");
+        if (source == nullptr)
+        {
+          throw tsynth::Error("Seamless cloning needs a source heightfield on the second input.");
+        }
+        const std::vector<std::uint8_t> mask = maskArray(source, this->MaskArray);
+        r = tsynth::seamlessClone(dst,
+          tsynth::imageToHeightfield(source, this->GetInputArrayToProcess(1, inputVector)),
+          mask.empty() ? nullptr : &mask,
+          this->Tolerance);
       }
-      const std::vector<std::uint8_t> mask = maskArray(source, this->MaskArray);
-      r = tsynth::seamlessClone(dst,
-        tsynth::imageToHeightfield(source, this->GetInputArrayToProcess(1, inputVector)),
-        mask.empty() ? nullptr : &mask,
-        this->Tolerance);
-    }
-    else
-    {
-      const std::vector<std::uint8_t> mask = maskArray(destination, this->MaskArray);
-      if (mask.empty())
+      else
       {
-        throw tsynth::Error("The guidance field needs a point array marking the cells to solve: "
-                            "name it in MaskArray.");
+        const std::vector<std::uint8_t> mask = maskArray(destination, this->MaskArray);
+        if (mask.empty())
+        {
+          throw tsynth::Error("The guidance field needs a point array marking the cells to solve: "
+                              "name it in MaskArray.");
+        }
+        std::vector<double> slopeX;
+        std::vector<double> slopeY;
+        gradientArray(destination, this->GradientArray, slopeX, slopeY);
+        r = tsynth::integrateSlopes(dst, slopeX, slopeY, mask, this->Tolerance);
       }
-      std::vector<double> slopeX;
-      std::vector<double> slopeY;
-      gradientArray(destination, this->GradientArray, slopeX, slopeY);
-      r = tsynth::integrateSlopes(dst, slopeX, slopeY, mask, this->Tolerance);
-    }
-    if (r.solvedCells == 0)
-    {
-      vtkWarningMacro("The mask is empty: the destination is returned unchanged.");
-    }
-    this->UpdateProgress(0.9);
-    const tsynth::PoissonStatistics stats = r.statistics;
-    const tsynth::Heightfield& result = r.terrain;
+      if (r.solvedCells == 0)
+      {
+        vtkWarningMacro("The mask is empty: the destination is returned unchanged.");
+      }
+      this->UpdateProgress(0.9);
+      const tsynth::PoissonStatistics stats = r.statistics;
+      const tsynth::Heightfield& result = r.terrain;
 
-    output->ShallowCopy(destination);
-    vtkNew<vtkImageData> solved;
-    tsynth::heightfieldToImage(result, solved);
-    output->GetPointData()->AddArray(solved->GetPointData()->GetArray(tsynth::kElevationArray));
-    output->GetPointData()->SetActiveScalars(tsynth::kElevationArray);
-    vtkNew<vtkDoubleArray> iterations;
-    iterations->SetName("Iterations");
-    iterations->InsertNextValue(stats.iterations);
-    output->GetFieldData()->AddArray(iterations);
-    vtkNew<vtkDoubleArray> residual;
-    residual->SetName("RelativeResidual");
-    residual->InsertNextValue(
-      stats.initialResidual > 0 ? stats.finalResidual / stats.initialResidual : 0.0);
-    output->GetFieldData()->AddArray(residual);
-  }
-  catch (const tsynth::Cancelled&)
-  {
-    output->Initialize(); // aborted: empty outputs
-    return 1;
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
-  return 1;
+      output->ShallowCopy(destination);
+      vtkNew<vtkImageData> solved;
+      tsynth::heightfieldToImage(result, solved);
+      output->GetPointData()->AddArray(solved->GetPointData()->GetArray(tsynth::kElevationArray));
+      output->GetPointData()->SetActiveScalars(tsynth::kElevationArray);
+      vtkNew<vtkDoubleArray> iterations;
+      iterations->SetName("Iterations");
+      iterations->InsertNextValue(stats.iterations);
+      output->GetFieldData()->AddArray(iterations);
+      vtkNew<vtkDoubleArray> residual;
+      residual->SetName("RelativeResidual");
+      residual->InsertNextValue(
+        stats.initialResidual > 0 ? stats.finalResidual / stats.initialResidual : 0.0);
+      output->GetFieldData()->AddArray(residual);
+    });
 }
 
 void vtkTerrainPoissonSolver::PrintSelf(ostream& os, vtkIndent indent)

@@ -53,91 +53,81 @@ int vtkTerrainSketchFeatures::RequestData(vtkInformation*,
   vtkPolyData* tree = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* controls = vtkPolyData::GetData(outputVector, 1);
   const double radius = this->ControlRadius > 0.0 ? this->ControlRadius : 0.5 * this->PatchSize;
-  try
-  {
-    const tsynth::AbortScope abortScope(this);
-    tsynth::FeatureGraph graph;
-    double ox = 0.0;
-    double oy = 0.0;
-    if (auto* image = vtkImageData::SafeDownCast(input))
+  return tsynth::runFilterRequest(
+    this,
+    "Out of memory: give a smaller input.",
+    [&]
     {
-      double spacing[3];
-      image->GetSpacing(spacing);
-      tsynth::SketchOptions o;
-      o.patchSize = this->PatchSize;
-      o.controlRadius = radius;
-      o.smoothingPasses = this->SmoothingPasses;
-      o.cellSize = this->CellSize > 0.0 ? this->CellSize : spacing[0];
-      tsynth::SketchFeatures s = tsynth::sketchFeatures(tsynth::imageToColourImage(image), o);
-      for (const auto& w : s.warnings)
-      {
-        vtkWarningMacro(<< w);
-      }
-      graph = std::move(s.graph);
-      tsynth::gridOrigin(image, ox, oy);
-    }
-    else if (auto* lines = vtkPolyData::SafeDownCast(input))
+      tree->Initialize();
+      controls->Initialize(); // aborted: empty outputs
+    },
+    [&]
     {
-      double cx = this->CellSize > 0.0 ? this->CellSize : 1.0;
-      double cy = cx;
-      int width = 0;
-      int height = 0;
-      if (reference != nullptr)
+      tsynth::FeatureGraph graph;
+      double ox = 0.0;
+      double oy = 0.0;
+      if (auto* image = vtkImageData::SafeDownCast(input))
       {
         double spacing[3];
-        int dims[3];
-        reference->GetSpacing(spacing);
-        reference->GetDimensions(dims);
-        cx = spacing[0];
-        cy = spacing[1];
-        tsynth::gridOrigin(reference, ox, oy);
-        width = dims[0];
-        height = dims[1];
+        image->GetSpacing(spacing);
+        tsynth::SketchOptions o;
+        o.patchSize = this->PatchSize;
+        o.controlRadius = radius;
+        o.smoothingPasses = this->SmoothingPasses;
+        o.cellSize = this->CellSize > 0.0 ? this->CellSize : spacing[0];
+        tsynth::SketchFeatures s = tsynth::sketchFeatures(tsynth::imageToColourImage(image), o);
+        for (const auto& w : s.warnings)
+        {
+          vtkWarningMacro(<< w);
+        }
+        graph = std::move(s.graph);
+        tsynth::gridOrigin(image, ox, oy);
+      }
+      else if (auto* lines = vtkPolyData::SafeDownCast(input))
+      {
+        double cx = this->CellSize > 0.0 ? this->CellSize : 1.0;
+        double cy = cx;
+        int width = 0;
+        int height = 0;
+        if (reference != nullptr)
+        {
+          double spacing[3];
+          int dims[3];
+          reference->GetSpacing(spacing);
+          reference->GetDimensions(dims);
+          cx = spacing[0];
+          cy = spacing[1];
+          tsynth::gridOrigin(reference, ox, oy);
+          width = dims[0];
+          height = dims[1];
+        }
+        else
+        {
+          double bounds[6];
+          lines->GetBounds(bounds);
+          width = static_cast<int>(std::ceil(std::max(0.0, bounds[1]) / cx)) + 1;
+          height = static_cast<int>(std::ceil(std::max(0.0, bounds[3]) / cy)) + 1;
+        }
+        std::string warning;
+        const auto polylines = tsynth::polyDataToPolylines(lines, cx, cy, ox, oy, &warning);
+        if (!warning.empty())
+        {
+          vtkWarningMacro(<< warning);
+        }
+        if (polylines.empty())
+        {
+          vtkWarningMacro("The input has no poly-lines: the feature tree is empty.");
+        }
+        graph =
+          tsynth::polylineFeatures(polylines, width, height, cx, cy, this->SnapTolerance, radius);
       }
       else
       {
-        double bounds[6];
-        lines->GetBounds(bounds);
-        width = static_cast<int>(std::ceil(std::max(0.0, bounds[1]) / cx)) + 1;
-        height = static_cast<int>(std::ceil(std::max(0.0, bounds[3]) / cy)) + 1;
+        throw tsynth::Error("The sketch must be an image or poly-lines.");
       }
-      std::string warning;
-      const auto polylines = tsynth::polyDataToPolylines(lines, cx, cy, ox, oy, &warning);
-      if (!warning.empty())
-      {
-        vtkWarningMacro(<< warning);
-      }
-      if (polylines.empty())
-      {
-        vtkWarningMacro("The input has no poly-lines: the feature tree is empty.");
-      }
-      graph =
-        tsynth::polylineFeatures(polylines, width, height, cx, cy, this->SnapTolerance, radius);
-    }
-    else
-    {
-      throw tsynth::Error("The sketch must be an image or poly-lines.");
-    }
-    tsynth::featureGraphToPolyData(graph, tree, ox, oy);
-    tsynth::controlPointsToPolyData(graph, controls, ox, oy);
-  }
-  catch (const tsynth::Cancelled&)
-  {
-    tree->Initialize();
-    controls->Initialize(); // aborted: empty outputs
-    return 1;
-  }
-  catch (const std::bad_alloc&)
-  {
-    vtkErrorMacro("Out of memory: give a smaller input.");
-    return 0;
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
-  return 1;
+      tsynth::featureGraphToPolyData(graph, tree, ox, oy);
+      tsynth::controlPointsToPolyData(graph, controls, ox, oy);
+    });
 }
 
 void vtkTerrainSketchFeatures::PrintSelf(ostream& os, vtkIndent indent)

@@ -265,70 +265,60 @@ int vtkTerrainSynthesis::RequestInformation(vtkInformationVector** inputVector,
 int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  try
-  {
-    const tsynth::AbortScope abortScope(this); // abort stops the kernels (Core/Progress.h)
-    tsynth::ExemplarInputs ex = tsynth::gatherExemplarImages(inputVector[0],
-      tsynth::exemplarHeightsNamed(
-        this->GetInputArrayInformation(kExemplarHeights), inputVector[0]));
-    tsynth::SetupInputs in;
-    in.exemplars = std::move(ex.heights);
-    in.sketch = tsynth::sketchInput(vtkDataObject::GetData(inputVector[1], 0), ex.warnings);
-    in.grid = gridRequest(this);
-    in.patchSize = this->PatchSize;
-    in.seed = static_cast<std::uint64_t>(this->Seed);
-    in.landformRelief = this->LandformRelief;
-    in.memoryBudget = this->MemoryBudget * tsynth::kBytesPerGB;
-    in.openClMatcher = tsynth::backendFromProperty(this->Backend) != tsynth::Backend::Cpu;
-    in.names = propertyNames();
-    for (const auto& w : ex.warnings)
+  return tsynth::runFilterRequest(
+    this,
+    "The synthesis ran out of memory; give a smaller OutputSize or a larger "
+    "CellSize, or fewer or smaller exemplars.",
+    [&]
     {
-      vtkWarningMacro(<< w);
-    }
-    const tsynth::SynthesisSetup setup = tsynth::prepareSynthesis(std::move(in));
-    for (const auto& w : setup.warnings)
+      vtkImageData::GetData(outputVector, 0)->Initialize(); // aborted: an empty output
+    },
+    [&]
     {
-      vtkWarningMacro(<< w);
-    }
-    this->UpdateProgress(kSetupProgress);
+      tsynth::ExemplarInputs ex = tsynth::gatherExemplarImages(inputVector[0],
+        tsynth::exemplarHeightsNamed(
+          this->GetInputArrayInformation(kExemplarHeights), inputVector[0]));
+      tsynth::SetupInputs in;
+      in.exemplars = std::move(ex.heights);
+      in.sketch = tsynth::sketchInput(vtkDataObject::GetData(inputVector[1], 0), ex.warnings);
+      in.grid = gridRequest(this);
+      in.patchSize = this->PatchSize;
+      in.seed = static_cast<std::uint64_t>(this->Seed);
+      in.landformRelief = this->LandformRelief;
+      in.memoryBudget = this->MemoryBudget * tsynth::kBytesPerGB;
+      in.openClMatcher = tsynth::backendFromProperty(this->Backend) != tsynth::Backend::Cpu;
+      in.names = propertyNames();
+      for (const auto& w : ex.warnings)
+      {
+        vtkWarningMacro(<< w);
+      }
+      const tsynth::SynthesisSetup setup = tsynth::prepareSynthesis(std::move(in));
+      for (const auto& w : setup.warnings)
+      {
+        vtkWarningMacro(<< w);
+      }
+      this->UpdateProgress(kSetupProgress);
 
-    tsynth::SynthesisOptions o = synthesisOptions(this);
-    if (inputVector[2]->GetNumberOfInformationObjects() > 0)
-    {
-      const tsynth::Heightfield labels =
-        tsynth::imageToHeightfield(vtkImageData::GetData(inputVector[2], 0));
-      tsynth::assignRegions(
-        o, labels, this->RegionMaps, setup.grid.width, setup.grid.height, setup.exemplars.size());
-    }
-    const tsynth::SynthesisResult r =
-      tsynth::synthesize(setup.target, setup.exemplarPointers(), setup.graphPointers(), o);
-    this->BackendUsed = r.backend;
-    for (const auto& warning : r.warnings)
-    {
-      vtkWarningMacro(<< warning);
-    }
-    vtkImageData* output = vtkImageData::GetData(outputVector, 0);
-    tsynth::heightfieldToImage(r.terrain, output);
-    addDiagnosticArrays(r, output);
-    fillPlacementTable(r, setup, ex, vtkTable::GetData(outputVector, 1));
-  }
-  catch (const tsynth::Cancelled&)
-  {
-    vtkImageData::GetData(outputVector, 0)->Initialize(); // aborted: an empty output
-    return 1;
-  }
-  catch (const std::bad_alloc&)
-  {
-    vtkErrorMacro("The synthesis ran out of memory; give a smaller OutputSize or a larger "
-                  "CellSize, or fewer or smaller exemplars.");
-    return 0;
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
-  return 1;
+      tsynth::SynthesisOptions o = synthesisOptions(this);
+      if (inputVector[2]->GetNumberOfInformationObjects() > 0)
+      {
+        const tsynth::Heightfield labels =
+          tsynth::imageToHeightfield(vtkImageData::GetData(inputVector[2], 0));
+        tsynth::assignRegions(
+          o, labels, this->RegionMaps, setup.grid.width, setup.grid.height, setup.exemplars.size());
+      }
+      const tsynth::SynthesisResult r =
+        tsynth::synthesize(setup.target, setup.exemplarPointers(), setup.graphPointers(), o);
+      this->BackendUsed = r.backend;
+      for (const auto& warning : r.warnings)
+      {
+        vtkWarningMacro(<< warning);
+      }
+      vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+      tsynth::heightfieldToImage(r.terrain, output);
+      addDiagnosticArrays(r, output);
+      fillPlacementTable(r, setup, ex, vtkTable::GetData(outputVector, 1));
+    });
 }
 
 void vtkTerrainSynthesis::PrintSelf(ostream& os, vtkIndent indent)
