@@ -263,39 +263,6 @@ void requireFinitePoints(const GeneratorLine& line, std::size_t index)
   }
 }
 
-// The parameter range [t0, t1] of a + t (b - a) on the grid (Liang-Barsky);
-// t0 > t1 when the segment misses it.
-std::pair<double, double> partOnGrid(const Point2& a, const Point2& b, int width, int height)
-{
-  double t0 = 0.0;
-  double t1 = 1.0;
-  const double p[4] = { -(b.x - a.x), b.x - a.x, -(b.y - a.y), b.y - a.y };
-  const double q[4] = {
-    a.x + kCellHalf, width - kCellHalf - a.x, a.y + kCellHalf, height - kCellHalf - a.y
-  };
-  for (int k = 0; k < 4; ++k)
-  {
-    if (p[k] == 0.0)
-    {
-      if (q[k] < 0.0)
-      {
-        return { 1.0, 0.0 };
-      }
-      continue;
-    }
-    const double t = q[k] / p[k];
-    if (p[k] < 0.0)
-    {
-      t0 = std::max(t0, t);
-    }
-    else
-    {
-      t1 = std::min(t1, t);
-    }
-  }
-  return { t0, t1 };
-}
-
 } // namespace
 
 std::vector<DistanceFeature> generatorsFromLines(const std::vector<GeneratorLine>& lines,
@@ -355,7 +322,7 @@ std::vector<DistanceFeature> generatorsFromLines(const std::vector<GeneratorLine
       const Point2 b = line.points[i + 1];
       // Only the part on the grid is sampled: a segment of any length costs at
       // most the grid's diagonal.
-      const auto [t0, t1] = partOnGrid(a, b, width, height);
+      const auto [t0, t1] = partOnGrid(a, b, width, height); // Features/Sketch.h
       const double length = std::hypot(b.x - a.x, b.y - a.y) * (t1 - t0);
       const int steps =
         t1 < t0 ? 0 : std::max(1, static_cast<int>(std::ceil(length * kLineSamplesPerCell)));

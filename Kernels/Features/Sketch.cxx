@@ -449,42 +449,42 @@ namespace
 // The grid's cells reach half a cell beyond the first and last cell centres.
 constexpr double kCellHalf = 0.5;
 
-// Liang-Barsky: the part [t0, t1] of the segment a + t (b - a), 0 <= t <= 1,
-// inside the box [x0, x1] x [y0, y1]; false if none of it is.
-bool clipSegment(const Point2& a,
-  const Point2& b,
-  const std::array<double, 4>& box,
-  double& t0,
-  double& t1)
+} // namespace
+
+SegmentPart partOnGrid(const Point2& a, const Point2& b, int width, int height)
 {
-  t0 = 0.0;
-  t1 = 1.0;
   const double dx = b.x - a.x;
   const double dy = b.y - a.y;
   const std::array<double, 4> p{ -dx, dx, -dy, dy };
-  const std::array<double, 4> q{ a.x - box[0], box[1] - a.x, a.y - box[2], box[3] - a.y };
+  const std::array<double, 4> q{
+    a.x + kCellHalf, width - kCellHalf - a.x, a.y + kCellHalf, height - kCellHalf - a.y
+  };
+  SegmentPart part;
   for (std::size_t k = 0; k < p.size(); ++k)
   {
     if (p[k] == 0.0)
     {
       if (q[k] < 0.0)
       {
-        return false; // parallel to this side and outside it
+        return { 1.0, 0.0 }; // parallel to this side and outside it
       }
       continue;
     }
     const double t = q[k] / p[k];
     if (p[k] < 0.0)
     {
-      t0 = std::max(t0, t);
+      part.t0 = std::max(part.t0, t);
     }
     else
     {
-      t1 = std::min(t1, t);
+      part.t1 = std::min(part.t1, t);
     }
   }
-  return t0 <= t1;
+  return part;
 }
+
+namespace
+{
 
 // A height constraint at t along a segment (NaN if either end has none).
 float constraintAt(const Polyline& line, std::size_t k, double t)
@@ -543,13 +543,14 @@ std::vector<Polyline> clipToGrid(const std::vector<Polyline>& lines, int width, 
     {
       const Point2& a = line.points[k];
       const Point2& b = line.points[k + 1];
-      double t0 = 0.0;
-      double t1 = 1.0;
-      if (!clipSegment(a, b, box, t0, t1))
+      const SegmentPart part = partOnGrid(a, b, width, height);
+      if (part.missed())
       {
         flush();
         continue;
       }
+      const double t0 = part.t0;
+      const double t1 = part.t1;
       const auto at = [&](double t) {
         return t == 0.0 ? a : t == 1.0 ? b : Point2{ a.x + t * (b.x - a.x), a.y + t * (b.y - a.y) };
       };

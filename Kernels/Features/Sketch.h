@@ -70,6 +70,17 @@ struct Polyline
   FeatureType type = FeatureType::Ridge;
 };
 
+// The part [t0, t1] of the segment a + t (b - a), 0 <= t <= 1, that lies on a
+// grid of width x height cells (cell coordinates -0.5 to width - 0.5, likewise
+// in y), by Liang and Barsky's clipping; t0 > t1 when the segment misses it.
+struct SegmentPart
+{
+  double t0 = 0.0;
+  double t1 = 1.0;
+  bool missed() const { return t0 > t1; }
+};
+SegmentPart partOnGrid(const Point2& a, const Point2& b, int width, int height);
+
 // Builds a graph from poly-lines as drawn: end points and shared vertices within
 // `snapTolerance` cells are merged; vertices where three or more pieces meet
 // become branch nodes; a closed poly-line becomes a loop. Only what lies on the
