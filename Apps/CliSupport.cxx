@@ -7,6 +7,7 @@
 #include "Core/HeightfieldIO.h"
 #include "Core/Memory.h"
 #include "Core/OutputFile.h"
+#include "Core/PatchSize.h"
 
 #include <vtkNew.h>
 #include <vtkPolyData.h>
@@ -86,6 +87,18 @@ bool isDemRaster(const std::string& path)
 }
 
 } // namespace
+
+std::string withPatchDefault(std::string help)
+{
+  const std::string key = "%PATCH%";
+  const std::string value = std::to_string(kDefaultSynthesisPatch);
+  for (std::size_t at = help.find(key); at != std::string::npos; at = help.find(key, at))
+  {
+    help.replace(at, key.size(), value);
+    at += value.size();
+  }
+  return help;
+}
 
 bool wantsHelp(const std::vector<std::string>& args)
 {

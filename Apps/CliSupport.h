@@ -19,6 +19,10 @@
 namespace tsynth::cli
 {
 
+// A help text with every %PATCH% replaced by the synthesis patch's default
+// (Core/PatchSize.h), so the help cannot drift from it.
+std::string withPatchDefault(std::string help);
+
 // True if the arguments ask for --help (or -h).
 bool wantsHelp(const std::vector<std::string>& args);
 

@@ -12,6 +12,7 @@
 #include "Core/HeightfieldIO.h"
 #include "Core/Memory.h"
 #include "Core/OutputFile.h"
+#include "Core/PatchSize.h"
 #include "Core/Resample.h"
 #include "Features/Sketch.h"
 #include "Metrics/LandformMetrics.h"
@@ -63,7 +64,7 @@ writes them: its output works directly as a sketch of the same DEM.
   --size WxH             output size in cells (default: the sketch's pixels; for poly-lines
                          the grid they were found on, else as far as they reach)
   --cell M               output cell size in metres (default: the first exemplar's)
-  --patch N              patch size in cells (default 80)
+  --patch N              patch size in cells (default %PATCH%)
   --backend B            auto (default), opencl or cpu: same result, different speed
   --merge M              new (default), poisson, shepard or cut
   --fill F               best-first (default) or concentric
@@ -110,12 +111,12 @@ and, with a sketch, at the scale of the landforms (a patch across the lines):
   shedding   share of the ridges' length from which water runs off to the sides
 A figure that does not apply (no ridge sketched, a flat exemplar) is shown as "-" (null in JSON).
 
-  --patch N   landform scale in cells (default 80, the synthesis default)
+  --patch N   landform scale in cells (default %PATCH%, the synthesis default)
 )";
 
 // The synthesis' default patch: the random-patch baseline's patch, and the
 // smallest sketch evaluate accepts.
-constexpr int kEvaluationPatch = 80;
+constexpr int kEvaluationPatch = kDefaultSynthesisPatch;
 // A stroke no other faces is read half a patch each side (LegibilityOptions).
 constexpr double kLoneHalfWidthInPatches = 0.5;
 
@@ -814,7 +815,7 @@ int runSynth(std::vector<std::string> args)
 {
   if (wantsHelp(args))
   {
-    std::cout << kSynthHelp;
+    std::cout << withPatchDefault(kSynthHelp);
     return 0;
   }
   const SynthArguments a = parseSynthArguments(std::move(args));
@@ -854,7 +855,7 @@ int runEvaluate(std::vector<std::string> args)
 {
   if (wantsHelp(args))
   {
-    std::cout << kEvaluateHelp;
+    std::cout << withPatchDefault(kEvaluateHelp);
     return 0;
   }
   std::vector<std::string> exemplarPaths = takeRepeated(args, "--exemplar");

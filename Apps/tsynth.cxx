@@ -48,6 +48,7 @@ using tsynth::cli::takeCount;
 using tsynth::cli::takeReadOptions;
 using tsynth::cli::UsageError;
 using tsynth::cli::wantsHelp;
+using tsynth::cli::withPatchDefault;
 
 // The 3D view's picture size: smaller shows nothing; larger than most
 // OpenGL implementations' largest framebuffer.
@@ -120,7 +121,7 @@ ridges, blue valleys), or a .vtp of poly-lines with a FeatureType cell array.
   --end-reductions N         end-cell removal passes (default 3)
   --min-branch N             shortest dangling branch kept, cells (default 15)
   --min-tree N               smallest tree kept, cells (default 30)
-  --patch P                  patch size in cells (default 80): control radius P/2,
+  --patch P                  patch size in cells (default %PATCH%): control radius P/2,
                              and sketches must be at least one patch
 )";
 
@@ -489,7 +490,7 @@ int runFeatures(std::vector<std::string> args)
 {
   if (wantsHelp(args))
   {
-    std::cout << kFeaturesHelp << kReadOptionsHelp;
+    std::cout << withPatchDefault(kFeaturesHelp) << kReadOptionsHelp;
     return 0;
   }
   CommandLine cl(std::move(args));

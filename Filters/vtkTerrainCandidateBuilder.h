@@ -14,6 +14,7 @@
  */
 #pragma once
 
+#include "Core/PatchSize.h"
 #include "TerrainSynthesisFiltersModule.h"
 
 #include <vtkTableAlgorithm.h>
@@ -28,7 +29,7 @@ public:
   ///@{
   /// Patch size in cells (default 80, for 90 m data), 16 to 512 as the synthesis
   /// takes; any size in that range works (the synthesis also asks a multiple of 4).
-  vtkSetClampMacro(PatchSize, int, 16, 512);
+  vtkSetClampMacro(PatchSize, int, tsynth::kMinSynthesisPatch, tsynth::kMaxSynthesisPatch);
   vtkGetMacro(PatchSize, int);
   ///@}
 
@@ -45,7 +46,7 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int PatchSize = 80;
+  int PatchSize = tsynth::kDefaultSynthesisPatch;
 
 private:
   vtkTerrainCandidateBuilder(const vtkTerrainCandidateBuilder&) = delete;

@@ -33,7 +33,7 @@ public:
 
   ///@{
   /// Patch size N in cells, odd, 3 to 15 (oddness is checked when the filter runs).
-  vtkSetClampMacro(PatchSize, int, 3, 15);
+  vtkSetClampMacro(PatchSize, int, 3, 15); // kMinPatchSize, kMaxPatchSize (TestFilterOptions)
   vtkGetMacro(PatchSize, int);
   ///@}
 

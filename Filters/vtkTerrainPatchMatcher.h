@@ -19,6 +19,7 @@
  */
 #pragma once
 
+#include "Core/PatchSize.h"
 #include "TerrainSynthesisFiltersModule.h"
 
 #include <vtkAlgorithm.h>
@@ -52,7 +53,7 @@ public:
   /// Patch size in cells (default 80), 16 to 512 as the synthesis takes. A multiple
   /// of 4 gets the dense search's 4 x 4 coarse pass; other sizes are searched
   /// exhaustively (slower, same ranking).
-  vtkSetClampMacro(PatchSize, int, 16, 512);
+  vtkSetClampMacro(PatchSize, int, tsynth::kMinSynthesisPatch, tsynth::kMaxSynthesisPatch);
   vtkGetMacro(PatchSize, int);
   /// Candidates kept per exemplar (default 8).
   vtkSetClampMacro(K, int, 1, 1000);
@@ -106,7 +107,7 @@ protected:
 
   int Mode = FEATURE;
   int Backend = AUTO;
-  int PatchSize = 80;
+  int PatchSize = tsynth::kDefaultSynthesisPatch;
   int K = 8;
   double Site[2] = { 0.0, 0.0 };
   double FeatureWeight = 5.0;

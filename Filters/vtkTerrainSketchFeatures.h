@@ -16,6 +16,7 @@
  */
 #pragma once
 
+#include "Core/PatchSize.h"
 #include "TerrainSynthesisFiltersModule.h"
 
 #include <vtkPolyDataAlgorithm.h>
@@ -30,7 +31,7 @@ public:
   ///@{
   /// Patch size in cells (default 80), 16 to 512 as the synthesis takes: a sketch
   /// image smaller than one patch is refused.
-  vtkSetClampMacro(PatchSize, int, 16, 512);
+  vtkSetClampMacro(PatchSize, int, tsynth::kMinSynthesisPatch, tsynth::kMaxSynthesisPatch);
   vtkGetMacro(PatchSize, int);
   ///@}
 
@@ -69,7 +70,7 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int PatchSize = 80;
+  int PatchSize = tsynth::kDefaultSynthesisPatch;
   double ControlRadius = 0.0;
   double CellSize = 0.0;
   double SnapTolerance = 1.0;

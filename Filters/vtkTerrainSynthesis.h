@@ -19,6 +19,7 @@
  */
 #pragma once
 
+#include "Core/PatchSize.h"
 #include "TerrainSynthesisFiltersModule.h"
 
 #include <vtkAlgorithm.h>
@@ -65,7 +66,7 @@ public:
 
   /// Patch size in cells (a multiple of 4 from 16 to 512, checked when the
   /// filter runs; default 80).
-  vtkSetClampMacro(PatchSize, int, 16, 512);
+  vtkSetClampMacro(PatchSize, int, tsynth::kMinSynthesisPatch, tsynth::kMaxSynthesisPatch);
   vtkGetMacro(PatchSize, int);
   /// Where the matcher runs (default AUTO); every backend gives the same terrain.
   vtkSetClampMacro(Backend, int, AUTO, CPU);
@@ -141,7 +142,7 @@ protected:
   int RequestInformation(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
   int RequestData(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 
-  int PatchSize = 80;
+  int PatchSize = tsynth::kDefaultSynthesisPatch;
   int Backend = AUTO;
   int MergeMode = NEW;
   int FillOrder = BEST_FIRST;

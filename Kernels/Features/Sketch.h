@@ -5,6 +5,7 @@
 
 #include "../Core/Heightfield.h"
 #include "../Core/HeightfieldIO.h"
+#include "../Core/PatchSize.h"
 #include "FeatureGraph.h"
 
 #include <string>
@@ -21,8 +22,8 @@ enum class SketchKind
 
 struct SketchOptions
 {
-  int patchSize = 80;          // a sketch smaller than one patch is refused
-  double controlRadius = 40.0; // cells (half the patch)
+  int patchSize = kDefaultSynthesisPatch; // a sketch smaller than one patch is refused
+  double controlRadius = 40.0;            // cells (half the patch)
   int smoothingPasses = 2;
   double cellSize = 1.0; // metres per sketch pixel, for the graph's coordinates
 };

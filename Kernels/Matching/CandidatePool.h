@@ -7,6 +7,7 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/PatchSize.h"
 #include "../Features/FeatureGraph.h"
 #include "LandformTerm.h"
 #include "NoiseVariance.h"
@@ -48,7 +49,7 @@ std::vector<FeatureSite> featureSites(const FeatureGraph& graph,
 
 struct PoolOptions
 {
-  int patchSize = 80;
+  int patchSize = kDefaultSynthesisPatch;
   std::array<bool, kVariantCount>
     variants{ true, true, true, true, true, true, true, true, true, true };
 };
@@ -64,7 +65,7 @@ struct ExemplarInfo
 
 struct CandidatePool
 {
-  int patchSize = 80;
+  int patchSize = kDefaultSynthesisPatch;
   double heightScale =
     1.0; // standard deviation of all exemplar heights (m): costs are divided by it
   std::vector<ExemplarInfo> exemplars;

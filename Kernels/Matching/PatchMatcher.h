@@ -2,6 +2,7 @@
 // and the dense-search tables of a set of exemplars, on the chosen backend.
 #pragma once
 
+#include "../Core/PatchSize.h"
 #include "CandidatePool.h"
 #include "DenseSearch.h"
 #include "FeatureCost.h"
@@ -16,7 +17,7 @@ namespace tsynth
 
 struct MatcherOptions
 {
-  int patchSize = 80;
+  int patchSize = kDefaultSynthesisPatch;
   Backend backend = Backend::Auto;
   MatchWeights weights;
   std::size_t k = 8; // candidates kept per exemplar (feature) or in all (dense)

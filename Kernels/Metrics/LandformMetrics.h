@@ -6,6 +6,7 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/PatchSize.h"
 #include "../Features/FeatureGraph.h"
 #include "../Features/Ppa.h"
 
@@ -21,7 +22,7 @@ namespace tsynth
 struct LandformOptions
 {
   // The synthesis patch size in cells: the landform scale.
-  double patchSize = 80.0;
+  double patchSize = kDefaultSynthesisPatch;
   // D, the distance across the line (each side) at which the surroundings are
   // taken; <= 0 means patchSize.
   double distance = 0.0;

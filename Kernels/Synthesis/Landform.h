@@ -8,6 +8,7 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/PatchSize.h"
 #include "../Distance/Profile.h"
 #include "../Features/CrossSections.h"
 #include "../Features/FeatureGraph.h"
@@ -50,7 +51,7 @@ struct LandformStatistics
 
 struct LandformMeasureOptions
 {
-  int patchSize = 80;
+  int patchSize = kDefaultSynthesisPatch;
   // Share of an exemplar's ridge (valley) cells, the highest (lowest), taken as
   // its major features: the main ranges and trunk valleys, not the spurs and
   // gullies between them, whose cross-sections end at the next spur.
@@ -74,7 +75,7 @@ LandformStatistics withReliefScaled(const LandformStatistics& statistics, double
 
 struct LandformFieldOptions
 {
-  int patchSize = 80;
+  int patchSize = kDefaultSynthesisPatch;
   // A sketched ridge's crest (valley's floor) stands out of its sides by at
   // least this many times the land's own relief at its half width (as
   // sectionProminence measures both), its relief raised where need be, but

@@ -9,6 +9,7 @@
 #include "../Core/Heightfield.h"
 #include "../Core/HeightfieldIO.h"
 #include "../Core/Memory.h"
+#include "../Core/PatchSize.h"
 #include "../Features/FeatureGraph.h"
 #include "../Features/Sketch.h"
 #include "Target.h"
@@ -141,13 +142,8 @@ struct AnalysedSketch
 // than one patch is refused (tsynth::Error).
 AnalysedSketch analyseSketch(const SketchInput& sketch, const OutputGrid& grid, int patchSize);
 
-// Patch sizes the synthesis takes: multiples of kPatchSizeStep (the dense
-// search compares 4 x 4 blocks first) from kMinSynthesisPatch to
-// kMaxSynthesisPatch cells. checkPatchSize throws tsynth::Error naming `name`
-// (the front end's option) for anything else.
-constexpr int kMinSynthesisPatch = 16;
-constexpr int kMaxSynthesisPatch = 512;
-constexpr int kPatchSizeStep = 4;
+// Throws tsynth::Error naming `name` (the front end's option) for a patch size
+// the synthesis does not take (Core/PatchSize.h).
 void checkPatchSize(int patchSize, const std::string& name);
 
 // The landform relief a user may ask for, in multiples of the exemplars' own.
@@ -160,7 +156,7 @@ struct SetupInputs
   std::vector<std::string> exemplarNames; // for messages (file names); empty: "exemplar N"
   SketchInput sketch;
   GridRequest grid;
-  int patchSize = 80;
+  int patchSize = kDefaultSynthesisPatch;
   double memoryBudget = 0.0; // bytes; 0: defaultMemoryBudget()
   // The matcher may run on OpenCL (backend auto or opencl): its memory counts too.
   bool openClMatcher = true;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/PatchSize.h"
 #include "../Core/Progress.h"
 #include "../Features/FeatureGraph.h"
 #include "../Hydrology/PitRemoval.h"
@@ -39,7 +40,7 @@ constexpr double kCorrectionSigmasPerHalfWidth = 3.0;
 
 struct SynthesisOptions
 {
-  int patchSize = 80;
+  int patchSize = kDefaultSynthesisPatch;
   Backend backend = Backend::Auto;
   MergeMode merge = MergeMode::New;
   FillOrder fill = FillOrder::BestFirst;

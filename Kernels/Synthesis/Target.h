@@ -6,6 +6,7 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/PatchSize.h"
 #include "../Features/FeatureGraph.h"
 #include "Landform.h"
 
@@ -29,7 +30,7 @@ struct ExemplarStatistics
 // `patchSize` sets how far out the landform cross-sections are measured.
 ExemplarStatistics exemplarStatistics(const std::vector<const Heightfield*>& exemplars,
   const std::vector<const FeatureGraph*>& graphs,
-  int patchSize = 80);
+  int patchSize = kDefaultSynthesisPatch);
 
 struct SynthesisTarget
 {
