@@ -15,7 +15,6 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <string>
 
@@ -29,24 +28,41 @@ struct XmlIntProperty
   int max = -1;
 };
 
-// The named IntVectorProperty of a plugin XML: its default and range domain.
+// The quoted value of `attribute` in text[from, to), or -1 if it is not there.
+int attributeValue(const std::string& text,
+  const std::string& attribute,
+  std::size_t from,
+  std::size_t to)
+{
+  const std::string key = attribute + "=\"";
+  const std::size_t at = text.find(key, from);
+  if (at == std::string::npos || at >= to)
+  {
+    return -1;
+  }
+  return std::stoi(text.substr(at + key.size()));
+}
+
+// The named IntVectorProperty of a plugin XML: its default and range domain
+// (-1 for what it lacks).
 XmlIntProperty xmlProperty(const std::string& xmlFile, const std::string& name)
 {
   std::ifstream in(std::string(TSYNTH_PLUGIN_XML_DIR) + "/" + xmlFile);
   EXPECT_TRUE(in.good()) << xmlFile;
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::regex property("<IntVectorProperty name=\"" + name +
-    "\"[^>]*default_values=\"([0-9]+)\">\\s*<IntRangeDomain name=\"range\" min=\"([0-9]+)\" "
-    "max=\"([0-9]+)\"/>");
-  std::smatch m;
-  const std::string s = text.str();
-  if (!std::regex_search(s, m, property))
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  const std::size_t begin = text.find("<IntVectorProperty name=\"" + name + "\"");
+  const std::size_t end = text.find("</IntVectorProperty>", begin);
+  if (begin == std::string::npos || end == std::string::npos)
   {
-    ADD_FAILURE() << xmlFile << " has no " << name << " with a default and a range domain";
+    ADD_FAILURE() << xmlFile << " has no " << name;
     return {};
   }
-  return { std::stoi(m[1]), std::stoi(m[2]), std::stoi(m[3]) };
+  const std::size_t domain = text.find("<IntRangeDomain", begin);
+  return { attributeValue(text, "default_values", begin, domain),
+    attributeValue(text, "min", domain, end),
+    attributeValue(text, "max", domain, end) };
 }
 
 // The filter's default, and what its setter clamps 0 and a huge value to.
