@@ -37,10 +37,15 @@ void pollCancellationInScope()
   }
 }
 
-void checkCancellation()
+bool cancellationRequested()
 {
   CancellationScope* scope = currentScope;
-  if (scope != nullptr && scope->shouldStop_ && scope->shouldStop_())
+  return scope != nullptr && scope->shouldStop_ && scope->shouldStop_();
+}
+
+void checkCancellation()
+{
+  if (cancellationRequested())
   {
     throw Cancelled();
   }

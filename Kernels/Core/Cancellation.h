@@ -27,7 +27,7 @@ public:
 
 private:
   friend void pollCancellationInScope();
-  friend void checkCancellation();
+  friend bool cancellationRequested();
   std::function<bool()> shouldStop_;
   unsigned polls_ = 0;
   CancellationScope* outer_;
@@ -57,6 +57,10 @@ inline void pollCancellation()
 // Between stages and bands: runs the scope's test now and throws tsynth::Cancelled if it says
 // stop.
 void checkCancellation();
+
+// Whether the scope's test says stop now, without throwing: for callbacks that C code calls
+// (GDAL's progress function) and that must answer rather than unwind through it.
+bool cancellationRequested();
 
 // Rows of a parallel pass per cancellation check: 256 rows of a 5000-cell-wide DEM are a
 // few milliseconds of work, and a barrier per band costs far less than that.

@@ -1,5 +1,6 @@
 #include "HeightfieldIO.h"
 
+#include "Cancellation.h"
 #include "Error.h"
 #include "Geodesy.h"
 #include "Memory.h"
@@ -503,6 +504,12 @@ void closeWritten(DatasetPtr& ds, const std::string& target, const std::string& 
   }
 }
 
+// GDAL's progress function: asks GDAL to stop (FALSE) once a stop was requested.
+int CPL_STDCALL goOnUnlessStopped(double /*done*/, const char* /*message*/, void* /*data*/)
+{
+  return cancellationRequested() ? FALSE : TRUE;
+}
+
 // Copies `source` into a new file at `tmp` (the temporary of `target`) with GDAL's driver.
 void createCopyTo(const char* driverName,
   GDALDataset& source,
@@ -511,8 +518,12 @@ void createCopyTo(const char* driverName,
 {
   QuietGdal quiet;
   errno = 0;
-  DatasetPtr out(
-    driverByName(driverName)->CreateCopy(tmp.c_str(), &source, FALSE, nullptr, nullptr, nullptr));
+  DatasetPtr out(driverByName(driverName)
+                   ->CreateCopy(tmp.c_str(), &source, FALSE, nullptr, goOnUnlessStopped, nullptr));
+  if (!out && cancellationRequested())
+  {
+    throw Cancelled();
+  }
   if (!out)
   {
     throw Error(writeFailure(target, tmp, errno));
@@ -531,6 +542,21 @@ DatasetPtr memoryDataset(int width, int height, int bands, GDALDataType type)
   return mem;
 }
 
+// The GeoTIFF's tiles are this many cells on a side (GDAL's default for TILED=YES, set
+// explicitly because the writer flushes one row of tiles at a time).
+constexpr int kGeoTiffTileSide = 256;
+
+// Compresses and writes the completed row of tiles, then honours a stop request: deflating a
+// large DEM takes seconds, and left to GDAL's cache it would all happen at close.
+void flushTileRow(GDALRasterBand* band, const std::string& target, const std::string& tmp)
+{
+  if (band->FlushCache(false) != CE_None)
+  {
+    throw Error(writeFailure(target, tmp, errno));
+  }
+  checkCancellation();
+}
+
 void writeGeoTiff(const std::string& target, const std::string& tmp, const Heightfield& hf)
 {
   QuietGdal quiet;
@@ -538,6 +564,8 @@ void writeGeoTiff(const std::string& target, const std::string& tmp, const Heigh
   opts = CSLSetNameValue(opts, "COMPRESS", "DEFLATE");
   opts = CSLSetNameValue(opts, "PREDICTOR", "3");
   opts = CSLSetNameValue(opts, "TILED", "YES");
+  opts = CSLSetNameValue(opts, "BLOCKXSIZE", std::to_string(kGeoTiffTileSide).c_str());
+  opts = CSLSetNameValue(opts, "BLOCKYSIZE", std::to_string(kGeoTiffTileSide).c_str());
   errno = 0;
   DatasetPtr ds(
     driverByName("GTiff")->Create(tmp.c_str(), hf.width, hf.height, 1, GDT_Float32, opts));
@@ -581,6 +609,10 @@ void writeGeoTiff(const std::string& target, const std::string& tmp, const Heigh
       CE_None)
     {
       throw Error(writeFailure(target, tmp, errno));
+    }
+    if ((r + 1) % kGeoTiffTileSide == 0)
+    {
+      flushTileRow(band, target, tmp);
     }
   }
   closeWritten(ds, target, tmp);

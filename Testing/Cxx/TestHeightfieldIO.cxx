@@ -1,3 +1,4 @@
+#include "Core/Cancellation.h"
 #include "Core/Error.h"
 #include "Core/Geodesy.h"
 #include "Core/HeightfieldIO.h"
@@ -395,6 +396,41 @@ TEST(HeightfieldIO, FailedWritesLeaveNoFile)
   for (const auto& entry : fs::directory_iterator(tsynth::test::scratchDir()))
   {
     EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+  }
+}
+
+// A stop requested while a large file is written ends the write at the next row of tiles (a
+// GeoTIFF) or row (a PNG), throws Cancelled and leaves neither the file nor a temporary.
+TEST(HeightfieldIO, AStopDuringAWriteLeavesNoFile)
+{
+  constexpr int kSide = 1024; // four rows of the GeoTIFF's 256-cell tiles
+  Heightfield hf(kSide, kSide, 0.0f);
+  for (std::size_t k = 0; k < hf.z.size(); ++k)
+  {
+    hf.z[k] = static_cast<float>(k % 977);
+  }
+  for (const std::string name : { "stopped.tif", "stopped.png" })
+  {
+    int asked = 0;
+    const std::string path = scratch(name);
+    {
+      const tsynth::CancellationScope stopOnSecondAsk([&] { return ++asked >= 2; });
+      EXPECT_THROW(tsynth::writeHeightfield(path, hf), tsynth::Cancelled) << name;
+    }
+    // The second ask says stop; the writer may ask once more, to tell a stop from a failure.
+    EXPECT_LE(asked, 3) << name << ": the write went on after the stop";
+    EXPECT_FALSE(fs::exists(path)) << name;
+  }
+  int asked = 0;
+  {
+    const tsynth::CancellationScope neverStop([&] { return ++asked < 0; });
+    tsynth::writeHeightfield(scratch("completed.tif"), hf);
+  }
+  EXPECT_EQ(asked, kSide / 256) << "one check per row of tiles";
+  expectSameGrid(tsynth::readHeightfield(scratch("completed.tif")), hf, 0.0f);
+  for (const auto& entry : fs::directory_iterator(tsynth::test::scratchDir()))
+  {
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
   }
 }
 
