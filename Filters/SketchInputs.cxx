@@ -23,7 +23,7 @@ namespace
 
 bool isDemImage(vtkImageData* image)
 {
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  vtkDataArray* scalars = pixelValues(image);
   return scalars != nullptr &&
     rasterIsDemTarget(
       scalars->GetNumberOfComponents(), scalars->GetDataType() == VTK_UNSIGNED_CHAR);

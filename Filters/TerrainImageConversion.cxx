@@ -3,7 +3,9 @@
 #include "Core/Cancellation.h"
 #include "Core/Error.h"
 
+#include <vtkCellData.h>
 #include <vtkDataArray.h>
+#include <vtkDataSetAttributes.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
@@ -62,6 +64,79 @@ void heightfieldToImage(const Heightfield& hf, vtkImageData* image)
   }
 }
 
+namespace
+{
+
+// A single-band image read by a reader other than ours (ParaView's GDAL Raster Reader) holds its
+// heights on cells, one per pixel: the active cell scalars or a cell array "Elevation".
+vtkDataArray* cellHeights(vtkImageData* image)
+{
+  vtkCellData* cells = image->GetCellData();
+  vtkDataArray* heights = cells->GetArray(kElevationArray);
+  if (heights == nullptr)
+  {
+    heights = cells->GetScalars();
+  }
+  const bool usable = heights != nullptr && heights->GetNumberOfComponents() == 1 &&
+    heights->GetNumberOfTuples() == image->GetNumberOfCells() && image->GetNumberOfCells() > 0;
+  return usable ? heights : nullptr;
+}
+
+vtkDataArray* pointHeights(vtkImageData* image)
+{
+  vtkDataArray* heights = image->GetPointData()->GetArray(kElevationArray);
+  return heights != nullptr ? heights : image->GetPointData()->GetScalars();
+}
+
+// Cells the reader marked as nodata: hidden by its ghost array, or holding the NO_DATA_VALUE
+// it records in the field data (GDAL's).
+void maskReaderNodata(vtkImageData* image, Heightfield& hf)
+{
+  const auto* ghosts = vtkUnsignedCharArray::SafeDownCast(
+    image->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
+  vtkDataArray* nodata = image->GetFieldData()->GetArray("NO_DATA_VALUE");
+  const bool hasNodata = nodata != nullptr && nodata->GetNumberOfTuples() > 0;
+  const double nodataValue = hasNodata ? nodata->GetComponent(0, 0) : 0.0;
+  for (std::size_t k = 0; k < hf.size(); ++k)
+  {
+    const bool hidden = ghosts != nullptr &&
+      (ghosts->GetValue(static_cast<vtkIdType>(k)) & vtkDataSetAttributes::HIDDENCELL) != 0;
+    if (hidden || (hasNodata && static_cast<double>(hf.z[k]) == nodataValue))
+    {
+      hf.z[k] = std::numeric_limits<float>::quiet_NaN();
+    }
+  }
+}
+
+} // namespace
+
+vtkDataArray* pixelValues(vtkImageData* image)
+{
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (scalars == nullptr)
+  {
+    scalars = image->GetPointData()->GetArray(0);
+  }
+  if (scalars == nullptr && image->GetNumberOfCells() > 0)
+  {
+    vtkDataArray* cells = image->GetCellData()->GetScalars();
+    scalars =
+      cells != nullptr && cells->GetNumberOfTuples() == image->GetNumberOfCells() ? cells : nullptr;
+  }
+  return scalars;
+}
+
+bool pixelsOnCells(vtkImageData* image)
+{
+  vtkDataArray* pixels = image != nullptr ? pixelValues(image) : nullptr;
+  return pixels != nullptr && pixels == image->GetCellData()->GetScalars();
+}
+
+bool heightsOnCells(vtkImageData* image)
+{
+  return image != nullptr && pointHeights(image) == nullptr && cellHeights(image) != nullptr;
+}
+
 Heightfield imageToHeightfield(vtkImageData* image, vtkDataArray* heights)
 {
   if (image == nullptr)
@@ -70,23 +145,36 @@ Heightfield imageToHeightfield(vtkImageData* image, vtkDataArray* heights)
   }
   int ext[6];
   image->GetExtent(ext);
-  const int w = ext[1] - ext[0] + 1;
-  const int h = ext[3] - ext[2] + 1;
+  // Heights on cells: found there (no point heights), or a cell array chosen by name. A point
+  // array with the name of a usable cell array is ParaView's interpolation of it (its pipeline
+  // converts a cell array asked for as points): the cells are the data, and nodata among them
+  // must not be averaged in.
+  vtkDataArray* chosenCells = heights != nullptr && heights->GetName() != nullptr
+    ? image->GetCellData()->GetArray(heights->GetName())
+    : nullptr;
+  if (chosenCells != nullptr && chosenCells->GetNumberOfComponents() == 1 &&
+    chosenCells->GetNumberOfTuples() == image->GetNumberOfCells())
+  {
+    heights = chosenCells;
+  }
+  const bool onCells = heights == nullptr ? heightsOnCells(image) : heights == chosenCells;
+  // A cell-data image has one height per pixel: one fewer than its points on each axis.
+  const int cellsLess = onCells ? 1 : 0;
+  const int w = ext[1] - ext[0] + 1 - cellsLess;
+  const int h = ext[3] - ext[2] + 1 - cellsLess;
   if (w <= 0 || h <= 0 || ext[5] != ext[4])
   {
     throw Error("The input must be a non-empty 2D image in the x-y plane.");
   }
   if (heights == nullptr)
   {
-    heights = image->GetPointData()->GetArray(kElevationArray);
-  }
-  if (heights == nullptr)
-  {
-    heights = image->GetPointData()->GetScalars();
+    heights = onCells ? cellHeights(image) : pointHeights(image);
   }
   if (heights == nullptr || heights->GetNumberOfComponents() != 1)
   {
-    throw Error("The input image has no single-component height array (\"Elevation\").");
+    throw Error("The input image has no single-component height array: give a single-band "
+                "DEM, best opened with the Terrain Reader (File > Open, then Terrain Reader), "
+                "which reads its units, cell size and nodata.");
   }
   const vtkIdType points = static_cast<vtkIdType>(w) * h;
   if (heights->GetNumberOfTuples() != points)
@@ -113,7 +201,11 @@ Heightfield imageToHeightfield(vtkImageData* image, vtkDataArray* heights)
     pollCancellation(); // a whole DEM's copy is a good part of a second under a filter's abort
     hf.z[static_cast<std::size_t>(k)] = static_cast<float>(heights->GetComponent(k, 0));
   }
-  if (image->GetPointData()->GetArray(kValidArray) != nullptr)
+  if (onCells)
+  {
+    maskReaderNodata(image, hf);
+  }
+  else if (image->GetPointData()->GetArray(kValidArray) != nullptr)
   {
     hf.valid = pointFlags(image, kValidArray, 1);
   }
@@ -144,20 +236,18 @@ Heightfield imageToHeightfield(vtkImageData* image, vtkDataArray* heights)
 // VTK images keep row 0 at the bottom; sketches are read top row first.
 ColourImage imageToColourImage(vtkImageData* image)
 {
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  if (scalars == nullptr)
-  {
-    scalars = image->GetPointData()->GetArray(0);
-  }
+  vtkDataArray* scalars = pixelValues(image);
   int dims[3];
   image->GetDimensions(dims);
   if (scalars == nullptr || dims[2] != 1)
   {
     throw Error("The sketch must be a 2D image with pixel values.");
   }
+  // Pixels on cells (ParaView's GDAL Raster Reader): one fewer than the points on each axis.
+  const int cellsLess = pixelsOnCells(image) ? 1 : 0;
   ColourImage out;
-  out.width = dims[0];
-  out.height = dims[1];
+  out.width = dims[0] - cellsLess;
+  out.height = dims[1] - cellsLess;
   const bool bytes = scalars->GetDataType() == VTK_UNSIGNED_CHAR;
   out.channels = bytes ? std::min(4, scalars->GetNumberOfComponents()) : 1;
   out.data.resize(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) *
@@ -188,6 +278,36 @@ ColourImage imageToColourImage(vtkImageData* image)
   return out;
 }
 
+void copyAsPointGrid(vtkImageData* input, const Heightfield& hf, vtkImageData* output)
+{
+  if (static_cast<vtkIdType>(hf.size()) == input->GetNumberOfPoints())
+  {
+    output->ShallowCopy(input);
+    return;
+  }
+  // The cells' centres become the points, each with its height (NaN where nodata).
+  int ext[6];
+  double origin[3];
+  double spacing[3];
+  input->GetExtent(ext);
+  input->GetOrigin(origin);
+  input->GetSpacing(spacing);
+  heightfieldToImage(hf, output);
+  output->SetExtent(ext[0], ext[0] + hf.width - 1, ext[2], ext[2] + hf.height - 1, 0, 0);
+  output->SetSpacing(spacing);
+  output->SetOrigin(origin[0] + 0.5 * spacing[0], origin[1] + 0.5 * spacing[1], origin[2]);
+  vtkNew<vtkFloatArray> elevation;
+  elevation->SetName(kElevationArray);
+  elevation->SetNumberOfTuples(static_cast<vtkIdType>(hf.size()));
+  for (std::size_t k = 0; k < hf.size(); ++k)
+  {
+    elevation->SetValue(
+      static_cast<vtkIdType>(k), hf.isValid(k) ? hf.z[k] : std::numeric_limits<float>::quiet_NaN());
+  }
+  output->GetPointData()->SetScalars(elevation);
+  output->GetFieldData()->PassData(input->GetFieldData());
+}
+
 void gridOrigin(vtkImageData* image, double& x, double& y)
 {
   double origin[3];
@@ -196,8 +316,10 @@ void gridOrigin(vtkImageData* image, double& x, double& y)
   image->GetOrigin(origin);
   image->GetSpacing(spacing);
   image->GetExtent(extent);
-  x = origin[0] + extent[0] * spacing[0];
-  y = origin[1] + extent[2] * spacing[1];
+  // Heights on cells sit at the cells' centres, half a cell in from the first point.
+  const double centre = heightsOnCells(image) ? 0.5 : 0.0;
+  x = origin[0] + (extent[0] + centre) * spacing[0];
+  y = origin[1] + (extent[2] + centre) * spacing[1];
 }
 
 void addPointArray(vtkImageData* image, const char* name, const float* values)

@@ -27,7 +27,22 @@ void heightfieldToImage(const Heightfield& hf, vtkImageData* image);
 // image is not 2D in x-y, has no usable height array, a height or Valid array
 // of another length than its points, a spacing that is not finite and
 // positive, or heights checkPlausibleHeights refuses.
+//
+// Without a given array and with no point heights, a single-component cell array
+// ("Elevation" or the active cell scalars, one value per cell: what ParaView's GDAL Raster
+// Reader makes) is read instead, one height per cell, with the cells the reader hid (ghost
+// array) or holding its NO_DATA_VALUE as nodata.
 Heightfield imageToHeightfield(vtkImageData* image, vtkDataArray* heights = nullptr);
+
+// Whether imageToHeightfield reads this image's heights from its cells (see above).
+bool heightsOnCells(vtkImageData* image);
+
+// An image's pixel values: its point scalars (or first point array), else its cell scalars
+// when they hold one value per cell (ParaView's GDAL Raster Reader); nullptr if neither.
+vtkDataArray* pixelValues(vtkImageData* image);
+
+// Whether pixelValues comes from the image's cells.
+bool pixelsOnCells(vtkImageData* image);
 
 // The image's point array chosen by name for a filter's optional input array (a mask, known
 // cells, a gradient). An empty name means none: nullptr. A name the image lacks is nullptr when
@@ -50,12 +65,19 @@ void requireValidHeights(const Heightfield& hf);
 // if its length is not the image's point count.
 std::vector<std::uint8_t> pointFlags(vtkImageData* image, const char* name, std::uint8_t fallback);
 
-// An image's pixels as a sketch image (top row first): unsigned-char scalars
+// An image's pixels (pixelValues) as a sketch image (top row first): unsigned-char scalars
 // with 1-4 components as they are, other types scaled onto 0..255 (one channel).
 ColourImage imageToColourImage(vtkImageData* image);
 
-// World position of the image's first point (origin plus the extent's offset):
-// where cell (0, 0) of a heightfield taken from it lies.
+// The output grid of a filter that adds point arrays to its input image: the input itself
+// (shallow copy) when `hf` (read from it) has a height per point; when its heights were on
+// cells (see imageToHeightfield), a point grid on the cells' centres holding `hf`'s heights as
+// "Elevation" (NaN where invalid), so arrays of one value per height fit it.
+void copyAsPointGrid(vtkImageData* input, const Heightfield& hf, vtkImageData* output);
+
+// World position of the image's first point (origin plus the extent's offset), or of its
+// first cell's centre when its heights are on cells: where cell (0, 0) of a heightfield taken
+// from it lies.
 void gridOrigin(vtkImageData* image, double& x, double& y);
 
 // Adds a float point array (NaN where invalid) of the image's size.

@@ -64,6 +64,7 @@ int vtkTerrainCandidateBuilder::RequestData(vtkInformation*,
     },
     [&]
     {
+      tsynth::checkPatchSizeInRange(this->PatchSize, "Patch Size");
       const tsynth::ExemplarInputs in = tsynth::gatherExemplars(inputVector[0],
         inputVector[1],
         tsynth::exemplarHeightsNamed(

@@ -28,8 +28,9 @@ public:
 
   ///@{
   /// Patch size in cells (default 80, for 90 m data), 16 to 512 as the synthesis
-  /// takes; any size in that range works (the synthesis also asks a multiple of 4).
-  vtkSetClampMacro(PatchSize, int, tsynth::kMinSynthesisPatch, tsynth::kMaxSynthesisPatch);
+  /// takes; another size fails the request with a sentence saying so (never clamped). Any
+  /// size in the range works (the synthesis also asks a multiple of 4).
+  vtkSetMacro(PatchSize, int);
   vtkGetMacro(PatchSize, int);
   ///@}
 

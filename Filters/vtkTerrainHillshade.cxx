@@ -54,7 +54,7 @@ int vtkTerrainHillshade::RequestData(vtkInformation*,
       const tsynth::ShadedRelief relief = tsynth::computeHillshade(hf, options);
       this->UpdateProgress(0.9);
 
-      output->ShallowCopy(input);
+      tsynth::copyAsPointGrid(input, hf, output);
       tsynth::addPointArray(output, "Slope", relief.slopeDeg.data());
       tsynth::addPointArray(output, "Hillshade", relief.shade.data());
       output->GetPointData()->SetActiveScalars("Hillshade");

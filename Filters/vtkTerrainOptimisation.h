@@ -32,8 +32,9 @@ public:
   };
 
   ///@{
-  /// Patch size N in cells, odd, 3 to 15 (oddness is checked when the filter runs).
-  vtkSetClampMacro(PatchSize, int, 3, 15); // kMinPatchSize, kMaxPatchSize (TestFilterOptions)
+  /// Patch size N in cells, odd, 3 to 15: checked when the filter runs, where another size
+  /// fails the request with a sentence saying so (never clamped).
+  vtkSetMacro(PatchSize, int);
   vtkGetMacro(PatchSize, int);
   ///@}
 

@@ -121,6 +121,7 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
     },
     [&]
     {
+      tsynth::checkPatchSizeInRange(this->PatchSize, "Patch Size");
       const tsynth::Heightfield target =
         tsynth::imageToHeightfield(targetImage, this->GetInputArrayToProcess(0, inputVector));
       std::vector<std::uint8_t> known(target.size(), 1);

@@ -50,10 +50,10 @@ public:
   vtkGetMacro(Mode, int);
   vtkSetClampMacro(Backend, int, AUTO, CPU);
   vtkGetMacro(Backend, int);
-  /// Patch size in cells (default 80), 16 to 512 as the synthesis takes. A multiple
-  /// of 4 gets the dense search's 4 x 4 coarse pass; other sizes are searched
-  /// exhaustively (slower, same ranking).
-  vtkSetClampMacro(PatchSize, int, tsynth::kMinSynthesisPatch, tsynth::kMaxSynthesisPatch);
+  /// Patch size in cells (default 80), 16 to 512 as the synthesis takes; another size fails
+  /// the request with a sentence saying so (never clamped). A multiple of 4 gets the dense
+  /// search's 4 x 4 coarse pass; other sizes are searched exhaustively (slower, same ranking).
+  vtkSetMacro(PatchSize, int);
   vtkGetMacro(PatchSize, int);
   /// Candidates kept per exemplar (default 8).
   vtkSetClampMacro(K, int, 1, 1000);

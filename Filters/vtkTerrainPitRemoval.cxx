@@ -127,7 +127,7 @@ int vtkTerrainPitRemoval::RequestData(vtkInformation*,
         directions, dem.width, dem.height, dem.hasMask() ? &dem.valid : nullptr);
       this->UpdateProgress(0.9);
 
-      output->ShallowCopy(input);
+      tsynth::copyAsPointGrid(input, dem, output);
       vtkPointData* points = output->GetPointData();
       points->RemoveArray(tsynth::kElevationArray);
       tsynth::addPointArray(output, tsynth::kElevationArray, result.dem.z.data());

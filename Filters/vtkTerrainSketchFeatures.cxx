@@ -63,6 +63,7 @@ int vtkTerrainSketchFeatures::RequestData(vtkInformation*,
     },
     [&]
     {
+      tsynth::checkPatchSize(this->PatchSize, "Patch Size");
       tsynth::FeatureGraph graph;
       double ox = 0.0;
       double oy = 0.0;

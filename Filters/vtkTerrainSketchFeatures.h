@@ -29,9 +29,10 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// Patch size in cells (default 80), 16 to 512 as the synthesis takes: a sketch
+  /// Patch size in cells (default 80): a multiple of 4 from 16 to 512, as the synthesis
+  /// takes; another size fails the request with a sentence saying so (never clamped). A sketch
   /// image smaller than one patch is refused.
-  vtkSetClampMacro(PatchSize, int, tsynth::kMinSynthesisPatch, tsynth::kMaxSynthesisPatch);
+  vtkSetMacro(PatchSize, int);
   vtkGetMacro(PatchSize, int);
   ///@}
 

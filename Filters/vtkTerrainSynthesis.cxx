@@ -53,6 +53,9 @@ vtkTerrainSynthesis::vtkTerrainSynthesis()
 
 int vtkTerrainSynthesis::FillInputPortInformation(int port, vtkInformation* info)
 {
+  // The exemplars and the sketch are optional to the executive only: RequestData names the
+  // one missing in one sentence, where VTK's own check repeats a generic one per request.
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
   if (port == 0)
   {
     info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
@@ -62,7 +65,6 @@ int vtkTerrainSynthesis::FillInputPortInformation(int port, vtkInformation* info
   if (port == 2)
   {
     info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
-    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
     return 1;
   }
   info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
@@ -120,9 +122,24 @@ tsynth::SetupOptionNames propertyNames()
   tsynth::SetupOptionNames names;
   names.size = "OutputSize";
   names.cell = "CellSize";
-  names.patch = "PatchSize";
+  names.patch = "Patch Size";
   names.memory = "MemoryBudget";
   return names;
+}
+
+// Throws tsynth::Error naming the input a user has not connected yet.
+void requireInputs(vtkInformationVector** inputVector)
+{
+  if (inputVector[0]->GetNumberOfInformationObjects() == 0)
+  {
+    throw tsynth::Error("No exemplar is connected: give Exemplars one or more DEMs (open them "
+                        "with the Terrain Reader).");
+  }
+  if (inputVector[1]->GetNumberOfInformationObjects() == 0)
+  {
+    throw tsynth::Error("No sketch is connected: give Sketch a stroke map, a grey map, "
+                        "poly-lines (Terrain Sketch Lines) or a DEM target.");
+  }
 }
 
 void addDiagnosticArrays(const tsynth::SynthesisResult& r, vtkImageData* output)
@@ -228,11 +245,11 @@ int vtkTerrainSynthesis::RequestInformation(vtkInformationVector** inputVector,
   vtkInformation* exemplar = inputVector[0]->GetInformationObject(0);
   if (sketch == nullptr || exemplar == nullptr)
   {
-    vtkErrorMacro("Connect at least one exemplar and a sketch.");
-    return 0;
+    return 1; // nothing to announce; RequestData says which input is missing
   }
   try
   {
+    tsynth::checkPatchSize(this->PatchSize, propertyNames().patch);
     // The grid RequestData's set-up will produce, by the same kernel function.
     const tsynth::SketchExtent extent = tsynth::announcedSketchExtent(this, 1, inputVector[1]);
     double spacing[3] = { 0.0, 0.0, 0.0 };
@@ -275,6 +292,7 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
     },
     [&]
     {
+      requireInputs(inputVector);
       tsynth::ExemplarInputs ex = tsynth::gatherExemplarImages(inputVector[0],
         tsynth::exemplarHeightsNamed(
           this->GetInputArrayInformation(kExemplarHeights), inputVector[0]));

@@ -65,8 +65,8 @@ public:
   };
 
   /// Patch size in cells (a multiple of 4 from 16 to 512, checked when the
-  /// filter runs; default 80).
-  vtkSetClampMacro(PatchSize, int, tsynth::kMinSynthesisPatch, tsynth::kMaxSynthesisPatch);
+  /// filter runs: another size fails the request, never clamped; default 80).
+  vtkSetMacro(PatchSize, int);
   vtkGetMacro(PatchSize, int);
   /// Where the matcher runs (default AUTO); every backend gives the same terrain.
   vtkSetClampMacro(Backend, int, AUTO, CPU);

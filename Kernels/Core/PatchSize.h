@@ -4,6 +4,8 @@
 // Testing/Cxx/TestFilters.cxx against these numbers).
 #pragma once
 
+#include <string>
+
 namespace tsynth
 {
 
@@ -14,5 +16,13 @@ constexpr int kDefaultSynthesisPatch = 80;
 constexpr int kMinSynthesisPatch = 16;
 constexpr int kMaxSynthesisPatch = 512;
 constexpr int kPatchSizeStep = 4;
+
+// Throws tsynth::Error naming `name` (the front end's option: --patch, Patch Size) for a patch
+// size outside those taken. Front ends refuse such a size; none is ever rounded or clamped.
+void checkPatchSize(int patchSize, const std::string& name);
+
+// The same for the stage filters that take any size in the range (the candidate builder and the
+// matcher: a size off the step is searched exhaustively, slower, same ranking).
+void checkPatchSizeInRange(int patchSize, const std::string& name);
 
 } // namespace tsynth

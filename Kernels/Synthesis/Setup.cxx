@@ -493,17 +493,6 @@ std::vector<const FeatureGraph*> SynthesisSetup::graphPointers() const
   return out;
 }
 
-void checkPatchSize(int patchSize, const std::string& name)
-{
-  if (patchSize < kMinSynthesisPatch || patchSize > kMaxSynthesisPatch ||
-    patchSize % kPatchSizeStep != 0)
-  {
-    throw Error(name + " must be a multiple of " + std::to_string(kPatchSizeStep) + " from " +
-      std::to_string(kMinSynthesisPatch) + " to " + std::to_string(kMaxSynthesisPatch) +
-      " cells, not " + std::to_string(patchSize) + ".");
-  }
-}
-
 std::optional<std::string> finenessWarning(const SynthesisTarget& target, int patchSize, bool dem)
 {
   // Closer than this, a stroke's own scale is finer than the final correction

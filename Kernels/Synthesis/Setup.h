@@ -142,10 +142,6 @@ struct AnalysedSketch
 // than one patch is refused (tsynth::Error).
 AnalysedSketch analyseSketch(const SketchInput& sketch, const OutputGrid& grid, int patchSize);
 
-// Throws tsynth::Error naming `name` (the front end's option) for a patch size
-// the synthesis does not take (Core/PatchSize.h).
-void checkPatchSize(int patchSize, const std::string& name);
-
 // The landform relief a user may ask for, in multiples of the exemplars' own.
 constexpr double kMinLandformRelief = 0.1;
 constexpr double kMaxLandformRelief = 5.0;

@@ -65,17 +65,18 @@ XmlIntProperty xmlProperty(const std::string& xmlFile, const std::string& name)
     attributeValue(text, "max", domain, end) };
 }
 
-// The filter's default, and what its setter clamps 0 and a huge value to.
+// The filter's default, and the range it takes: the kernels' check, because the setter keeps
+// whatever is typed (a size out of range fails the request; it is never clamped).
 template<class Filter>
-XmlIntProperty filterProperty()
+XmlIntProperty filterProperty(int min, int max)
 {
   vtkNew<Filter> f;
-  XmlIntProperty p;
-  p.defaultValue = f->GetPatchSize();
-  f->SetPatchSize(0);
-  p.min = f->GetPatchSize();
-  f->SetPatchSize(1 << 20);
-  p.max = f->GetPatchSize();
+  XmlIntProperty p{ f->GetPatchSize(), min, max };
+  for (int typed : { 0, 8, min - 1, max + 1, 600 })
+  {
+    f->SetPatchSize(typed);
+    EXPECT_EQ(f->GetPatchSize(), typed) << f->GetClassName() << " changed the typed size";
+  }
   return p;
 }
 
@@ -93,10 +94,13 @@ TEST(FilterOptions, EverySynthesisPatchSizeIsTheKernelsOne)
   const XmlIntProperty kernels{
     tsynth::kDefaultSynthesisPatch, tsynth::kMinSynthesisPatch, tsynth::kMaxSynthesisPatch
   };
-  expectSame(filterProperty<vtkTerrainSynthesis>(), kernels, "vtkTerrainSynthesis");
-  expectSame(filterProperty<vtkTerrainCandidateBuilder>(), kernels, "vtkTerrainCandidateBuilder");
-  expectSame(filterProperty<vtkTerrainPatchMatcher>(), kernels, "vtkTerrainPatchMatcher");
-  expectSame(filterProperty<vtkTerrainSketchFeatures>(), kernels, "vtkTerrainSketchFeatures");
+  const int lo = tsynth::kMinSynthesisPatch;
+  const int hi = tsynth::kMaxSynthesisPatch;
+  expectSame(filterProperty<vtkTerrainSynthesis>(lo, hi), kernels, "vtkTerrainSynthesis");
+  expectSame(
+    filterProperty<vtkTerrainCandidateBuilder>(lo, hi), kernels, "vtkTerrainCandidateBuilder");
+  expectSame(filterProperty<vtkTerrainPatchMatcher>(lo, hi), kernels, "vtkTerrainPatchMatcher");
+  expectSame(filterProperty<vtkTerrainSketchFeatures>(lo, hi), kernels, "vtkTerrainSketchFeatures");
   for (const char* xml : { "TerrainSynthesis.xml",
          "TerrainCandidateBuilder.xml",
          "TerrainPatchMatcher.xml",
@@ -110,7 +114,9 @@ TEST(FilterOptions, TheOptimisationPatchSizeIsItsKernelsOne)
 {
   const tsynth::OptimisationOptions defaults;
   const XmlIntProperty kernel{ defaults.patchSize, tsynth::kMinPatchSize, tsynth::kMaxPatchSize };
-  expectSame(filterProperty<vtkTerrainOptimisation>(), kernel, "vtkTerrainOptimisation");
+  expectSame(filterProperty<vtkTerrainOptimisation>(tsynth::kMinPatchSize, tsynth::kMaxPatchSize),
+    kernel,
+    "vtkTerrainOptimisation");
   expectSame(
     xmlProperty("TerrainOptimisation.xml", "PatchSize"), kernel, "TerrainOptimisation.xml");
 }

@@ -115,10 +115,13 @@ class BadFilterInputTest(unittest.TestCase):
         self.producers.append(producer)
         return producer.GetOutputPort()
 
-    def synthesis(self, sketch, exemplar=None, **properties):
-        s = self.make("vtkTerrainSynthesis", PatchSize=32, **properties)
-        s.AddInputConnection(0, self.port(exemplar if exemplar is not None else image(relief())))
-        s.SetInputConnection(1, self.port(sketch))
+    def synthesis(self, sketch, exemplar=None, no_exemplar=False, **properties):
+        properties.setdefault("PatchSize", 32)
+        s = self.make("vtkTerrainSynthesis", **properties)
+        if not no_exemplar:
+            s.AddInputConnection(0, self.port(exemplar if exemplar is not None else image(relief())))
+        if sketch is not None:
+            s.SetInputConnection(1, self.port(sketch))
         return s
 
     def optimisation(self, source=None, guide=None, **properties):
@@ -174,6 +177,24 @@ class BadFilterInputTest(unittest.TestCase):
              r"heights beyond \+-1e\+12 m"),
             ("synthesis-exemplar-one-cell", lambda: self.synthesis(self.strokes, exemplar=image(np.ones((1, 1)))),
              r"is 1 x 1 cells of 90 m, smaller than one patch"),
+            ("synthesis-no-sketch", lambda: self.synthesis(None),
+             r"No sketch is connected: give Sketch a stroke map"),
+            ("synthesis-no-exemplar", lambda: self.synthesis(self.strokes, no_exemplar=True),
+             r"No exemplar is connected: give Exemplars one or more DEMs"),
+            # Patch sizes out of range are refused, never clamped (issue 23)
+            ("synthesis-patch-8", lambda: self.synthesis(self.strokes, PatchSize=8),
+             r"Patch Size must be a multiple of 4 from 16 to 512 cells, not 8\."),
+            ("synthesis-patch-600", lambda: self.synthesis(self.strokes, PatchSize=600),
+             r"Patch Size must be a multiple of 4 from 16 to 512 cells, not 600\."),
+            ("sketch-features-patch-0",
+             lambda: self.single("vtkTerrainSketchFeatures", self.strokes, PatchSize=0),
+             r"Patch Size must be a multiple of 4 from 16 to 512 cells, not 0\."),
+            ("candidates-patch-8",
+             lambda: self.single("vtkTerrainCandidateBuilder", image(relief()), PatchSize=8),
+             r"Patch Size must be from 16 to 512 cells, not 8\."),
+            ("matcher-patch-600", lambda: self.matcher(image(z), PatchSize=600),
+             r"Patch Size must be from 16 to 512 cells, not 600\."),
+            ("optimisation-patch-17", lambda: self.optimisation(PatchSize=17), r"patch size must be odd"),
             # Terrain Optimisation
             ("optimisation-output-size-negative", lambda: self.optimisation(OutputSize=(-5, 100)),
              r"Give OutputSize as two positive numbers"),
@@ -226,8 +247,8 @@ class BadFilterInputTest(unittest.TestCase):
             ("reader-fifo", lambda: self.make("vtkTerrainReader", FileName=self.fifo), r"not a regular file"),
         ]
 
-    def matcher(self, target):
-        m = self.make("vtkTerrainPatchMatcher", PatchSize=32, Backend=2)
+    def matcher(self, target, PatchSize=32):
+        m = self.make("vtkTerrainPatchMatcher", PatchSize=PatchSize, Backend=2)
         m.SetInputConnection(0, self.port(target))
         m.AddInputConnection(1, self.port(image(relief())))
         return m
@@ -282,6 +303,7 @@ class BadFilterInputTest(unittest.TestCase):
                     print("\n%-38s %d %s" % (case_id, ok, errors))
                 self.assertEqual(ok, 0, "the request did not fail; errors %r" % errors)
                 self.assertTrue(any(re.search(pattern, e) for e in errors), errors)
+                self.assertEqual(len(errors), 1, "one sentence, not %r" % errors)
                 output = algorithm.GetOutputDataObject(0)
                 if output is not None:
                     count = (output.GetNumberOfPoints() if hasattr(output, "GetNumberOfPoints")
