@@ -32,7 +32,7 @@ public:
   };
 
   ///@{
-  /// Which lines to extract (default ridges).
+  /// Which lines to extract (default ridges and valleys: a terrain's whole feature tree).
   vtkSetClampMacro(Features, int, RIDGES, RIDGES_AND_VALLEYS);
   vtkGetMacro(Features, int);
   ///@}
@@ -122,7 +122,7 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int Features = RIDGES;
+  int Features = RIDGES_AND_VALLEYS;
   int HalfProfileLength = 3;
   double MinimumDip = 0.0;
   double RelativeDip = 0.1;

@@ -9,6 +9,7 @@
 
 #include "Core/Error.h"
 #include "Core/Memory.h"
+#include "Synthesis/PatchColours.h"
 #include "Synthesis/Regions.h"
 #include "Synthesis/Setup.h"
 #include "Synthesis/Synthesizer.h"
@@ -25,6 +26,7 @@
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
+#include <vtkSignedCharArray.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkTable.h>
 #include <vtkUnsignedCharArray.h>
@@ -160,6 +162,13 @@ void addDiagnosticArrays(const tsynth::SynthesisResult& r, vtkImageData* output)
   std::copy(r.seam.begin(), r.seam.end(), seam->GetPointer(0));
   output->GetPointData()->AddArray(seam);
   tsynth::addPointArray(output, "MatchCost", r.matchCost.data());
+  const std::vector<std::int8_t> colours =
+    tsynth::patchColours(r.patchId, r.terrain.width, r.terrain.height);
+  vtkNew<vtkSignedCharArray> colour;
+  colour->SetName("PatchColour");
+  colour->SetNumberOfTuples(n);
+  std::copy(colours.begin(), colours.end(), colour->GetPointer(0));
+  output->GetPointData()->AddArray(colour);
 }
 
 // One row per placement; source positions in metres in each exemplar's own frame.

@@ -10,7 +10,8 @@
  * The set-up (output grid, exemplar resampling to its cell size, features,
  * memory check, target) is tsynth::prepareSynthesis, the same as `tsynth synth`. Output port 0: the
  * terrain (2D image, "Elevation" in metres) with PatchId (the placement that wrote each cell, -1
- * for none; the placement order), SeamMask, PlacementOrder and MatchCost arrays. Output port 1: a
+ * for none; the placement order), SeamMask, PlacementOrder, MatchCost and PatchColour (0-11,
+ * different for patches that touch: tsynth::patchColours) arrays. Output port 1: a
  * table of the placements (order, feature or fill, exemplar, variant, source position, output cell,
  * match cost, seam cost, vertical offset). The stages are the other Terrain Synthesis filters'
  * kernels: feature extraction, candidate pools and matching (OpenCL or CPU), graph-cut merging.

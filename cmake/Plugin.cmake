@@ -20,11 +20,16 @@ set(tsynth_plugin_xmls
   Plugin/TerrainDistanceSource.xml
   Plugin/TerrainSynthesis.xml)
 
+# Colour maps and the DEM reader ParaView uses once the plugin is loaded.
+set(tsynth_plugin_sources "${CMAKE_CURRENT_LIST_DIR}/../Plugin/TerrainSynthesisDefaults.cxx")
+
 if (TARGET TerrainSynthesis::Filters)
   paraview_add_plugin(TerrainSynthesis
     VERSION "${TSYNTH_VERSION}"
     MODULES TerrainSynthesis::Filters
+    SOURCES ${tsynth_plugin_sources}
     SERVER_MANAGER_XML ${tsynth_plugin_xmls})
+  target_link_libraries(TerrainSynthesis PRIVATE ParaView::RemotingServerManager)
 else ()
   message(STATUS "TerrainSynthesis ${TSYNTH_VERSION}: built as an external plugin of this ParaView")
   set(CMAKE_CXX_STANDARD 17)
@@ -37,5 +42,7 @@ else ()
     VERSION "${TSYNTH_VERSION}"
     MODULES TerrainSynthesis::Filters
     MODULE_FILES "${CMAKE_CURRENT_LIST_DIR}/../Filters/vtk.module"
+    SOURCES ${tsynth_plugin_sources}
     SERVER_MANAGER_XML ${tsynth_plugin_xmls})
+  target_link_libraries(TerrainSynthesis PRIVATE ParaView::RemotingServerManager)
 endif ()

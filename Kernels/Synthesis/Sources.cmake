@@ -1,6 +1,7 @@
 set(TSYNTH_SYNTHESIS_SOURCES
   Synthesis/Finishing.cxx
   Synthesis/Landform.cxx
+  Synthesis/PatchColours.cxx
   Synthesis/Regions.cxx
   Synthesis/Setup.cxx
   Synthesis/Synthesizer.cxx

@@ -577,6 +577,52 @@ class PluginTest(unittest.TestCase):
         self.assertTrue(hidden.all())
         self.assertLess(int(np.isnan(shades[1]).sum()), 20 * 30 + 2 * (20 + 30) + 4)
 
+    def test_loading_the_plugin_sets_terrain_colour_maps_and_the_dem_reader(self):
+        """Once loaded, ParaView colours the plugin's arrays as terrain is read (grey hillshade,
+        a terrain map for heights, categories for patches and feature kinds) and File > Open
+        reads DEM files with the Terrain Reader (its 'Supported Files' default)."""
+        import paraview.modules.vtkRemotingServerManager as rsm
+        settings = rsm.vtkSMSettings.GetInstance()
+        key = ".settings.RepresentedArrayListSettings.ReaderDetails"
+        self.assertEqual(settings.GetSettingAsString(key, 2, ""), "TerrainReader")
+        self.assertIn("*.tif", settings.GetSettingAsString(key, 0, "").split())
+        self.assertNotIn("*.png", settings.GetSettingAsString(key, 0, "").split())  # sketches
+        exemplar = simple.TerrainReader(FileName=os.path.join(PATHS.bundled_data, "dems", "colorado.png"))
+        sketch = simple.PNGSeriesReader(
+            FileNames=[os.path.join(PATHS.bundled_data, "sketches", "strokes_y_ridges.png")])
+        synth = simple.TerrainSynthesis(Exemplars=[exemplar], Sketch=sketch, OutputSize=[128, 128],
+                                        PatchSize=32)
+        shade = simple.TerrainHillshade(Input=synth)
+        view = simple.CreateRenderView()
+        shown = simple.Show(shade, view)
+        simple.ColorBy(shown, ("POINTS", "Hillshade"))
+        shown.RescaleTransferFunctionToDataRange(True)
+        grey = np.array(simple.GetColorTransferFunction("Hillshade").RGBPoints).reshape(-1, 4)
+        np.testing.assert_array_equal(grey[:, 1], grey[:, 2])  # r = g = b: grey
+        np.testing.assert_array_equal(grey[:, 1], grey[:, 3])
+        self.assertEqual((grey[0, 1], grey[-1, 1]), (0.0, 1.0))  # dark in shadow, white lit
+        simple.ColorBy(shown, ("POINTS", "Elevation"))
+        shown.RescaleTransferFunctionToDataRange(True)
+        heights = np.array(simple.GetColorTransferFunction("Elevation").RGBPoints).reshape(-1, 4)
+        self.assertGreater(heights[0, 2], heights[0, 1])  # low land green
+        self.assertEqual(tuple(heights[-1, 1:]), (1.0, 1.0, 1.0))  # snow on top
+        for name, values in (("PatchColour", [str(c) for c in range(12)]), ("FeatureType", ["1", "-1"])):
+            lut = simple.GetColorTransferFunction(name)
+            self.assertEqual(lut.InterpretValuesAsCategories, 1, name)
+            self.assertEqual(list(lut.Annotations)[0::2], values, name)
+            colours = np.array(lut.IndexedColors).reshape(-1, 3)
+            self.assertEqual(len({tuple(c) for c in colours}), len(values), name)
+        # The colours a categorical map draws differ wherever two patches touch.
+        terrain = sm.Fetch(synth, arg1=None, arg2=None, idx=0)
+        ids = point_array(terrain, "PatchId").reshape(128, 128)
+        colour = point_array(terrain, "PatchColour").reshape(128, 128)
+        for a, b, ca, cb in ((ids[:, 1:], ids[:, :-1], colour[:, 1:], colour[:, :-1]),
+                             (ids[1:], ids[:-1], colour[1:], colour[:-1])):
+            touching = a != b
+            self.assertGreater(int(touching.sum()), 100)
+            self.assertFalse(np.any(ca[touching] == cb[touching]))
+        simple.Delete(view)
+
     def test_synthesis_filter_with_style_regions(self):
         colorado = simple.TerrainReader(FileName=os.path.join(PATHS.bundled_data, "dems", "colorado.png"))
         alps = simple.TerrainReader(FileName=self.alps)
