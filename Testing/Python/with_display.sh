@@ -2,7 +2,7 @@
 # Runs a command with an X display: the current one if DISPLAY is set (scripts/test.sh starts one
 # Xvfb for the whole test run), else a private one from xvfb-run.
 if [ -z "${DISPLAY:-}" ]; then
-  exec xvfb-run -a -s "-screen 0 1280x1024x24" "$@"
+  exec xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$@"
 fi
 # Under load the shared Xvfb now and then refuses a connection ("bad X server connection", about
 # one run in several, and now and then twice in a row): that failure, and only it, is retried up
