@@ -10,6 +10,7 @@
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
+#include <vtkInformation.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkStringArray.h>
@@ -329,6 +330,19 @@ void addPointArray(vtkImageData* image, const char* name, const float* values)
   array->SetNumberOfTuples(image->GetNumberOfPoints());
   std::copy(values, values + image->GetNumberOfPoints(), array->GetPointer(0));
   image->GetPointData()->AddArray(array);
+}
+
+vtkDataArray* selectedArrayOn(vtkInformation* chosen, vtkImageData* image)
+{
+  if (chosen == nullptr || image == nullptr || !chosen->Has(vtkDataObject::FIELD_NAME()))
+  {
+    return nullptr;
+  }
+  const bool onCells = chosen->Has(vtkDataObject::FIELD_ASSOCIATION()) &&
+    chosen->Get(vtkDataObject::FIELD_ASSOCIATION()) == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  vtkDataSetAttributes* data = onCells ? static_cast<vtkDataSetAttributes*>(image->GetCellData())
+                                       : static_cast<vtkDataSetAttributes*>(image->GetPointData());
+  return data->GetArray(chosen->Get(vtkDataObject::FIELD_NAME()));
 }
 
 vtkDataArray* chosenPointArray(vtkImageData* image,

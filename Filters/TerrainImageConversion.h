@@ -9,6 +9,7 @@
 
 class vtkDataArray;
 class vtkImageData;
+class vtkInformation;
 
 namespace tsynth
 {
@@ -54,6 +55,14 @@ vtkDataArray* chosenPointArray(vtkImageData* image,
   const char* name,
   const char* defaultName,
   int components = 0);
+
+// The array a filter's input-array selection `chosen` (its GetInputArrayInformation) names,
+// looked up on `image` itself, among its cell arrays when the selection says cells, else its
+// point arrays; nullptr when the selection names none or the image lacks it (imageToHeightfield
+// then reads Elevation). A selection's port is not used: ParaView 5.11 crashes in its
+// vtkPVPostFilter when a selection points at port 1 while no selection of index 0 does, so the
+// XMLs keep port 0 in every selection and a second input's array is found here by name.
+vtkDataArray* selectedArrayOn(vtkInformation* chosen, vtkImageData* image);
 
 // Throws tsynth::Error ("The input image holds no valid heights ...") if no cell
 // of `hf` is valid: what filters that need heights refuse (a target being

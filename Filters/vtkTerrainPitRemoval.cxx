@@ -115,7 +115,7 @@ int vtkTerrainPitRemoval::RequestData(vtkInformation*,
       if (sinkImage != nullptr)
       {
         const tsynth::Heightfield mask = tsynth::imageToHeightfield(
-          sinkImage, this->GetInputArrayToProcess(kSinksArrayIndex, inputVector));
+          sinkImage, tsynth::selectedArrayOn(this->GetInputArrayInformation(kSinksArrayIndex), sinkImage));
         sinks = tsynth::sinkMaskFromRaster(mask, dem.width, dem.height);
         options.sinks = &sinks;
       }

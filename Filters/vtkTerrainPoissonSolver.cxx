@@ -145,7 +145,8 @@ int vtkTerrainPoissonSolver::RequestData(vtkInformation*,
         }
         const std::vector<std::uint8_t> mask = maskArray(source, this->MaskArray);
         r = tsynth::seamlessClone(dst,
-          tsynth::imageToHeightfield(source, this->GetInputArrayToProcess(1, inputVector)),
+          tsynth::imageToHeightfield(
+            source, tsynth::selectedArrayOn(this->GetInputArrayInformation(1), source)),
           mask.empty() ? nullptr : &mask,
           this->Tolerance);
       }

@@ -441,6 +441,58 @@ class PluginTest(unittest.TestCase):
         self.assertNotEqual(best_cost({"Known": np.ones_like(half)}), known)  # the choice counts
         self.assertIsNone(best_cost({"Done": half}, KnownArray="Dnoe"))
 
+    def test_array_selections_name_elevation_on_their_own_input(self):
+        """A heights selection starts at Elevation (not ParaView's "0 (?)"), and one on a second
+        input reads that input. The selections keep port 0 (a port-1 selection crashes ParaView
+        5.11's vtkPVPostFilter), so the filters look the name up on their second input: read
+        through the selection's port, picking the source's Elevation cloned the destination."""
+        full, spacing = dem_array(self.alps)
+        dst_z = full[100:228, 100:228]
+        lifted = full[300:428, 300:428] + 500.0
+        destination = producer(image_from(dst_z, spacing))
+        source = producer(image_from(lifted, spacing))
+        destination.UpdatePipeline()
+        source.UpdatePipeline()
+
+        def elements(proxy, name):
+            prop = proxy.GetProperty(name)
+            return [prop.GetElement(i) for i in range(prop.GetNumberOfElements())]
+
+        made = {
+            "TerrainHillshade": (simple.TerrainHillshade(Input=destination),
+                                 {"SelectInputScalars": "0"}),
+            "TerrainSynthesis": (simple.TerrainSynthesis(Exemplars=[destination], Sketch=source),
+                                 {"SelectExemplarScalars": "0"}),
+            "TerrainGraphCutMerger": (simple.TerrainGraphCutMerger(Input=destination, Patch=source),
+                                      {"SelectInputScalars": "0", "SelectPatchScalars": "1"}),
+            "TerrainPoissonSolver": (simple.TerrainPoissonSolver(Input=destination, Source=source),
+                                     {"SelectInputScalars": "0", "SelectSourceScalars": "1"}),
+            "TerrainPitRemoval": (simple.TerrainPitRemoval(Input=destination, Sinks=source),
+                                  {"SelectInputScalars": "0", "SelectSinkScalars": "1"}),
+        }
+        for filter_name, (proxy, selections) in made.items():
+            for name, index in selections.items():
+                e = elements(proxy, name)
+                self.assertEqual((e[0], e[1], e[4]), (index, "0", "Elevation"),
+                                 "%s %s: %s" % (filter_name, name, e))
+            proxy.UpdatePipeline()  # runs (the pit removal with every cell a sink) without a crash
+
+        yy, xx = np.mgrid[0:128, 0:128]
+        disc = ((xx - 64) ** 2 + (yy - 64) ** 2 < 30 ** 2).astype(np.uint8)
+        masked = producer(image_from(lifted, spacing, arrays={"Mask": disc}))
+
+        def clone(**properties):
+            solver = simple.TerrainPoissonSolver(Input=destination, Source=masked, Mode=0, **properties)
+            solver.UpdatePipeline()
+            return point_array(sm.Fetch(solver), "Elevation").reshape(128, 128).copy()
+
+        by_default = clone()
+        picked = clone(SourceHeights=["POINTS", "Elevation"])  # what picking it in the panel does
+        np.testing.assert_array_equal(picked, by_default)
+        inside = disc == 1
+        self.assertGreater(float(np.abs(picked[inside] - dst_z[inside]).max()), 100.0,
+                           "the source's relief is cloned in, not the destination's own")
+
     def test_exemplar_heights_are_chosen_by_name(self):
         full, spacing = dem_array(self.alps)
         a, b = full[:256, :256], full[300:556, 300:556]
