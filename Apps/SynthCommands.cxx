@@ -20,6 +20,7 @@
 #include "Metrics/TerrainMetrics.h"
 #include "Synthesis/Regions.h"
 #include "Synthesis/Setup.h"
+#include "Synthesis/SynthesisFigures.h"
 #include "Synthesis/Synthesizer.h"
 
 #include <nlohmann/json.hpp>
@@ -117,8 +118,6 @@ A figure that does not apply (no ridge sketched, a flat exemplar) is shown as "-
 // The synthesis' default patch: the random-patch baseline's patch, and the
 // smallest sketch evaluate accepts.
 constexpr int kEvaluationPatch = kDefaultSynthesisPatch;
-// A stroke no other faces is read half a patch each side (LegibilityOptions).
-constexpr double kLoneHalfWidthInPatches = 0.5;
 
 // Every value of a repeatable option, removed from the arguments.
 std::vector<std::string> takeRepeated(std::vector<std::string>& args, const std::string& name)
@@ -525,65 +524,9 @@ SynthesisResult runWithProgress(const SynthesisSetup& setup,
   return r;
 }
 
-std::size_t featurePlacements(const SynthesisResult& r)
-{
-  return static_cast<std::size_t>(std::count_if(
-    r.placements.begin(), r.placements.end(), [](const Placement& p) { return p.feature; }));
-}
-
-// The quality figures of a synthesis: of the terrain, and of the patches
-// before the final corrections (do the patches themselves follow the sketch?).
-struct SynthFigures
-{
-  TerrainEvaluation quality;
-  LandformMeasures landforms;
-  Legibility legibility;
-  Legibility patchLegibility;
-  std::vector<BandCorrelation> correlation; // DEM targets only
-  std::vector<BandCorrelation> patchCorrelation;
-  // Feature placements' line offsets (cells): median and 90th percentile.
-  double lineOffset = std::numeric_limits<double>::quiet_NaN();
-  double lineOffset90 = std::numeric_limits<double>::quiet_NaN();
-};
-
-SynthFigures measureSynthesis(const SynthesisSetup& setup, const SynthesisResult& r, int patchSize)
-{
-  SynthFigures f;
-  f.quality = evaluateTerrain(r.terrain, setup.exemplarPointers(), &setup.target.graph);
-  LandformOptions lo;
-  lo.patchSize = patchSize;
-  f.landforms = evaluateLandforms(
-    r.terrain, setup.target.graph, setup.exemplarPointers(), setup.graphPointers(), lo);
-  LegibilityOptions go;
-  go.loneHalfWidth = kLoneHalfWidthInPatches * patchSize;
-  const LegibilityMeter legibility(setup.target.graph, setup.landform.land, go);
-  f.legibility = legibility.measure(r.terrain);
-  f.patchLegibility = legibility.measure(r.patches);
-  if (setup.sketchKind == "DEM")
-  {
-    f.correlation = bandPassCorrelation(r.terrain, setup.target.field, defaultCorrelationScales());
-    f.patchCorrelation =
-      bandPassCorrelation(r.patches, setup.target.field, defaultCorrelationScales());
-  }
-  std::vector<float> offsets;
-  for (const Placement& p : r.placements)
-  {
-    if (p.feature && !std::isnan(p.lineOffset))
-    {
-      offsets.push_back(p.lineOffset);
-    }
-  }
-  if (!offsets.empty())
-  {
-    f.lineOffset = percentile(offsets, 0.5);
-    f.lineOffset90 = percentile(offsets, 0.9);
-  }
-  return f;
-}
-
 void printSummary(const SynthesisSetup& setup,
   const SynthesisResult& r,
-  const SynthFigures& figures,
+  const SynthesisFigures& figures,
   double prepare,
   const std::string& output)
 {
@@ -637,7 +580,7 @@ void writeReport(const std::string& path,
   const SynthArguments& a,
   const SynthesisSetup& setup,
   const SynthesisResult& r,
-  const SynthFigures& figures,
+  const SynthesisFigures& figures,
   double prepare)
 {
   double seamSum = 0.0;
@@ -838,7 +781,7 @@ int runSynth(std::vector<std::string> args)
     return interruptedExit();
   }
   writeTerrainFile(a.output, r.terrain);
-  const SynthFigures figures = measureSynthesis(setup, r, a.options.patchSize);
+  const SynthesisFigures figures = measureSynthesis(setup, r, a.options.patchSize);
   printSummary(setup, r, figures, prepare, a.output);
   if (a.report)
   {

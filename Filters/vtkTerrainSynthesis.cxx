@@ -11,10 +11,13 @@
 #include "Core/Memory.h"
 #include "Synthesis/PatchColours.h"
 #include "Synthesis/Regions.h"
+#include "Synthesis/SeamLines.h"
 #include "Synthesis/Setup.h"
+#include "Synthesis/SynthesisFigures.h"
 #include "Synthesis/Synthesizer.h"
 
 #include <vtkAlgorithmOutput.h>
+#include <vtkCellArray.h>
 #include <vtkDataObject.h>
 #include <vtkDoubleArray.h>
 #include <vtkFloatArray.h>
@@ -25,9 +28,11 @@
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSignedCharArray.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkStringArray.h>
 #include <vtkTable.h>
 #include <vtkUnsignedCharArray.h>
 
@@ -40,6 +45,14 @@ vtkStandardNewMacro(vtkTerrainSynthesis);
 namespace
 {
 constexpr int kExemplarHeights = 0; // SetInputArrayToProcess index of the exemplars' heights
+// The output ports: the terrain, and what shows how it was made.
+constexpr int kTerrainPort = 0;
+constexpr int kPlacementsPort = 1;
+constexpr int kSketchFeaturesPort = 2;
+constexpr int kSeamsPort = 3;
+constexpr int kReportPort = 4;
+constexpr int kConstructionPort = 5;
+constexpr int kOutputPorts = 6;
 } // namespace
 
 vtkTerrainSynthesis::vtkTerrainSynthesis()
@@ -50,7 +63,7 @@ vtkTerrainSynthesis::vtkTerrainSynthesis()
   this->VerticalOffset = defaults.verticalOffset;
   this->Repetition = defaults.repetitionPenalty;
   this->SetNumberOfInputPorts(3);
-  this->SetNumberOfOutputPorts(2);
+  this->SetNumberOfOutputPorts(kOutputPorts);
 }
 
 int vtkTerrainSynthesis::FillInputPortInformation(int port, vtkInformation* info)
@@ -77,7 +90,10 @@ int vtkTerrainSynthesis::FillInputPortInformation(int port, vtkInformation* info
 
 int vtkTerrainSynthesis::FillOutputPortInformation(int port, vtkInformation* info)
 {
-  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkImageData" : "vtkTable");
+  const char* type = port == kTerrainPort || port == kConstructionPort ? "vtkImageData"
+    : port == kSketchFeaturesPort || port == kSeamsPort                ? "vtkPolyData"
+                                                                       : "vtkTable";
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), type);
   return 1;
 }
 
@@ -88,7 +104,27 @@ vtkImageData* vtkTerrainSynthesis::GetTerrain()
 
 vtkTable* vtkTerrainSynthesis::GetPlacements()
 {
-  return vtkTable::SafeDownCast(this->GetOutputDataObject(1));
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(kPlacementsPort));
+}
+
+vtkPolyData* vtkTerrainSynthesis::GetSketchFeatures()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(kSketchFeaturesPort));
+}
+
+vtkPolyData* vtkTerrainSynthesis::GetSeams()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(kSeamsPort));
+}
+
+vtkTable* vtkTerrainSynthesis::GetReport()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(kReportPort));
+}
+
+vtkImageData* vtkTerrainSynthesis::GetConstruction()
+{
+  return vtkImageData::SafeDownCast(this->GetOutputDataObject(kConstructionPort));
 }
 
 vtkTypeBool vtkTerrainSynthesis::ProcessRequest(vtkInformation* request,
@@ -245,6 +281,85 @@ tsynth::SynthesisOptions synthesisOptions(vtkTerrainSynthesis* filter)
   return o;
 }
 
+// The seams as poly-lines along the borders between patches (tsynth::seamLines), in metres on
+// the terrain's grid at z = 0, with an Elevation point array (the mean height of the cells
+// around each corner) so that Warp By Scalar lifts them onto the warped terrain.
+void seamsToPolyData(const tsynth::SynthesisResult& r, vtkPolyData* out)
+{
+  const tsynth::Heightfield& t = r.terrain;
+  const std::vector<tsynth::SeamLine> lines = tsynth::seamLines(r.patchId, t.width, t.height);
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> cells;
+  vtkNew<vtkFloatArray> elevation;
+  elevation->SetName(tsynth::kElevationArray);
+  auto cornerHeight = [&t](int i, int j)
+  {
+    double sum = 0.0;
+    int n = 0;
+    for (int y = j - 1; y <= j; ++y)
+    {
+      for (int x = i - 1; x <= i; ++x)
+      {
+        if (x >= 0 && y >= 0 && x < t.width && y < t.height && t.isValid(x, y))
+        {
+          sum += t.at(x, y);
+          ++n;
+        }
+      }
+    }
+    return n > 0 ? sum / n : 0.0;
+  };
+  constexpr double kCornerOffset = 0.5; // corner (i, j) is half a cell below-left of cell (i, j)
+  for (const tsynth::SeamLine& line : lines)
+  {
+    cells->InsertNextCell(static_cast<vtkIdType>(line.size()));
+    for (const tsynth::CellCorner& c : line)
+    {
+      cells->InsertCellPoint(points->InsertNextPoint(
+        (c.i - kCornerOffset) * t.cellX, (c.j - kCornerOffset) * t.cellY, 0.0));
+      elevation->InsertNextValue(static_cast<float>(cornerHeight(c.i, c.j)));
+    }
+  }
+  out->SetPoints(points);
+  out->SetLines(cells);
+  out->GetPointData()->AddArray(elevation);
+}
+
+// The synthesis report as a table: a Figure name (tsynth::figureRows) and its Value per row.
+void fillReport(const tsynth::SynthesisFigures& figures, vtkTable* table)
+{
+  vtkNew<vtkStringArray> names;
+  names->SetName("Figure");
+  vtkNew<vtkDoubleArray> values;
+  values->SetName("Value");
+  for (const tsynth::FigureRow& row : tsynth::figureRows(figures))
+  {
+    names->InsertNextValue(row.name);
+    values->InsertNextValue(row.value);
+  }
+  table->AddColumn(names);
+  table->AddColumn(values);
+}
+
+// The construction image: the target field the synthesis followed (Target, metres), its
+// confidence (TargetConfidence, 0-1) and the terrain as the patches made it, before the final
+// corrections (Patches, metres), on the terrain's grid: `tsynth synth --debug-dir`'s
+// target.tif, target-confidence.tif and patches.tif.
+void fillConstruction(const tsynth::SynthesisSetup& setup,
+  const tsynth::SynthesisResult& r,
+  vtkImageData* out)
+{
+  tsynth::heightfieldToImage(r.patches, out);
+  out->GetPointData()->GetArray(tsynth::kElevationArray)->SetName("Patches");
+  vtkNew<vtkImageData> target;
+  tsynth::heightfieldToImage(setup.target.field, target);
+  vtkDataArray* field = target->GetPointData()->GetArray(tsynth::kElevationArray);
+  field->SetName("Target");
+  out->GetPointData()->AddArray(field);
+  tsynth::addPointArray(out, "TargetConfidence", setup.target.weight.data());
+  out->GetPointData()->SetActiveScalars("Target");
+}
+
 } // namespace
 
 int vtkTerrainSynthesis::RequestInformation(vtkInformationVector** inputVector,
@@ -270,18 +385,26 @@ int vtkTerrainSynthesis::RequestInformation(vtkInformationVector** inputVector,
       extent, gridRequest(this), spacing[0], spacing[1], this->PatchSize, propertyNames());
     const int wholeExtent[6] = { 0, grid.width - 1, 0, grid.height - 1, 0, 0 };
     const double origin[3] = { 0.0, 0.0, 0.0 };
-    vtkInformation* out = outputVector->GetInformationObject(0);
-    out->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent, 6);
-    out->Set(vtkDataObject::SPACING(), grid.cellX, grid.cellY, 1.0);
-    out->Set(vtkDataObject::ORIGIN(), origin, 3);
+    const int noExtent[6] = { 0, -1, 0, -1, 0, -1 };
+    for (int port : { kTerrainPort, kConstructionPort })
+    {
+      const bool made = port == kTerrainPort || this->DebugOutputs;
+      vtkInformation* out = outputVector->GetInformationObject(port);
+      out->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), made ? wholeExtent : noExtent, 6);
+      out->Set(vtkDataObject::SPACING(), grid.cellX, grid.cellY, 1.0);
+      out->Set(vtkDataObject::ORIGIN(), origin, 3);
+    }
   }
   catch (const std::exception& e)
   {
     // Nothing announced: not the exemplar's grid the pipeline copied in by default.
-    vtkInformation* out = outputVector->GetInformationObject(0);
-    out->Remove(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
-    out->Remove(vtkDataObject::SPACING());
-    out->Remove(vtkDataObject::ORIGIN());
+    for (int port : { kTerrainPort, kConstructionPort })
+    {
+      vtkInformation* out = outputVector->GetInformationObject(port);
+      out->Remove(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+      out->Remove(vtkDataObject::SPACING());
+      out->Remove(vtkDataObject::ORIGIN());
+    }
     vtkErrorMacro(<< e.what());
     return 0;
   }
@@ -297,7 +420,10 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
     "CellSize, or fewer or smaller exemplars.",
     [&]
     {
-      vtkImageData::GetData(outputVector, 0)->Initialize(); // aborted: an empty output
+      for (int port = 0; port < kOutputPorts; ++port) // aborted: empty outputs
+      {
+        vtkDataObject::GetData(outputVector, port)->Initialize();
+      }
     },
     [&]
     {
@@ -341,10 +467,19 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
       {
         vtkWarningMacro(<< warning);
       }
-      vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+      vtkImageData* output = vtkImageData::GetData(outputVector, kTerrainPort);
       tsynth::heightfieldToImage(r.terrain, output);
       addDiagnosticArrays(r, output);
-      fillPlacementTable(r, setup, ex, vtkTable::GetData(outputVector, 1));
+      fillPlacementTable(r, setup, ex, vtkTable::GetData(outputVector, kPlacementsPort));
+      tsynth::featureGraphToPolyData(
+        setup.target.graph, vtkPolyData::GetData(outputVector, kSketchFeaturesPort));
+      seamsToPolyData(r, vtkPolyData::GetData(outputVector, kSeamsPort));
+      if (this->DebugOutputs)
+      {
+        fillReport(tsynth::measureSynthesis(setup, r, this->PatchSize),
+          vtkTable::GetData(outputVector, kReportPort));
+        fillConstruction(setup, r, vtkImageData::GetData(outputVector, kConstructionPort));
+      }
     });
 }
 
@@ -363,4 +498,8 @@ void vtkTerrainSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "MemoryBudget: " << this->MemoryBudget << " GB\n";
   os << indent << "LandformRelief: " << this->LandformRelief << "\n";
+  os << indent << "DebugOutputs: " << (this->DebugOutputs ? "on" : "off") << "\n";
+  os << indent << "RegionMaps: " << this->RegionMaps.size() << "\n";
+  os << indent << "BackendUsed: " << (this->BackendUsed.empty() ? "(none yet)" : this->BackendUsed)
+     << "\n";
 }

@@ -3,6 +3,8 @@ set(TSYNTH_SYNTHESIS_SOURCES
   Synthesis/Landform.cxx
   Synthesis/PatchColours.cxx
   Synthesis/Regions.cxx
+  Synthesis/SeamLines.cxx
   Synthesis/Setup.cxx
+  Synthesis/SynthesisFigures.cxx
   Synthesis/Synthesizer.cxx
   Synthesis/Target.cxx)

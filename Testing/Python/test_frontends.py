@@ -93,6 +93,97 @@ class FrontEndsTest(unittest.TestCase):
         self.assert_same_terrain(sm.Fetch(synth, arg1=None, arg2=None, idx=0),
                                  self.cli(self.colorado, self.strokes, "--size", "160x160"))
 
+    def test_the_debug_outputs_are_the_command_lines_debug_files_and_report(self):
+        """Sketch Features, Seams, Report and Construction (issue 23): what --debug-dir and
+        --report write, inside ParaView, for the same synthesis."""
+        exemplar = simple.TerrainReader(FileName=self.colorado)
+        sketch = simple.PNGSeriesReader(FileNames=[self.strokes])
+        synth = simple.TerrainSynthesis(Exemplars=[exemplar], Sketch=sketch, OutputSize=[160, 160],
+                                        PatchSize=PATCH, Backend=CPU, Seed=SEED)
+        synth.UpdatePipeline()
+        fetch = lambda port: sm.Fetch(synth, arg1=None, arg2=None, idx=port)  # noqa: E731
+        self.assertEqual(fetch(4).GetNumberOfRows(), 0)  # Debug Outputs off: empty
+        self.assertEqual(fetch(5).GetNumberOfPoints(), 0)
+        synth.DebugOutputs = 1
+        synth.UpdatePipeline()
+        debug = self.path("debug")
+        report_path = self.path("report.json")
+        cli = self.cli(self.colorado, self.strokes, "--size", "160x160", "--debug-dir", debug,
+                       "--report", report_path)
+        terrain = fetch(0)
+        self.assert_same_terrain(terrain, cli)
+
+        # The report: every figure as the CLI's JSON has it.
+        import json
+        with open(report_path) as f:
+            report = json.load(f)
+        table = fetch(4)
+        rows = {table.GetValue(i, 0).ToString(): table.GetValue(i, 1).ToDouble()
+                for i in range(table.GetNumberOfRows())}
+        self.assertGreater(len(rows), 30)
+        for name, value in rows.items():
+            node = report
+            for key in name.split("."):
+                if key.startswith("sigma_"):
+                    node = next(b["correlation"] for b in node if b["sigma_cells"] == float(key[6:]))
+                else:
+                    node = node[key]
+            if node is None:
+                self.assertTrue(np.isnan(value), name)
+            else:
+                self.assertAlmostEqual(value, node, places=9, msg=name)
+        self.assertGreater(rows["legibility.legible_share"], 0.0)
+
+        # The construction image: target.tif, target-confidence.tif and patches.tif.
+        construction = fetch(5)
+        self.assertEqual(construction.GetDimensions(), terrain.GetDimensions())
+        for array, name in (("Target", "target"), ("TargetConfidence", "target-confidence"),
+                            ("Patches", "patches")):
+            ours = vtk_to_numpy(construction.GetPointData().GetArray(array))
+            theirs = vtk_to_numpy(sm.Fetch(simple.TerrainReader(
+                FileName=os.path.join(debug, name + ".tif"))).GetPointData().GetArray("Elevation"))
+            np.testing.assert_allclose(ours, theirs, rtol=0, atol=1e-3, err_msg=array)
+        patches = vtk_to_numpy(construction.GetPointData().GetArray("Patches"))
+        self.assertGreater(float(np.abs(patches - vtk_to_numpy(
+            terrain.GetPointData().GetArray("Elevation"))).max()), 1.0)  # before the corrections
+
+        # The sketch's feature tree: sketch-features.vtp, in metres on the terrain's grid.
+        reader = vtkXMLPolyDataReader()
+        reader.SetFileName(os.path.join(debug, "sketch-features.vtp"))
+        reader.Update()
+        features = fetch(2)
+        self.assertGreater(features.GetNumberOfLines(), 0)
+        self.assertEqual(features.GetNumberOfPoints(), reader.GetOutput().GetNumberOfPoints())
+        np.testing.assert_array_equal(vtk_to_numpy(features.GetPoints().GetData()),
+                                      vtk_to_numpy(reader.GetOutput().GetPoints().GetData()))
+
+        # The seams: lines along the borders of PatchId, each step one cell border.
+        seams = fetch(3)
+        self.assertGreater(seams.GetNumberOfLines(), 3)
+        ids = vtk_to_numpy(terrain.GetPointData().GetArray("PatchId")).reshape(160, 160)
+        dx = terrain.GetSpacing()[0]
+        points = vtk_to_numpy(seams.GetPoints().GetData())
+        corners = np.rint(points[:, :2] / dx + 0.5).astype(int)  # corner (i, j) at (i - 0.5) cells
+        np.testing.assert_allclose(points[:, :2], (corners - 0.5) * dx, atol=1e-6)
+        lines = seams.GetLines()
+        lines.InitTraversal()
+        from vtkmodules.vtkCommonCore import vtkIdList
+        cell = vtkIdList()
+        borders = 0
+        while lines.GetNextCell(cell):
+            for k in range(1, cell.GetNumberOfIds()):
+                (i0, j0), (i1, j1) = corners[cell.GetId(k - 1)], corners[cell.GetId(k)]
+                self.assertEqual(abs(i1 - i0) + abs(j1 - j0), 1)
+                if i0 == i1:  # a border between cells (i - 1, j) and (i, j)
+                    j = min(j0, j1)
+                    self.assertNotEqual(ids[j, i0 - 1], ids[j, i0])
+                else:  # between cells (i, j - 1) and (i, j)
+                    i = min(i0, i1)
+                    self.assertNotEqual(ids[j0 - 1, i], ids[j0, i])
+                borders += 1
+        expected = int(np.count_nonzero(ids[:, 1:] != ids[:, :-1]) + np.count_nonzero(ids[1:] != ids[:-1]))
+        self.assertEqual(borders, expected)  # every border drawn, none twice
+
     def test_every_option_of_the_command_line_maps_to_the_filter(self):
         # The options beyond the defaults, in both: the same terrain, unlike the default one.
         exemplar = simple.TerrainReader(FileName=self.colorado)
