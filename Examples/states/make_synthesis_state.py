@@ -9,8 +9,8 @@ Extractor, coloured by NodeKind: 0 path grey, 1 end red, 2 branch yellow); the s
 (Data/sketches/strokes_y_ridges.png in its own colours, scaled to the terrain's size); and the
 synthesised terrain (Terrain Synthesis, default properties except OutputSize 256 x 256 and
 Backend CPU, so it runs in seconds and gives the same terrain everywhere) warped by its
-Elevation at true scale (spacing and heights are both metres) with the graph-cut seams
-(SeamMask) drawn over it in magenta.
+Elevation at true scale (spacing and heights are both metres) with the seams between its patches
+(the synthesis's Seams output, lines warped by their Elevation likewise) drawn over it in magenta.
 
 Open it (file names in the state are relative to the repository; the plugin must be loaded first):
 
@@ -34,6 +34,7 @@ OUT = sys.argv[1] if len(sys.argv) > 1 else os.path.join(state_files.STATES, "sy
 
 TERRAIN_CELLS = [256, 256]  # small enough to synthesise in a few seconds
 CPU = 2  # Backend enumeration: 0 Auto, 1 OpenCL, 2 CPU
+SEAMS_PORT = 3  # the synthesis's outputs: Terrain, Placements, Sketch Features, Seams, ...
 GAP_M = 5000.0  # between the pieces laid out side by side
 SEAM_LIFT_M = 15.0  # seams drawn just above the surface they lie on
 FEATURE_LIFT_M = 10.0  # feature trees just above the flat exemplar
@@ -55,8 +56,8 @@ def build_pipeline():
                                     OutputSize=TERRAIN_CELLS, Backend=CPU)
     warped = simple.WarpByScalar(registrationName="Warped", Input=synth,
                                  Scalars=["POINTS", "Elevation"], ScaleFactor=1.0)
-    seams = simple.Threshold(registrationName="Seams", Input=warped, Scalars=["POINTS", "SeamMask"],
-                             LowerThreshold=1, UpperThreshold=1, AllScalars=0)
+    seams = simple.WarpByScalar(registrationName="Seams", Input=simple.OutputPort(synth, SEAMS_PORT),
+                                Scalars=["POINTS", "Elevation"], ScaleFactor=1.0)
     return exemplar, sketch, trees, synth, warped, seams
 
 
@@ -103,8 +104,9 @@ def show_all(view, exemplar, sketch, trees, synth, warped, seams):
     offset = [terrain_width + GAP_M, 0.0, 0.0]
     surface.Position = offset
     lines_on_top = simple.Show(seams, view)
-    simple.ColorBy(lines_on_top, None)
+    lines_on_top.ColorArrayName = ["POINTS", ""]  # one colour
     lines_on_top.AmbientColor = lines_on_top.DiffuseColor = MAGENTA
+    lines_on_top.LineWidth = 2.0
     lines_on_top.Position = [offset[0], offset[1], SEAM_LIFT_M]
     simple.Hide(synth, view)
     return [max(width, 2.0 * terrain_width + GAP_M), back + width], z_range

@@ -35,7 +35,7 @@ HEIGHT_MARGIN_M = 300.0  # merging (vertical offsets, Poisson) may leave the exe
 # Lower bounds a little under what the bundled data gives today (measured, after the #).
 MIN_TREE_POINTS = 30000  # 32758
 MIN_TREE_LINES = 950  # 1017
-MIN_SEAM_CELLS = 9000  # 10702
+MIN_SEAM_LINES = 110  # 129
 MIN_STREAM_CELLS = 43000  # 47942
 # The picture: vtkImageDifference's thresholded error (VTK's regression tests pass under 10)
 # and the share of pixels whose colour moved by more than PIXEL_STEP in some channel.
@@ -161,11 +161,16 @@ class SynthesisState(unittest.TestCase):
         self.assertEqual(warped.GetNumberOfPoints(), z.size)
         heights = vtk_to_numpy(warped.GetPoints().GetData())[:, 2]
         np.testing.assert_allclose(heights, z, atol=1e-3)  # warped by Elevation at scale 1
-        seams = fetch("Seams")
-        mask = point_array(terrain, "SeamMask")
-        print("seams: %d seam points, %d threshold cells" % (int(mask.sum()), seams.GetNumberOfCells()))
-        self.assertGreater(seams.GetNumberOfCells(), MIN_SEAM_CELLS)
-        self.assertEqual(int(point_array(seams, "SeamMask").max()), 1)  # every drawn cell touches a seam
+        seams = fetch("Seams")  # the synthesis's seam lines, warped by their Elevation
+        ids = point_array(terrain, "PatchId").reshape(TERRAIN_CELLS[1], TERRAIN_CELLS[0])
+        borders = int(np.count_nonzero(ids[:, 1:] != ids[:, :-1]) + np.count_nonzero(ids[1:] != ids[:-1]))
+        segments = seams.GetNumberOfPoints() - seams.GetNumberOfLines()
+        print("seams: %d lines, %d cell borders drawn of %d" % (seams.GetNumberOfLines(), segments, borders))
+        self.assertGreater(seams.GetNumberOfLines(), MIN_SEAM_LINES)
+        self.assertEqual(segments, borders)  # each border between two patches drawn once
+        lifted = vtk_to_numpy(seams.GetPoints().GetData())[:, 2]
+        np.testing.assert_allclose(lifted, point_array(seams, "Elevation"), atol=1e-3)
+        self.assertGreater(float(lifted.min()), np.nanmin(dem_z) - HEIGHT_MARGIN_M)
 
     def test_standard_view_matches_the_baseline(self):
         picture = render_standard_view(os.path.join(STATE_ARGS.out_dir, "synthesis_view.png"))
