@@ -72,20 +72,6 @@ Handler installHandler(int sig, Handler handler)
   return previous.sa_handler;
 }
 
-// A single-band raster that is not 8-bit (a DEM used as the target)?
-bool isDemRaster(const std::string& path)
-{
-  try
-  {
-    const RasterInfo info = readRasterInfo(path, {});
-    return rasterIsDemTarget(info.bands, info.dataType == "Byte");
-  }
-  catch (const Error&)
-  {
-    return false; // several bands: a sketch image, read as one
-  }
-}
-
 } // namespace
 
 std::string withPatchDefault(std::string help)
@@ -122,30 +108,6 @@ void printWarnings(const std::vector<std::string>& warnings)
 
 // The sketch file as the set-up takes it: .vtp poly-lines (metres in the raster
 // frame), a DEM used as the target, or a sketch image (stroke map or grey map).
-SketchInput readSketchInput(const std::string& path, std::vector<std::string>& warnings)
-{
-  if (hasExtension(path, ".vtp"))
-  {
-    vtkNew<vtkPolyData> lines;
-    readPolyDataFile(path, lines);
-    std::string warning;
-    PolylineSketch sketch = polyDataToPolylineSketch(lines, &warning);
-    if (!warning.empty())
-    {
-      warnings.push_back(warning);
-    }
-    return sketch;
-  }
-  if (isVtiPath(path) || isDemRaster(path))
-  {
-    RasterInfo info;
-    Heightfield dem = readTerrainFile(path, {}, &info);
-    warnings.insert(warnings.end(), info.warnings.begin(), info.warnings.end());
-    return dem;
-  }
-  return readColourImage(path);
-}
-
 ProgressBar::ProgressBar(bool enabled)
   : enabled_(enabled && ::isatty(STDERR_FILENO) != 0)
 {

@@ -1,5 +1,5 @@
 // What the command line's sub-commands share: help detection, warnings, the
-// sketch reader, a progress bar, and the parsers of --size and --seed.
+// a progress bar, and the parsers of --size and --seed.
 #pragma once
 
 #include "CommandLine.h"
@@ -28,10 +28,6 @@ bool wantsHelp(const std::vector<std::string>& args);
 
 // Prints each as "tsynth: warning: ..." on stderr.
 void printWarnings(const std::vector<std::string>& warnings);
-
-// The sketch file as the set-up takes it: .vtp poly-lines (metres in the raster
-// frame), a DEM used as the target, or a sketch image (stroke map or grey map).
-SketchInput readSketchInput(const std::string& path, std::vector<std::string>& warnings);
 
 // A one-line progress bar on stderr when it is a terminal.
 class ProgressBar

@@ -1,5 +1,6 @@
 #include "TerrainFileIO.h"
 
+#include "FeatureGraphConversion.h"
 #include "TerrainImageConversion.h"
 #include "VtkErrorObserver.h"
 #include "XmlDataFiles.h"
@@ -9,6 +10,7 @@
 #include <vtkCommand.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
+#include <vtkPolyData.h>
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLImageDataWriter.h>
 
@@ -25,6 +27,43 @@ namespace tsynth
 bool isVtiPath(const std::string& path)
 {
   return hasExtension(path, ".vti");
+}
+
+bool isDemRaster(const std::string& path)
+{
+  try
+  {
+    const RasterInfo info = readRasterInfo(path, {});
+    return rasterIsDemTarget(info.bands, info.dataType == "Byte");
+  }
+  catch (const Error&)
+  {
+    return false; // several bands: a sketch image, read as one
+  }
+}
+
+SketchInput readSketchInput(const std::string& path, std::vector<std::string>& warnings)
+{
+  if (hasExtension(path, ".vtp"))
+  {
+    vtkNew<vtkPolyData> lines;
+    readPolyDataFile(path, lines);
+    std::string warning;
+    PolylineSketch sketch = polyDataToPolylineSketch(lines, &warning);
+    if (!warning.empty())
+    {
+      warnings.push_back(warning);
+    }
+    return sketch;
+  }
+  if (isVtiPath(path) || isDemRaster(path))
+  {
+    RasterInfo info;
+    Heightfield dem = readTerrainFile(path, {}, &info);
+    warnings.insert(warnings.end(), info.warnings.begin(), info.warnings.end());
+    return dem;
+  }
+  return readColourImage(path);
 }
 
 Heightfield readTerrainFile(const std::string& path, const ReadOptions& options, RasterInfo* info)

@@ -3,8 +3,10 @@
 #pragma once
 
 #include "Core/HeightfieldIO.h"
+#include "Synthesis/Setup.h"
 
 #include <string>
+#include <vector>
 
 namespace tsynth
 {
@@ -17,6 +19,15 @@ bool isVtiPath(const std::string& path);
 Heightfield readTerrainFile(const std::string& path,
   const ReadOptions& options = {},
   RasterInfo* info = nullptr);
+
+// True for a single-band raster that is not 8-bit: a DEM, used as a sketch it is the target.
+// Unreadable or several bands: false (a sketch image, read as one).
+bool isDemRaster(const std::string& path);
+
+// The sketch file as the synthesis set-up takes it (tsynth synth --sketch, the Terrain Sketch
+// Reader): .vtp poly-lines (metres in the raster frame), a DEM used as the target, or a sketch
+// image (stroke map or grey map). Warnings about the file are appended to `warnings`.
+SketchInput readSketchInput(const std::string& path, std::vector<std::string>& warnings);
 
 // Writes .tif, .png (+ sidecar) or .vti (inline binary, which this machine's
 // ParaView reads; see DESIGN.md). Complete or not at all.

@@ -7,6 +7,7 @@
 #    built yet, so the kernels and the module are built here, inside the plugin.
 set(tsynth_plugin_xmls
   Plugin/TerrainReader.xml
+  Plugin/TerrainSketchReader.xml
   Plugin/TerrainHillshade.xml
   Plugin/TerrainFeatureExtractor.xml
   Plugin/TerrainSketchFeatures.xml

@@ -205,6 +205,56 @@ class PluginTest(unittest.TestCase):
         self.assertEqual(int((kind == 1).sum()), 7)  # 3 ridge ends, 4 valley ends
         self.assertEqual(sorted(np.unique(feature_type).tolist()), [-1, 1])
 
+    def test_sketch_reader_lays_the_sketch_on_the_exemplars_grid(self):
+        """The Terrain Sketch Reader gives the sketch the exemplar's cells, so it lies under the
+        terrain made from it, and synthesises the same terrain as ParaView's PNG reader."""
+        strokes = os.path.join(PATHS.bundled_data, "sketches", "strokes_y_ridges.png")
+        colorado = os.path.join(PATHS.bundled_data, "dems", "colorado.png")
+        exemplar = simple.TerrainReader(FileName=colorado)
+        sketch = simple.TerrainSketchReader(FileName=strokes, ExemplarFileName=colorado)
+        sketch.UpdatePipeline()
+        image = sm.Fetch(sketch)
+        self.assertEqual(image.GetDimensions(), (512, 512, 1))
+        self.assertEqual(image.GetSpacing()[:2], (90.0, 90.0))  # colorado.json's cell size
+        self.assertEqual(image.GetOrigin(), (0.0, 0.0, 0.0))
+        png = sm.Fetch(simple.PNGSeriesReader(FileNames=[strokes]))
+        self.assertEqual(png.GetSpacing()[0], 1.0)  # the speck this reader replaces
+        np.testing.assert_array_equal(vtk_to_numpy(image.GetPointData().GetArray("Sketch")),
+                                      vtk_to_numpy(png.GetPointData().GetScalars()))
+
+        def terrain(sketch_source):
+            synth = simple.TerrainSynthesis(Exemplars=[exemplar], Sketch=sketch_source,
+                                            OutputSize=[128, 128], PatchSize=32, Backend=2)
+            synth.UpdatePipeline()
+            return sm.Fetch(synth, arg1=None, arg2=None, idx=0)
+
+        ours = terrain(sketch)
+        self.assertEqual(ours.GetSpacing(), image.GetSpacing())
+        np.testing.assert_array_equal(
+            point_array(ours, "Elevation"),
+            point_array(terrain(simple.PNGSeriesReader(FileNames=[strokes])), "Elevation"))
+        # The sketch's feature tree comes out in metres on the same grid.
+        features = simple.TerrainSketchFeatures(Input=sketch)
+        features.UpdatePipeline()
+        bounds = sm.Fetch(features, arg1=None, arg2=None, idx=0).GetBounds()
+        self.assertGreater(bounds[1], 0.5 * 511 * 90.0)
+        self.assertLessEqual(bounds[1], 511 * 90.0 + 1e-6)
+        # CellSize overrides; a DEM target reads as heights; poly-lines are pointed elsewhere.
+        sketch.CellSize = 30.0
+        sketch.UpdatePipeline()
+        self.assertEqual(sm.Fetch(sketch).GetSpacing()[:2], (30.0, 30.0))
+        dem = simple.TerrainSketchReader(FileName=self.alps, ExemplarFileName=colorado)
+        dem.UpdatePipeline()
+        heights = point_array(sm.Fetch(dem), "Elevation")
+        self.assertEqual(sm.Fetch(dem).GetSpacing()[0], 90.0)
+        np.testing.assert_array_equal(heights, dem_array(self.alps)[0].ravel())
+        with tempfile.TemporaryDirectory() as tmp:
+            lines = os.path.join(tmp, "lines.vtp")
+            open(lines, "w").close()
+            refused = simple.TerrainSketchReader(FileName=lines)
+            refused.UpdatePipeline()
+            self.assertEqual(sm.Fetch(refused).GetNumberOfPoints(), 0)
+
     def test_sketch_features_from_polylines_with_elevation(self):
         from vtkmodules.vtkCommonCore import vtkFloatArray, vtkIntArray, vtkPoints
         from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
