@@ -63,7 +63,7 @@ writes them: its output works directly as a sketch of the same DEM.
   --sketch SKETCH        the sketch
   -o, --output OUT       .tif (GeoTIFF float32), .png (16-bit + sidecar) or .vti
   --size WxH             output size in cells (default: the sketch's pixels; for poly-lines
-                         the grid they were found on, else as far as they reach)
+                         the grid they were found on, else half a patch past their reach)
   --cell M               output cell size in metres (default: the first exemplar's)
   --patch N              patch size in cells (default %PATCH%)
   --backend B            auto (default), opencl or cpu: same result, different speed

@@ -98,7 +98,7 @@ public:
   vtkSetClampMacro(Repetition, double, 0.0, 100.0);
   vtkGetMacro(Repetition, double);
   /// Output size in cells; 0 0 (default) takes the sketch image's pixels, or
-  /// the poly-lines' frame (their GridSize x CellSize field data) or extent.
+  /// the poly-lines' frame (their GridSize x CellSize field data) or extent and half a patch.
   vtkSetVector2Macro(OutputSize, int);
   vtkGetVector2Macro(OutputSize, int);
   /// Output cell size in metres; 0 (default) takes the first exemplar's.

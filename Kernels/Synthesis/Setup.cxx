@@ -68,6 +68,9 @@ std::string cellText(double cx, double cy)
 
 // Cells needed to hold coordinates from 0 to `extent` metres (cell centres at
 // multiples of `cell`), clamped to what an int can count.
+// The margin beyond unframed poly-lines, in patches (polylineSize).
+constexpr double kLineMarginInPatches = 0.5;
+
 int cellsToReach(double extent, double cell)
 {
   const double cells = std::floor(extent / cell + 0.5) + 1.0;
@@ -131,6 +134,16 @@ void polylineSize(const SketchExtent& s, OutputGrid& g, int patch, const SetupOp
     throw Error(span + ": an output of " + sizeText(g.width, g.height) + " cells of " +
       cellText(g.cellX, g.cellY) + ", smaller than one patch (" + std::to_string(patch) +
       " cells); are they in cells or degrees?" + advice);
+  }
+  // Without a frame the output reaches past the lines' far end by half a patch, so a stroke
+  // drawn last does not lie on the border but has room for its landform's cross-section (a
+  // ridge or valley reaches out to about half a patch each side).
+  const bool framed = s.frameWidth > 0.0 && s.frameHeight > 0.0;
+  if (!framed)
+  {
+    const double margin = kLineMarginInPatches * patch;
+    g.width = cellsToReach(s.maxX + margin * g.cellX, g.cellX);
+    g.height = cellsToReach(s.maxY + margin * g.cellY, g.cellY);
   }
   if (g.width > kMaxOutputSide || g.height > kMaxOutputSide)
   {

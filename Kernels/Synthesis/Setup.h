@@ -31,7 +31,7 @@ struct PolylineSketch
   std::vector<Polyline> lines; // points in metres; elevation in metres (NaN: none)
   // Size in metres (edge to edge: cells x cell size) of the raster the lines were
   // drawn on, e.g. the DEM whose features they are; 0 when unknown, and the
-  // output then reaches just as far as the lines.
+  // output then reaches half a patch past the lines' far end (polylineSize).
   double frameWidth = 0.0;
   double frameHeight = 0.0;
 };
@@ -93,7 +93,7 @@ SketchExtent sketchExtent(const SketchInput& sketch);
 
 // The grid a synthesis will produce (what the filter announces before it runs):
 // the requested size and cell size where given; else the raster sketch's pixels,
-// or for poly-lines their frame (or extent) divided by the cell size; the cell
+// or for poly-lines their frame (or extent and half a patch) divided by the cell size; the cell
 // size defaults to the first exemplar's (exemplarCellX/Y). Throws tsynth::Error
 // with what was found and what to change for: a bad request, poly-lines whose
 // extent gives an absurd output (coordinates in cells or degrees rather than

@@ -108,12 +108,13 @@ TEST(Setup, PolylinesGiveTheGridTheyWereFoundOn)
 
 TEST(Setup, PolylinesWithoutAFrameReachAsFarAsTheLines)
 {
-  // Cell centres at multiples of 90 m: x up to 14310 m is cell 159, y 12600 m cell 140.
+  // Cell centres at multiples of 90 m: x up to 14310 m is cell 159, y 12600 m cell 140; the
+  // output reaches half a patch (16 cells) further, so the last stroke is not on the border.
   const PolylineSketch s = sketchOf({ line({ { 0, 0 }, { 14310, 12600 } }),
     line({ { 4500, 9000 }, { 9000, 9000 } }, FeatureType::Valley) });
   const OutputGrid g = gridOf(s);
-  EXPECT_EQ(g.width, 160);
-  EXPECT_EQ(g.height, 141);
+  EXPECT_EQ(g.width, 160 + kPatch / 2);
+  EXPECT_EQ(g.height, 141 + kPatch / 2);
 }
 
 TEST(Setup, PolylinesInCellsAreRefusedWithWhatWasFound)
@@ -183,16 +184,17 @@ TEST(Setup, PrepareConvertsMetresResamplesExemplarsAndBuildsTheTarget)
   SetupInputs in;
   in.exemplars.push_back(ridgeExemplar(200, 45.0));
   in.exemplarNames.push_back("ridge.tif");
-  // A ridge from 600 m to 5400 m at y = 3000 m on 30 m cells: cells 20 to 180 of row 100.
+  // A ridge from 600 m to 5400 m at y = 3000 m on 30 m cells: cells 20 to 180 of row 100, in
+  // an output half a patch larger.
   in.sketch = sketchOf({ line({ { 600, 3000 }, { 5400, 3000 } }) });
   in.grid.cellX = in.grid.cellY = 30.0;
   in.patchSize = kPatch;
   const SynthesisSetup s = prepareSynthesis(std::move(in));
   EXPECT_EQ(s.sketchKind, "poly-lines");
-  EXPECT_EQ(s.grid.width, 181);
-  EXPECT_EQ(s.grid.height, 101);
-  EXPECT_EQ(s.target.field.width, 181);
-  EXPECT_EQ(s.target.field.height, 101);
+  EXPECT_EQ(s.grid.width, 181 + kPatch / 2);
+  EXPECT_EQ(s.grid.height, 101 + kPatch / 2);
+  EXPECT_EQ(s.target.field.width, 181 + kPatch / 2);
+  EXPECT_EQ(s.target.field.height, 101 + kPatch / 2);
   EXPECT_EQ(s.target.field.cellX, 30.0);
   // 199 intervals of 45 m on 30 m cells: 299 cells a side.
   ASSERT_EQ(s.exemplars.size(), 1u);
@@ -259,7 +261,8 @@ TEST(Setup, MemoryOverTheBudgetIsRefusedWithTheEstimate)
   SetupInputs in;
   in.openClMatcher = false;
   in.exemplars.push_back(ridgeExemplar(200, kCell));
-  in.sketch = sketchOf({ line({ { 900, 900 }, { 14310, 14310 } }) });
+  // To 12870 m, cell 143, and half a patch beyond: 160 x 160 cells.
+  in.sketch = sketchOf({ line({ { 900, 900 }, { 12870, 12870 } }) });
   in.patchSize = kPatch;
   in.memoryBudget = 0.5 * small;
   in.names = cliNames();

@@ -213,8 +213,8 @@ class FrontEndsTest(unittest.TestCase):
         self.assertIn("--patch must be a multiple of 4 from 16 to 512 cells, not 42.", result.stderr)
 
     def test_a_polyline_sketch_in_metres_gives_the_same_terrain(self):
-        # Metres on colorado's 90 m cells, reaching x = 14310 m (cell 159) and y = 12600 m (cell 140);
-        # both carry height constraints.
+        # Metres on colorado's 90 m cells, reaching x = 14310 m (cell 159) and y = 12600 m (cell 140),
+        # in an output half a patch larger; both carry height constraints.
         vtp = self.path("lines.vtp")
         write_polylines(vtp, [(1800, 6300), (14310, 7200), (900, 12600), (12600, 11700)],
                         elevation=[3600, 3200, 2600, 2600])
@@ -223,7 +223,8 @@ class FrontEndsTest(unittest.TestCase):
         synth = self.wrapped_synthesis(lines.GetOutputPort())
         synth.UpdateInformation()
         announced = synth.GetOutputInformation(0).Get(vtkStreamingDemandDrivenPipeline.WHOLE_EXTENT())
-        self.assertEqual(tuple(announced), (0, 159, 0, 140, 0, 0))
+        margin = PATCH // 2
+        self.assertEqual(tuple(announced), (0, 159 + margin, 0, 140 + margin, 0, 0))
         synth.Update()
         terrain = synth.GetOutputDataObject(0)
         self.assertEqual(terrain.GetExtent(), tuple(announced))  # RequestInformation was honest

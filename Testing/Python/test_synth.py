@@ -353,17 +353,19 @@ class SynthTest(unittest.TestCase):
 
     def test_polyline_elevations_are_met(self):
         # A ridge at 3500 m to 3000 m and a valley at 2000 m, drawn in metres on colorado's
-        # 90 m cells: cells (20, 100)-(180, 100) and (10, 190)-(190, 150).
+        # 90 m cells: cells (20, 100)-(180, 100) and (10, 190)-(190, 150), in an output reaching
+        # half a default patch (40 cells) past them.
         vtp = self.path("lines.vtp")
         write_polylines(vtp, [(20 * 90, 100 * 90), (180 * 90, 100 * 90), (10 * 90, 190 * 90), (190 * 90, 150 * 90)],
                         elevation=[3500, 3000, 2000, 2000])
         out = self.path("lines.tif")
         report = self.synth("colorado.png", vtp, out)
         self.assertEqual(report["sketch_kind"], "poly-lines")
-        self.assertEqual(report["size"], [191, 191])
+        size = 191 + 80 // 2
+        self.assertEqual(report["size"], [size, size])
 
         def height(column, row_from_south):
-            line = 191 - 1 - row_from_south  # GDAL counts lines from the top
+            line = size - 1 - row_from_south  # GDAL counts lines from the top
             r = subprocess.run(["gdallocationinfo", "-valonly", out, str(column), str(line)],
                                capture_output=True, text=True)
             self.assertEqual(r.returncode, 0, r.stderr)
