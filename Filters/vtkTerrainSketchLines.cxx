@@ -41,7 +41,9 @@ int vtkTerrainSketchLines::RequestData(vtkInformation*,
   type->SetName("FeatureType");
   type->SetNumberOfTuples(input->GetNumberOfLines());
   type->FillValue(this->FeatureType);
-  output->GetCellData()->AddArray(type);
+  // The active cell scalars, so ParaView colours the lines by it when they are shown: with the
+  // plugin's FeatureType colour map, ridges red and valleys blue.
+  output->GetCellData()->SetScalars(type);
 
   const vtkIdType n = input->GetNumberOfPoints();
   vtkNew<vtkFloatArray> elevation;

@@ -6,7 +6,8 @@
  * Input: poly-lines in metres in the raster frame of the terrain to make (as
  * ParaView's Poly Line or Spline source draws them over a DEM read at origin 0).
  * Output: the same lines with the cell array "FeatureType" (+1 ridge, -1
- * valley) and the point array "Elevation" (metres; NaN where the line has no
+ * valley; the active cell scalars, so ParaView shows ridges red and valleys blue) and the
+ * point array "Elevation" (metres; NaN where the line has no
  * height): none, each point's z coordinate (then set to 0), or one constant
  * height. Several marked sources are combined with Append Geometry.
  */

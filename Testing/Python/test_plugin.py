@@ -988,6 +988,57 @@ class PluginTest(unittest.TestCase):
         empty.UpdatePipeline()
         self.assertEqual(sm.Fetch(empty).GetNumberOfPoints(), 0)
 
+    def test_sketch_lines_show_coloured_by_feature_type(self):
+        """Shown, the marked lines are coloured by FeatureType (ridges red, valleys blue by the
+        plugin's map), not the thin white line a Poly Line is."""
+        line = simple.PolyLineSource(Points=[900.0, 900.0, 0.0, 9000.0, 9000.0, 0.0])
+        view = simple.CreateRenderView()
+        try:
+            for kind in ("Ridge", "Valley"):
+                shown = simple.Show(simple.TerrainSketchLines(Input=line, FeatureType=kind), view)
+                self.assertEqual(list(shown.ColorArrayName), ["CELLS", "FeatureType"], kind)
+            lut = simple.GetColorTransferFunction("FeatureType")
+            self.assertEqual(lut.InterpretValuesAsCategories, 1)
+            self.assertNotEqual(list(shown.ColorArrayName), list(simple.Show(line, view).ColorArrayName))
+        finally:
+            simple.Delete(view)
+
+    def test_new_terrain_sketch_macro_sets_up_a_sketch_and_its_terrain(self):
+        """Plugin/Macros/NewTerrainSketch.py, run as ParaView runs a macro (as __main__, with the
+        exemplar selected): a ridge line across the exemplar, its terrain as large, and the
+        ridge standing in it."""
+        import runpy
+        macro = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Plugin", "Macros",
+                             "NewTerrainSketch.py")
+        exemplar = simple.TerrainReader(FileName=os.path.join(PATHS.bundled_data, "dems", "colorado.png"))
+        simple.SetActiveSource(None)
+        with self.assertRaises(RuntimeError):  # nothing selected: one sentence, nothing made
+            runpy.run_path(macro, run_name="__main__")
+        self.assertIsNone(simple.FindSource("Terrain"))
+        simple.SetActiveSource(exemplar)
+        view = simple.CreateRenderView()
+        simple.SetActiveView(view)
+        try:
+            runpy.run_path(macro, run_name="__main__")
+            line, terrain = simple.FindSource("Ridge line"), simple.FindSource("Terrain")
+            self.assertEqual(simple.GetActiveSource(), line)  # ready to drag its points
+            points = np.array(line.Points).reshape(-1, 3)
+            dem = sm.Fetch(exemplar)
+            width = (dem.GetDimensions()[0] - 1) * dem.GetSpacing()[0]
+            self.assertAlmostEqual(points[0, 0], width / 3.0, delta=1.0)
+            self.assertAlmostEqual(points[-1, 0], 2.0 * width / 3.0, delta=1.0)
+            out = sm.Fetch(terrain, arg1=None, arg2=None, idx=0)
+            self.assertEqual(out.GetDimensions(), dem.GetDimensions())
+            z = point_array(out, "Elevation").reshape(out.GetDimensions()[1], out.GetDimensions()[0])
+            row = int(round(points[0, 1] / dem.GetSpacing()[1]))
+            columns = slice(int(points[0, 0] / 90.0) + 20, int(points[-1, 0] / 90.0) - 20)
+            crest = float(np.median(z[row, columns]))
+            flanks = float(np.median(np.concatenate([z[row - 60, columns], z[row + 60, columns]])))
+            print("macro ridge: crest %.0f m, flanks %.0f m" % (crest, flanks))
+            self.assertGreater(crest, flanks + 150.0)  # a ridge along the drawn line
+        finally:
+            simple.Delete(view)
+
     def test_distance_command_takes_polylines_with_costs(self):
         # A .vtp ridge along y = 2000 m (cells of 10 m: row 200) with a cheaper (higher)
         # west end: heights peak on the line, fall away from it, and the west end is higher.
