@@ -78,9 +78,8 @@ int vtkTerrainGraphCutMerger::RequestData(vtkInformation*,
     {
       tsynth::Heightfield terrain =
         tsynth::imageToHeightfield(terrainImage, this->GetInputArrayToProcess(0, inputVector));
-      const tsynth::Heightfield patch =
-        tsynth::imageToHeightfield(patchImage,
-          tsynth::selectedArrayOn(this->GetInputArrayInformation(1), patchImage));
+      const tsynth::Heightfield patch = tsynth::imageToHeightfield(
+        patchImage, tsynth::selectedArrayOn(this->GetInputArrayInformation(1), patchImage));
       std::vector<std::uint8_t> filled = tsynth::pointFlags(terrainImage, "Filled", 1);
       for (std::size_t k = 0; k < filled.size(); ++k)
       {

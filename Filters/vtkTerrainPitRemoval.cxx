@@ -114,8 +114,8 @@ int vtkTerrainPitRemoval::RequestData(vtkInformation*,
       tsynth::checkDemToDrain(dem, options, true); // the flow arrays are always made
       if (sinkImage != nullptr)
       {
-        const tsynth::Heightfield mask = tsynth::imageToHeightfield(
-          sinkImage, tsynth::selectedArrayOn(this->GetInputArrayInformation(kSinksArrayIndex), sinkImage));
+        const tsynth::Heightfield mask = tsynth::imageToHeightfield(sinkImage,
+          tsynth::selectedArrayOn(this->GetInputArrayInformation(kSinksArrayIndex), sinkImage));
         sinks = tsynth::sinkMaskFromRaster(mask, dem.width, dem.height);
         options.sinks = &sinks;
       }

@@ -42,8 +42,9 @@ void sketchPixels(const std::string& path, SketchGrid& grid)
 {
   if (tsynth::hasExtension(path, ".vtp"))
   {
-    throw tsynth::Error(path + " holds poly-lines, which are in metres already: open it with "
-                               "ParaView's XML PolyData reader and give it to Sketch as it is.");
+    throw tsynth::Error(path +
+      " holds poly-lines, which are in metres already: open it with "
+      "ParaView's XML PolyData reader and give it to Sketch as it is.");
   }
   if (tsynth::isVtiPath(path) || tsynth::isDemRaster(path))
   {
@@ -110,11 +111,13 @@ void colourImageToImage(const tsynth::ColourImage& sketch, vtkImageData* out)
   pixels->SetName(kSketchArray);
   pixels->SetNumberOfComponents(sketch.channels);
   pixels->SetNumberOfTuples(static_cast<vtkIdType>(sketch.width) * sketch.height);
-  const auto rowBytes = static_cast<std::size_t>(sketch.width) * static_cast<std::size_t>(sketch.channels);
+  const auto rowBytes =
+    static_cast<std::size_t>(sketch.width) * static_cast<std::size_t>(sketch.channels);
   for (int row = 0; row < sketch.height; ++row) // VTK's rows run north from the bottom
   {
     const std::uint8_t* from = sketch.pixel(0, sketch.height - 1 - row);
-    std::copy(from, from + rowBytes, pixels->GetPointer(0) + static_cast<std::size_t>(row) * rowBytes);
+    std::copy(
+      from, from + rowBytes, pixels->GetPointer(0) + static_cast<std::size_t>(row) * rowBytes);
   }
   out->SetDimensions(sketch.width, sketch.height, 1);
   out->GetPointData()->SetScalars(pixels);
@@ -148,7 +151,8 @@ int vtkTerrainSketchReader::RequestInformation(vtkInformation*,
     vtkErrorMacro(<< e.what());
     return 0;
   }
-  if (this->CellSize <= 0.0 && (this->ExemplarFileName == nullptr || *this->ExemplarFileName == '\0'))
+  if (this->CellSize <= 0.0 &&
+    (this->ExemplarFileName == nullptr || *this->ExemplarFileName == '\0'))
   {
     vtkWarningMacro("No ExemplarFileName: the sketch's pixels are 1 m; give the exemplar DEM (or "
                     "CellSize) to lay the sketch on the grid the synthesis makes of it.");
@@ -210,7 +214,8 @@ void vtkTerrainSketchReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
-  os << indent << "ExemplarFileName: " << (this->ExemplarFileName ? this->ExemplarFileName : "(none)")
+  os << indent
+     << "ExemplarFileName: " << (this->ExemplarFileName ? this->ExemplarFileName : "(none)")
      << "\n";
   os << indent << "CellSize: " << this->CellSize << "\n";
 }

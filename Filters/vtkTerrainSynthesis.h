@@ -13,16 +13,16 @@
  * for none; the placement order), SeamMask, PlacementOrder, MatchCost and PatchColour (0-11,
  * different for patches that touch: tsynth::patchColours) arrays. Output port 1: a
  * table of the placements (order, feature or fill, exemplar, variant, source position, output cell,
- * match cost, seam cost, vertical offset). Output port 2: the sketch's feature tree as the synthesis
- * follows it, in metres on the terrain's grid (DESIGN.md's feature-graph poly-data). Output
- * port 3: the seams as poly-lines along the borders between patches, with an Elevation point
+ * match cost, seam cost, vertical offset). Output port 2: the sketch's feature tree as the
+ * synthesis follows it, in metres on the terrain's grid (DESIGN.md's feature-graph poly-data).
+ * Output port 3: the seams as poly-lines along the borders between patches, with an Elevation point
  * array for Warp By Scalar. With DebugOutputs on, output port 4: the report (a Figure and a
  * Value column: the quality, landform and legibility figures of `tsynth synth --report`), and
  * output port 5: the construction image (Target, TargetConfidence, and Patches: the terrain
- * before the final corrections); off, both are empty. The stages are the other Terrain Synthesis filters'
- * kernels: feature extraction, candidate pools and matching (OpenCL or CPU), graph-cut merging.
- * Optional input port 2: style regions, an image of integer labels resized to
- * the output; label L is served by exemplar L unless AddRegionMap("L=E1,E2").
+ * before the final corrections); off, both are empty. The stages are the other Terrain Synthesis
+ * filters' kernels: feature extraction, candidate pools and matching (OpenCL or CPU), graph-cut
+ * merging. Optional input port 2: style regions, an image of integer labels resized to the output;
+ * label L is served by exemplar L unless AddRegionMap("L=E1,E2").
  */
 #pragma once
 

@@ -74,7 +74,8 @@ void addLandforms(std::vector<FigureRow>& rows, const LandformMeasures& m)
 void addLegibility(std::vector<FigureRow>& rows, const std::string& at, const Legibility& l)
 {
   rows.push_back({ at + ".legible_share", l.share });
-  for (const auto& [kind, k] : { std::pair{ ".ridge", &l.ridge }, std::pair{ ".valley", &l.valley } })
+  for (const auto& [kind, k] :
+    { std::pair{ ".ridge", &l.ridge }, std::pair{ ".valley", &l.valley } })
   {
     rows.push_back({ at + kind + ".legible_share", k->share });
     rows.push_back({ at + kind + ".samples", static_cast<double>(k->samples) });
@@ -90,8 +91,8 @@ void addCorrelation(std::vector<FigureRow>& rows,
 {
   for (const BandCorrelation& b : bands)
   {
-    rows.push_back({ at + ".sigma_" + std::to_string(static_cast<int>(std::lround(b.sigma))),
-      b.correlation });
+    rows.push_back(
+      { at + ".sigma_" + std::to_string(static_cast<int>(std::lround(b.sigma))), b.correlation });
   }
 }
 
