@@ -14,8 +14,8 @@
 #include <pthread.h>
 #include <sys/stat.h>
 #include <system_error>
-#include <vector>
 #include <unistd.h>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -272,14 +272,20 @@ void checkOutputPath(const std::string& target)
         ", which an output never replaces; give a file name.");
     }
   }
+  // The probe is a live temporary too: a signal between its creation and its removal must
+  // not leave it behind.
   const std::string probe = temporaryFor(p).string();
+  const int slot = registerTemporary(probe);
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
   if (fd < 0)
   {
-    throw Error("Cannot write " + target + ": " + errnoText(errno) + ".");
+    const int code = errno;
+    releaseTemporary(slot);
+    throw Error("Cannot write " + target + ": " + errnoText(code) + ".");
   }
   ::close(fd);
   ::unlink(probe.c_str());
+  releaseTemporary(slot);
 }
 
 OutputFile::OutputFile(std::string target)
