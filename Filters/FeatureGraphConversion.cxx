@@ -149,8 +149,9 @@ void featureGraphToPolyData(const FeatureGraph& g, vtkPolyData* out, double ox, 
   {
     out->GetPointData()->AddArray(constraint);
   }
-  out->GetPointData()->SetActiveScalars("NodeKind");
-  out->GetCellData()->AddArray(type);
+  // Shown, a tree is coloured by its cells' FeatureType (ridges red, valleys blue, by the
+  // plugin's map): ParaView colours by the active point scalars first, so there are none.
+  out->GetCellData()->SetScalars(type);
   out->GetCellData()->AddArray(chainId);
   vtkNew<vtkIdTypeArray> order;
   order->SetName("BFSOrder");

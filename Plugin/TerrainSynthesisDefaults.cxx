@@ -13,7 +13,8 @@ constexpr double kPluginSettingsPriority = -1.0;
 
 // Heights: low land green, then brown, grey rock and snow (the data range is mapped onto 0..1
 // when an array is first coloured). Hillshade and Slope: grey, as a relief is read. PatchColour
-// and FeatureType: categories (patches that touch differ; ridges red, valleys blue).
+// FeatureType and NodeKind: categories (patches that touch differ; ridges red, valleys blue;
+// tree paths grey, ends red, branches yellow, as the synthesis state shows them).
 // .png is left out of the reader patterns: sketches are PNGs too, and the PNG reader keeps
 // their colours.
 constexpr const char* kDefaults = R"json({
@@ -37,7 +38,11 @@ constexpr const char* kDefaults = R"json({
     "FeatureType": { "PVLookupTable": {
       "IndexedLookup": 1,
       "Annotations": ["1", "ridge", "-1", "valley"],
-      "IndexedColors": [0.85, 0.15, 0.10,  0.10, 0.35, 0.85] } }
+      "IndexedColors": [0.85, 0.15, 0.10,  0.10, 0.35, 0.85] } },
+    "NodeKind": { "PVLookupTable": {
+      "IndexedLookup": 1,
+      "Annotations": ["0", "path", "1", "end", "2", "branch"],
+      "IndexedColors": [0.35, 0.35, 0.35,  0.90, 0.10, 0.10,  1.00, 0.85, 0.00] } }
   },
   "settings": { "RepresentedArrayListSettings": {
     "ReaderDetails": ["*.tif *.tiff *.hgt *.asc", "Terrain Reader (DEM)", "TerrainReader"] } }
