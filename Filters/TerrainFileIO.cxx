@@ -24,6 +24,23 @@ namespace fs = std::filesystem;
 namespace tsynth
 {
 
+void requireFileForReader(const std::string& path)
+{
+  std::error_code ec;
+  if (fs::exists(path, ec))
+  {
+    return;
+  }
+  if (fs::path(path).is_relative())
+  {
+    throw Error("No such file: " + path + " (a relative name, looked for in the working folder " +
+      fs::current_path(ec).string() +
+      "); for a state file, use File > Load State > \"Search files under specified directory\" "
+      "and choose the folder that holds it, or give the full path.");
+  }
+  throw Error("No such file: " + path + ".");
+}
+
 bool isVtiPath(const std::string& path)
 {
   return hasExtension(path, ".vti");

@@ -11,6 +11,11 @@
 namespace tsynth
 {
 
+// Throws tsynth::Error, in one sentence, when `path` names no file. A relative name (as the
+// project's state files hold: Data/dems/colorado.png) also gets the folder it was looked for in
+// and how ParaView looks elsewhere: what a user loading a state by hand needs to know.
+void requireFileForReader(const std::string& path);
+
 // True for paths ending in ".vti" (any case).
 bool isVtiPath(const std::string& path);
 

@@ -91,6 +91,7 @@ int vtkTerrainReader::RequestInformation(vtkInformation*,
   double cell[2] = { 1.0, 1.0 };
   try
   {
+    tsynth::requireFileForReader(this->FileName);
     const tsynth::ReadOptions options = optionsOf(this->ZUnit,
       this->CellSize,
       this->UseSidecar,
@@ -140,6 +141,7 @@ int vtkTerrainReader::RequestData(vtkInformation*,
   try
   {
     this->UpdateProgress(0.0);
+    tsynth::requireFileForReader(this->FileName);
     const tsynth::Heightfield hf = tsynth::readTerrainFile(this->FileName,
       optionsOf(this->ZUnit,
         this->CellSize,

@@ -98,6 +98,11 @@ SketchGrid sketchGrid(const char* fileName, const char* exemplar, double cellSiz
   {
     throw tsynth::Error("No sketch file given: set FileName.");
   }
+  tsynth::requireFileForReader(fileName);
+  if (exemplar != nullptr && *exemplar != '\0')
+  {
+    tsynth::requireFileForReader(exemplar);
+  }
   SketchGrid grid;
   sketchPixels(fileName, grid);
   sketchCells(exemplar, cellSize, grid);

@@ -245,6 +245,20 @@ class BadFilterInputTest(unittest.TestCase):
              r"smaller than one patch"),
             ("sketch-lines-no-lines", lambda: self.single("vtkTerrainSketchLines", vtkPolyData()), r"no lines"),
             ("reader-fifo", lambda: self.make("vtkTerrainReader", FileName=self.fifo), r"not a regular file"),
+            # A state loaded by hand names its files relative to the repository: say where the
+            # name was looked for and how ParaView looks elsewhere.
+            ("reader-missing-relative",
+             lambda: self.make("vtkTerrainReader", FileName=os.path.join("Data", "dems", "none.png")),
+             r"No such file: Data/dems/none.png \(a relative name, looked for in the working folder "
+             + re.escape(os.getcwd()) + r"\).*Search files under specified directory"),
+            ("reader-missing-absolute",
+             lambda: self.make("vtkTerrainReader", FileName=os.path.join(self.tmp.name, "none.tif")),
+             r"No such file: " + re.escape(os.path.join(self.tmp.name, "none.tif")) + r"\.(?! \(a relative)"),
+            ("sketch-reader-missing-exemplar",
+             lambda: self.make("vtkTerrainSketchReader",
+                               FileName=os.path.join(PATHS.bundled_data, "sketches", "strokes_y_ridges.png"),
+                               ExemplarFileName="colorado.png"),
+             r"No such file: colorado.png \(a relative name"),
         ]
 
     def matcher(self, target, PatchSize=32):
