@@ -1,4 +1,4 @@
-// What the distance-synthesis front ends (tsynth distance, vtkTerrainDistanceSource)
+// What the distance-synthesis front ends (tsynth distance, vtkTerrainDistanceSynthesis)
 // share: generator poly-lines from vtkPolyData and the assembly of the kernel's
 // inputs from a stroke map or lines, profiles, labels, regions and edge weights.
 #pragma once

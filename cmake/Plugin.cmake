@@ -18,7 +18,7 @@ set(tsynth_plugin_xmls
   Plugin/TerrainPoissonSolver.xml
   Plugin/TerrainPitRemoval.xml
   Plugin/TerrainOptimisation.xml
-  Plugin/TerrainDistanceSource.xml
+  Plugin/TerrainDistanceSynthesis.xml
   Plugin/TerrainSynthesis.xml)
 
 # Colour maps and the DEM reader ParaView uses once the plugin is loaded.

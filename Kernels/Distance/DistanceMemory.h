@@ -12,7 +12,7 @@ struct DistanceInputs;
 struct DistanceOptions;
 
 // Peak memory in bytes of synthesiseByDistance on a width x height grid with
-// `threads` OpenMP threads, as `tsynth distance` and the Terrain Distance Source
+// `threads` OpenMP threads, as `tsynth distance` and the Terrain Distance Synthesis
 // run it: per cell the lattice's eight edge weights, the approximate search's
 // field (cost, source, with ridges the predecessor), one search field per
 // thread, the blend's sums and contributor counts, the approximate and final

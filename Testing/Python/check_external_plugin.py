@@ -14,7 +14,7 @@ EXPECTED_PROXIES = [
     "TerrainReader", "TerrainHillshade", "TerrainFeatureExtractor", "TerrainSketchFeatures",
     "TerrainSketchLines", "TerrainCandidateBuilder", "TerrainPatchMatcher",
     "TerrainGraphCutMerger", "TerrainPoissonSolver", "TerrainPitRemoval", "TerrainOptimisation",
-    "TerrainDistanceSource", "TerrainSynthesis",
+    "TerrainDistanceSynthesis", "TerrainSynthesis",
 ]
 
 

@@ -131,7 +131,7 @@ class BadFilterInputTest(unittest.TestCase):
         return o
 
     def distance(self, generators, **properties):
-        d = self.make("vtkTerrainDistanceSource", **properties)
+        d = self.make("vtkTerrainDistanceSynthesis", **properties)
         d.SetInputData(0, generators)
         return d
 
@@ -205,7 +205,7 @@ class BadFilterInputTest(unittest.TestCase):
             ("optimisation-flat-source", lambda: self.optimisation(source=image(np.full((120, 120), 5.0))),
              r"source DEM is flat"),
             ("optimisation-blank-guide", lambda: self.optimisation(guide=self.blank), r"nothing drawn"),
-            # Terrain Distance Source
+            # Terrain Distance Synthesis
             ("distance-output-size-negative", lambda: self.distance(line, OutputSize=(-5, 100)),
              r"grid of two positive numbers of cells \(OutputSize, --size\), not -5 x 100"),
             ("distance-memory-budget", lambda: self.distance(line, MemoryBudget=0.0001),

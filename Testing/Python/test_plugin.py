@@ -749,7 +749,7 @@ class PluginTest(unittest.TestCase):
         profiles = os.path.join(examples, "valley_v_profile.csv")
         sketch = simple.PNGSeriesReader(FileNames=[strokes])
         table = simple.CSVReader(FileName=[profiles])
-        source = simple.TerrainDistanceSource(Generators=sketch, Profiles=table, BlendBias=15.0,
+        source = simple.TerrainDistanceSynthesis(Generators=sketch, Profiles=table, BlendBias=15.0,
                                               Seed=5)
         source.UpdatePipeline()
         terrain = sm.Fetch(source)
@@ -767,7 +767,7 @@ class PluginTest(unittest.TestCase):
         row = 511 - 256
         self.assertGreater(z[row, 245:256].max(), z[row, 150:170].min() + 50.0)
         # The file name property gives the same terrain as the table.
-        by_file = simple.TerrainDistanceSource(Generators=sketch, ProfileFileName=profiles,
+        by_file = simple.TerrainDistanceSynthesis(Generators=sketch, ProfileFileName=profiles,
                                                BlendBias=15.0, Seed=5)
         by_file.UpdatePipeline()
         np.testing.assert_array_equal(point_array(sm.Fetch(by_file), "Elevation").reshape(512, 512), z)
@@ -784,7 +784,7 @@ class PluginTest(unittest.TestCase):
             sketch = simple.PNGSeriesReader(FileNames=[os.path.join(
                 os.path.dirname(os.path.abspath(__file__)), "..", "..", "Examples", "distance",
                 "valley_pair_strokes.png")])
-            source = simple.TerrainDistanceSource(Generators=sketch, ProfileFileName=bad)
+            source = simple.TerrainDistanceSynthesis(Generators=sketch, ProfileFileName=bad)
             source.UpdatePipeline()
             self.assertEqual(sm.Fetch(source).GetNumberOfPoints(), 0)
 

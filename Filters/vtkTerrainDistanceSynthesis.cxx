@@ -1,4 +1,4 @@
-#include "vtkTerrainDistanceSource.h"
+#include "vtkTerrainDistanceSynthesis.h"
 
 #include "DistanceInputs.h"
 #include "PipelineRequests.h"
@@ -22,7 +22,7 @@
 #include <cctype>
 #include <new>
 
-vtkStandardNewMacro(vtkTerrainDistanceSource);
+vtkStandardNewMacro(vtkTerrainDistanceSynthesis);
 
 namespace
 {
@@ -88,7 +88,7 @@ std::vector<tsynth::MonotoneProfile> profilesFromTable(vtkTable* table)
 
 } // namespace
 
-vtkTerrainDistanceSource::vtkTerrainDistanceSource()
+vtkTerrainDistanceSynthesis::vtkTerrainDistanceSynthesis()
 {
   this->SetNumberOfInputPorts(2);
   const tsynth::DistanceOptions d;
@@ -118,7 +118,7 @@ vtkTerrainDistanceSource::vtkTerrainDistanceSource()
   this->ApproximateOnly = d.approximateOnly;
 }
 
-int vtkTerrainDistanceSource::FillInputPortInformation(int port, vtkInformation* info)
+int vtkTerrainDistanceSynthesis::FillInputPortInformation(int port, vtkInformation* info)
 {
   if (port == kProfilesPort)
   {
@@ -132,7 +132,7 @@ int vtkTerrainDistanceSource::FillInputPortInformation(int port, vtkInformation*
   return 1;
 }
 
-int vtkTerrainDistanceSource::RequestInformation(vtkInformation*,
+int vtkTerrainDistanceSynthesis::RequestInformation(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
@@ -152,7 +152,7 @@ int vtkTerrainDistanceSource::RequestInformation(vtkInformation*,
   return 1;
 }
 
-int vtkTerrainDistanceSource::RequestUpdateExtent(vtkInformation*,
+int vtkTerrainDistanceSynthesis::RequestUpdateExtent(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector*)
 {
@@ -160,7 +160,7 @@ int vtkTerrainDistanceSource::RequestUpdateExtent(vtkInformation*,
   return 1;
 }
 
-int vtkTerrainDistanceSource::RequestData(vtkInformation*,
+int vtkTerrainDistanceSynthesis::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
@@ -256,7 +256,7 @@ int vtkTerrainDistanceSource::RequestData(vtkInformation*,
     });
 }
 
-void vtkTerrainDistanceSource::PrintSelf(ostream& os, vtkIndent indent)
+void vtkTerrainDistanceSynthesis::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "OutputSize: " << this->OutputSize[0] << " " << this->OutputSize[1] << "\n";

@@ -1,5 +1,5 @@
 /**
- * @class vtkTerrainDistanceSource
+ * @class vtkTerrainDistanceSynthesis
  * @brief Distance-based terrain synthesis (Rusnell 2009): terrain from ridge
  * strokes or poly-lines and cross-section profiles, with no exemplar.
  *
@@ -22,11 +22,11 @@
 
 #include <string>
 
-class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainDistanceSource : public vtkImageAlgorithm
+class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainDistanceSynthesis : public vtkImageAlgorithm
 {
 public:
-  static vtkTerrainDistanceSource* New();
-  vtkTypeMacro(vtkTerrainDistanceSource, vtkImageAlgorithm);
+  static vtkTerrainDistanceSynthesis* New();
+  vtkTypeMacro(vtkTerrainDistanceSynthesis, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum RidgeCosts
@@ -138,8 +138,8 @@ public:
   void SetProfilesConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
 
 protected:
-  vtkTerrainDistanceSource();
-  ~vtkTerrainDistanceSource() override = default;
+  vtkTerrainDistanceSynthesis();
+  ~vtkTerrainDistanceSynthesis() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -176,6 +176,6 @@ protected:
   double MemoryBudget = 0.0; // GB
 
 private:
-  vtkTerrainDistanceSource(const vtkTerrainDistanceSource&) = delete;
-  void operator=(const vtkTerrainDistanceSource&) = delete;
+  vtkTerrainDistanceSynthesis(const vtkTerrainDistanceSynthesis&) = delete;
+  void operator=(const vtkTerrainDistanceSynthesis&) = delete;
 };
