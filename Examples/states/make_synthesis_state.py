@@ -38,7 +38,7 @@ SEAMS_PORT = 3  # the synthesis's outputs: Terrain, Placements, Sketch Features,
 GAP_M = 5000.0  # between the pieces laid out side by side
 SEAM_LIFT_M = 15.0  # seams drawn just above the surface they lie on
 FEATURE_LIFT_M = 10.0  # feature trees just above the flat exemplar
-VIEW_SIZE = [500, 500]  # the standard view; its baseline picture stays under 200 KB
+VIEW_SIZE = [500, 500]  # the standard view; its baseline picture is about 210 KB
 MAGENTA = [0.85, 0.0, 0.85]
 NODE_KIND_COLOURS = [0, 0.35, 0.35, 0.35,  # path
                      1, 0.9, 0.1, 0.1,  # end
@@ -112,11 +112,19 @@ def show_all(view, exemplar, sketch, trees, synth, warped, seams):
     return [max(width, 2.0 * terrain_width + GAP_M), back + width], z_range
 
 
+# The camera's distance from the pieces' centre, in their north-south extent: back to the south
+# and up. Close enough that the pieces fill the height of the view with a small margin (ParaView's
+# GUI keeps the vertical view angle, so a wider window adds room at the sides only).
+CAMERA_BACK = 1.25
+CAMERA_UP = 0.95
+
+
 def set_camera(view, extent, z_range):
     """A fixed oblique camera from the south, looking north over the pieces."""
-    centre = [0.5 * extent[0], 0.45 * extent[1], 0.5 * (z_range[0] + z_range[1])]
+    centre = [0.5 * extent[0], 0.4 * extent[1], 0.5 * (z_range[0] + z_range[1])]
     view.CameraFocalPoint = centre
-    view.CameraPosition = [centre[0], centre[1] - 1.45 * extent[1], centre[2] + 1.1 * extent[1]]
+    view.CameraPosition = [centre[0], centre[1] - CAMERA_BACK * extent[1],
+                           centre[2] + CAMERA_UP * extent[1]]
     view.CameraViewUp = [0.0, 0.63, 0.78]
     view.CameraViewAngle = 30.0
     view.CameraParallelProjection = 0
