@@ -52,7 +52,8 @@ constexpr int kSketchFeaturesPort = 2;
 constexpr int kSeamsPort = 3;
 constexpr int kReportPort = 4;
 constexpr int kConstructionPort = 5;
-constexpr int kOutputPorts = 6;
+constexpr int kImpliedLinesPort = 6;
+constexpr int kOutputPorts = 7;
 } // namespace
 
 vtkTerrainSynthesis::vtkTerrainSynthesis()
@@ -90,10 +91,12 @@ int vtkTerrainSynthesis::FillInputPortInformation(int port, vtkInformation* info
 
 int vtkTerrainSynthesis::FillOutputPortInformation(int port, vtkInformation* info)
 {
-  const char* type = port == kTerrainPort || port == kConstructionPort ? "vtkImageData"
-    : port == kSketchFeaturesPort || port == kSeamsPort                ? "vtkPolyData"
-                                                                       : "vtkTable";
-  info->Set(vtkDataObject::DATA_TYPE_NAME(), type);
+  const bool image = port == kTerrainPort || port == kConstructionPort;
+  const bool lines = port == kSketchFeaturesPort || port == kSeamsPort || port == kImpliedLinesPort;
+  info->Set(vtkDataObject::DATA_TYPE_NAME(),
+    image     ? "vtkImageData"
+      : lines ? "vtkPolyData"
+              : "vtkTable");
   return 1;
 }
 
@@ -125,6 +128,11 @@ vtkTable* vtkTerrainSynthesis::GetReport()
 vtkImageData* vtkTerrainSynthesis::GetConstruction()
 {
   return vtkImageData::SafeDownCast(this->GetOutputDataObject(kConstructionPort));
+}
+
+vtkPolyData* vtkTerrainSynthesis::GetImpliedLines()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(kImpliedLinesPort));
 }
 
 vtkTypeBool vtkTerrainSynthesis::ProcessRequest(vtkInformation* request,
@@ -473,6 +481,8 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
       fillPlacementTable(r, setup, ex, vtkTable::GetData(outputVector, kPlacementsPort));
       tsynth::featureGraphToPolyData(
         setup.target.graph, vtkPolyData::GetData(outputVector, kSketchFeaturesPort));
+      tsynth::featureGraphToPolyData(
+        setup.target.implied, vtkPolyData::GetData(outputVector, kImpliedLinesPort));
       seamsToPolyData(r, vtkPolyData::GetData(outputVector, kSeamsPort));
       if (this->DebugOutputs)
       {

@@ -19,7 +19,9 @@
  * array for Warp By Scalar. With DebugOutputs on, output port 4: the report (a Figure and a
  * Value column: the quality, landform and legibility figures of `tsynth synth --report`), and
  * output port 5: the construction image (Target, TargetConfidence, and Patches: the terrain
- * before the final corrections); off, both are empty. The stages are the other Terrain Synthesis
+ * before the final corrections); off, both are empty. Output port 6: the lines the drawing implies
+ * (the divides between facing valleys, shaped as ridges in the target; in metres, as port 2),
+ * empty when it implies none. The stages are the other Terrain Synthesis
  * filters' kernels: feature extraction, candidate pools and matching (OpenCL or CPU), graph-cut
  * merging. Optional input port 2: style regions, an image of integer labels resized to the output;
  * label L is served by exemplar L unless AddRegionMap("L=E1,E2").
@@ -147,6 +149,7 @@ public:
   vtkPolyData* GetSeams();
   vtkTable* GetReport();
   vtkImageData* GetConstruction();
+  vtkPolyData* GetImpliedLines();
   vtkTypeBool ProcessRequest(vtkInformation*,
     vtkInformationVector**,
     vtkInformationVector*) override;

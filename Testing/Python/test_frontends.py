@@ -93,6 +93,32 @@ class FrontEndsTest(unittest.TestCase):
         self.assert_same_terrain(sm.Fetch(synth, arg1=None, arg2=None, idx=0),
                                  self.cli(self.colorado, self.strokes, "--size", "160x160"))
 
+    def test_the_implied_lines_output_is_the_command_lines_implied_features(self):
+        """A valley tree implies divides between its branches: the Implied Lines output holds
+        them, point for point as --debug-dir's implied-features.vtp, and keeps them apart from
+        Sketch Features."""
+        tree = os.path.join(PATHS.bundled_data, "sketches", "strokes_valley_tree.png")
+        exemplar = simple.TerrainReader(FileName=self.colorado)
+        sketch = simple.PNGSeriesReader(FileNames=[tree])
+        synth = simple.TerrainSynthesis(Exemplars=[exemplar], Sketch=sketch, OutputSize=[256, 256],
+                                        PatchSize=PATCH, Backend=CPU, Seed=SEED)
+        synth.UpdatePipeline()
+        implied = sm.Fetch(synth, arg1=None, arg2=None, idx=6)
+        debug = self.path("implied-debug")
+        self.cli(self.colorado, tree, "--size", "256x256", "--debug-dir", debug)
+        reader = vtkXMLPolyDataReader()
+        reader.SetFileName(os.path.join(debug, "implied-features.vtp"))
+        reader.Update()
+        self.assertGreater(implied.GetNumberOfLines(), 0)
+        self.assertEqual(implied.GetNumberOfLines(), reader.GetOutput().GetNumberOfLines())
+        np.testing.assert_array_equal(vtk_to_numpy(implied.GetPoints().GetData()),
+                                      vtk_to_numpy(reader.GetOutput().GetPoints().GetData()))
+        ridge = 1  # implied divides are ridges
+        types = vtk_to_numpy(implied.GetCellData().GetArray("FeatureType"))
+        self.assertTrue(np.all(types[-implied.GetNumberOfLines():] == ridge))
+        drawn = sm.Fetch(synth, arg1=None, arg2=None, idx=2)
+        self.assertNotEqual(drawn.GetNumberOfPoints(), implied.GetNumberOfPoints())
+
     def test_the_debug_outputs_are_the_command_lines_debug_files_and_report(self):
         """Sketch Features, Seams, Report and Construction (issue 23): what --debug-dir and
         --report write, inside ParaView, for the same synthesis."""
