@@ -1,7 +1,8 @@
 """ParaView's GUI as a newcomer meets it (issue 23), played by ParaView's own event player
 (`paraview --test-script`, QtTesting XML): File > Open on a DEM, Apply, Macros >
-NewTerrainSketch, the Seed typed into its widget in the synthesis's panel, Apply, and File > Save
-State. The saved state then says which reader File > Open picked, which colour maps the views
+NewTerrainSketch, the Seed typed into its widget in the synthesis's panel, Apply, File > Open on
+a sketch image (the Terrain Sketch Reader picked in ParaView's reader dialog, the exemplar picked
+with its file button), Apply, and File > Save State. The saved state then says which reader File > Open picked, which colour maps the views
 use and what the Seed widget set.
 
 Run with python3 and an X display (with_display.sh); ParaView runs with --dr (no user settings,
@@ -40,7 +41,7 @@ def menu(name, action):
             ("pqClientMainWindow/menubar/" + name, "activate", action)]
 
 
-def events(dem, state):
+def events(dem, sketch, state):
     """The newcomer's steps as QtTesting events (object, command, arguments)."""
     return (menu("menu_File", "actionFileOpen")
             + [("pqClientMainWindow/FileOpenDialog", "filesSelected", dem),
@@ -49,6 +50,15 @@ def events(dem, state):
             + [("pqClientMainWindow/pipelineBrowserDock/pipelineBrowser", "currentChanged",
                 TERRAIN_ROW),
                (PANEL + "/Seed/LineEdit0", "set_string", str(SEED_TYPED)),
+               (PROPERTIES + "/Accept", "activate", "")]
+            # A sketch image: File > Open asks which reader (PNGs are pictures too).
+            + menu("menu_File", "actionFileOpen")
+            + [("pqClientMainWindow/FileOpenDialog", "filesSelected", sketch),
+               ("pqClientMainWindow/pqSelectReaderDialog/listWidget", "currentChangedbyItemName",
+                "Terrain Sketch Reader"),
+               ("pqClientMainWindow/pqSelectReaderDialog/okButton", "activate", ""),
+               (PANEL + "/ExemplarFileName/FileChooser/FileButton", "activate", ""),
+               (PANEL + "/ExemplarFileName/FileChooser/pqFileDialog", "filesSelected", dem),
                (PROPERTIES + "/Accept", "activate", "")]
             + menu("menu_File", "actionFileSaveServerState")
             + [("pqClientMainWindow/FileSaveServerStateDialog", "filesSelected", state)])
@@ -118,7 +128,8 @@ class GuiTest(unittest.TestCase):
         shutil.copy(macro, os.path.join(config, "ParaView", "Macros"))
         script = os.path.join(cls.tmp, "newcomer.xml")
         cls.state_path = os.path.join(cls.tmp, "newcomer.pvsm")
-        write_events(script, events(cls.dem, cls.state_path))
+        cls.sketch = os.path.join(PATHS.bundled_data, "sketches", "strokes_y_ridges.png")
+        write_events(script, events(cls.dem, cls.sketch, cls.state_path))
         env = dict(os.environ, HOME=os.path.join(cls.tmp, "home"), XDG_CONFIG_HOME=config,
                    PV_PLUGIN_PATH=os.path.dirname(PATHS.plugin))
         paraview = shutil.which("paraview")
@@ -152,6 +163,14 @@ class GuiTest(unittest.TestCase):
         self.assertEqual(len(readers), 1)
         self.assertEqual(s.values(readers[0], "FileName"), [self.dem])
         self.assertEqual(s.collections["sources"]["colorado.tif"], readers[0].get("id"))
+
+    def test_file_open_gives_a_sketch_to_the_sketch_reader_with_its_own_name(self):
+        s = self.state()
+        sketch = s.proxy("sources", os.path.basename(self.sketch))
+        self.assertEqual(sketch.get("type"), "TerrainSketchReader")
+        self.assertEqual(s.values(sketch, "FileName"), [self.sketch])
+        self.assertEqual(s.values(sketch, "ExemplarFileName"), [self.dem])
+        self.assertNotIn("ERR|", self.log)  # nothing in the steps failed a request
 
     def test_the_macro_sets_up_sketch_and_terrain_and_the_seed_widget_sets_the_seed(self):
         s = self.state()
