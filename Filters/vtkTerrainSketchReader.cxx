@@ -156,12 +156,6 @@ int vtkTerrainSketchReader::RequestInformation(vtkInformation*,
     vtkErrorMacro(<< e.what());
     return 0;
   }
-  if (this->CellSize <= 0.0 &&
-    (this->ExemplarFileName == nullptr || *this->ExemplarFileName == '\0'))
-  {
-    vtkWarningMacro("No ExemplarFileName: the sketch's pixels are 1 m; give the exemplar DEM (or "
-                    "CellSize) to lay the sketch on the grid the synthesis makes of it.");
-  }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   const int extent[6] = { 0, grid.width - 1, 0, grid.height - 1, 0, 0 };
   const double spacing[3] = { grid.cellX, grid.cellY, 1.0 };
@@ -181,6 +175,14 @@ int vtkTerrainSketchReader::RequestData(vtkInformation*,
   {
     this->UpdateProgress(0.0);
     const SketchGrid grid = sketchGrid(this->FileName, this->ExemplarFileName, this->CellSize);
+    // Said here, when the sketch is read, not in RequestInformation: File > Open asks for the
+    // information before the user has had a chance to give the exemplar.
+    if (this->CellSize <= 0.0 &&
+      (this->ExemplarFileName == nullptr || *this->ExemplarFileName == '\0'))
+    {
+      vtkWarningMacro("No ExemplarFileName: the sketch's pixels are 1 m; give the exemplar DEM "
+                      "(or CellSize) to lay the sketch on the grid the synthesis makes of it.");
+    }
     std::vector<std::string> warnings;
     const tsynth::SketchInput sketch = tsynth::readSketchInput(this->FileName, warnings);
     for (const auto& w : warnings)
