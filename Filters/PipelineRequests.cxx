@@ -5,8 +5,61 @@
 #include <vtkInformationVector.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
+#include <algorithm>
+#include <map>
+#include <mutex>
+
 namespace tsynth
 {
+
+namespace
+{
+
+// The newest modification of `filter` (its settings and connections) or of the algorithms that
+// feed it. Not of their data: ParaView's representations re-run a reader for each of their
+// requests, which renews its output's time while nothing the user set has changed.
+vtkMTimeType newestChange(vtkAlgorithm* filter)
+{
+  vtkMTimeType newest = filter->GetMTime();
+  for (int port = 0; port < filter->GetNumberOfInputPorts(); ++port)
+  {
+    for (int c = 0; c < filter->GetNumberOfInputConnections(port); ++c)
+    {
+      if (vtkAlgorithm* producer = filter->GetInputAlgorithm(port, c))
+      {
+        newest = std::max(newest, producer->GetMTime());
+      }
+    }
+  }
+  return newest;
+}
+
+struct Refusal
+{
+  std::string message;
+  vtkMTimeType at = 0;
+};
+
+} // namespace
+
+void reportRefusal(vtkAlgorithm* filter, const std::string& message)
+{
+  // Per filter, its last refusal. Modification times only grow, so a filter made later at the
+  // address of a deleted one never matches the old entry's time.
+  static std::mutex mutex;
+  static std::map<const vtkAlgorithm*, Refusal> last;
+  const vtkMTimeType now = newestChange(filter);
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    Refusal& said = last[filter];
+    if (said.message == message && said.at == now)
+    {
+      return;
+    }
+    said = { message, now };
+  }
+  vtkErrorWithObjectMacro(filter, << message);
+}
 
 void requestWholeExtents(vtkInformationVector** inputVector, int ports)
 {

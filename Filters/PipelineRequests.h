@@ -8,6 +8,7 @@
 
 #include <exception>
 #include <new>
+#include <string>
 
 class vtkInformation;
 class vtkInformationVector;
@@ -33,11 +34,17 @@ public:
   }
 };
 
+// Reports `message` as `filter`'s error, unless the filter reported the same sentence last time
+// and neither it nor its inputs changed since: ParaView updates a filter twice on Apply (the
+// pipeline, then its representation), and a refusal is said once, not once per update.
+void reportRefusal(vtkAlgorithm* filter, const std::string& message);
+
 // A filter's RequestData body run the one way every filter runs it: under an
 // AbortScope, with tsynth::Cancelled (ParaView's abort) turned into empty outputs
 // (clearOutputs) and a request that succeeds, running out of memory into the error
 // `outOfMemory` (one sentence naming what to make smaller), and any other failure
-// into its own sentence; both fail the request. Returns what RequestData returns.
+// into its own sentence (each said once: reportRefusal); both fail the request.
+// Returns what RequestData returns.
 template<class ClearOutputs, class Body>
 int runFilterRequest(vtkAlgorithm* filter,
   const char* outOfMemory,
@@ -57,12 +64,12 @@ int runFilterRequest(vtkAlgorithm* filter,
   }
   catch (const std::bad_alloc&)
   {
-    vtkErrorWithObjectMacro(filter, << outOfMemory);
+    reportRefusal(filter, outOfMemory);
     return 0;
   }
   catch (const std::exception& e)
   {
-    vtkErrorWithObjectMacro(filter, << e.what());
+    reportRefusal(filter, e.what());
     return 0;
   }
 }

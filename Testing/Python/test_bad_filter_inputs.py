@@ -294,6 +294,26 @@ class BadFilterInputTest(unittest.TestCase):
         out.GetPointData().SetScalars(colours)
         return out
 
+    def test_a_refusal_is_said_once_until_something_changes(self):
+        """ParaView updates a filter twice on Apply (the pipeline, then its representation): the
+        same refusal with nothing changed is not said again; changed, it is."""
+        self.producers = []
+        synth = self.synthesis(None)
+        errors = []
+
+        @calldata_type(VTK_STRING)
+        def on_error(_caller, _event, text):
+            errors.append(text)
+
+        synth.AddObserver(vtkCommand.ErrorEvent, on_error)
+        self.assertEqual(synth.GetExecutive().Update(), 0)
+        self.assertEqual(synth.GetExecutive().Update(), 0)  # failed, so run again: quietly
+        self.assertEqual(len(errors), 1, errors)
+        self.assertIn("No sketch is connected", errors[0])
+        synth.SetSeed(3)  # a change: the refusal is news again
+        self.assertEqual(synth.GetExecutive().Update(), 0)
+        self.assertEqual(len(errors), 2, errors)
+
     def test_catalogue(self):
         self.producers = []
         cases = self.cases()
