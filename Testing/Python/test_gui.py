@@ -1,8 +1,9 @@
 """ParaView's GUI as a newcomer meets it (issue 23), played by ParaView's own event player
-(`paraview --test-script`, QtTesting XML): File > Open on a DEM, Apply, Macros >
-NewTerrainSketch, the Seed typed into its widget in the synthesis's panel, Apply, File > Open on
-a sketch image (the Terrain Sketch Reader picked in ParaView's reader dialog, the exemplar picked
-with its file button), Apply, and File > Save State. The saved state then says which reader File > Open picked, which colour maps the views
+(`paraview --test-script`, QtTesting XML): File > Open on a DEM, Apply; File > Open on a sketch
+image (the Terrain Sketch Reader picked in ParaView's reader dialog, the exemplar picked with its
+file button), Apply; Filters > Terrain Synthesis with the sketch picked in ParaView's input
+dialog, the size and the Seed typed into their widgets, Apply; Macros > NewTerrainSketch on the
+exemplar; and File > Save State. The saved state then says which reader File > Open picked, which colour maps the views
 use and what the Seed widget set.
 
 Run with python3 and an X display (with_display.sh); ParaView runs with --dr (no user settings,
@@ -25,8 +26,11 @@ SEED_TYPED = 7
 PROPERTIES = "pqClientMainWindow/propertiesDock/propertiesPanel"
 PANEL = (PROPERTIES + "/scrollArea/qt_scrollarea_viewport/scrollAreaWidgetContents/"
          "PropertiesFrame/ProxyPanel")
-# The synthesis's row in the Pipeline Browser once the macro ran: server / exemplar / Terrain.
-TERRAIN_ROW = "/0/0/0|0"
+SIZE_TYPED = 256
+PIPELINE = "pqClientMainWindow/pipelineBrowserDock/pipelineBrowser"
+# Rows by position: the exemplar is the server's first source, the sketch its second.
+EXEMPLAR_ROW = "/0/0|0"
+SKETCH_ROW_IN_DIALOG = "/0:0/1:0"  # pqFlatTreeView's row:column path in the input dialog
 
 # The plugin's maps (Plugin/TerrainSynthesisDefaults.cxx): the terrain map starts at low green;
 # ParaView's own default, Cool to Warm, starts at (0.23, 0.30, 0.75).
@@ -41,25 +45,48 @@ def menu(name, action):
             ("pqClientMainWindow/menubar/" + name, "activate", action)]
 
 
-def events(dem, sketch, state):
-    """The newcomer's steps as QtTesting events (object, command, arguments)."""
+def open_dem(dem):
+    """File > Open on a DEM, then Apply: ParaView picks the reader."""
     return (menu("menu_File", "actionFileOpen")
             + [("pqClientMainWindow/FileOpenDialog", "filesSelected", dem),
-               (PROPERTIES + "/Accept", "activate", "")]
-            + menu("menu_Macros", "NewTerrainSketch")
-            + [("pqClientMainWindow/pipelineBrowserDock/pipelineBrowser", "currentChanged",
-                TERRAIN_ROW),
-               (PANEL + "/Seed/LineEdit0", "set_string", str(SEED_TYPED)),
-               (PROPERTIES + "/Accept", "activate", "")]
-            # A sketch image: File > Open asks which reader (PNGs are pictures too).
-            + menu("menu_File", "actionFileOpen")
+               (PROPERTIES + "/Accept", "activate", "")])
+
+
+def open_sketch(sketch, dem):
+    """File > Open on a sketch image: ParaView asks which reader (PNGs are pictures too); the
+    exemplar is picked with the Exemplar File Name's file button; then Apply."""
+    return (menu("menu_File", "actionFileOpen")
             + [("pqClientMainWindow/FileOpenDialog", "filesSelected", sketch),
                ("pqClientMainWindow/pqSelectReaderDialog/listWidget", "currentChangedbyItemName",
                 "Terrain Sketch Reader"),
                ("pqClientMainWindow/pqSelectReaderDialog/okButton", "activate", ""),
                (PANEL + "/ExemplarFileName/FileChooser/FileButton", "activate", ""),
                (PANEL + "/ExemplarFileName/FileChooser/pqFileDialog", "filesSelected", dem),
-               (PROPERTIES + "/Accept", "activate", "")]
+               (PROPERTIES + "/Accept", "activate", "")])
+
+
+def synthesis_from_the_filters_menu():
+    """With the exemplar selected, Filters > Alphabetical > Terrain Synthesis; in ParaView's
+    input dialog the sketch for Sketch; the size and the Seed typed into their widgets; Apply."""
+    dialog = "pqClientMainWindow/SelectInputDialog"
+    return ([(PIPELINE, "currentChanged", EXEMPLAR_ROW)]
+            + [("pqClientMainWindow/menubar", "activate", "menuFilters"),
+               ("pqClientMainWindow/menubar/menuFilters/Alphabetical", "activate", "TerrainSynthesis"),
+               (dialog + "/buttonFrame/Sketch", "set_boolean", "true"),
+               (dialog + "/pipelineView", "mousePress", "1,1,0,36,6," + SKETCH_ROW_IN_DIALOG),
+               (dialog + "/pipelineView", "mouseRelease", "1,0,0,36,6," + SKETCH_ROW_IN_DIALOG),
+               (dialog + "/buttonBox/1QPushButton0", "activate", ""),
+               (PANEL + "/OutputSize/LineEdit0", "set_string", str(SIZE_TYPED)),
+               (PANEL + "/OutputSize/LineEdit1", "set_string", str(SIZE_TYPED)),
+               (PANEL + "/Seed/LineEdit0", "set_string", str(SEED_TYPED)),
+               (PROPERTIES + "/Accept", "activate", "")])
+
+
+def events(dem, sketch, state):
+    """The newcomer's steps as QtTesting events (object, command, arguments)."""
+    return (open_dem(dem) + open_sketch(sketch, dem) + synthesis_from_the_filters_menu()
+            + [(PIPELINE, "currentChanged", EXEMPLAR_ROW)]
+            + menu("menu_Macros", "NewTerrainSketch")
             + menu("menu_File", "actionFileSaveServerState")
             + [("pqClientMainWindow/FileSaveServerStateDialog", "filesSelected", state)])
 
@@ -171,12 +198,27 @@ class GuiTest(unittest.TestCase):
         self.assertEqual(s.values(sketch, "FileName"), [self.sketch])
         self.assertEqual(s.values(sketch, "ExemplarFileName"), [self.dem])
         self.assertNotIn("ERR|", self.log)  # nothing in the steps failed a request
+        # The exemplar was given before Apply: no warning that it is missing (File > Open asks
+        # the reader for its information before the panel could be filled in).
+        self.assertNotIn("No ExemplarFileName", self.log)
 
-    def test_the_macro_sets_up_sketch_and_terrain_and_the_seed_widget_sets_the_seed(self):
+    def test_the_filters_menu_and_its_input_dialog_wire_a_synthesis_and_its_widgets_set_it(self):
+        s = self.state()
+        terrain = s.proxy("sources", "TerrainSynthesis1")
+        self.assertEqual(terrain.get("type"), "TerrainSynthesis")
+        self.assertEqual(s.links(terrain, "Exemplars"), [s.collections["sources"]["colorado.tif"]])
+        self.assertEqual(s.links(terrain, "Sketch"), [s.collections["sources"][os.path.basename(self.sketch)]])
+        self.assertEqual(s.values(terrain, "OutputSize"), [str(SIZE_TYPED)] * 2)
+        self.assertEqual(s.values(terrain, "Seed"), [str(SEED_TYPED)])
+        # Shown once applied: the terrain in the terrain map, as the exemplar.
+        association, array, lut = s.coloured_by(s.representation_of(terrain.get("id")))
+        self.assertEqual((association, array), (POINTS, "Elevation"))
+        self.assertColour(s.numbers(lut, "RGBPoints")[1:4], TERRAIN_MAP_LOW)
+
+    def test_the_macro_sets_up_sketch_and_terrain(self):
         s = self.state()
         terrain = s.proxy("sources", "Terrain")
         self.assertEqual(terrain.get("type"), "TerrainSynthesis")
-        self.assertEqual(s.values(terrain, "Seed"), [str(SEED_TYPED)])
         self.assertEqual(s.links(terrain, "Exemplars"), [s.collections["sources"]["colorado.tif"]])
         self.assertEqual(s.links(terrain, "Sketch"), [s.collections["sources"]["Ridge"]])
         from osgeo import gdal
