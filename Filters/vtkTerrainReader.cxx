@@ -1,5 +1,6 @@
 #include "vtkTerrainReader.h"
 
+#include "PipelineRequests.h"
 #include "TerrainFileIO.h"
 #include "TerrainImageConversion.h"
 
@@ -119,7 +120,7 @@ int vtkTerrainReader::RequestInformation(vtkInformation*,
   }
   catch (const std::exception& e)
   {
-    vtkErrorMacro(<< e.what());
+    tsynth::reportRefusal(this, e.what()); // once, not per request and representation
     return 0;
   }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -160,7 +161,7 @@ int vtkTerrainReader::RequestData(vtkInformation*,
   }
   catch (const std::exception& e)
   {
-    vtkErrorMacro(<< e.what());
+    tsynth::reportRefusal(this, e.what()); // once, not per request and representation
     output->Initialize();
     return 0;
   }

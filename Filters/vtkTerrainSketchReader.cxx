@@ -1,5 +1,6 @@
 #include "vtkTerrainSketchReader.h"
 
+#include "PipelineRequests.h"
 #include "TerrainFileIO.h"
 #include "TerrainImageConversion.h"
 
@@ -153,7 +154,7 @@ int vtkTerrainSketchReader::RequestInformation(vtkInformation*,
   }
   catch (const std::exception& e)
   {
-    vtkErrorMacro(<< e.what());
+    tsynth::reportRefusal(this, e.what()); // once, not per request and representation
     return 0;
   }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -210,7 +211,7 @@ int vtkTerrainSketchReader::RequestData(vtkInformation*,
   }
   catch (const std::exception& e)
   {
-    vtkErrorMacro(<< e.what());
+    tsynth::reportRefusal(this, e.what()); // once, not per request and representation
     output->Initialize();
     return 0;
   }

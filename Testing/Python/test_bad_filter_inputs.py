@@ -313,6 +313,13 @@ class BadFilterInputTest(unittest.TestCase):
         synth.SetSeed(3)  # a change: the refusal is news again
         self.assertEqual(synth.GetExecutive().Update(), 0)
         self.assertEqual(len(errors), 2, errors)
+        # The readers too: a missing file is said once, not once per request.
+        reader = self.make("vtkTerrainReader", FileName=os.path.join(self.tmp.name, "gone.tif"))
+        reader.AddObserver(vtkCommand.ErrorEvent, on_error)
+        self.assertEqual(reader.GetExecutive().Update(), 0)
+        self.assertEqual(reader.GetExecutive().Update(), 0)
+        self.assertEqual(len(errors), 3, errors)
+        self.assertIn("gone.tif", errors[2])
 
     def test_catalogue(self):
         self.producers = []
