@@ -404,20 +404,32 @@ TEST(LandformField, AValleyDrainsToItsBorderEnd)
       EXPECT_GT(floor, f.field.z[cell(60, j - 1)]) << j;
     }
     EXPECT_EQ(f.weight[c], 1.0f) << j;
-    // Beside the valley the land rises with the section to the rim, which is
-    // the depth above the floor at the outlet and 60% of it at the head.
-    // The rim's cell value comes from its own pass over the line (the lowest
-    // again, from a visit within half a cell of the centre).
+    // Beside the valley the land rises with the section from the floor to the
+    // rim, which is the depth above the floor at the outlet and 60% of it at
+    // the head. Floor and rim reach the land k cells away smoothed over the
+    // line cells about k / 2 cells along (three sigmas: 1.5 k), so each lies
+    // between the least and the most of theirs there.
     auto rimAt = [&](double flow)
-    { return expectedFloor(flow, longest) + kRelief * (1.0 - 0.4 * flow / longest) - floor; };
-    const double rimA = rimAt(std::max(0.0, j - 0.5) * kCell);
-    const double rimB = rimAt((j + 0.5) * kCell);
-    const double rimLow = std::min(rimA, rimB);
-    const double rimHigh = std::max(rimA, rimB);
+    { return expectedFloor(flow, longest) + kRelief * (1.0 - 0.4 * flow / longest); };
     for (int k = 1; k <= 30; ++k)
     {
-      const double low = floor + rimLow * shape(k * kCell) - 0.05;
-      const double high = floor + rimHigh * shape(k * kCell) + 0.05;
+      const double first = std::max(0.0, j - 0.5 - 1.5 * k) * kCell;
+      const double last = std::min(150.0, j + 0.5 + 1.5 * k) * kCell;
+      const double none = std::numeric_limits<double>::infinity();
+      double floorLow = none;
+      double floorHigh = -none;
+      double rimLow = none;
+      double rimHigh = -none;
+      for (double flow = first; flow <= last + 1e-9; flow += 0.25 * kCell)
+      {
+        floorLow = std::min(floorLow, expectedFloor(flow, longest));
+        floorHigh = std::max(floorHigh, expectedFloor(flow, longest));
+        rimLow = std::min(rimLow, rimAt(flow));
+        rimHigh = std::max(rimHigh, rimAt(flow));
+      }
+      const double s = shape(k * kCell);
+      const double low = floorLow * (1.0 - s) + rimLow * s - 0.05;
+      const double high = floorHigh * (1.0 - s) + rimHigh * s + 0.05;
       for (int i : { 60 - k, 60 + k })
       {
         EXPECT_GE(f.field.at(i, j), low) << k << ", " << j;
@@ -794,4 +806,33 @@ TEST(TargetFromHeights, PercentilesLandOnTheExemplarsSoTheReliefKeepsItsSize)
   EXPECT_NEAR(t.field.at(199, 10), 3800.0 + 50.0 * 1800.0 / 900.0, 15.0);
   EXPECT_TRUE(t.detailed);
   EXPECT_EQ(t.halfWidth.size(), t.field.size());
+}
+
+TEST(LandformField, TwoValleyNetworksMeetWithoutAStep)
+{
+  // Two valleys draining to the south border, 40 cells apart, of different
+  // lengths: their floors and rims rise at different rates, so where the land
+  // turns from one's flank to the other's the two disagree by tens of metres.
+  // Taken from the nearest line cell alone, the field stepped there.
+  const LandformField f =
+    fieldOf({ valley({ { 40, 150 }, { 40, 0 } }), valley({ { 80, 60 }, { 80, 0 } }) });
+  // The steepest the land gets anywhere on a flank of one valley alone (the
+  // hand section rises 140 m in 150 m at its steepest: 28 m a cell).
+  const double flankStep = 140.0 / 150.0 * kCell;
+  double largest = 0.0;
+  int at = -1;
+  for (int j = 0; j < 70; ++j)
+  {
+    for (int i = 41; i < 79; ++i)
+    {
+      const double step = std::abs(f.field.at(i + 1, j) - f.field.at(i, j));
+      if (step > largest)
+      {
+        largest = step;
+        at = i;
+      }
+    }
+  }
+  std::printf("largest step between the valleys: %.1f m (column %d)\n", largest, at);
+  EXPECT_LT(largest, 1.05 * flankStep);
 }
