@@ -619,7 +619,8 @@ void writeReport(const std::string& path,
     { "valley_cells", r.finishing.valleyCells },
     { "valley_cells_lowered", r.finishing.valleyCellsLowered },
     { "deepest_valley_cut_m", r.finishing.deepestValleyCut },
-    { "mean_valley_cut_m", r.finishing.meanValleyCut } };
+    { "mean_valley_cut_m", r.finishing.meanValleyCut },
+    { "cells_brought_into_range", r.finishing.cellsBroughtIntoRange } };
   if (r.finishing.drained)
   {
     finishing["drainage"] = { { "method", pitRemovalMethodName(*a.options.drainage) },

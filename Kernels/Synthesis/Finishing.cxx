@@ -2,6 +2,8 @@
 
 #include "../Core/Smoothing.h"
 #include "../Distance/DistanceField.h"
+#include "../Hydrology/Flow.h"
+#include "../Hydrology/PitRemoval.h"
 #include "../Merging/Poisson.h"
 
 #include <algorithm>
@@ -262,7 +264,8 @@ double correctLandformAtScales(Heightfield& out,
   const std::vector<float>& confidence,
   const std::vector<float>& sigma,
   double largestSigma,
-  double finestSigma)
+  double finestSigma,
+  double targetSigma)
 {
   if (!(largestSigma > 0.0))
   {
@@ -307,7 +310,8 @@ double correctLandformAtScales(Heightfield& out,
   for (std::size_t l = 0; l < levels.size(); ++l)
   {
     const Heightfield lowOut = smoothLarge(out, levels[l]);
-    const Heightfield lowTarget = smoothLarge(target, levels[l]);
+    const Heightfield lowTarget =
+      smoothLarge(target, targetSigma > 0.0 ? std::min(levels[l], targetSigma) : levels[l]);
     change[l].assign(out.size(), 0.0f);
     for (std::size_t c = 0; c < out.size(); ++c)
     {
@@ -346,15 +350,51 @@ double correctLandformAtScales(Heightfield& out,
   return largest;
 }
 
+// The flow distances of the lines, continued past each outlet that lies
+// inside the map down the way complete breaching would drain it to the
+// border (Hydrology/PitRemoval.h), with distances below 0: a valley whose end
+// is a closed basin is led out of it as a channel of its own, shaped by the
+// same fit and spread as the drawn lines, instead of filling to a lake that
+// drowned its lower part.
+std::vector<float> throughClosedOutlets(const Heightfield& out,
+  const std::vector<float>& downstream)
+{
+  std::vector<float> flow = downstream;
+  const Heightfield breached = breachDepressions(out);
+  const std::vector<std::int8_t> dir = flowDirections(breached);
+  const std::array<double, kD8Directions> step = d8Distances(out.cellX, out.cellY);
+  for (std::size_t c = 0; c < out.size(); ++c)
+  {
+    if (!(downstream[c] <= 0.0f))
+    {
+      continue; // not an outlet
+    }
+    std::size_t k = c;
+    double distance = 0.0;
+    while (dir[k] != kNoFlow)
+    {
+      distance -= step[static_cast<std::size_t>(dir[k])];
+      k = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k) + d8Offset(dir[k], out.width));
+      if (std::isfinite(flow[k]))
+      {
+        break; // joined a line (or a path already led out)
+      }
+      flow[k] = static_cast<float>(distance);
+    }
+  }
+  return flow;
+}
+
 DrainageReport drainValleys(Heightfield& out,
-  const std::vector<float>& downstream,
+  const std::vector<float>& drawnDownstream,
   const DrainageOptions& o)
 {
   DrainageReport report;
-  if (downstream.size() != out.size())
+  if (drawnDownstream.size() != out.size())
   {
     return report; // no valley lines on this grid
   }
+  const std::vector<float> downstream = throughClosedOutlets(out, drawnDownstream);
   std::vector<std::size_t> order;
   std::vector<std::uint8_t> line(out.size(), 0);
   for (std::size_t c = 0; c < out.size() && c < downstream.size(); ++c)
@@ -431,17 +471,49 @@ DrainageReport drainValleys(Heightfield& out,
   descendAlongLines(out, order, downstream, o.minimumGradient);
   widenCuts(out, smoothed, line, near, depth, kCutWideningCells);
 
-  report.cells = order.size();
   double sum = 0.0;
   for (std::size_t c : order)
   {
+    if (!std::isfinite(drawnDownstream[c]))
+    {
+      continue; // a way out of a closed basin, not a drawn line
+    }
+    ++report.cells;
     const double lowered = before.z[c] - out.z[c];
     report.lowered += lowered > 0.0 ? 1 : 0;
     report.largest = std::max(report.largest, lowered);
     sum += lowered;
   }
-  report.mean = sum / static_cast<double>(order.size());
+  report.mean = report.cells > 0 ? sum / static_cast<double>(report.cells) : 0.0;
   return report;
+}
+
+std::size_t compressIntoRange(Heightfield& out, double low, double high, double slack)
+{
+  if (!(slack > 0.0) || !(low <= high))
+  {
+    return 0;
+  }
+  std::size_t moved = 0;
+  for (std::size_t c = 0; c < out.size(); ++c)
+  {
+    if (!out.isValid(c))
+    {
+      continue;
+    }
+    const double z = out.z[c];
+    if (z < low)
+    {
+      out.z[c] = static_cast<float>(low - slack * std::tanh((low - z) / slack));
+      ++moved;
+    }
+    else if (z > high)
+    {
+      out.z[c] = static_cast<float>(high + slack * std::tanh((z - high) / slack));
+      ++moved;
+    }
+  }
+  return moved;
 }
 
 void meetConstraints(Heightfield& out, const FeatureGraph& graph, double reach)

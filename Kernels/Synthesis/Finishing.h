@@ -28,12 +28,23 @@ double correctLandform(Heightfield& out,
 // sigma; sigmas outside that range are taken as its ends. The scales and the
 // confidence are smoothed over the finest level first, so the correction has
 // no crease where they kink. Returns the largest change, metres.
+//
+// `targetSigma` > 0: the output's relief coarser than sigma[c] is replaced by
+// the target's own shape smoothed at only `targetSigma` cells (at most
+// sigma[c]), not by the target's relief coarser than sigma[c]: out + w (G_t T
+// - G_s out) instead of out + w G_s (T - out). The patches' detail finer than
+// sigma[c] stays on top either way; what changes is that a landform narrower
+// than a few sigma keeps its full depth and its crisp crest or floor, where
+// the blurred target drew it shallow and round (a valley 20 cells wide came
+// out at half its depth). For drawn targets, whose shapes are the sketch's
+// landforms; a DEM target's own detail would replace the exemplars'.
 double correctLandformAtScales(Heightfield& out,
   const Heightfield& target,
   const std::vector<float>& confidence,
   const std::vector<float>& sigma,
   double largestSigma,
-  double finestSigma);
+  double finestSigma,
+  double targetSigma = 0.0);
 
 struct DrainageOptions
 {
@@ -63,10 +74,22 @@ struct DrainageReport
 // finite `downstream` flow distance) each cell is lowered, if need be, below
 // every cell upstream of it and below the cells beside the line, and the cut
 // fades out smoothly over `reach` cells (stream burning, as hydrologists
-// condition a DEM to a known river). D8 flow then follows the lines.
+// condition a DEM to a known river). D8 flow then follows the lines. A line
+// whose outlet (flow distance 0) is a closed basin is continued out of it
+// first, down the way complete breaching would drain it to the border, and
+// that way is burnt as the lines are: its water leaves instead of filling a
+// lake over the valley's lower part. The report counts the drawn lines only.
 DrainageReport drainValleys(Heightfield& out,
   const std::vector<float>& downstream,
   const DrainageOptions& options = {});
+
+// Heights past [low, high] brought back smoothly into [low - slack, high +
+// slack]: z = low - slack tanh((low - z) / slack) below low, and the same
+// above high, so that the terrain keeps within the exemplars' range widened by
+// `slack` each way. Increasing and smooth (slope 1 at low and high): water
+// runs where it ran, and nothing inside [low, high] moves. Returns the number
+// of cells moved. slack <= 0 or low > high: no change.
+std::size_t compressIntoRange(Heightfield& out, double low, double high, double slack);
 
 // Height constraints (poly-line Elevation): bends the terrain so the
 // constrained lines sit exactly at their heights; the correction is harmonic

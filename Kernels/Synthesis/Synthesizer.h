@@ -115,6 +115,9 @@ struct FinishingReport
   double largestDrainageRaise = 0.0;    // m
   double largestDrainageLowering = 0.0; // m
   double meanDrainageChange = 0.0;      // m, mean absolute change over the terrain
+  // Cells past the exemplars' range brought back within a tenth of its span
+  // of it (compressIntoRange, Finishing.h).
+  std::size_t cellsBroughtIntoRange = 0;
 };
 
 struct SynthesisTimings
