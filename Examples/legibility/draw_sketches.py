@@ -43,7 +43,21 @@ def herringbone():
     return c
 
 
-SKETCHES = (valley_network, letters, rings, herringbone)
+def carved_letters():
+    return sketch_drawing.carved_letters(SIZE)
+
+
+def isolated():
+    """Four short strokes far apart: a ridge, a ring valley, a valley and a bent ridge."""
+    c = Canvas(SIZE, SIZE)
+    c.polyline([(70, 90), (190, 120)], RIDGE)
+    c.circle(380, 130, 45, VALLEY)
+    c.polyline([(120, 330), (160, 440)], VALLEY)
+    c.polyline([(300, 400), (360, 330), (440, 380)], RIDGE)
+    return c
+
+
+SKETCHES = (valley_network, letters, rings, herringbone, carved_letters, isolated)
 
 if __name__ == "__main__":
     out = sys.argv[1] if len(sys.argv) > 1 else "."

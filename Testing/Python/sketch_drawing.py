@@ -176,6 +176,16 @@ def letters_in_a_ring(size=SIZE):
     return c
 
 
+def carved_letters(size=LEGIBILITY_FRAME):
+    """Block letters H and I carved as valleys, nothing else drawn: each letter is a valley network
+    whose outlet lies inside the map (a closed basin unless its water is led out)."""
+    c = Canvas(size, size)
+    for line in ([(110, 130), (110, 380)], [(230, 130), (230, 380)], [(110, 255), (230, 255)],
+                 [(330, 130), (410, 130)], [(370, 130), (370, 380)], [(330, 380), (410, 380)]):
+        c.polyline(_scaled(line, size), VALLEY)
+    return c
+
+
 def grid():
     """Ridges and valleys in turn, 40 pixels apart, across the whole map."""
     c = Canvas(SIZE, SIZE)
