@@ -48,12 +48,12 @@ constexpr double kCorrectionShareOfHalfWidth = 1.0 / kCorrectionSigmasPerHalfWid
 // (correctLandformAtScales' targetSigma): a crest or floor a few cells wide.
 // Taken at the correction's own scale, as a DEM target still is, strokes
 // closer than a patch came out at about half their depth and read faintly
-// (legible share over 20 runs of the bundled sketches 0.61; block letters
-// carved into Colorado 0.48, Tasse's code 0.63). 3 cells drew them crisper
-// still (0.84) but steeper than the exemplars' own slopes (slope distance
-// 0.053 against 0.045); 5 keeps their slopes (0.046) and reads 0.80 (the
-// letters 0.68).
-constexpr double kDrawnTargetSigmaCells = 5.0;
+// (legible share over the 44-run sweep of the bundled sketches 0.61; block
+// letters carved into Colorado 0.48, Tasse's code 0.63). Over 20 of those
+// runs 3 cells drew them crisper still (0.84) but steeper than the exemplars'
+// own slopes (slope distance 0.053 against 0.045), 5 read 0.80 at 0.046; 6
+// keeps their slopes (0.044 over all 44, as before) and reads 0.79.
+constexpr double kDrawnTargetSigmaCells = 6.0;
 // The merge spreads the seam's gradient mismatch this far (in patches: Tasse's
 // 20 cells at 80); a fixed 20 cells on smaller patches tilted them by up to
 // kilometres on steep exemplars (Mont Blanc at 40-cell patches: 112-8615 m
