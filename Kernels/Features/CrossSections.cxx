@@ -35,6 +35,14 @@ std::vector<double> smoothed(const std::vector<double>& z, double sigma)
 {
   const int n = static_cast<int>(z.size());
   const int reach = static_cast<int>(std::ceil(3.0 * sigma));
+  // The kernel by distance, once: sections are smoothed by the million (the
+  // land's relief, the legibility measure), and exp per pair of samples was
+  // 6% of a 512 x 512 synthesis.
+  std::vector<double> kernel(static_cast<std::size_t>(reach) + 1);
+  for (int d = 0; d <= reach; ++d)
+  {
+    kernel[static_cast<std::size_t>(d)] = std::exp(-0.5 * d * d / (sigma * sigma));
+  }
   std::vector<double> out(z.size());
   for (int a = 0; a < n; ++a)
   {
@@ -42,7 +50,7 @@ std::vector<double> smoothed(const std::vector<double>& z, double sigma)
     double weight = 0.0;
     for (int b = std::max(0, a - reach); b <= std::min(n - 1, a + reach); ++b)
     {
-      const double k = std::exp(-0.5 * (a - b) * (a - b) / (sigma * sigma));
+      const double k = kernel[static_cast<std::size_t>(std::abs(a - b))];
       sum += k * z[static_cast<std::size_t>(b)];
       weight += k;
     }
