@@ -13,6 +13,7 @@
 #include "Core/Error.h"
 #include "Core/FileRoles.h"
 #include "Core/HeightfieldIO.h"
+#include "Core/Memory.h"
 #include "FeatureGraphConversion.h"
 #include "Features/Ppa.h"
 #include "Features/Sketch.h"
@@ -669,6 +670,7 @@ int main(int argc, char** argv)
   const std::string command = args[0];
   args.erase(args.begin());
   tsynth::cli::removePartialFilesOnSignals();
+  tsynth::reuseFreedWorkMemory();
   bool knownCommand = true; // until no command matched: then the help to see is the main one
   // Every file the command writes is staged here and appears only when the command succeeded.
   tsynth::Publication outputs;

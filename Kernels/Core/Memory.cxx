@@ -3,8 +3,13 @@
 #include "Error.h"
 
 #include <iomanip>
+#include <mutex>
 #include <sstream>
 #include <unistd.h>
+
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 namespace tsynth
 {
@@ -16,6 +21,22 @@ constexpr double kBytesPerMB = 1.0e6;
 constexpr double kWholeGBFrom = 100.0;
 
 } // namespace
+
+void reuseFreedWorkMemory()
+{
+  static std::once_flag once;
+  std::call_once(once,
+    []
+    {
+#if defined(__GLIBC__)
+      // Each call only changes a tuning parameter; a refused one (a C library
+      // with other limits) leaves glibc's default, which is slower, not wrong.
+      mallopt(M_MMAP_THRESHOLD, static_cast<int>(kReusedBlockBytes));
+      mallopt(M_TRIM_THRESHOLD, static_cast<int>(kKeptFreeBytes));
+      mallopt(M_TOP_PAD, static_cast<int>(kHeapGrowthPadBytes));
+#endif
+    });
+}
 
 double physicalMemory()
 {

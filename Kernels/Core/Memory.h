@@ -36,4 +36,22 @@ double checkMemoryBudget(double estimate,
 // is refused before anything is allocated.
 void checkReadFits(const std::string& path, int width, int height, double bytesPerCell);
 
+// Asks the C library (glibc; elsewhere nothing is done) to keep freed work
+// arrays for reuse instead of handing them back to the system at once. A
+// synthesis allocates and frees arrays of megabytes per patch and per stage;
+// by default glibc unmaps each block from 128 kB on and trims the heap when
+// 128 kB are free at its top, so the next array page-faults in afresh: a third
+// of a 1024 x 1024 synthesis's system time and about 15% of its wall time
+// (Testing/Benchmarks/bench_synthesis.sh --vs). Blocks up to kReusedBlockBytes then
+// come from the heap, and up to kKeptFreeBytes of freed heap are kept. It
+// changes no result. Called once per process (later calls do nothing) by
+// tsynth's main and prepareSynthesis(); safe to call from any thread.
+void reuseFreedWorkMemory();
+// The largest block glibc allows on its heap rather than mapped (64-bit).
+constexpr long kReusedBlockBytes = 32L << 20;
+// Free memory kept at the heap's top: a few output-sized work arrays.
+constexpr long kKeptFreeBytes = 512L << 20;
+// How much more than asked the heap grows by, so growing is rare.
+constexpr long kHeapGrowthPadBytes = 64L << 20;
+
 } // namespace tsynth

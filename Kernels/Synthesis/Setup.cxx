@@ -3,6 +3,7 @@
 #include "Synthesizer.h"
 
 #include "../Core/Error.h"
+#include "../Core/Memory.h"
 #include "../Core/Resample.h"
 #include "../Features/Ppa.h"
 
@@ -544,6 +545,7 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
       ".");
   }
   checkPatchSize(in.patchSize, in.names.patch);
+  reuseFreedWorkMemory(); // the filters' synthesis too, not only tsynth's
   SynthesisSetup s;
   const Heightfield& first = in.exemplars.front();
   s.grid =

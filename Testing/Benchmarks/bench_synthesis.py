@@ -1,0 +1,193 @@
+#!/usr/bin/env python3
+"""End-to-end synthesis speed, per stage, with ratios taken in the same run.
+
+Cases (each a `tsynth synth` run; the per-stage split comes from --report):
+  default   1024 x 1024 from one 648 x 648 exemplar (colorado, y_ridges), on
+            OpenCL and on the CPU; the two outputs must be identical.
+  --large   4096 x 4096 from five exemplars (needs ../shared/data).
+  --dense   dense feature sets: a DEM as the target (alps-montblanc, 647 x 647)
+            and a real DEM's own feature tree as a poly-line sketch (Mount
+            Jackson's ridges and valleys from `tsynth features --both`).
+Comparisons (the figures that count on a shared, noisy machine):
+  --vs BUILD    runs BUILD/bin/tsynth (for example the previous landing) on the
+                same case, alternating with ours, --runs times; prints both
+                medians and the median of the pair-by-pair ratios ours / BUILD,
+                and whether the outputs are identical.
+  --peer DIR    runs Tasse's CPU code (built in DIR by ../shared/peers/tasse/
+                build.sh) once on the default case's sketch scaled to the
+                output size, and prints its time over our median.
+Timings are reported, never asserted.
+
+Usage: bench_synthesis.sh [--large [--both]] [--dense] [--vs BUILD] [--peer DIR]
+                          [--runs N] [build dir]
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SHARED = os.path.join(os.path.dirname(ROOT), "shared")
+DATA = os.path.join(ROOT, "Data")
+LARGE_EXEMPLARS = ["colorado", "alaska", "appalachians", "himalaya-everest", "andes-chile"]
+
+
+class Case:
+    """One synthesis: its label, tsynth synth arguments and backends to time."""
+
+    def __init__(self, label, args, backends, sketch=None, size=None):
+        self.label = label
+        self.args = args
+        self.backends = backends
+        self.sketch = sketch  # the raster sketch the peer can read, if any
+        self.size = size      # (width, height) for the peer's scaled sketch
+
+
+def fail(message):
+    print("bench_synthesis: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
+def run_synth(tsynth, case, backend, out, report):
+    """One timed run; returns (wall seconds, report dict)."""
+    command = [tsynth, "synth", *case.args, "--backend", backend, "-o", out,
+               "--report", report, "--no-progress"]
+    start = time.monotonic()
+    done = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    wall = time.monotonic() - start
+    if done.returncode != 0:
+        fail(f"{' '.join(command)} failed: {done.stderr.strip()}")
+    with open(report) as f:
+        return wall, json.load(f)
+
+
+def stages(report):
+    t = report["times_s"]
+    features = report.get("feature_placements", 0)
+    fills = report["placements"] - features
+    return (f"prepare {t['prepare']:.2f}, matcher setup {t['setup']:.2f}, features "
+            f"{t['features']:.2f} ({1e3 * t['features'] / max(1, features):.1f} ms for each of "
+            f"{features}), fill {t['fill']:.2f} ({1e3 * t['fill'] / max(1, fills):.1f} ms for "
+            f"each of {fills})")
+
+
+def same_file(a, b):
+    with open(a, "rb") as fa, open(b, "rb") as fb:
+        return fa.read() == fb.read()
+
+
+def time_case(case, tsynth, baseline, runs, tmp):
+    """Times each backend of the case; returns our median wall (first backend)."""
+    print(case.label)
+    medians = {}
+    outputs = {}
+    for backend in case.backends:
+        ours, theirs, ratios = [], [], []
+        report = None
+        for r in range(runs):
+            out = os.path.join(tmp, f"ours-{backend}.tif")
+            wall, report = run_synth(tsynth, case, backend, out, os.path.join(tmp, "rep.json"))
+            ours.append(wall)
+            if baseline:
+                base_out = os.path.join(tmp, f"base-{backend}.tif")
+                base_wall, _ = run_synth(baseline, case, backend, base_out,
+                                         os.path.join(tmp, "rep-base.json"))
+                theirs.append(base_wall)
+                ratios.append(wall / base_wall)
+        outputs[backend] = out
+        medians[backend] = statistics.median(ours)
+        line = f"  {backend:>6}: {medians[backend]:6.2f} s end to end (median of {runs}); {stages(report)}"
+        print(line)
+        if baseline:
+            print(f"          baseline {statistics.median(theirs):6.2f} s; ours / baseline "
+                  f"{statistics.median(ratios):.3f} (pairs: {', '.join(f'{x:.3f}' for x in ratios)});"
+                  f" output {'identical' if same_file(out, base_out) else 'DIFFERENT'}")
+    if len(outputs) == 2:
+        a, b = outputs.values()
+        print("  identical output on both backends" if same_file(a, b) else "  OUTPUTS DIFFER")
+    return medians[case.backends[0]]
+
+
+def run_peer(peer, case, ours_wall, tmp):
+    """Tasse's CPU code on the case's sketch at the output size, once."""
+    if case.sketch is None:
+        return
+    width, height = case.size
+    scaled = os.path.join(tmp, "peer-sketch.png")
+    subprocess.run(["gdal_translate", "-q", "-of", "PNG", "-r", "near", "-outsize", str(width),
+                    str(height), case.sketch, scaled], check=True)
+    exemplar = case.args[case.args.index("--exemplar") + 1]
+    start = time.monotonic()
+    done = subprocess.run(["bash", os.path.join(SHARED, "peers", "tasse", "run.sh"), peer, exemplar,
+                           scaled, os.path.join(tmp, "peer.tif")], capture_output=True, text=True)
+    wall = time.monotonic() - start
+    if done.returncode != 0:
+        fail("the peer failed: " + (done.stderr.strip() or done.stdout.strip()))
+    print(f"  peer (Tasse's CPU code, one thread): {wall:6.1f} s; ours is {wall / ours_wall:.1f}x "
+          f"faster")
+
+
+def tree_sketch(tsynth, tmp):
+    """Mount Jackson's ridges and valleys as a poly-line sketch (written once)."""
+    dem = os.path.join(SHARED, "data", "dems", "mount_jackson_n39_w107_3arc.tif")
+    tree = os.path.join(tmp, "jackson-tree.vtp")
+    subprocess.run([tsynth, "features", dem, "--both", "-o", tree], check=True,
+                   stdout=subprocess.DEVNULL)
+    return tree
+
+
+def cases(options, tsynth, tmp):
+    colorado = os.path.join(DATA, "dems", "colorado.png")
+    y_ridges = os.path.join(DATA, "sketches", "strokes_y_ridges.png")
+    if options.large:
+        args = []
+        for dem in LARGE_EXEMPLARS:
+            args += ["--exemplar", os.path.join(SHARED, "data", "dems", dem + ".png")]
+        args += ["--sketch", os.path.join(SHARED, "data", "sketches", "strokes_valley_meander.png"),
+                 "--size", "4096x4096"]
+        yield Case("4096x4096 from five exemplars", args,
+                   ["opencl", "cpu"] if options.both else ["opencl"])
+        return
+    yield Case("1024x1024 from one exemplar",
+               ["--exemplar", colorado, "--sketch", y_ridges, "--size", "1024x1024"],
+               ["opencl", "cpu"], sketch=y_ridges, size=(1024, 1024))
+    if options.dense:
+        yield Case("a DEM as the target (alps-montblanc, 647x647), colorado exemplar",
+                   ["--exemplar", colorado, "--sketch",
+                    os.path.join(DATA, "dems", "alps-montblanc.png")], ["opencl"])
+        yield Case("Mount Jackson's feature tree as the sketch, colorado exemplar",
+                   ["--exemplar", colorado, "--sketch", tree_sketch(tsynth, tmp)], ["opencl"])
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("build", nargs="?", default=os.path.join(ROOT, "build"))
+    parser.add_argument("--large", action="store_true")
+    parser.add_argument("--both", action="store_true", help="--large on the CPU too")
+    parser.add_argument("--dense", action="store_true")
+    parser.add_argument("--vs", metavar="BUILD", help="a baseline build directory")
+    parser.add_argument("--peer", metavar="DIR", help="where Tasse's code was built")
+    parser.add_argument("--runs", type=int, default=3, help="runs per case and backend (default 3)")
+    options = parser.parse_args()
+    if options.runs < 1:
+        fail("--runs must be at least 1")
+    tsynth = os.path.join(options.build, "bin", "tsynth")
+    baseline = os.path.join(options.vs, "bin", "tsynth") if options.vs else None
+    for program in filter(None, [tsynth, baseline]):
+        if not os.access(program, os.X_OK):
+            fail(f"no tsynth at {program}; build it first")
+    if (options.large or options.dense or options.peer) and not os.path.isdir(SHARED):
+        fail("--large, --dense and --peer need ../shared beside the checkout")
+    with tempfile.TemporaryDirectory() as tmp:
+        for case in cases(options, tsynth, tmp):
+            ours = time_case(case, tsynth, baseline, options.runs, tmp)
+            if options.peer:
+                run_peer(options.peer, case, ours, tmp)
+
+
+if __name__ == "__main__":
+    main()
