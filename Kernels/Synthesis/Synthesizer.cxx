@@ -522,12 +522,13 @@ public:
     float lineOffset = std::numeric_limits<float>::quiet_NaN();
   };
 
-  Trial tryCandidate(const PatchCandidate& candidate,
+  // The trial before its merge: the patch at its height and, for a feature
+  // patch, the cells it owns and how far its own line lies from the stroke.
+  Trial prepareTrial(const PatchCandidate& candidate,
     int x0,
     int y0,
     bool feature,
-    const std::vector<std::uint8_t>& strokeCells,
-    PatchMerger& merger) const
+    const std::vector<std::uint8_t>& strokeCells) const
   {
     Trial t;
     t.patch = extract(candidate);
@@ -566,16 +567,11 @@ public:
       }
       t.lineOffset = lineOffset(own, x0, y0);
     }
-    t.dry = merger.seamCost(out_, filled_, t.patch, x0, y0, feature ? &t.core : nullptr);
     return t;
   }
 
-  // The candidate to place: the lowest seam cost (plus the repetition penalty,
-  // near-ties by the seed), among feature candidates only those that lay their
-  // own line within kLineOffsetSlack cells of the best-aligned one.
-  std::size_t choose(const std::vector<PatchCandidate>& candidates,
-    const std::vector<Trial>& trials,
-    double& bestSeam) const
+  // The best-aligned feature candidate's line offset (+inf if none has one).
+  static float bestAlignment(const std::vector<Trial>& trials)
   {
     float aligned = std::numeric_limits<float>::infinity();
     for (const Trial& t : trials)
@@ -585,12 +581,31 @@ public:
         aligned = std::min(aligned, t.lineOffset);
       }
     }
+    return aligned;
+  }
+
+  // Whether choose() may take the trial: among feature candidates only those
+  // that lay their own line within kLineOffsetSlack cells of the best-aligned
+  // one; the others need no merge's dry run.
+  static bool eligible(const Trial& t, float aligned)
+  {
+    return !std::isfinite(aligned) || t.lineOffset <= aligned + kLineOffsetSlack;
+  }
+
+  // The candidate to place: the lowest seam cost (plus the repetition penalty,
+  // near-ties by the seed), among feature candidates only those that lay their
+  // own line within kLineOffsetSlack cells of the best-aligned one.
+  std::size_t choose(const std::vector<PatchCandidate>& candidates,
+    const std::vector<Trial>& trials,
+    float aligned,
+    double& bestSeam) const
+  {
     std::size_t best = 0;
     bestSeam = std::numeric_limits<double>::infinity();
     for (std::size_t c = 0; c < candidates.size(); ++c)
     {
       const Trial& t = trials[c];
-      if (std::isfinite(aligned) && !(t.lineOffset <= aligned + kLineOffsetSlack))
+      if (!eligible(t, aligned))
       {
         continue;
       }
@@ -667,26 +682,37 @@ public:
     }
     const std::vector<std::uint8_t> strokeCells =
       feature ? strokeCore(x0, y0) : std::vector<std::uint8_t>();
-    // Every candidate's dry run, in parallel (one merger workspace per thread);
-    // choose() reads them in candidate order, so it does not depend on the
-    // thread count.
+    // Every candidate's trial, then the dry run of each that choose() may
+    // take, in parallel (one merger workspace per thread); choose() reads them
+    // in candidate order, so it does not depend on the thread count.
     std::vector<Trial> trials(candidates.size());
     const long count = static_cast<long>(candidates.size());
-#pragma omp parallel for schedule(dynamic)                                                         \
-  num_threads(static_cast <int>(std::min <std::size_t>(candidates.size(), mergers_.size())))
+    const int threads = static_cast<int>(std::min(candidates.size(), mergers_.size()));
+#pragma omp parallel for schedule(dynamic) num_threads(threads)
     for (long n = 0; n < count; ++n)
     {
       const std::size_t c = static_cast<std::size_t>(n);
-      trials[c] = tryCandidate(candidates[c],
-        x0,
-        y0,
-        feature,
-        strokeCells,
-        mergers_[static_cast<std::size_t>(omp_get_thread_num())]);
+      trials[c] = prepareTrial(candidates[c], x0, y0, feature, strokeCells);
+    }
+    const float aligned = bestAlignment(trials);
+#pragma omp parallel for schedule(dynamic) num_threads(threads)
+    for (long n = 0; n < count; ++n)
+    {
+      Trial& t = trials[static_cast<std::size_t>(n)];
+      if (eligible(t, aligned))
+      {
+        t.dry = mergers_[static_cast<std::size_t>(omp_get_thread_num())].seamCost(
+          out_, filled_, t.patch, x0, y0, feature ? &t.core : nullptr);
+      }
     }
     double seam = 0.0;
-    const std::size_t chosen = choose(candidates, trials, seam);
-    const Trial& t = trials[chosen];
+    const std::size_t chosen = choose(candidates, trials, aligned, seam);
+    Trial& t = trials[chosen];
+    if (!eligible(t, aligned))
+    {
+      // No candidate had a finite seam cost and choose() fell back to the first.
+      t.dry = mergers_[0].seamCost(out_, filled_, t.patch, x0, y0, feature ? &t.core : nullptr);
+    }
     MergeOptions mo;
     mo.mode = o_.merge;
     mo.shepardRadius = kShepardRadiusInPatches * P_;
