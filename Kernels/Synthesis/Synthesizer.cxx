@@ -94,6 +94,15 @@ constexpr float kFreeLandWeight = 0.05f;
 // to stop drift along a line of patches, small enough that the seams the
 // merge has to absorb stay small.
 constexpr double kTargetPull = 1.0;
+// On a DEM target, a feature site whose centre lies within this share of a
+// patch of a site already placed is left to that patch: it carries the land
+// there already, and a second patch would only cut the same seams again. The
+// target's own PPA tree has lines 8-15 cells apart: 2579 feature patches on
+// a 648 x 648 Appalachian target (558 with this), each cell under about 40 of
+// them, for the same band-pass correlation. Drawings keep every site:
+// theirs lie half a patch apart along a line, and closer only at junctions
+// and between close strokes, where each arm is drawn on purpose.
+constexpr double kSiteClearanceInPatches = 0.25;
 // A feature patch owns a disc of this radius (in patches) round its centre ...
 constexpr double kCoreDiscInPatches = 0.125;
 // ... and its lines (the drawn one and its own) this far from the centre; so
@@ -1111,7 +1120,46 @@ private:
         }
       }
     }
-    return ordered;
+    return target_.detailed ? spacedOut(ordered) : ordered;
+  }
+
+  // The sites in order, less each one within kSiteClearanceInPatches of one
+  // kept before it (a grid of buckets one clearance wide holds the kept ones).
+  std::vector<FeatureSite> spacedOut(const std::vector<FeatureSite>& sites) const
+  {
+    const double clearance = kSiteClearanceInPatches * P_;
+    const int columns = std::max(1, static_cast<int>(std::ceil(out_.width / clearance)) + 1);
+    const int rows = std::max(1, static_cast<int>(std::ceil(out_.height / clearance)) + 1);
+    std::vector<std::vector<Point2>> buckets(static_cast<std::size_t>(columns) * rows);
+    auto bucketOf = [&](double v, int count)
+    { return std::clamp(static_cast<int>(std::floor(v / clearance)), 0, count - 1); };
+    std::vector<FeatureSite> kept;
+    for (const FeatureSite& site : sites)
+    {
+      const int bx = bucketOf(site.centre.x, columns);
+      const int by = bucketOf(site.centre.y, rows);
+      bool near = false;
+      for (int y = std::max(0, by - 1); y <= std::min(rows - 1, by + 1) && !near; ++y)
+      {
+        for (int x = std::max(0, bx - 1); x <= std::min(columns - 1, bx + 1) && !near; ++x)
+        {
+          for (const Point2& q : buckets[static_cast<std::size_t>(y) * columns + x])
+          {
+            if (std::hypot(q.x - site.centre.x, q.y - site.centre.y) < clearance)
+            {
+              near = true;
+              break;
+            }
+          }
+        }
+      }
+      if (!near)
+      {
+        kept.push_back(site);
+        buckets[static_cast<std::size_t>(by) * columns + bx].push_back(site.centre);
+      }
+    }
+    return kept;
   }
 
   const SynthesisTarget& target_;
