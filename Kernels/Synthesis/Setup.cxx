@@ -509,12 +509,8 @@ std::vector<const FeatureGraph*> SynthesisSetup::graphPointers() const
 
 std::optional<std::string> finenessWarning(const SynthesisTarget& target, int patchSize, bool dem)
 {
-  // Closer than this, a stroke's own scale is finer than the final correction
-  // draws (Synthesizer.h).
-  const double finest = 2.0 * kCorrectionSigmasPerHalfWidth * kFinestCorrectionInPatches;
-  // A drawing's own lines, not the ones it implies between them.
-  const double spacing =
-    2.0 * (target.lineHalfSpacing > 0.0 ? target.lineHalfSpacing : typicalHalfWidth(target));
+  const double finest = kFinestDrawnSpacingInPatches;
+  const double spacing = lineSpacing(target);
   if (!(spacing > 0.0) || spacing >= finest * patchSize)
   {
     return std::nullopt;

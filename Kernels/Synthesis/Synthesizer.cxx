@@ -94,14 +94,17 @@ constexpr float kFreeLandWeight = 0.05f;
 // to stop drift along a line of patches, small enough that the seams the
 // merge has to absorb stay small.
 constexpr double kTargetPull = 1.0;
-// On a DEM target, a feature site whose centre lies within this share of a
+// Where sites crowd, a feature site whose centre lies within this share of a
 // patch of a site already placed is left to that patch: it carries the land
-// there already, and a second patch would only cut the same seams again. The
-// target's own PPA tree has lines 8-15 cells apart: 2579 feature patches on
-// a 648 x 648 Appalachian target (558 with this), each cell under about 40 of
-// them, for the same band-pass correlation. Drawings keep every site:
-// theirs lie half a patch apart along a line, and closer only at junctions
-// and between close strokes, where each arm is drawn on purpose.
+// there already, and a second patch would only cut the same seams again.
+// Sites crowd on a DEM target's own PPA tree, whose lines lie 8-15 cells
+// apart (2579 feature patches on a 648 x 648 Appalachian target, 558 with
+// this, each cell under about 40 of them, for the same band-pass
+// correlation), and on any drawing whose lines are closer than patches draw
+// (kFinestDrawnSpacingInPatches, the fineness warning's case), such as a real
+// DEM's tree used as the sketch. Drawings with room keep every site: theirs
+// lie half a patch apart along a line and closer only at junctions, where
+// each arm is drawn on purpose.
 constexpr double kSiteClearanceInPatches = 0.25;
 // A feature patch owns a disc of this radius (in patches) round its centre ...
 constexpr double kCoreDiscInPatches = 0.125;
@@ -1120,7 +1123,14 @@ private:
         }
       }
     }
-    return target_.detailed ? spacedOut(ordered) : ordered;
+    return sitesCrowd() ? spacedOut(ordered) : ordered;
+  }
+
+  // A DEM target, or lines closer than patches draw (kSiteClearanceInPatches).
+  bool sitesCrowd() const
+  {
+    const double spacing = lineSpacing(target_);
+    return target_.detailed || (spacing > 0.0 && spacing < kFinestDrawnSpacingInPatches * P_);
   }
 
   // The sites in order, less each one within kSiteClearanceInPatches of one

@@ -37,6 +37,9 @@ constexpr double kFinestCorrectionInPatches = 0.1;
 // It follows landforms this many sigmas wide each side: strokes closer than
 // 2 x 3 x 0.1 = 0.6 patches apart cannot be drawn at their own scale.
 constexpr double kCorrectionSigmasPerHalfWidth = 3.0;
+// So lines closer than this share of a patch are finer than patches draw.
+constexpr double kFinestDrawnSpacingInPatches =
+  2.0 * kCorrectionSigmasPerHalfWidth * kFinestCorrectionInPatches;
 
 struct SynthesisOptions
 {

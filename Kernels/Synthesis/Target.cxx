@@ -134,6 +134,11 @@ double typicalHalfWidth(const SynthesisTarget& t)
   return widths.empty() ? 0.0 : percentile(widths, 0.5);
 }
 
+double lineSpacing(const SynthesisTarget& t)
+{
+  return 2.0 * (t.lineHalfSpacing > 0.0 ? t.lineHalfSpacing : typicalHalfWidth(t));
+}
+
 ExemplarStatistics exemplarStatistics(const std::vector<const Heightfield*>& exemplars,
   const std::vector<const FeatureGraph*>& graphs,
   int patchSize)

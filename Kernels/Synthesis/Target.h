@@ -135,4 +135,9 @@ SynthesisTarget makeTarget(const FeatureGraph& sketchGraph,
 // without lines.
 double typicalHalfWidth(const SynthesisTarget& target);
 
+// The typical spacing of the target's own lines, in cells: twice their half
+// spacing (a drawing's strokes, not the lines it implies between them), or
+// twice typicalHalfWidth for a DEM target; 0 without lines.
+double lineSpacing(const SynthesisTarget& target);
+
 } // namespace tsynth

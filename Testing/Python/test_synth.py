@@ -400,30 +400,43 @@ class SynthTest(unittest.TestCase):
         self.assertEqual(result.returncode, 1)
         self.assertIn("384 x 320 cells", result.stderr)  # refused by the budget, after sizing
 
-    def test_a_dem_target_spaces_its_feature_patches_and_a_drawing_keeps_its_own(self):
+    def test_crowded_feature_sites_are_spaced_and_a_drawing_with_room_keeps_its_own(self):
         # A DEM target's own ridge and valley tree has lines about 10 cells apart: a feature site
         # within a quarter patch of one already placed is left to that patch (about 2.6 times fewer
-        # feature patches on 648 x 648 targets, the same band-pass correlation).
+        # feature patches on 648 x 648 targets, the same band-pass correlation). So are a drawing's
+        # whose lines are closer than patches draw (0.6 patches).
         def closest_feature_corners(report):
             corners = [(p[4], p[5]) for p in report["placement_list"] if p[1] == 1]
             return len(corners), min(math.hypot(a[0] - b[0], a[1] - b[1])
                                      for i, a in enumerate(corners) for b in corners[:i])
 
         colorado = os.path.join(PATHS.bundled_data, "dems", "colorado.png")
+        # Corners are the centres rounded to cells: up to a diagonal cell closer than the centres.
+        spaced = 0.25 * 80 - math.sqrt(2)
         target = crop_dem(self.tmp, "mount_jackson_crop601.tif", (100, 100, 320, 320))
         report, _ = synthesise(self, colorado, target, self.path("dem.tif"))
         count, closest = closest_feature_corners(report)
         self.assertGreater(count, 10)
-        # Corners are the centres rounded to cells: up to a diagonal cell closer than the centres.
-        self.assertGreaterEqual(closest, 0.25 * report["patch_size"] - math.sqrt(2))
-        # Two ridges drawn 12 pixels apart: their sites face each other closer than that, and both
-        # lines are drawn.
-        sketch = self.path("close.png")
-        write_png(sketch, 320, 320,
-                  lambda x, y: (255, 0, 0) if 40 <= x < 280 and y in (150, 151, 162, 163) else (255, 255, 255))
-        report, _ = synthesise(self, colorado, sketch, self.path("close.tif"))
-        count, closest = closest_feature_corners(report)
-        self.assertLess(closest, 0.25 * report["patch_size"] - math.sqrt(2))
+        self.assertGreaterEqual(closest, spaced)
+
+        def draw(name, ridge):
+            path = self.path(name)
+            write_png(path, 320, 320, lambda x, y: (255, 0, 0) if ridge(x, y) else (255, 255, 255))
+            return path
+
+        # Two ridges 12 pixels apart, finer than 80-cell patches draw (and said so).
+        close = draw("close.png", lambda x, y: 40 <= x < 280 and (150 <= y < 152 or 162 <= y < 164))
+        report, stderr = synthesise(self, colorado, close, self.path("close.tif"))
+        self.assertIn("cells apart, closer than 80-cell patches draw", stderr)
+        self.assertGreaterEqual(closest_feature_corners(report)[1], spaced)
+        # A fork whose arms part at 40 degrees: its strokes have room, and the sites on the arms
+        # beside the junction, closer than a quarter patch, each get their patch.
+        def fork(x, y):
+            arm = abs(abs(x - 160) - 0.36 * (300 - y)) < 1.5 and 20 <= y < 300
+            return arm or (abs(x - 160) < 1.5 and 300 <= y < 310)
+        report, stderr = synthesise(self, colorado, draw("fork.png", fork), self.path("fork.tif"))
+        self.assertNotIn("patches draw", stderr)
+        self.assertLess(closest_feature_corners(report)[1], spaced)
 
     def test_polylines_in_cells_or_degrees_are_refused_with_a_sentence(self):
         cells = self.path("cells.vtp")
