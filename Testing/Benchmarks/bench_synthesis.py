@@ -53,16 +53,21 @@ def fail(message):
 
 
 def run_synth(tsynth, case, backend, out, report):
-    """One timed run; returns (wall seconds, report dict)."""
+    """One timed run; returns (wall seconds, report dict with its peak memory in GB added)."""
     command = [tsynth, "synth", *case.args, "--backend", backend, "-o", out,
                "--report", report, "--no-progress"]
+    peak = report + ".peak"
     start = time.monotonic()
-    done = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    done = subprocess.run(["/usr/bin/time", "-f", "%M", "-o", peak, *command],
+                          stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     wall = time.monotonic() - start
     if done.returncode != 0:
         fail(f"{' '.join(command)} failed: {done.stderr.strip()}")
     with open(report) as f:
-        return wall, json.load(f)
+        result = json.load(f)
+    with open(peak) as f:
+        result["peak_gb"] = int(f.read().split()[-1]) * 1024 / 1e9  # kB of resident memory
+    return wall, result
 
 
 def stages(report):
@@ -72,7 +77,7 @@ def stages(report):
     return (f"prepare {t['prepare']:.2f}, matcher setup {t['setup']:.2f}, features "
             f"{t['features']:.2f} ({1e3 * t['features'] / max(1, features):.1f} ms for each of "
             f"{features}), fill {t['fill']:.2f} ({1e3 * t['fill'] / max(1, fills):.1f} ms for "
-            f"each of {fills})")
+            f"each of {fills}); peak memory {report['peak_gb']:.2f} GB")
 
 
 def same_file(a, b):
