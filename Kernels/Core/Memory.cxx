@@ -32,6 +32,7 @@ void reuseFreedWorkMemory()
       // Each call only changes a tuning parameter; a refused one (a C library
       // with other limits) leaves glibc's default, which is slower, not wrong.
       mallopt(M_MMAP_THRESHOLD, static_cast<int>(kReusedBlockBytes));
+      mallopt(M_MMAP_MAX, 0); // no block is mapped on its own, however large
       mallopt(M_TRIM_THRESHOLD, static_cast<int>(kKeptFreeBytes));
       mallopt(M_TOP_PAD, static_cast<int>(kHeapGrowthPadBytes));
 #endif

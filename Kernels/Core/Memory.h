@@ -42,14 +42,17 @@ void checkReadFits(const std::string& path, int width, int height, double bytesP
 // by default glibc unmaps each block from 128 kB on and trims the heap when
 // 128 kB are free at its top, so the next array page-faults in afresh: a third
 // of a 1024 x 1024 synthesis's system time and about 15% of its wall time
-// (Testing/Benchmarks/bench_synthesis.sh --vs). Blocks up to kReusedBlockBytes then
-// come from the heap, and up to kKeptFreeBytes of freed heap are kept. It
-// changes no result. Called once per process (later calls do nothing) by
+// (Testing/Benchmarks/bench_synthesis.sh --vs). Every block then comes from the
+// heap, whatever its size (at 4096 x 4096 a field of doubles is 134 MB, above
+// any mapping threshold glibc accepts, and mapping them made page faults and
+// clearing fresh pages half of the set-up's time), and up to kKeptFreeBytes of
+// freed heap are kept. glibc still maps a block the heap cannot grow to hold.
+// It changes no result. Called once per process (later calls do nothing) by
 // tsynth's main and prepareSynthesis(); safe to call from any thread.
 void reuseFreedWorkMemory();
-// The largest block glibc allows on its heap rather than mapped (64-bit).
+// The largest block glibc allows on its heap by threshold (64-bit); fixing it
+// also stops glibc from moving the threshold as blocks are freed.
 constexpr long kReusedBlockBytes = 32L << 20;
-// Free memory kept at the heap's top: a few output-sized work arrays.
 constexpr long kKeptFreeBytes = 512L << 20;
 // How much more than asked the heap grows by, so growing is rare.
 constexpr long kHeapGrowthPadBytes = 64L << 20;

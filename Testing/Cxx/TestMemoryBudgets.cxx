@@ -206,3 +206,22 @@ TEST(MemoryReuse, FreedWorkArraysAreNotFaultedInAgain)
   // would fault kUses * pages.
   EXPECT_LT(faults, pages) << faults << " faults for " << kUses << " uses of " << pages << " pages";
 }
+
+TEST(MemoryReuse, FieldsAboveAnyMappingThresholdAreReusedToo)
+{
+  // Two 64 MB arrays (a 4096 x 4096 field of floats), above the largest
+  // threshold glibc accepts: mapped each, every use would fault them in anew.
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer's allocator replaces glibc's; its tuning does not apply";
+#endif
+  constexpr std::size_t kBytes = 64u << 20;
+  static_assert(kBytes > static_cast<std::size_t>(kReusedBlockBytes));
+  constexpr int kArrays = 2;
+  constexpr int kUses = 5;
+  const long pages =
+    kArrays * static_cast<long>(kBytes / static_cast<std::size_t>(sysconf(_SC_PAGESIZE)));
+  reuseFreedWorkMemory();
+  faultsOfRepeatedArrays(kBytes, kArrays, 1); // the heap grows once
+  const long faults = faultsOfRepeatedArrays(kBytes, kArrays, kUses);
+  EXPECT_LT(faults, pages) << faults << " faults for " << kUses << " uses of " << pages << " pages";
+}
