@@ -169,6 +169,20 @@ LandRelief::LandRelief(const std::vector<const Heightfield*>& exemplars, int sec
   }
 }
 
+LandRelief LandRelief::fromLevels(Levels levels)
+{
+  if (levels.relief.size() != levels.halfWidths.size() ||
+    levels.steep.size() != levels.halfWidths.size())
+  {
+    throw Error("Internal error: a land relief's levels differ in length.");
+  }
+  LandRelief r;
+  r.halfWidths_ = std::move(levels.halfWidths);
+  r.relief_ = std::move(levels.relief);
+  r.steep_ = std::move(levels.steep);
+  return r;
+}
+
 void LandRelief::measureLevel(const std::vector<const Heightfield*>& exemplars,
   std::size_t level,
   int sectionsPerExemplar)

@@ -65,6 +65,17 @@ public:
   double steepSlope(double halfWidth) const;
   bool empty() const { return relief_.empty(); }
 
+  // The measured levels, as stored (Synthesis/ExemplarCache.h) and given back.
+  struct Levels
+  {
+    std::vector<double> halfWidths; // cells, increasing
+    std::vector<double> relief;     // metres, one per half width
+    std::vector<double> steep;      // metres per cell, one per half width
+  };
+  Levels levels() const { return { halfWidths_, relief_, steep_ }; }
+  // Throws tsynth::Error if the three lists differ in length.
+  static LandRelief fromLevels(Levels levels);
+
 private:
   double interpolate(const std::vector<double>& levels, double halfWidth) const;
   // One reference half width: its relief_ and steep_ entries.

@@ -586,4 +586,11 @@ FeatureExtraction extractFeatures(const Heightfield& hf, FeatureType type, const
   return result;
 }
 
+FeatureGraph ridgesAndValleys(const Heightfield& hf, const PpaOptions& options)
+{
+  FeatureGraph g = extractFeatures(hf, FeatureType::Ridge, options).graph;
+  appendGraph(g, extractFeatures(hf, FeatureType::Valley, options).graph);
+  return g;
+}
+
 } // namespace tsynth

@@ -160,6 +160,9 @@ FeatureExtraction extractFeatures(const Heightfield& hf,
   FeatureType type,
   const PpaOptions& options = {});
 
+// Ridges and valleys of one heightfield in one graph, the ridges first.
+FeatureGraph ridgesAndValleys(const Heightfield& hf, const PpaOptions& options);
+
 // Gaussian smoothing of valid cells (invalid neighbours get no weight).
 Heightfield gaussianSmooth(const Heightfield& hf, double sigma);
 

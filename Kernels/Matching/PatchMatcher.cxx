@@ -14,11 +14,24 @@ PatchMatcher::PatchMatcher(const std::vector<const Heightfield*>& exemplars,
   const std::vector<std::string>& names)
   : options_(options)
 {
-  PoolOptions po;
-  po.patchSize = options.patchSize;
-  po.variants = options.variants;
-  pool_ = buildCandidatePool(exemplars, graphs, po, names);
-  warnings_ = pool_.warnings;
+  if (options.pool)
+  {
+    if (options.pool->patchSize != options.patchSize ||
+      options.pool->exemplars.size() != exemplars.size())
+    {
+      throw Error("Internal error: the candidate pool given was built for other exemplars or "
+                  "another patch size.");
+    }
+    pool_ = options.pool;
+  }
+  else
+  {
+    PoolOptions po;
+    po.patchSize = options.patchSize;
+    po.variants = options.variants;
+    pool_ = std::make_shared<const CandidatePool>(buildCandidatePool(exemplars, graphs, po, names));
+  }
+  warnings_ = pool_->warnings;
   DenseOptions dopt;
   dopt.patchSize = options.patchSize;
   dopt.coarseFactor = options.patchSize % options.coarseFactor == 0 ? options.coarseFactor : 1;
@@ -34,7 +47,7 @@ PatchMatcher::PatchMatcher(const std::vector<const Heightfield*>& exemplars,
   try
   {
     device_ = OpenClDevice::create();
-    featureScorer_ = std::make_unique<OpenClFeatureScorer>(device_, pool_);
+    featureScorer_ = std::make_unique<OpenClFeatureScorer>(device_, *pool_);
     denseScorer_ = std::make_unique<OpenClDenseScorer>(device_, *dense_);
     backend_ = Backend::OpenCL;
   }
@@ -62,7 +75,7 @@ std::string PatchMatcher::backendName() const
 std::vector<float> PatchMatcher::featureCosts(const FeatureQuery& query)
 {
   return featureScorer_ ? featureScorer_->score(query, options_.weights)
-                        : scoreFeatureCandidates(pool_, query, options_.weights);
+                        : scoreFeatureCandidates(*pool_, query, options_.weights);
 }
 
 std::vector<PatchCandidate> PatchMatcher::matchFeature(const FeatureQuery& query,
@@ -70,17 +83,17 @@ std::vector<PatchCandidate> PatchMatcher::matchFeature(const FeatureQuery& query
 {
   const std::vector<float> costs = featureCosts(query);
   std::vector<PatchCandidate> out;
-  for (const RankedCandidate& r : topKPerExemplar(pool_, costs, options_.k))
+  for (const RankedCandidate& r : topKPerExemplar(*pool_, costs, options_.k))
   {
     if (r.cost >= kMismatchPenalty)
     {
       continue; // nothing of this type and kind: handled below
     }
     PatchCandidate c;
-    c.exemplar = pool_.exemplar[r.index];
-    c.variant = pool_.variant[r.index];
-    c.centreX = pool_.centreX[r.index];
-    c.centreY = pool_.centreY[r.index];
+    c.exemplar = pool_->exemplar[r.index];
+    c.variant = pool_->variant[r.index];
+    c.centreX = pool_->centreX[r.index];
+    c.centreY = pool_->centreY[r.index];
     c.cost = r.cost;
     c.poolIndex = r.index;
     out.push_back(c);

@@ -25,6 +25,10 @@ struct MatcherOptions
   double landformWeight = 10.0; // a_l of the dense search (DenseOptions)
   std::array<bool, kVariantCount>
     variants{ true, true, true, true, true, true, true, true, true, true };
+  // The feature candidate pool of these exemplars and graphs at this patch size
+  // with these variants, built before (Synthesis/ExemplarCache.h); null: built
+  // by the matcher.
+  std::shared_ptr<const CandidatePool> pool;
 };
 
 // A feature match, or a dense one when the pool has nothing of the site's type.
@@ -57,7 +61,7 @@ public:
   Backend backend() const { return backend_; }
   std::string backendName() const;
   const std::vector<std::string>& warnings() const { return warnings_; }
-  const CandidatePool& pool() const { return pool_; }
+  const CandidatePool& pool() const { return *pool_; }
   const DenseMatcher& dense() const { return *dense_; }
 
   // Costs of every pool candidate for a query (for cost maps and tables).
@@ -75,7 +79,7 @@ private:
   MatcherOptions options_;
   Backend backend_ = Backend::Cpu;
   std::vector<std::string> warnings_;
-  CandidatePool pool_;
+  std::shared_ptr<const CandidatePool> pool_;
   std::unique_ptr<DenseMatcher> dense_;
   std::shared_ptr<OpenClDevice> device_;
   std::unique_ptr<OpenClFeatureScorer> featureScorer_;
