@@ -87,6 +87,12 @@ writes them: its output works directly as a sketch of the same DEM.
                          softer)
   --max-memory GB        refuse a synthesis estimated to need more (default: 80% of the
                          machine's memory)
+  --cache DIR            keep what is computed from the exemplars alone (their ridges and
+                         valleys, landform statistics, candidate pool) in DIR, keyed by
+                         their content, so the next run with the same exemplars, cell size
+                         and patch size starts sooner (default: $TSYNTH_CACHE_DIR, else
+                         $XDG_CACHE_HOME/terrainsynthesis, else ~/.cache/terrainsynthesis)
+  --no-cache             compute everything afresh and keep nothing
   --no-progress          no progress bar on the terminal
 )";
 
@@ -259,6 +265,7 @@ struct SynthArguments
   GridRequest grid;
   double memoryBudget = 0.0; // bytes; 0: the set-up's default
   double landformRelief = 1.0;
+  std::string cacheDirectory; // empty: no exemplar cache
   SynthesisOptions options;
   bool progress = true;
 };
@@ -458,6 +465,17 @@ SynthArguments parseSynthArguments(std::vector<std::string> args)
   a.report = cl.take("--report");
   a.debugDir = cl.take("--debug-dir");
   a.progress = !cl.takeFlag("--no-progress");
+  const std::optional<std::string> cache = cl.take("--cache");
+  const bool noCache = cl.takeFlag("--no-cache");
+  if (cache && noCache)
+  {
+    throw UsageError("--cache and --no-cache contradict each other: give one.");
+  }
+  if (cache && cache->empty())
+  {
+    throw UsageError("--cache expects a directory.");
+  }
+  a.cacheDirectory = noCache ? "" : cache.value_or(defaultExemplarCacheDirectory());
   a.options = takeSynthesisOptions(cl);
   takeGridOptions(cl, a);
   if (!cl.positionals().empty())
@@ -486,6 +504,7 @@ SetupInputs readSynthInputs(const SynthArguments& a)
   in.patchSize = a.options.patchSize;
   in.seed = a.options.seed;
   in.landformRelief = a.landformRelief;
+  in.cacheDirectory = a.cacheDirectory;
   in.memoryBudget = a.memoryBudget;
   in.openClMatcher = a.options.backend != Backend::Cpu;
   in.names.size = "--size";
@@ -517,7 +536,7 @@ SynthesisResult runWithProgress(const SynthesisSetup& setup,
     bar(f, stage);
     interrupt.reclaim(); // PoCL's LLVM takes the signals when it compiles the matcher
   };
-  SynthesisResult r = synthesize(setup.target, setup.exemplarPointers(), setup.graphPointers(), o);
+  SynthesisResult r = synthesize(setup, o);
   interrupt.reclaim();
   bar(1.0, "done");
   printWarnings(r.warnings);
@@ -549,7 +568,9 @@ void printSummary(const SynthesisSetup& setup,
               << " the exemplars' relief.\n";
   }
   std::cout << "Times: prepare " << prepare << " s, matcher setup " << r.timings.setup
-            << " s, features " << r.timings.features << " s, fill " << r.timings.fill << " s.\n";
+            << " s, features " << r.timings.features << " s, fill " << r.timings.fill << " s"
+            << (setup.cache.hit ? " (the exemplars' preparation read from the cache)" : "")
+            << ".\n";
   if (r.finishing.drained)
   {
     std::cout << "Drainage: " << r.finishing.pitsBefore << " pits before, " << r.finishing.pitsAfter
@@ -642,6 +663,12 @@ void writeReport(const std::string& path,
     { "merge", mergeModeName(a.options.merge) },
     { "seed", a.options.seed },
     { "memory_estimate_gb", setup.memoryEstimate / kBytesPerGB },
+    { "exemplar_cache",
+      { { "directory", setup.cache.directory },
+        { "entry", setup.cache.entry },
+        { "hit", setup.cache.hit },
+        { "seconds", setup.cache.seconds },
+        { "problem", setup.cache.problem } } },
     { "times_s",
       { { "prepare", prepare },
         { "setup", r.timings.setup },

@@ -446,6 +446,9 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
       in.patchSize = this->PatchSize;
       in.seed = static_cast<std::uint64_t>(this->Seed);
       in.landformRelief = this->LandformRelief;
+      in.cacheDirectory = !this->UseExemplarCache ? std::string()
+        : this->ExemplarCacheDirectory.empty()    ? tsynth::defaultExemplarCacheDirectory()
+                                                  : this->ExemplarCacheDirectory;
       in.memoryBudget = this->MemoryBudget * tsynth::kBytesPerGB;
       in.openClMatcher = tsynth::backendFromProperty(this->Backend) != tsynth::Backend::Cpu;
       in.names = propertyNames();
@@ -468,8 +471,7 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
         tsynth::assignRegions(
           o, labels, this->RegionMaps, setup.grid.width, setup.grid.height, setup.exemplars.size());
       }
-      const tsynth::SynthesisResult r =
-        tsynth::synthesize(setup.target, setup.exemplarPointers(), setup.graphPointers(), o);
+      const tsynth::SynthesisResult r = tsynth::synthesize(setup, o);
       this->BackendUsed = r.backend;
       for (const auto& warning : r.warnings)
       {
@@ -508,6 +510,8 @@ void vtkTerrainSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "MemoryBudget: " << this->MemoryBudget << " GB\n";
   os << indent << "LandformRelief: " << this->LandformRelief << "\n";
+  os << indent << "UseExemplarCache: " << this->UseExemplarCache << "\n";
+  os << indent << "ExemplarCacheDirectory: " << this->ExemplarCacheDirectory << "\n";
   os << indent << "DebugOutputs: " << (this->DebugOutputs ? "on" : "off") << "\n";
   os << indent << "RegionMaps: " << this->RegionMaps.size() << "\n";
   os << indent << "BackendUsed: " << (this->BackendUsed.empty() ? "(none yet)" : this->BackendUsed)

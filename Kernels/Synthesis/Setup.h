@@ -12,6 +12,8 @@
 #include "../Core/PatchSize.h"
 #include "../Features/FeatureGraph.h"
 #include "../Features/Sketch.h"
+#include "ExemplarCache.h"
+#include "Synthesizer.h"
 #include "Target.h"
 
 #include <cstddef>
@@ -161,16 +163,21 @@ struct SetupInputs
   // stand out of the exemplars' own land (the exemplars' major ones', raised
   // on rugged land: LandformFieldOptions::standOut); a DEM target keeps its own.
   double landformRelief = 1.0;
+  // Where what is computed from the exemplars alone is kept between runs
+  // (ExemplarCache.h; defaultExemplarCacheDirectory()); empty: no cache.
+  std::string cacheDirectory;
   SetupOptionNames names;
 };
 
 // Everything synthesize() needs, and what the set-up found on the way.
 struct SynthesisSetup
 {
-  std::vector<Heightfield> exemplars; // at the output's cell size
-  std::vector<FeatureGraph> graphs;   // their PPA ridges and valleys
-  SynthesisTarget target;             // on the output grid
-  LandformStatistics landform;        // the exemplars' cross-sections the target uses
+  std::vector<Heightfield> exemplars;        // at the output's cell size
+  std::vector<FeatureGraph> graphs;          // their PPA ridges and valleys
+  std::shared_ptr<const CandidatePool> pool; // their feature candidates (SynthesisOptions::pool)
+  ExemplarCacheUse cache;                    // whether these came from the exemplar cache
+  SynthesisTarget target;                    // on the output grid
+  LandformStatistics landform;               // the exemplars' cross-sections the target uses
   OutputGrid grid;
   std::string sketchKind;      // as AnalysedSketch::kind
   double memoryEstimate = 0.0; // bytes
@@ -195,5 +202,8 @@ std::optional<std::string> finenessWarning(const SynthesisTarget& target, int pa
 // line and no relief: a blank image, a flat DEM), an exemplar smaller than a
 // patch at the output's cell size.
 SynthesisSetup prepareSynthesis(SetupInputs inputs);
+
+// synthesize() on what the set-up prepared, with its candidate pool.
+SynthesisResult synthesize(const SynthesisSetup& setup, SynthesisOptions options);
 
 } // namespace tsynth

@@ -1,4 +1,5 @@
 set(TSYNTH_SYNTHESIS_SOURCES
+  Synthesis/ExemplarCache.cxx
   Synthesis/Finishing.cxx
   Synthesis/Landform.cxx
   Synthesis/PatchColours.cxx

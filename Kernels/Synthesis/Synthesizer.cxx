@@ -1239,6 +1239,7 @@ SynthesisResult synthesize(const SynthesisTarget& target,
   mo.backend = o.backend;
   mo.k = o.k;
   mo.weights.verticalOffset = o.verticalOffset;
+  mo.pool = o.pool;
   PatchMatcher matcher(exemplars, graphs, mo);
   SynthesisState state(target, matcher, graphs, o);
   state.boundHeights(exemplars);

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -78,6 +79,9 @@ struct SynthesisOptions
   // label missing from the map may use every exemplar).
   std::vector<int> regionLabels;
   std::vector<std::vector<int>> regionExemplars;
+  // The exemplars' feature candidate pool at this patch size, prepared before
+  // (SynthesisSetup::pool, perhaps read from the exemplar cache); null: built here.
+  std::shared_ptr<const CandidatePool> pool;
   // Told the fraction done (0..1) and the stage's name (Core/Progress.h); the
   // caller's CancellationScope stops the synthesis with tsynth::Cancelled.
   ProgressReport progress;

@@ -329,6 +329,51 @@ class SynthTest(unittest.TestCase):
         self.assertNotEqual(first["placement_list"], again["placement_list"])
         self.assertFalse(filecmp.cmp(self.path("cpu-default.tif"), self.path("cpu-5.tif"), shallow=False))
 
+    def test_exemplar_cache_gives_the_same_terrain_and_a_damaged_entry_is_rebuilt(self):
+        # What is computed from the exemplars alone is read back on the second run; the terrain is
+        # the same bits as without a cache, and a damaged entry is said, rebuilt and never used.
+        sketch = os.path.join(self.sketches, "strokes_y_ridges.png")
+        cache = self.path("cache")
+
+        def run(name, *cache_options):
+            return self.synth("colorado.png", sketch, self.path(name), "--size", "320x320",
+                              *cache_options)
+
+        plain = run("plain.tif", "--no-cache")
+        self.assertEqual(plain["exemplar_cache"]["directory"], "")
+        first = run("first.tif", "--cache", cache)
+        second = run("second.tif", "--cache", cache)
+        self.assertFalse(first["exemplar_cache"]["hit"])
+        self.assertTrue(second["exemplar_cache"]["hit"])
+        entry = second["exemplar_cache"]["entry"]
+        self.assertEqual(os.listdir(cache), [os.path.basename(entry)])
+        for name in ("first.tif", "second.tif"):
+            self.assertTrue(filecmp.cmp(self.path("plain.tif"), self.path(name), shallow=False), name)
+        # Reading it back is faster than computing it (the same process's figures, one run each).
+        self.assertLess(second["exemplar_cache"]["seconds"], plain["exemplar_cache"]["seconds"])
+
+        with open(entry, "r+b") as f:  # one flipped byte in the middle of the entry
+            f.seek(os.path.getsize(entry) // 2)
+            byte = f.read(1)
+            f.seek(-1, os.SEEK_CUR)
+            f.write(bytes([byte[0] ^ 0xFF]))
+        result = tsynth("synth", "--exemplar", os.path.join(self.dems, "colorado.png"), "--sketch", sketch,
+                        "--size", "320x320", "-o", self.path("damaged.tif"), "--report",
+                        self.path("damaged-report.json"), "--no-progress", "--cache", cache)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("Exemplar cache: the cached entry", result.stderr)
+        self.assertIn("checksum does not match", result.stderr)
+        with open(self.path("damaged-report.json")) as f:
+            self.assertFalse(json.load(f)["exemplar_cache"]["hit"])
+        self.assertTrue(filecmp.cmp(self.path("plain.tif"), self.path("damaged.tif"), shallow=False))
+        self.assertTrue(run("after.tif", "--cache", cache)["exemplar_cache"]["hit"])
+
+        both = tsynth("synth", "--exemplar", os.path.join(self.dems, "colorado.png"), "--sketch", sketch,
+                      "-o", self.path("both.tif"), "--cache", cache, "--no-cache")
+        self.assertNotEqual(both.returncode, 0)
+        self.assertIn("--cache and --no-cache contradict each other", both.stderr)
+        self.assertFalse(os.path.exists(self.path("both.tif")))
+
     def test_lambda_grey_sketch_keeps_ring_and_lambda(self):
         sketch = os.path.join(self.sketches, "lambda_circle_grey.png")
         colorado = os.path.join(self.dems, "colorado.png")
