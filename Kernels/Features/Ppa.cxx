@@ -57,8 +57,11 @@ void radixSort(std::vector<std::uint64_t>& keys)
 {
   std::vector<std::uint64_t> tmp(keys.size());
   std::vector<std::size_t> count(65537);
+  // A pass over the keys of a large DEM's edges (some 10^8) takes a few tenths of
+  // a second: cancellation is checked between passes.
   for (int shift = 0; shift < 64; shift += 16)
   {
+    checkCancellation();
     std::fill(count.begin(), count.end(), 0);
     for (std::uint64_t k : keys)
     {
@@ -68,6 +71,7 @@ void radixSort(std::vector<std::uint64_t>& keys)
     {
       continue; // every key has a zero digit here: nothing to reorder
     }
+    checkCancellation();
     std::partial_sum(count.begin(), count.end(), count.begin());
     for (std::uint64_t k : keys)
     {

@@ -86,6 +86,7 @@ public:
     {
       original_ = z_;
     }
+    checkCancellation(); // framing a large DEM takes a few tenths of a second
     seedSinks();
   }
 

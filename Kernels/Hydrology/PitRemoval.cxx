@@ -1,5 +1,6 @@
 #include "PitRemoval.h"
 
+#include "../Core/Cancellation.h"
 #include "../Core/Error.h"
 #include "../Core/Memory.h"
 #include "Breach.h"
@@ -134,6 +135,7 @@ constexpr std::uint8_t kLowered = 2;
 
 PitRemovalResult removePits(const Heightfield& dem, const PitRemovalOptions& options)
 {
+  checkCancellation(); // before the flood's work arrays, a second's allocating on large DEMs
   checkInputs(dem, options);
   PitRemovalResult r;
   r.dem = runMethod(dem, options);
