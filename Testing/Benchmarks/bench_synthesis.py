@@ -16,10 +16,14 @@ Comparisons (the figures that count on a shared, noisy machine):
   --peer DIR    runs Tasse's CPU code (built in DIR by ../shared/peers/tasse/
                 build.sh) once on the default case's sketch scaled to the
                 output size, and prints its time over our median.
+  --cache       ours reads the exemplars' preparation back from an exemplar
+                cache (in the temporary folder, filled by one untimed run):
+                a redrawn sketch. Without it every build that has a cache
+                runs with --no-cache, so ratios compare the same work.
 Timings are reported, never asserted.
 
 Usage: bench_synthesis.sh [--large [--both]] [--dense] [--vs BUILD] [--peer DIR]
-                          [--runs N] [build dir]
+                          [--cache] [--runs N] [build dir]
 """
 import argparse
 import json
@@ -52,10 +56,18 @@ def fail(message):
     sys.exit(2)
 
 
-def run_synth(tsynth, case, backend, out, report):
+def cache_args(tsynth, cache_dir):
+    """How a build runs: reading a cache in cache_dir, or with none (older builds have none)."""
+    help_text = subprocess.run([tsynth, "synth", "--help"], capture_output=True, text=True).stdout
+    if "--no-cache" not in help_text:
+        return []
+    return ["--cache", cache_dir] if cache_dir else ["--no-cache"]
+
+
+def run_synth(tsynth, case, backend, out, report, extra=()):
     """One timed run; returns (wall seconds, report dict with its peak memory in GB added)."""
     command = [tsynth, "synth", *case.args, "--backend", backend, "-o", out,
-               "--report", report, "--no-progress"]
+               "--report", report, "--no-progress", *extra]
     peak = report + ".peak"
     start = time.monotonic()
     done = subprocess.run(["/usr/bin/time", "-f", "%M", "-o", peak, *command],
@@ -74,7 +86,10 @@ def stages(report):
     t = report["times_s"]
     features = report.get("feature_placements", 0)
     fills = report["placements"] - features
-    return (f"prepare {t['prepare']:.2f}, matcher setup {t['setup']:.2f}, features "
+    cache = report.get("exemplar_cache")
+    exemplars = "" if not cache else (f" (of it the exemplars' {cache['seconds']:.2f}, "
+                                      f"{'read back' if cache['hit'] else 'computed'})")
+    return (f"prepare {t['prepare']:.2f}{exemplars}, matcher setup {t['setup']:.2f}, features "
             f"{t['features']:.2f} ({1e3 * t['features'] / max(1, features):.1f} ms for each of "
             f"{features}), fill {t['fill']:.2f} ({1e3 * t['fill'] / max(1, fills):.1f} ms for "
             f"each of {fills}); peak memory {report['peak_gb']:.2f} GB")
@@ -85,9 +100,14 @@ def same_file(a, b):
         return fa.read() == fb.read()
 
 
-def time_case(case, tsynth, baseline, runs, tmp):
+def time_case(case, tsynth, baseline, runs, tmp, cached):
     """Times each backend of the case; returns our median wall (first backend)."""
     print(case.label)
+    ours_extra = cache_args(tsynth, os.path.join(tmp, "cache") if cached else None)
+    base_extra = cache_args(baseline, None) if baseline else []
+    if cached:  # fills the cache, untimed
+        run_synth(tsynth, case, case.backends[0], os.path.join(tmp, "warm.tif"),
+                  os.path.join(tmp, "rep.json"), ours_extra)
     medians = {}
     outputs = {}
     for backend in case.backends:
@@ -95,12 +115,13 @@ def time_case(case, tsynth, baseline, runs, tmp):
         report = None
         for r in range(runs):
             out = os.path.join(tmp, f"ours-{backend}.tif")
-            wall, report = run_synth(tsynth, case, backend, out, os.path.join(tmp, "rep.json"))
+            wall, report = run_synth(tsynth, case, backend, out, os.path.join(tmp, "rep.json"),
+                                     ours_extra)
             ours.append(wall)
             if baseline:
                 base_out = os.path.join(tmp, f"base-{backend}.tif")
                 base_wall, _ = run_synth(baseline, case, backend, base_out,
-                                         os.path.join(tmp, "rep-base.json"))
+                                         os.path.join(tmp, "rep-base.json"), base_extra)
                 theirs.append(base_wall)
                 ratios.append(wall / base_wall)
         outputs[backend] = out
@@ -176,6 +197,8 @@ def main():
     parser.add_argument("--dense", action="store_true")
     parser.add_argument("--vs", metavar="BUILD", help="a baseline build directory")
     parser.add_argument("--peer", metavar="DIR", help="where Tasse's code was built")
+    parser.add_argument("--cache", action="store_true",
+                        help="ours reads the exemplars' preparation from a warm cache")
     parser.add_argument("--runs", type=int, default=3, help="runs per case and backend (default 3)")
     options = parser.parse_args()
     if options.runs < 1:
@@ -189,7 +212,7 @@ def main():
         fail("--large, --dense and --peer need ../shared beside the checkout")
     with tempfile.TemporaryDirectory() as tmp:
         for case in cases(options, tsynth, tmp):
-            ours = time_case(case, tsynth, baseline, options.runs, tmp)
+            ours = time_case(case, tsynth, baseline, options.runs, tmp, options.cache)
             if options.peer:
                 run_peer(options.peer, case, ours, tmp)
 
