@@ -120,8 +120,8 @@ def time_case(case, tsynth, baseline, runs, tmp, cached):
             ours.append(wall)
             if baseline:
                 base_out = os.path.join(tmp, f"base-{backend}.tif")
-                base_wall, _ = run_synth(baseline, case, backend, base_out,
-                                         os.path.join(tmp, "rep-base.json"), base_extra)
+                base_wall, base_report = run_synth(baseline, case, backend, base_out,
+                                                   os.path.join(tmp, "rep-base.json"), base_extra)
                 theirs.append(base_wall)
                 ratios.append(wall / base_wall)
         outputs[backend] = out
@@ -132,6 +132,7 @@ def time_case(case, tsynth, baseline, runs, tmp, cached):
             print(f"          baseline {statistics.median(theirs):6.2f} s; ours / baseline "
                   f"{statistics.median(ratios):.3f} (pairs: {', '.join(f'{x:.3f}' for x in ratios)});"
                   f" output {'identical' if same_file(out, base_out) else 'DIFFERENT'}")
+            print(f"          baseline's last run: {stages(base_report)}")
     if len(outputs) == 2:
         a, b = outputs.values()
         print("  identical output on both backends" if same_file(a, b) else "  OUTPUTS DIFFER")
