@@ -10,6 +10,23 @@ namespace tsynth
 
 NoiseVariance::NoiseVariance(const Heightfield& hf)
 {
+  const std::size_t stride = static_cast<std::size_t>(hf.width + 1);
+  const std::size_t n = stride * static_cast<std::size_t>(hf.height + 1);
+  auto at = [stride](int i, int j)
+  { return static_cast<std::size_t>(j) * stride + static_cast<std::size_t>(i); };
+  if (hf.hasMask())
+  {
+    count_.assign(n, 0.0);
+    for (int j = 0; j < hf.height; ++j)
+    {
+      double rc = 0.0;
+      for (int i = 0; i < hf.width; ++i)
+      {
+        rc += hf.isValid(i, j) ? 1.0 : 0.0;
+        count_[at(i + 1, j + 1)] = count_[at(i + 1, j)] + rc;
+      }
+    }
+  }
   // Band l = G_l - G_{l+1}, with G_l the heights blurred by sigma 2^l (all at full
   // resolution, so windows are read at the same cells on every level).
   Heightfield finer = hf;
@@ -19,17 +36,12 @@ NoiseVariance::NoiseVariance(const Heightfield& hf)
     Table& t = levels_[static_cast<std::size_t>(l)];
     t.width = hf.width;
     t.height = hf.height;
-    const std::size_t n =
-      static_cast<std::size_t>(hf.width + 1) * static_cast<std::size_t>(hf.height + 1);
     t.sum.assign(n, 0.0);
     t.square.assign(n, 0.0);
-    t.count.assign(n, 0.0);
-    const std::size_t stride = static_cast<std::size_t>(hf.width + 1);
     for (int j = 0; j < hf.height; ++j)
     {
       double rs = 0.0;
       double rq = 0.0;
-      double rc = 0.0;
       for (int i = 0; i < hf.width; ++i)
       {
         if (hf.isValid(i, j))
@@ -37,15 +49,9 @@ NoiseVariance::NoiseVariance(const Heightfield& hf)
           const double b = static_cast<double>(finer.at(i, j)) - coarser.at(i, j);
           rs += b;
           rq += b * b;
-          rc += 1.0;
         }
-        const std::size_t k =
-          static_cast<std::size_t>(j + 1) * stride + static_cast<std::size_t>(i + 1);
-        const std::size_t up =
-          static_cast<std::size_t>(j) * stride + static_cast<std::size_t>(i + 1);
-        t.sum[k] = t.sum[up] + rs;
-        t.square[k] = t.square[up] + rq;
-        t.count[k] = t.count[up] + rc;
+        t.sum[at(i + 1, j + 1)] = t.sum[at(i + 1, j)] + rs;
+        t.square[at(i + 1, j + 1)] = t.square[at(i + 1, j)] + rq;
       }
     }
     finer = coarser;
@@ -74,7 +80,8 @@ std::array<float, kNoiseLevels> NoiseVariance::window(double cx, double cy, int 
         a[static_cast<std::size_t>(j1) * stride + static_cast<std::size_t>(i0)] +
         a[static_cast<std::size_t>(j0) * stride + static_cast<std::size_t>(i0)];
     };
-    const double n = rect(t.count);
+    const double n =
+      count_.empty() ? static_cast<double>(i1 - i0) * static_cast<double>(j1 - j0) : rect(count_);
     if (n > 1.0)
     {
       const double mean = rect(t.sum) / n;

@@ -31,9 +31,12 @@ private:
     int height = 0;
     std::vector<double> sum; // (w+1) x (h+1) summed-area tables
     std::vector<double> square;
-    std::vector<double> count;
   };
   std::array<Table, kNoiseLevels> levels_;
+  // Valid cells, the same (w+1) x (h+1) table for every level; empty when
+  // every cell is valid, and a window's count is then its area (the same
+  // whole number the table gives): a 4096 x 4096 target saves 400 MB.
+  std::vector<double> count_;
 };
 
 } // namespace tsynth
