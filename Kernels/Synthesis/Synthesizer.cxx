@@ -139,7 +139,10 @@ public:
     , P_(o.patchSize)
     , out_(target.field.width, target.field.height, std::numeric_limits<float>::quiet_NaN())
     , filled_(out_.size(), 0)
-    , noise_(target.field)
+    // Only a detailed target (a DEM) asks for its own roughness; a drawing's
+    // queries ask for the exemplars' (typicalNoise_) or none, so its tables
+    // (six of doubles over the output: 800 MB at 4096 x 4096) are not built.
+    , noise_(target.detailed ? NoiseVariance(target.field) : NoiseVariance())
     , lowTarget_(landformImage(target.field, o.patchSize))
     , ownConfidence_(target.weight.size() == target.field.size()
           ? std::vector<float>()
@@ -1181,7 +1184,7 @@ private:
   Heightfield out_;
   std::vector<std::uint8_t> filled_;
   std::vector<std::uint8_t> line_;
-  NoiseVariance noise_;
+  NoiseVariance noise_; // empty unless target_.detailed
   float lowest_ = -std::numeric_limits<float>::infinity();
   std::array<float, kNoiseLevels> typicalNoise_{};
   float highest_ = std::numeric_limits<float>::infinity();
