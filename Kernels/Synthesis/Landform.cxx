@@ -1112,32 +1112,42 @@ std::vector<double> lineValueField(const RasterLines& lines,
       kLineValueSmoothingShare * near.distance[k] / cell, kLineValueSmoothingInPatches * patchSize);
     widest = std::max(widest, sigma[k]);
   }
-  // Smoothed at sigmas kLineValueLevelStep apart, interpolated between them in log sigma.
+  // Smoothed at sigmas kLineValueLevelStep apart, interpolated between them in
+  // log sigma: each cell between the first level at least its sigma and the
+  // one before (the last level is the widest sigma). The levels are made one
+  // at a time, each cell blended when its pair is at hand: two smoothed
+  // fields are held, not every level (a 4096 x 4096 target's prepare peaked
+  // at 7 of them).
   std::vector<double> levels{ 0.0 };
-  std::vector<Heightfield> smoothed{ raw };
   for (double s = 1.0; levels.back() < widest; s *= kLineValueLevelStep)
   {
     levels.push_back(std::min(s, widest));
-    smoothed.push_back(smoothLarge(raw, levels.back()));
   }
   for (std::size_t k = 0; k < n; ++k)
   {
-    std::size_t l = 1;
-    while (l + 1 < levels.size() && levels[l] < sigma[k])
-    {
-      ++l;
-    }
     if (levels.size() == 1 || sigma[k] <= 0.0)
     {
       field[k] = raw.z[k];
-      continue;
     }
+  }
+  Heightfield previous = raw;
+  for (std::size_t l = 1; l < levels.size(); ++l)
+  {
+    Heightfield current = smoothLarge(raw, levels[l]);
     const double lo = levels[l - 1];
     const double hi = levels[l];
-    const double t = sigma[k] >= hi ? 1.0
-      : lo <= 0.0                   ? sigma[k] / hi
-                                    : std::log(sigma[k] / lo) / std::log(hi / lo);
-    field[k] = (1.0 - t) * smoothed[l - 1].z[k] + t * smoothed[l].z[k];
+    const bool last = l + 1 == levels.size();
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const double s = sigma[k];
+      if (s <= 0.0 || (l > 1 && !(lo < s)) || !(hi >= s || last))
+      {
+        continue; // done raw, or blended at another pair of levels
+      }
+      const double t = s >= hi ? 1.0 : lo <= 0.0 ? s / hi : std::log(s / lo) / std::log(hi / lo);
+      field[k] = (1.0 - t) * previous.z[k] + t * current.z[k];
+    }
+    previous = std::move(current);
   }
   return field;
 }
