@@ -1,5 +1,6 @@
 #include "Finishing.h"
 
+#include "../Core/Error.h"
 #include "../Core/Smoothing.h"
 #include "../Distance/DistanceField.h"
 #include "../Hydrology/Flow.h"
@@ -306,47 +307,80 @@ double correctLandformAtScales(Heightfield& out,
     std::copy(confidence.begin(), confidence.end(), sure.z.begin());
     sure = smoothLarge(sure, levels.back());
   }
-  std::vector<std::vector<float>> change(levels.size());
-  for (std::size_t l = 0; l < levels.size(); ++l)
+  // Each level's correction, made one at a time: a cell is corrected when the
+  // two levels around its scale are at hand (the only one, with one level),
+  // into a copy, since every level is measured on the uncorrected terrain.
+  // Two corrections are held, not every level's (seven fields at 4096 x 4096).
+  // Between levels l - 1 (coarser) and l: the first l from 1 at or below the
+  // scale asked for, else the last.
+  const auto wantAt = [&](std::size_t c) {
+    return std::clamp(std::exp(static_cast<double>(logSigma.z[c])), levels.back(), levels.front());
+  };
+  if (levels.size() > std::numeric_limits<std::uint8_t>::max())
   {
-    const Heightfield lowOut = smoothLarge(out, levels[l]);
-    const Heightfield lowTarget =
-      smoothLarge(target, targetSigma > 0.0 ? std::min(levels[l], targetSigma) : levels[l]);
-    change[l].assign(out.size(), 0.0f);
-    for (std::size_t c = 0; c < out.size(); ++c)
-    {
-      if (out.isValid(c) && lowTarget.isValid(c) && lowOut.isValid(c))
-      {
-        change[l][c] = lowTarget.z[c] - lowOut.z[c];
-      }
-    }
+    throw Error("Internal error: the landform correction has too many levels.");
   }
-  double largest = 0.0;
+  std::vector<std::uint8_t> pair(out.size(), 0);
   for (std::size_t c = 0; c < out.size(); ++c)
   {
-    if (!out.isValid(c))
-    {
-      continue;
-    }
-    const double want =
-      std::clamp(std::exp(static_cast<double>(logSigma.z[c])), levels.back(), levels.front());
-    // Between levels l - 1 (coarser) and l.
+    const double want = wantAt(c);
     std::size_t l = 1;
     while (l + 1 < levels.size() && levels[l] > want)
     {
       ++l;
     }
-    double value = change.front()[c];
-    if (levels.size() > 1)
-    {
-      const double t =
-        std::clamp(std::log(levels[l - 1] / want) / std::log(levels[l - 1] / levels[l]), 0.0, 1.0);
-      value = (1.0 - t) * change[l - 1][c] + t * change[l][c];
-    }
-    const double w = sure.z[c];
-    out.z[c] = static_cast<float>(out.z[c] + w * value);
-    largest = std::max(largest, std::abs(w * value));
+    pair[c] = static_cast<std::uint8_t>(l);
   }
+  const auto correctionAt = [&](double level)
+  {
+    const Heightfield lowOut = smoothLarge(out, level);
+    const Heightfield lowTarget =
+      smoothLarge(target, targetSigma > 0.0 ? std::min(level, targetSigma) : level);
+    std::vector<float> change(out.size(), 0.0f);
+    for (std::size_t c = 0; c < out.size(); ++c)
+    {
+      if (out.isValid(c) && lowTarget.isValid(c) && lowOut.isValid(c))
+      {
+        change[c] = lowTarget.z[c] - lowOut.z[c];
+      }
+    }
+    return change;
+  };
+  std::vector<float> corrected = out.z;
+  double largest = 0.0;
+  const auto apply = [&](std::size_t c, double value)
+  {
+    const double w = sure.z[c];
+    corrected[c] = static_cast<float>(out.z[c] + w * value);
+    largest = std::max(largest, std::abs(w * value));
+  };
+  std::vector<float> coarser = correctionAt(levels.front());
+  if (levels.size() == 1)
+  {
+    for (std::size_t c = 0; c < out.size(); ++c)
+    {
+      if (out.isValid(c))
+      {
+        apply(c, coarser[c]);
+      }
+    }
+  }
+  for (std::size_t l = 1; l < levels.size(); ++l)
+  {
+    std::vector<float> finer = correctionAt(levels[l]);
+    for (std::size_t c = 0; c < out.size(); ++c)
+    {
+      if (!out.isValid(c) || pair[c] != l)
+      {
+        continue;
+      }
+      const double t = std::clamp(
+        std::log(levels[l - 1] / wantAt(c)) / std::log(levels[l - 1] / levels[l]), 0.0, 1.0);
+      apply(c, (1.0 - t) * coarser[c] + t * finer[c]);
+    }
+    coarser = std::move(finer);
+  }
+  out.z = std::move(corrected);
   return largest;
 }
 
