@@ -1,8 +1,8 @@
 // What a synthesis computes from its exemplars alone (their ridges and valleys,
 // their landform statistics, the feature candidate pool), kept on disk so that
 // the next run with the same exemplars, cell size and patch size reads it back
-// instead of computing it again: a second try of a sketch skips about a second
-// of set-up at 1024 x 1024 (Testing/Benchmarks/bench_synthesis.sh --cache).
+// instead of computing it again: from one 648 x 648 exemplar at patch 80, 0.1 s
+// read back against 0.55 s computed (Testing/Benchmarks/bench_synthesis.sh --cache).
 //
 // An entry is named by a key that hashes the exemplars' heights and validity
 // (after resampling to the output's cell size), their grids, the patch size,
