@@ -66,7 +66,10 @@ public:
       h_ = mixBits(h_ ^ w);
     }
     std::uint64_t tail = n; // the length too, so "ab" + "" differs from "a" + "b"
-    std::memcpy(&tail, p + k, n - k);
+    if (n > k) // memcpy may not be given the null data() of an empty vector, even for 0 bytes
+    {
+      std::memcpy(&tail, p + k, n - k);
+    }
     h_ = mixBits(h_ ^ tail ^ (static_cast<std::uint64_t>(n) << 56));
   }
   template<class T>
@@ -157,7 +160,13 @@ public:
   const std::string& bytes() const { return bytes_; }
 
 private:
-  void append(const void* p, std::size_t n) { bytes_.append(static_cast<const char*>(p), n); }
+  void append(const void* p, std::size_t n)
+  {
+    if (n > 0) // an empty vector's data() may be null
+    {
+      bytes_.append(static_cast<const char*>(p), n);
+    }
+  }
   std::string bytes_;
 };
 
