@@ -1,5 +1,6 @@
 #include "ExemplarCache.h"
 
+#include "../Core/ContentHash.h"
 #include "../Core/Error.h"
 #include "../Core/Random.h"
 #include "../Features/Ppa.h"
@@ -50,39 +51,7 @@ static_assert(sizeof(LandformProfile) == 80, "update ExemplarCache.cxx's Landfor
 static_assert(sizeof(LandformStatistics) == 288, "update ExemplarCache.cxx's LandformStatistics");
 static_assert(sizeof(ExemplarStatistics) == 328, "update ExemplarCache.cxx's ExemplarStatistics");
 
-// A 64-bit hash of bytes, eight at a time through SplitMix64's mix: a content
-// key and a checksum (a collision needs 2^32 entries, not a flipped bit).
-class Hasher
-{
-public:
-  void bytes(const void* data, std::size_t n)
-  {
-    const auto* p = static_cast<const unsigned char*>(data);
-    std::size_t k = 0;
-    for (; k + sizeof(std::uint64_t) <= n; k += sizeof(std::uint64_t))
-    {
-      std::uint64_t w = 0;
-      std::memcpy(&w, p + k, sizeof w);
-      h_ = mixBits(h_ ^ w);
-    }
-    std::uint64_t tail = n; // the length too, so "ab" + "" differs from "a" + "b"
-    if (n > k) // memcpy may not be given the null data() of an empty vector, even for 0 bytes
-    {
-      std::memcpy(&tail, p + k, n - k);
-    }
-    h_ = mixBits(h_ ^ tail ^ (static_cast<std::uint64_t>(n) << 56));
-  }
-  template<class T>
-  void value(const T& v)
-  {
-    static_assert(std::is_arithmetic_v<T>);
-    bytes(&v, sizeof v);
-  }
-  std::uint64_t digest() const { return h_; }
-
-private:
-  std::uint64_t h_ = 0;
-};
+using Hasher = ContentHasher;
 
 // The code that computes an entry: the bytes of the file this function was
 // loaded from (the kernels library, or a static executable); 0 if it cannot

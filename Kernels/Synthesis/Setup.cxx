@@ -2,6 +2,7 @@
 
 #include "Synthesizer.h"
 
+#include "../Core/ContentHash.h"
 #include "../Core/Error.h"
 #include "../Core/Memory.h"
 #include "../Core/Resample.h"
@@ -563,6 +564,92 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
     s.target.warnings.push_back(*warning);
   }
   return s;
+}
+
+namespace
+{
+
+void hashHeightfield(ContentHasher& h, const Heightfield& f)
+{
+  h.value(f.width);
+  h.value(f.height);
+  h.value(f.cellX);
+  h.value(f.cellY);
+  h.values(f.z);
+  h.values(f.valid);
+}
+
+void hashSketch(ContentHasher& h, const SketchInput& sketch)
+{
+  h.value(sketch.index());
+  if (const auto* image = std::get_if<ColourImage>(&sketch))
+  {
+    h.value(image->width);
+    h.value(image->height);
+    h.value(image->channels);
+    h.values(image->data);
+  }
+  else if (const auto* dem = std::get_if<Heightfield>(&sketch))
+  {
+    hashHeightfield(h, *dem);
+  }
+  else
+  {
+    const auto& lines = std::get<PolylineSketch>(sketch);
+    h.value(lines.frameWidth);
+    h.value(lines.frameHeight);
+    h.value(lines.lines.size());
+    for (const Polyline& line : lines.lines)
+    {
+      h.value(line.type);
+      h.value(line.points.size());
+      for (const Point2& p : line.points)
+      {
+        h.value(p.x);
+        h.value(p.y);
+      }
+      h.values(line.elevation);
+    }
+  }
+}
+
+} // namespace
+
+std::uint64_t synthesisRequestKey(const SetupInputs& in, const SynthesisOptions& o)
+{
+  ContentHasher h;
+  h.value(in.exemplars.size());
+  for (const Heightfield& e : in.exemplars)
+  {
+    hashHeightfield(h, e);
+  }
+  hashSketch(h, in.sketch);
+  h.value(in.grid.width);
+  h.value(in.grid.height);
+  h.value(in.grid.cellX);
+  h.value(in.grid.cellY);
+  h.value(in.patchSize);
+  h.value(in.seed);
+  h.value(in.landformRelief);
+  h.value(o.patchSize);
+  h.value(o.merge);
+  h.value(o.fill);
+  h.value(o.seed);
+  h.value(o.k);
+  h.value(o.fillK);
+  h.value(o.verticalOffset);
+  h.value(o.repetitionPenalty);
+  h.value(o.correctionScale);
+  h.value(o.drainValleys);
+  h.value(o.drainage.has_value());
+  h.value(o.drainage.value_or(PitRemovalMethod{}));
+  h.values(o.regionLabels);
+  h.value(o.regionExemplars.size());
+  for (const std::vector<int>& exemplars : o.regionExemplars)
+  {
+    h.values(exemplars);
+  }
+  return h.digest();
 }
 
 SynthesisResult synthesize(const SynthesisSetup& setup, SynthesisOptions options)

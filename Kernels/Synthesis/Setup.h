@@ -203,6 +203,13 @@ std::optional<std::string> finenessWarning(const SynthesisTarget& target, int pa
 // patch at the output's cell size.
 SynthesisSetup prepareSynthesis(SetupInputs inputs);
 
+// A key of everything that decides a synthesis' terrain: the set-up's inputs
+// (the exemplars' heights and cells, the sketch's content, the grid asked for,
+// patch, seed, landform relief) and the options that change it. Not the
+// backend (every backend gives the same bits), the progress report, a prepared
+// pool, the memory budget or the cache. Equal keys: the same terrain.
+std::uint64_t synthesisRequestKey(const SetupInputs& inputs, const SynthesisOptions& options);
+
 // synthesize() on what the set-up prepared, with its candidate pool.
 SynthesisResult synthesize(const SynthesisSetup& setup, SynthesisOptions options);
 
