@@ -3,6 +3,7 @@ set(TSYNTH_SYNTHESIS_SOURCES
   Synthesis/Finishing.cxx
   Synthesis/Landform.cxx
   Synthesis/PatchColours.cxx
+  Synthesis/Preview.cxx
   Synthesis/Regions.cxx
   Synthesis/SeamLines.cxx
   Synthesis/Setup.cxx
