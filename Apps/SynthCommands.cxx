@@ -18,6 +18,7 @@
 #include "Metrics/LandformMetrics.h"
 #include "Metrics/Legibility.h"
 #include "Metrics/TerrainMetrics.h"
+#include "Synthesis/Preview.h"
 #include "Synthesis/Regions.h"
 #include "Synthesis/Setup.h"
 #include "Synthesis/SynthesisFigures.h"
@@ -74,6 +75,11 @@ writes them: its output works directly as a sketch of the same DEM.
                          of a quarter patch down to 2 cells so the changes are broad and seams
                          stay hidden, the last few-cell pits filled (default: off)
   --seed N               another seed gives another terrain; the same seed the same terrain
+  --preview PREVIEW      first write a quick coarse look at the same terrain: cells 4 times
+                         coarser a side (twice for patches under 64), patches as many times
+                         smaller: the same landforms in the same places, less detail. Needs
+                         a patch of at least 32. Stopped (Ctrl-C) after it, the run leaves
+                         the preview complete
   --report FILE.json     per-stage times, counts, costs and quality figures
   --debug-dir DIR        target field, feature trees, patch ids and seams as files
   --regions LABELS       style regions: a single-band image of labels over the output (resized to
@@ -259,6 +265,7 @@ struct SynthArguments
   std::string sketch;
   std::string output;
   std::optional<std::string> report;
+  std::optional<std::string> preview; // written first: the quick coarse look (Preview.h)
   std::optional<std::string> debugDir;
   std::optional<std::string> regions;
   std::vector<std::string> regionMaps;
@@ -306,6 +313,10 @@ void checkPaths(const SynthArguments& a)
   {
     throw UsageError("The output must end in .tif, .png or .vti, not " + a.output + ".");
   }
+  if (a.preview && !isVtiPath(*a.preview) && !isHeightfieldWriteExtension(*a.preview))
+  {
+    throw UsageError("--preview must end in .tif, .png or .vti, not " + *a.preview + ".");
+  }
   if (a.report && !hasExtension(*a.report, ".json"))
   {
     throw UsageError("--report expects a .json file.");
@@ -331,6 +342,10 @@ void checkPaths(const SynthArguments& a)
     files.input(*a.regions, "--regions");
   }
   files.output(a.output, "-o");
+  if (a.preview)
+  {
+    files.output(*a.preview, "--preview");
+  }
   if (a.report)
   {
     files.output(*a.report, "--report");
@@ -463,6 +478,7 @@ SynthArguments parseSynthArguments(std::vector<std::string> args)
   a.sketch = cl.take("--sketch").value_or("");
   a.output = cl.take("--output", "-o").value_or("");
   a.report = cl.take("--report");
+  a.preview = cl.take("--preview");
   a.debugDir = cl.take("--debug-dir");
   a.progress = !cl.takeFlag("--no-progress");
   const std::optional<std::string> cache = cl.take("--cache");
@@ -483,6 +499,11 @@ SynthArguments parseSynthArguments(std::vector<std::string> args)
     throw UsageError("Unexpected argument \"" + cl.positionals()[0] + "\".");
   }
   checkPaths(a);
+  if (a.preview && a.options.patchSize < 2 * kMinSynthesisPatch)
+  {
+    throw UsageError("--preview needs a --patch of at least " +
+      std::to_string(2 * kMinSynthesisPatch) + " cells (its coarser level halves it at least).");
+  }
   return a;
 }
 
@@ -514,22 +535,27 @@ SetupInputs readSynthInputs(const SynthArguments& a)
   return in;
 }
 
-SynthesisResult runWithProgress(const SynthesisSetup& setup,
-  const SynthArguments& a,
-  SynthesisOptions o,
-  const InterruptGuard& interrupt)
+// The options with the style regions (--regions) laid on the grid.
+SynthesisOptions optionsOnGrid(const SynthArguments& a,
+  const OutputGrid& grid,
+  std::size_t exemplars)
 {
+  SynthesisOptions o = a.options;
   if (a.regions)
   {
     ReadOptions plain;
     plain.useSidecar = false;
-    assignRegions(o,
-      readHeightfield(*a.regions, plain),
-      a.regionMaps,
-      setup.grid.width,
-      setup.grid.height,
-      setup.exemplars.size());
+    assignRegions(
+      o, readHeightfield(*a.regions, plain), a.regionMaps, grid.width, grid.height, exemplars);
   }
+  return o;
+}
+
+SynthesisResult runWithProgress(const SynthesisSetup& setup,
+  const SynthArguments& a,
+  const InterruptGuard& interrupt)
+{
+  SynthesisOptions o = optionsOnGrid(a, setup.grid, setup.exemplars.size());
   ProgressBar bar(a.progress);
   o.progress = [&](double f, const std::string& stage)
   {
@@ -543,10 +569,42 @@ SynthesisResult runWithProgress(const SynthesisSetup& setup,
   return r;
 }
 
+// What --preview wrote, for the summary and the report.
+struct PreviewSummary
+{
+  std::string file;
+  OutputGrid grid;
+  int patchSize = 0;
+  double seconds = 0.0;
+};
+
+// --preview: the coarse level (Preview.h), written before the whole synthesis starts.
+PreviewSummary writePreview(const SynthArguments& a, const SetupInputs& in)
+{
+  const PreviewPlan plan = planPreview(in);
+  const Preview p = synthesizePreview(in, optionsOnGrid(a, plan.full, in.exemplars.size()));
+  writeTerrainFile(*a.preview, p.result.terrain);
+  publishStagedOutputs(); // it stays, complete, even if the run is stopped after it
+  const SynthesisTimings& t = p.result.timings;
+  std::cout << std::fixed << std::setprecision(2) << "Preview: " << plan.coarse.width << " x "
+            << plan.coarse.height << " cells of " << plan.coarse.cellX << " m (patch "
+            << plan.patchSize << ") in " << p.seconds << " s (prepare " << p.prepareSeconds
+            << ", matcher setup " << t.setup << ", features " << t.features << ", fill " << t.fill
+            << "): " << *a.preview << std::endl;
+  return { *a.preview, plan.coarse, plan.patchSize, p.seconds };
+}
+
+// How the run went, besides the synthesis itself.
+struct RunRecord
+{
+  double prepare = 0.0; // seconds
+  std::optional<PreviewSummary> preview;
+};
+
 void printSummary(const SynthesisSetup& setup,
   const SynthesisResult& r,
   const SynthesisFigures& figures,
-  double prepare,
+  const RunRecord& run,
   const std::string& output)
 {
   std::cout << std::fixed << std::setprecision(2) << "Synthesised " << setup.grid.width << " x "
@@ -567,7 +625,7 @@ void printSummary(const SynthesisSetup& setup,
               << setup.target.ridgeRaise << ", valleys x" << setup.target.valleyRaise
               << " the exemplars' relief.\n";
   }
-  std::cout << "Times: prepare " << prepare << " s, matcher setup " << r.timings.setup
+  std::cout << "Times: prepare " << run.prepare << " s, matcher setup " << r.timings.setup
             << " s, features " << r.timings.features << " s, fill " << r.timings.fill << " s"
             << (setup.cache.hit ? " (the exemplars' preparation read from the cache)" : "")
             << ".\n";
@@ -602,7 +660,7 @@ void writeReport(const std::string& path,
   const SynthesisSetup& setup,
   const SynthesisResult& r,
   const SynthesisFigures& figures,
-  double prepare)
+  const RunRecord& run)
 {
   double seamSum = 0.0;
   // [order, feature, exemplar, variant, x0, y0, match cost, seam cost, landform misfit (m),
@@ -670,7 +728,7 @@ void writeReport(const std::string& path,
         { "seconds", setup.cache.seconds },
         { "problem", setup.cache.problem } } },
     { "times_s",
-      { { "prepare", prepare },
+      { { "prepare", run.prepare },
         { "setup", r.timings.setup },
         { "features", r.timings.features },
         { "fill", r.timings.fill } } },
@@ -689,6 +747,15 @@ void writeReport(const std::string& path,
     { "landforms", landforms },
     { "finishing", finishing },
     { "placement_list", list } };
+  if (run.preview)
+  {
+    const PreviewSummary& p = *run.preview;
+    report["preview"] = { { "file", p.file },
+      { "size", { p.grid.width, p.grid.height } },
+      { "cell_size_m", { p.grid.cellX, p.grid.cellY } },
+      { "patch_size", p.patchSize },
+      { "seconds", p.seconds } };
+  }
   if (!figures.correlation.empty())
   {
     report["target_correlation"] = correlationJson(figures.correlation);
@@ -794,26 +861,33 @@ int runSynth(std::vector<std::string> args)
   const auto t0 = std::chrono::steady_clock::now();
   SynthesisSetup setup;
   SynthesisResult r;
-  double prepare = 0.0; // seconds
+  RunRecord run;
   try
   {
-    setup = prepareSynthesis(readSynthInputs(a));
-    prepare = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    SetupInputs in = readSynthInputs(a);
+    if (a.preview)
+    {
+      run.preview = writePreview(a, in);
+    }
+    setup = prepareSynthesis(std::move(in));
+    run.prepare = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     printWarnings(setup.warnings);
     interrupt.check();
-    r = runWithProgress(setup, a, a.options, interrupt);
+    r = runWithProgress(setup, a, interrupt);
   }
   catch (const Cancelled&)
   {
-    std::cerr << "\ntsynth: stopped; nothing was written.\n";
+    std::cerr << (run.preview ? "\ntsynth: stopped; only the preview " + run.preview->file +
+          " was written (complete), not " + a.output + ".\n"
+                              : std::string("\ntsynth: stopped; nothing was written.\n"));
     return interruptedExit();
   }
   writeTerrainFile(a.output, r.terrain);
   const SynthesisFigures figures = measureSynthesis(setup, r, a.options.patchSize);
-  printSummary(setup, r, figures, prepare, a.output);
+  printSummary(setup, r, figures, run, a.output);
   if (a.report)
   {
-    writeReport(*a.report, a, setup, r, figures, prepare);
+    writeReport(*a.report, a, setup, r, figures, run);
   }
   if (a.debugDir)
   {

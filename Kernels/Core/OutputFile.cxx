@@ -441,6 +441,11 @@ bool Publication::isOpen()
 
 void Publication::publish()
 {
+  publishStagedOutputs();
+}
+
+void publishStagedOutputs()
+{
   PublicationState& pub = publication();
   const std::lock_guard<std::mutex> lock(pub.mutex);
   sigset_t held;

@@ -56,6 +56,12 @@ private:
 // stages its file instead of renaming it; publish() renames them all with the terminating
 // signals held, and a Publication destroyed unpublished removes every staged temporary (and
 // the folders it was told it created, if they are left empty). One at a time per process.
+// Publishes what the open Publication has staged so far, at once (as publish() does), and
+// leaves it open for the rest: for an output meant to stay even if the command is stopped
+// later (tsynth synth --preview, written before the long synthesis). Without an open
+// Publication there is nothing staged and nothing to do.
+void publishStagedOutputs();
+
 // Creates the folder `path` and any missing parents (tsynth::Error, one sentence, if it
 // cannot). While a Publication is open, the folders it creates are removed again, if left
 // empty, when nothing is published.

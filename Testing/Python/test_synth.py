@@ -374,6 +374,56 @@ class SynthTest(unittest.TestCase):
         self.assertIn("--cache and --no-cache contradict each other", both.stderr)
         self.assertFalse(os.path.exists(self.path("both.tif")))
 
+    def test_preview_comes_first_draws_the_sketch_and_leaves_the_terrain_unchanged(self):
+        sketch = os.path.join(self.sketches, "strokes_y_ridges.png")
+        colorado = os.path.join(self.dems, "colorado.png")
+        plain = self.synth("colorado.png", sketch, self.path("plain.tif"))
+        report = self.synth("colorado.png", sketch, self.path("whole.tif"), "--preview", self.path("preview.tif"))
+        # The terrain is the same bits with or without a preview first.
+        self.assertTrue(filecmp.cmp(self.path("plain.tif"), self.path("whole.tif"), shallow=False))
+        preview = report["preview"]
+        self.assertEqual(preview["size"], [129, 129])  # 512 cells of 90 m on cells of 360 m
+        self.assertEqual(preview["cell_size_m"], [360.0, 360.0])
+        self.assertEqual(preview["patch_size"], 20)
+        whole_seconds = sum(plain["times_s"].values())
+        self.assertLess(preview["seconds"], 0.5 * whole_seconds, (preview, plain["times_s"]))
+        # It draws the same sketch: most of the strokes' length is legible in it, as in the terrain
+        # (a random patchwork scores about 0.1).
+        result = tsynth("evaluate", self.path("preview.tif"), "--exemplar", colorado, "--sketch", sketch, "--json")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        legible = json.loads(result.stdout)["terrain"]["legibility"]["legible_share"]
+        self.assertGreater(legible, 0.6)
+
+        # Refused before any work: a patch with no coarser level, a preview over an input or the output.
+        for extra, message, status in ((["--patch", "28", "--preview", self.path("p.tif")], "at least 32", 2),
+                                       (["--preview", sketch], "same file as --sketch", 1),
+                                       (["--preview", self.path("same.tif")], "same file as -o", 1)):
+            result = tsynth("synth", "--exemplar", colorado, "--sketch", sketch, "-o", self.path("same.tif"),
+                            "--no-progress", *extra)
+            self.assertEqual(result.returncode, status, result.stderr)
+            self.assertIn(message, result.stderr)
+            self.assertFalse(os.path.exists(self.path("same.tif")))
+            self.assertFalse(os.path.exists(self.path("p.tif")))
+
+    def test_ctrl_c_after_the_preview_leaves_the_preview_complete(self):
+        import signal
+        out = self.path("interrupted.tif")
+        preview = self.path("preview.tif")
+        p = subprocess.Popen([PATHS.tsynth, "synth", "--exemplar", os.path.join(self.dems, "colorado.png"),
+                              "--sketch", os.path.join(self.sketches, "strokes_valley_tree.png"),
+                              "--size", "1024x1024", "--no-progress", "--preview", preview, "-o", out],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        line = p.stdout.readline()  # written once the preview file is complete
+        self.assertTrue(line.startswith("Preview: 257 x 257 cells"), line)
+        p.send_signal(signal.SIGINT)
+        _, err = p.communicate(timeout=120)
+        self.assertEqual(p.returncode, 130, err)
+        self.assertIn("only the preview %s was written (complete)" % preview, err)
+        self.assertFalse(os.path.exists(out))
+        info = tsynth("info", preview)
+        self.assertEqual(info.returncode, 0, info.stderr)
+        self.assertIn("257 x 257", info.stdout)
+
     def test_lambda_grey_sketch_keeps_ring_and_lambda(self):
         sketch = os.path.join(self.sketches, "lambda_circle_grey.png")
         colorado = os.path.join(self.dems, "colorado.png")
