@@ -10,6 +10,7 @@
 #include "Core/Error.h"
 #include "Core/Memory.h"
 #include "Synthesis/PatchColours.h"
+#include "Synthesis/Preview.h"
 #include "Synthesis/Regions.h"
 #include "Synthesis/SeamLines.h"
 #include "Synthesis/Setup.h"
@@ -36,9 +37,13 @@
 #include <vtkTable.h>
 #include <vtkUnsignedCharArray.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <iterator>
+#include <memory>
 #include <new>
+#include <thread>
 
 vtkStandardNewMacro(vtkTerrainSynthesis);
 
@@ -419,39 +424,211 @@ int vtkTerrainSynthesis::RequestInformation(vtkInformationVector** inputVector,
   return 1;
 }
 
+namespace
+{
+
+// The set-up's inputs from the filter's inputs and properties; the exemplars' origins
+// and warnings stay in `ex` for the placement table.
+tsynth::SetupInputs setupInputs(vtkTerrainSynthesis* filter,
+  vtkInformationVector** inputVector,
+  tsynth::ExemplarInputs& ex)
+{
+  requireInputs(inputVector);
+  ex = tsynth::gatherExemplarImages(inputVector[0],
+    tsynth::exemplarHeightsNamed(
+      filter->GetInputArrayInformation(kExemplarHeights), inputVector[0]));
+  tsynth::SetupInputs in;
+  in.exemplars = std::move(ex.heights); // the placement table needs only ex's origins
+  in.sketch = tsynth::sketchInput(vtkDataObject::GetData(inputVector[1], 0), ex.warnings);
+  in.grid = gridRequest(filter);
+  in.patchSize = filter->GetPatchSize();
+  in.seed = static_cast<std::uint64_t>(filter->GetSeed());
+  in.landformRelief = filter->GetLandformRelief();
+  in.cacheDirectory = !filter->GetUseExemplarCache() ? std::string()
+    : filter->GetExemplarCacheDirectory().empty()    ? tsynth::defaultExemplarCacheDirectory()
+                                                     : filter->GetExemplarCacheDirectory();
+  in.memoryBudget = filter->GetMemoryBudget() * tsynth::kBytesPerGB;
+  in.openClMatcher = tsynth::backendFromProperty(filter->GetBackend()) != tsynth::Backend::Cpu;
+  in.names = propertyNames();
+  return in;
+}
+
+// The options, with the style regions (port 2) laid on the terrain's grid.
+tsynth::SynthesisOptions optionsOnGrid(vtkTerrainSynthesis* filter,
+  vtkInformationVector** inputVector,
+  const std::vector<std::string>& regionMaps,
+  const tsynth::OutputGrid& grid,
+  std::size_t exemplars)
+{
+  tsynth::SynthesisOptions o = synthesisOptions(filter);
+  if (inputVector[2]->GetNumberOfInformationObjects() > 0)
+  {
+    const tsynth::Heightfield labels =
+      tsynth::imageToHeightfield(vtkImageData::GetData(inputVector[2], 0));
+    tsynth::assignRegions(o, labels, regionMaps, grid.width, grid.height, exemplars);
+  }
+  return o;
+}
+
+} // namespace
+
+// The whole synthesis run on a thread of its own while the preview is shown. It touches no
+// VTK object: it works on copies of the inputs, and its result is taken on the pipeline's
+// thread once `finished` says so.
+class vtkTerrainSynthesis::vtkRefinement
+{
+public:
+  std::thread worker;
+  std::atomic<bool> stop{ false };
+  std::atomic<bool> finished{ false };
+  bool announced = false;      // GetNeedsUpdate() said so
+  std::uint64_t key = 0;       // tsynth::synthesisRequestKey of the request it answers
+  tsynth::Heightfield preview; // shown until it is done, on the terrain's grid
+  tsynth::ExemplarInputs exemplars;
+  tsynth::SynthesisSetup setup;
+  tsynth::SynthesisResult result;
+  std::string error; // why it failed ("": it did not)
+
+  void start(tsynth::SetupInputs in, tsynth::SynthesisOptions o)
+  {
+    o.progress = nullptr; // UpdateProgress is the pipeline thread's
+    this->worker = std::thread(
+      [this, in = std::move(in), o = std::move(o)]() mutable
+      {
+        try
+        {
+          const tsynth::CancellationScope scope([this] { return this->stop.load(); });
+          this->setup = tsynth::prepareSynthesis(std::move(in));
+          this->result = tsynth::synthesize(this->setup, o);
+        }
+        catch (const tsynth::Cancelled&)
+        {
+          this->error = "stopped";
+        }
+        catch (const std::bad_alloc&)
+        {
+          this->error = kOutOfMemory;
+        }
+        catch (const std::exception& e)
+        {
+          this->error = e.what();
+        }
+        this->finished.store(true);
+      });
+  }
+
+  void join()
+  {
+    if (this->worker.joinable())
+    {
+      this->worker.join();
+    }
+  }
+
+  ~vtkRefinement()
+  {
+    this->stop.store(true);
+    this->join();
+  }
+
+  static constexpr const char* kOutOfMemory =
+    "The synthesis ran out of memory; give a smaller OutputSize or a larger "
+    "CellSize, or fewer or smaller exemplars.";
+};
+
+vtkTerrainSynthesis::~vtkTerrainSynthesis()
+{
+  this->StopRefinement();
+}
+
+void vtkTerrainSynthesis::StopRefinement()
+{
+  delete this->Refinement; // stops and joins it
+  this->Refinement = nullptr;
+}
+
+void vtkTerrainSynthesis::WaitForRefinement()
+{
+  if (this->Refinement != nullptr)
+  {
+    this->Refinement->join();
+  }
+}
+
+bool vtkTerrainSynthesis::GetNeedsUpdate()
+{
+  vtkRefinement* r = this->Refinement;
+  if (r == nullptr || r->announced || !r->finished.load())
+  {
+    return false;
+  }
+  r->announced = true;
+  this->Modified(); // the next update shows it
+  return true;
+}
+
+namespace
+{
+
+// Every output of a finished synthesis.
+void writeOutputs(vtkTerrainSynthesis* filter,
+  const tsynth::SynthesisSetup& setup,
+  const tsynth::SynthesisResult& r,
+  const tsynth::ExemplarInputs& ex,
+  vtkInformationVector* outputVector)
+{
+  for (const auto& warning : r.warnings)
+  {
+    vtkWarningWithObjectMacro(filter, << warning);
+  }
+  vtkImageData* output = vtkImageData::GetData(outputVector, kTerrainPort);
+  tsynth::heightfieldToImage(r.terrain, output);
+  addDiagnosticArrays(r, output);
+  fillPlacementTable(r, setup, ex, vtkTable::GetData(outputVector, kPlacementsPort));
+  tsynth::featureGraphToPolyData(
+    setup.target.graph, vtkPolyData::GetData(outputVector, kSketchFeaturesPort));
+  tsynth::featureGraphToPolyData(
+    setup.target.implied, vtkPolyData::GetData(outputVector, kImpliedLinesPort));
+  seamsToPolyData(r, vtkPolyData::GetData(outputVector, kSeamsPort));
+  if (filter->GetDebugOutputs())
+  {
+    fillReport(tsynth::measureSynthesis(setup, r, filter->GetPatchSize()),
+      vtkTable::GetData(outputVector, kReportPort));
+    fillConstruction(setup, r, vtkImageData::GetData(outputVector, kConstructionPort));
+  }
+}
+
+void clearOutputs(vtkInformationVector* outputVector)
+{
+  for (int port = 0; port < kOutputPorts; ++port)
+  {
+    vtkDataObject::GetData(outputVector, port)->Initialize();
+  }
+}
+
+} // namespace
+
 int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
   return tsynth::runFilterRequest(
     this,
-    "The synthesis ran out of memory; give a smaller OutputSize or a larger "
-    "CellSize, or fewer or smaller exemplars.",
+    vtkRefinement::kOutOfMemory,
     [&]
     {
-      for (int port = 0; port < kOutputPorts; ++port) // aborted: empty outputs
-      {
-        vtkDataObject::GetData(outputVector, port)->Initialize();
-      }
+      clearOutputs(outputVector); // aborted: empty outputs
+      this->OutputLevel = "none";
     },
     [&]
     {
-      requireInputs(inputVector);
-      tsynth::ExemplarInputs ex = tsynth::gatherExemplarImages(inputVector[0],
-        tsynth::exemplarHeightsNamed(
-          this->GetInputArrayInformation(kExemplarHeights), inputVector[0]));
-      tsynth::SetupInputs in;
-      in.exemplars = std::move(ex.heights);
-      in.sketch = tsynth::sketchInput(vtkDataObject::GetData(inputVector[1], 0), ex.warnings);
-      in.grid = gridRequest(this);
-      in.patchSize = this->PatchSize;
-      in.seed = static_cast<std::uint64_t>(this->Seed);
-      in.landformRelief = this->LandformRelief;
-      in.cacheDirectory = !this->UseExemplarCache ? std::string()
-        : this->ExemplarCacheDirectory.empty()    ? tsynth::defaultExemplarCacheDirectory()
-                                                  : this->ExemplarCacheDirectory;
-      in.memoryBudget = this->MemoryBudget * tsynth::kBytesPerGB;
-      in.openClMatcher = tsynth::backendFromProperty(this->Backend) != tsynth::Backend::Cpu;
-      in.names = propertyNames();
+      if (this->PreviewFirst)
+      {
+        this->PreviewOrRefined(inputVector, outputVector);
+        return;
+      }
+      this->StopRefinement();
+      tsynth::ExemplarInputs ex;
+      tsynth::SetupInputs in = setupInputs(this, inputVector, ex);
       for (const auto& w : ex.warnings)
       {
         vtkWarningMacro(<< w);
@@ -462,37 +639,71 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
         vtkWarningMacro(<< w);
       }
       this->UpdateProgress(kSetupProgress);
-
-      tsynth::SynthesisOptions o = synthesisOptions(this);
-      if (inputVector[2]->GetNumberOfInformationObjects() > 0)
-      {
-        const tsynth::Heightfield labels =
-          tsynth::imageToHeightfield(vtkImageData::GetData(inputVector[2], 0));
-        tsynth::assignRegions(
-          o, labels, this->RegionMaps, setup.grid.width, setup.grid.height, setup.exemplars.size());
-      }
+      const tsynth::SynthesisOptions o =
+        optionsOnGrid(this, inputVector, this->RegionMaps, setup.grid, setup.exemplars.size());
       const tsynth::SynthesisResult r = tsynth::synthesize(setup, o);
       this->BackendUsed = r.backend;
-      for (const auto& warning : r.warnings)
-      {
-        vtkWarningMacro(<< warning);
-      }
-      vtkImageData* output = vtkImageData::GetData(outputVector, kTerrainPort);
-      tsynth::heightfieldToImage(r.terrain, output);
-      addDiagnosticArrays(r, output);
-      fillPlacementTable(r, setup, ex, vtkTable::GetData(outputVector, kPlacementsPort));
-      tsynth::featureGraphToPolyData(
-        setup.target.graph, vtkPolyData::GetData(outputVector, kSketchFeaturesPort));
-      tsynth::featureGraphToPolyData(
-        setup.target.implied, vtkPolyData::GetData(outputVector, kImpliedLinesPort));
-      seamsToPolyData(r, vtkPolyData::GetData(outputVector, kSeamsPort));
-      if (this->DebugOutputs)
-      {
-        fillReport(tsynth::measureSynthesis(setup, r, this->PatchSize),
-          vtkTable::GetData(outputVector, kReportPort));
-        fillConstruction(setup, r, vtkImageData::GetData(outputVector, kConstructionPort));
-      }
+      writeOutputs(this, setup, r, ex, outputVector);
+      this->OutputLevel = "final";
     });
+}
+
+void vtkTerrainSynthesis::PreviewOrRefined(vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  tsynth::ExemplarInputs ex;
+  tsynth::SetupInputs in = setupInputs(this, inputVector, ex);
+  const tsynth::PreviewPlan plan = tsynth::planPreview(in);
+  tsynth::SynthesisOptions o =
+    optionsOnGrid(this, inputVector, this->RegionMaps, plan.full, in.exemplars.size());
+  const std::uint64_t key = tsynth::synthesisRequestKey(in, o);
+  if (vtkRefinement* r = this->Refinement; r != nullptr && r->key == key)
+  {
+    if (!r->finished.load())
+    {
+      this->ShowPreview(r->preview, outputVector); // asked again while it runs
+      return;
+    }
+    r->join();
+    if (!r->error.empty())
+    {
+      throw tsynth::Error(r->error);
+    }
+    this->BackendUsed = r->result.backend;
+    writeOutputs(this, r->setup, r->result, r->exemplars, outputVector);
+    this->OutputLevel = "final";
+    return;
+  }
+  this->StopRefinement(); // it answers another request
+  if (!plan.available())
+  {
+    vtkWarningMacro(<< "No preview for a Patch Size of " << this->PatchSize
+                    << " (its coarser level would be under " << tsynth::kMinSynthesisPatch
+                    << " cells): the whole synthesis is done at once.");
+    const tsynth::SynthesisSetup setup = tsynth::prepareSynthesis(std::move(in));
+    const tsynth::SynthesisResult r = tsynth::synthesize(setup, o);
+    this->BackendUsed = r.backend;
+    writeOutputs(this, setup, r, ex, outputVector);
+    this->OutputLevel = "final";
+    return;
+  }
+  tsynth::SynthesisOptions quiet = o;
+  quiet.progress = nullptr; // a fraction of a second
+  auto r = std::make_unique<vtkRefinement>();
+  r->key = key;
+  r->preview = tsynth::synthesizePreview(in, quiet).onFullGrid;
+  this->ShowPreview(r->preview, outputVector);
+  r->exemplars = std::move(ex);
+  r->start(std::move(in), std::move(o));
+  this->Refinement = r.release();
+}
+
+void vtkTerrainSynthesis::ShowPreview(const tsynth::Heightfield& preview,
+  vtkInformationVector* outputVector)
+{
+  clearOutputs(outputVector);
+  tsynth::heightfieldToImage(preview, vtkImageData::GetData(outputVector, kTerrainPort));
+  this->OutputLevel = "preview";
 }
 
 void vtkTerrainSynthesis::PrintSelf(ostream& os, vtkIndent indent)
@@ -513,6 +724,13 @@ void vtkTerrainSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "UseExemplarCache: " << this->UseExemplarCache << "\n";
   os << indent << "ExemplarCacheDirectory: " << this->ExemplarCacheDirectory << "\n";
   os << indent << "DebugOutputs: " << (this->DebugOutputs ? "on" : "off") << "\n";
+  os << indent << "PreviewFirst: " << (this->PreviewFirst ? "on" : "off") << "\n";
+  os << indent << "OutputLevel: " << this->OutputLevel << "\n";
+  os << indent << "Refinement: "
+     << (this->Refinement == nullptr     ? "none"
+            : this->Refinement->finished ? "finished"
+                                         : "under way")
+     << "\n";
   os << indent << "RegionMaps: " << this->RegionMaps.size() << "\n";
   os << indent << "BackendUsed: " << (this->BackendUsed.empty() ? "(none yet)" : this->BackendUsed)
      << "\n";

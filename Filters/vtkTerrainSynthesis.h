@@ -36,6 +36,10 @@
 #include <string>
 #include <vector>
 
+namespace tsynth
+{
+struct Heightfield;
+}
 class vtkImageData;
 class vtkPolyData;
 class vtkTable;
@@ -134,6 +138,27 @@ public:
   vtkSetMacro(DebugOutputs, bool);
   vtkGetMacro(DebugOutputs, bool);
   vtkBooleanMacro(DebugOutputs, bool);
+  /// Show a quick preview first, then the whole synthesis (default off: one update gives the
+  /// whole synthesis, as scripts expect). On, an update produces the preview of
+  /// tsynth::synthesizePreview (cells 4 times coarser, patches 4 times smaller: the same
+  /// landforms in the same places, less detail; about a tenth of the time), upsampled onto the
+  /// terrain's grid, and starts the whole synthesis in the background. GetNeedsUpdate() says
+  /// when it is done, and the next update shows it, bit for bit what the filter gives with
+  /// this off. A change to an input or a property stops the refinement under way and starts
+  /// again from a preview; until a refinement lands the output keeps the last preview. In the
+  /// preview only the terrain port holds data (Elevation; no diagnostic arrays). Patches under
+  /// 32 cells have no coarser level: the whole synthesis is then done at once.
+  vtkSetMacro(PreviewFirst, bool);
+  vtkGetMacro(PreviewFirst, bool);
+  vtkBooleanMacro(PreviewFirst, bool);
+  /// True, once, when a background refinement has finished: the filter is then marked modified
+  /// so that the next update shows it. ParaView's GUI asks every 100 ms (the LiveSource hint)
+  /// and re-renders; a script calls WaitForRefinement() and then this.
+  bool GetNeedsUpdate();
+  /// Blocks until the background refinement (if any) has finished or stopped.
+  void WaitForRefinement();
+  /// What the outputs hold: "none", "preview" or "final".
+  const char* GetOutputLevel() { return this->OutputLevel.c_str(); }
 
   void RemoveAllExemplars() { this->RemoveAllInputConnections(0); }
   /// Optional style regions (port 2): an image of integer labels over the
@@ -167,12 +192,17 @@ public:
 
 protected:
   vtkTerrainSynthesis();
-  ~vtkTerrainSynthesis() override = default;
+  ~vtkTerrainSynthesis() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
   int RequestData(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+  // PreviewFirst's update: the refinement's result if it answers this request, else a preview
+  // and a new refinement.
+  void PreviewOrRefined(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+  void ShowPreview(const tsynth::Heightfield& preview, vtkInformationVector* outputVector);
+  void StopRefinement();
 
   int PatchSize = tsynth::kDefaultSynthesisPatch;
   int Backend = AUTO;
@@ -187,12 +217,16 @@ protected:
   double MemoryBudget = 0.0;
   double LandformRelief = 1.0;
   bool DebugOutputs = false;
+  bool PreviewFirst = false;
+  std::string OutputLevel = "none";
   bool UseExemplarCache = true;
   std::string ExemplarCacheDirectory;
   std::string BackendUsed;
   std::vector<std::string> RegionMaps;
 
 private:
+  class vtkRefinement; // the whole synthesis under way in the background (PreviewFirst)
+  vtkRefinement* Refinement = nullptr;
   vtkTerrainSynthesis(const vtkTerrainSynthesis&) = delete;
   void operator=(const vtkTerrainSynthesis&) = delete;
 };

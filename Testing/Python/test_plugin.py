@@ -637,6 +637,85 @@ class PluginTest(unittest.TestCase):
         flanks = 0.5 * (grid[30:100, 100:108].mean() + grid[30:100, 148:156].mean())
         self.assertGreater(trunk, flanks)
 
+    def test_preview_first_shows_a_preview_then_the_whole_synthesis_bit_for_bit(self):
+        sys.path.insert(0, PATHS.python_dir)
+        import terrainsynthesis  # noqa: F401  (the client-side objects' own methods)
+        exemplar = simple.TerrainReader(FileName=os.path.join(PATHS.bundled_data, "dems", "colorado.png"))
+        sketch = simple.PNGSeriesReader(FileNames=[os.path.join(PATHS.bundled_data, "sketches", "strokes_y_ridges.png")])
+        settings = dict(Exemplars=[exemplar], Sketch=sketch, OutputSize=[256, 256], UseExemplarCache=0)
+        plain = simple.TerrainSynthesis(**settings)
+        plain.UpdatePipeline()
+        whole = sm.Fetch(plain, arg1=None, arg2=None, idx=0)
+        self.assertEqual(plain.GetClientSideObject().GetOutputLevel(), "final")
+
+        live = simple.TerrainSynthesis(PreviewFirst=1, **settings)
+        self.assertIsNotNone(live.SMProxy.GetHints().FindNestedElementByName("LiveSource"),
+                             "ParaView's GUI polls GetNeedsUpdate only with the LiveSource hint")
+        live.UpdatePipeline()
+        filter_ = live.GetClientSideObject()
+        self.assertEqual(filter_.GetOutputLevel(), "preview")
+        preview = sm.Fetch(live, arg1=None, arg2=None, idx=0)
+        # On the terrain's grid, heights only, in the exemplar's range.
+        self.assertEqual(preview.GetDimensions(), whole.GetDimensions())
+        self.assertEqual(preview.GetSpacing(), whole.GetSpacing())
+        self.assertIsNone(preview.GetPointData().GetArray("PatchId"))
+        z_preview = point_array(preview, "Elevation")
+        z_whole = point_array(whole, "Elevation")
+        self.assertFalse(np.isnan(z_preview).any())
+        self.assertLess(abs(np.median(z_preview) - np.median(z_whole)), 0.25 * np.ptp(z_whole))
+        self.assertFalse(np.array_equal(z_preview, z_whole))
+        self.assertEqual(live.GetDataInformation(0).GetNumberOfPoints(), 256 * 256)
+        self.assertEqual(live.GetDataInformation(1).GetNumberOfRows(), 0)  # no placements yet
+
+        filter_.WaitForRefinement()
+        self.assertTrue(filter_.GetNeedsUpdate())
+        self.assertFalse(filter_.GetNeedsUpdate(), "a refinement is announced once")
+        live.SMProxy.MarkModified(live.SMProxy)  # as ParaView's live-source poll does
+        live.UpdatePipeline()
+        self.assertEqual(filter_.GetOutputLevel(), "final")
+        final = sm.Fetch(live, arg1=None, arg2=None, idx=0)
+        for name in ("Elevation", "PatchId", "SeamMask"):
+            self.assertTrue(np.array_equal(point_array(final, name), point_array(whole, name)), name)
+        self.assertEqual(sm.Fetch(live, arg1=None, arg2=None, idx=1).GetNumberOfRows(),
+                         sm.Fetch(plain, arg1=None, arg2=None, idx=1).GetNumberOfRows())
+
+        # Another seed: a preview again, then that seed's whole synthesis.
+        live.Seed = 3
+        live.UpdatePipeline()
+        self.assertEqual(filter_.GetOutputLevel(), "preview")
+        filter_.WaitForRefinement()
+        self.assertTrue(filter_.GetNeedsUpdate())
+        live.SMProxy.MarkModified(live.SMProxy)
+        live.UpdatePipeline()
+        self.assertEqual(filter_.GetOutputLevel(), "final")
+        plain.Seed = 3
+        plain.UpdatePipeline()
+        self.assertTrue(np.array_equal(point_array(sm.Fetch(live, arg1=None, arg2=None, idx=0), "Elevation"),
+                                       point_array(sm.Fetch(plain, arg1=None, arg2=None, idx=0), "Elevation")))
+
+    def test_an_edit_stops_the_refinement_under_way_and_keeps_the_preview(self):
+        sys.path.insert(0, PATHS.python_dir)
+        import terrainsynthesis  # noqa: F401
+        exemplar = simple.TerrainReader(FileName=os.path.join(PATHS.bundled_data, "dems", "colorado.png"))
+        sketch = simple.PNGSeriesReader(FileNames=[os.path.join(PATHS.bundled_data, "sketches", "strokes_y_ridges.png")])
+        live = simple.TerrainSynthesis(Exemplars=[exemplar], Sketch=sketch, OutputSize=[1024, 1024],
+                                       PreviewFirst=1, UseExemplarCache=0)
+        live.UpdatePipeline()
+        filter_ = live.GetClientSideObject()
+        self.assertEqual(filter_.GetOutputLevel(), "preview")
+        # An edit while the whole synthesis (seconds) runs: a new preview, no stale result.
+        live.Seed = 5
+        started = harness.seconds_to_run(live.UpdatePipeline)
+        self.assertEqual(filter_.GetOutputLevel(), "preview")
+        self.assertFalse(filter_.GetNeedsUpdate())
+        # Switched off: the whole synthesis at once, and nothing left running.
+        live.PreviewFirst = 0
+        whole = harness.seconds_to_run(live.UpdatePipeline)
+        self.assertEqual(filter_.GetOutputLevel(), "final")
+        self.assertFalse(filter_.GetNeedsUpdate())
+        # The edit was answered by a preview in a fraction of the whole synthesis' time.
+        self.assertLess(started, 0.5 * whole, "preview %.2f s, whole %.2f s" % (started, whole))
+
     def test_gdal_raster_reader_images_are_read_as_the_terrain_reader_reads_them(self):
         """ParaView's GDAL Raster Reader (what File > Open preselects for a GeoTIFF) puts the
         heights on cells and hides nodata: the filters read them as the Terrain Reader's points,
