@@ -87,21 +87,38 @@ Heightfield padRight(const Heightfield& in, int columns)
   return out;
 }
 
-// Indices of the `count` smallest finite costs, by (cost, index): one pass with
-// a small bounded heap instead of sorting every offset.
+// Candidates gathered under the bar before they are cut back to `count`: the
+// cut (nth_element) is linear in what was gathered, so a few times `count`
+// spreads its cost over many admissions, where a heap paid a logarithmic
+// re-ordering for each one (the offsets' costs often fall along a row, and
+// then most of them get in).
+constexpr std::size_t kSelectionBuffer = 4;
+
+// Indices of the `count` smallest finite costs, by (cost, index), in that order.
 std::vector<std::size_t> smallestOffsets(const std::vector<float>& costs, std::size_t count)
 {
+  if (count == 0)
+  {
+    return {};
+  }
   auto before = [&](std::size_t a, std::size_t b)
   { return costs[a] < costs[b] || (costs[a] == costs[b] && a < b); };
-  std::vector<std::size_t> heap; // max-heap under `before`: the worst kept on top
-  heap.reserve(count + 1);
+  std::vector<std::size_t> kept;
+  kept.reserve(kSelectionBuffer * count);
   // Offsets come in increasing order, so one that ties with the worst kept is
-  // later, hence worse: only a strictly smaller cost gets in once the heap is
-  // full. Runs of 16 with none below the bar are skipped in one vector test.
+  // later, hence worse: only a strictly smaller cost gets in once `count` are
+  // kept. Runs of 16 with none below the bar are skipped in one vector test.
   float bar = kInf;
+  auto cut = [&]
+  {
+    std::nth_element(
+      kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(count - 1), kept.end(), before);
+    kept.resize(count);
+    bar = costs[kept.back()];
+  };
   const std::size_t n = costs.size();
   std::size_t i = 0;
-  while (i < n && count > 0)
+  while (i < n)
   {
     if (i + 16 <= n)
     {
@@ -123,21 +140,19 @@ std::vector<std::size_t> smallestOffsets(const std::vector<float>& costs, std::s
       {
         continue;
       }
-      heap.push_back(i);
-      std::push_heap(heap.begin(), heap.end(), before);
-      if (heap.size() > count)
+      kept.push_back(i);
+      if (kept.size() == kSelectionBuffer * count)
       {
-        std::pop_heap(heap.begin(), heap.end(), before);
-        heap.pop_back();
-      }
-      if (heap.size() == count)
-      {
-        bar = costs[heap.front()];
+        cut();
       }
     }
   }
-  std::sort_heap(heap.begin(), heap.end(), before);
-  return heap;
+  if (kept.size() > count)
+  {
+    cut();
+  }
+  std::sort(kept.begin(), kept.end(), before);
+  return kept;
 }
 
 // The same sum at one offset (a lane of runSsd, in the same order).

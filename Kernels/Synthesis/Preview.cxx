@@ -19,9 +19,13 @@ namespace
 constexpr Backend kPreviewBackend = Backend::Cpu;
 
 // Fill candidates compared by their seams in the preview: the seam dry runs are
-// most of a small patch's cost, and the preview's seams are blurred by the
+// much of a small patch's cost, and the preview's seams are blurred by the
 // upsampling anyway.
 constexpr std::size_t kPreviewFillCandidates = 1;
+// The preview's fill windows stand as far apart as they may (a quarter patch of
+// overlap, no jitter): 0.44 times as many patches as at half a patch, fill 0.43
+// -> 0.17 s for 1024^2 from Colorado, and no seam showed in its hillshade.
+constexpr double kPreviewFillSpacing = kMaxFillSpacing;
 
 int coarsePatch(int patchSize, int factor)
 {
@@ -85,6 +89,7 @@ SynthesisOptions previewOptions(const SynthesisOptions& full, const PreviewPlan&
   o.patchSize = plan.patchSize;
   o.backend = kPreviewBackend;
   o.fillK = std::min(o.fillK, kPreviewFillCandidates);
+  o.fillSpacing = std::max(o.fillSpacing, kPreviewFillSpacing);
   o.pool = nullptr; // the preview set-up's, at its patch size
   if (o.correctionScale > 0.0)
   {

@@ -31,8 +31,9 @@ struct PreviewPlan
 PreviewPlan planPreview(const SetupInputs& full);
 
 // The set-up and synthesis options of the preview level: the grid and patch of
-// the plan, the style-region labels taken at the coarse cells, and the fill
-// comparing fewer candidates by their seams (kPreviewFillCandidates).
+// the plan, the style-region labels taken at the coarse cells, and a quicker
+// fill: one candidate per window, windows spaced as wide as they may be
+// (kMaxFillSpacing).
 SetupInputs previewInputs(const SetupInputs& full, const PreviewPlan& plan);
 SynthesisOptions previewOptions(const SynthesisOptions& full, const PreviewPlan& plan);
 

@@ -637,6 +637,7 @@ std::uint64_t synthesisRequestKey(const SetupInputs& in, const SynthesisOptions&
   h.value(o.seed);
   h.value(o.k);
   h.value(o.fillK);
+  h.value(o.fillSpacing);
   h.value(o.verticalOffset);
   h.value(o.repetitionPenalty);
   h.value(o.correctionScale);

@@ -64,7 +64,9 @@ constexpr double kShepardRadiusInPatches = 0.25;
 // land a little beyond the exemplars' extremes is plausible, kilometres are a
 // runaway.
 constexpr double kHeightSlackShare = 0.1;
-// The seed moves the fill's inner windows by up to this share of a patch.
+// The seed moves the fill's inner windows by up to this share of a patch (less
+// where the windows are spaced so wide that they would not overlap by
+// kMinFillOverlapInPatches).
 constexpr double kGridJitterInPatches = 0.125;
 // Windows per axis are fewer than this (it spaces the seed's draws per axis).
 constexpr std::uint64_t kMaxGridWindows = 1u << 20;
@@ -814,7 +816,9 @@ public:
 
   std::vector<int> gridLine(int length, std::uint64_t axis) const
   {
-    const int step = std::max(1, P_ / 2);
+    const int step = std::max(1, static_cast<int>(std::lround(o_.fillSpacing * P_)));
+    const double jitterInPatches =
+      std::min(kGridJitterInPatches, (1.0 - kMinFillOverlapInPatches - o_.fillSpacing) / 2.0);
     const int span = std::max(0, length - P_);
     const int windows = std::max(1, (span + step - 1) / step);
     std::vector<int> v;
@@ -826,7 +830,7 @@ public:
         ? (seededUniform(
              o_.seed, kStreamGrid, axis * kMaxGridWindows + static_cast<std::uint64_t>(k)) -
             0.5) *
-          kGridJitterInPatches * 2.0 * P_
+          jitterInPatches * 2.0 * P_
         : 0.0;
       v.push_back(std::clamp(static_cast<int>(std::lround(even + jitter)), 0, span));
     }
@@ -1208,6 +1212,12 @@ SynthesisResult synthesize(const SynthesisTarget& target,
   if (exemplars.empty())
   {
     throw Error("No exemplar: give at least one DEM to copy terrain from.");
+  }
+  if (!(o.fillSpacing > 0.0 && o.fillSpacing <= kMaxFillSpacing))
+  {
+    throw Error("The fill's windows must stand more than 0 and at most " +
+      std::to_string(kMaxFillSpacing) + " patches apart, not " + std::to_string(o.fillSpacing) +
+      ".");
   }
   if (target.field.width < o.patchSize || target.field.height < o.patchSize)
   {

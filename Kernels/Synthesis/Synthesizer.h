@@ -42,6 +42,16 @@ constexpr double kCorrectionSigmasPerHalfWidth = 3.0;
 constexpr double kFinestDrawnSpacingInPatches =
   2.0 * kCorrectionSigmasPerHalfWidth * kFinestCorrectionInPatches;
 
+// The fill's windows stand this far apart, in patches: half a patch, so that
+// each overlaps what is there by at least a quarter patch on every side, and a
+// patch's seams have room to hide. The preview spaces them wider (Preview.h).
+constexpr double kDefaultFillSpacing = 0.5;
+// Consecutive windows overlap by at least this share of a patch, however they
+// are spaced and moved by the seed: room for the graph cut to find a seam.
+constexpr double kMinFillOverlapInPatches = 0.25;
+// So windows may stand at most this far apart.
+constexpr double kMaxFillSpacing = 1.0 - kMinFillOverlapInPatches;
+
 struct SynthesisOptions
 {
   int patchSize = kDefaultSynthesisPatch;
@@ -55,7 +65,10 @@ struct SynthesisOptions
   // the stroke (within kLineOffsetSlack of the best-aligned); at 8 the median
   // line offset was 2.5 cells, but the seams cost 3.5 times as much.
   std::size_t k = 16;
-  std::size_t fillK = 4;      // ... per fill placement (8 measured no better, 20% slower)
+  std::size_t fillK = 4; // ... per fill placement (8 measured no better, 20% slower)
+  // How far apart the fill's windows stand, in patches (kDefaultFillSpacing, up
+  // to kMaxFillSpacing: wider is fewer patches, so faster, with narrower overlaps).
+  double fillSpacing = kDefaultFillSpacing;
   bool verticalOffset = true; // shift each patch to fit what it overlaps
   // Added to a candidate's seam cost (per seam edge) for every earlier placement
   // that took a source within half a patch of it: discourages visible repeats.

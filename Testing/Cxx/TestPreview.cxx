@@ -106,6 +106,7 @@ TEST(Preview, InputsAndOptionsAreTheCoarseLevelsAndKeepTheRest)
   EXPECT_EQ(p.seed, 7u);
   EXPECT_EQ(p.backend, Backend::Cpu);
   EXPECT_EQ(p.fillK, 1u);
+  EXPECT_DOUBLE_EQ(p.fillSpacing, kMaxFillSpacing);
   EXPECT_DOUBLE_EQ(p.correctionScale, 3.0);
   ASSERT_EQ(p.regionLabels.size(), 129u * 65u);
   EXPECT_EQ(p.regionLabels[0], 0);
@@ -190,6 +191,9 @@ TEST(Preview, RequestKeyFollowsWhatChangesTheTerrainOnly)
   otherRegions.regionLabels[77] = 1;
   EXPECT_NE(synthesisRequestKey(in, regions), key);
   EXPECT_NE(synthesisRequestKey(in, otherRegions), synthesisRequestKey(in, regions));
+  SynthesisOptions spaced = o;
+  spaced.fillSpacing = 0.75;
+  EXPECT_NE(synthesisRequestKey(in, spaced), key);
   SynthesisOptions drained = o;
   drained.drainage = PitRemovalMethod::Fill;
   EXPECT_NE(synthesisRequestKey(in, drained), key);
