@@ -16,6 +16,10 @@ Comparisons (the figures that count on a shared, noisy machine):
   --peer DIR    runs Tasse's CPU code (built in DIR by ../shared/peers/tasse/
                 build.sh) once on the default case's sketch scaled to the
                 output size, and prints its time over our median.
+  --preview     each run writes the quick coarse look first (tsynth synth
+                --preview): its seconds (in the process: set-up, synthesis,
+                upsampling) are printed with their ratio to the same run's whole
+                synthesis and, with --vs, to the baseline's preview.
   --cache       ours reads the exemplars' preparation back from an exemplar
                 cache (in the temporary folder, filled by one untimed run):
                 a redrawn sketch. Without it every build that has a cache
@@ -23,7 +27,7 @@ Comparisons (the figures that count on a shared, noisy machine):
 Timings are reported, never asserted.
 
 Usage: bench_synthesis.sh [--large [--both]] [--dense] [--vs BUILD] [--peer DIR]
-                          [--cache] [--runs N] [build dir]
+                          [--cache] [--preview] [--runs N] [build dir]
 """
 import argparse
 import json
@@ -64,6 +68,21 @@ def cache_args(tsynth, cache_dir):
     return ["--cache", cache_dir] if cache_dir else ["--no-cache"]
 
 
+def preview_args(tsynth, tmp, wanted):
+    """--preview into tmp when wanted and the build has it."""
+    help_text = subprocess.run([tsynth, "synth", "--help"], capture_output=True, text=True).stdout
+    if not wanted or "--preview" not in help_text:
+        return []
+    return ["--preview", os.path.join(tmp, f"preview-{abs(hash(tsynth))}.tif")]
+
+
+def preview_line(label, seconds, wholes):
+    """Median preview seconds and their median ratio to the same runs' whole synthesis."""
+    ratios = [p / w for p, w in zip(seconds, wholes)]
+    return (f"{label} preview {statistics.median(seconds):.3f} s (median of {len(seconds)}), "
+            f"{statistics.median(ratios):.3f} of the same run's synthesis")
+
+
 def run_synth(tsynth, case, backend, out, report, extra=()):
     """One timed run; returns (wall seconds, report dict with its peak memory in GB added)."""
     command = [tsynth, "synth", *case.args, "--backend", backend, "-o", out,
@@ -100,11 +119,12 @@ def same_file(a, b):
         return fa.read() == fb.read()
 
 
-def time_case(case, tsynth, baseline, runs, tmp, cached):
+def time_case(case, tsynth, baseline, runs, tmp, cached, preview):
     """Times each backend of the case; returns our median wall (first backend)."""
     print(case.label)
     ours_extra = cache_args(tsynth, os.path.join(tmp, "cache") if cached else None)
-    base_extra = cache_args(baseline, None) if baseline else []
+    ours_extra += preview_args(tsynth, tmp, preview)
+    base_extra = cache_args(baseline, None) + preview_args(baseline, tmp, preview) if baseline else []
     if cached:  # fills the cache, untimed
         run_synth(tsynth, case, case.backends[0], os.path.join(tmp, "warm.tif"),
                   os.path.join(tmp, "rep.json"), ours_extra)
@@ -112,18 +132,25 @@ def time_case(case, tsynth, baseline, runs, tmp, cached):
     outputs = {}
     for backend in case.backends:
         ours, theirs, ratios = [], [], []
+        previews = {"ours": ([], []), "baseline": ([], [])}  # (preview s, whole synthesis s)
         report = None
         for r in range(runs):
             out = os.path.join(tmp, f"ours-{backend}.tif")
             wall, report = run_synth(tsynth, case, backend, out, os.path.join(tmp, "rep.json"),
                                      ours_extra)
             ours.append(wall)
+            if "preview" in report:
+                previews["ours"][0].append(report["preview"]["seconds"])
+                previews["ours"][1].append(wall)
             if baseline:
                 base_out = os.path.join(tmp, f"base-{backend}.tif")
                 base_wall, base_report = run_synth(baseline, case, backend, base_out,
                                                    os.path.join(tmp, "rep-base.json"), base_extra)
                 theirs.append(base_wall)
                 ratios.append(wall / base_wall)
+                if "preview" in base_report:
+                    previews["baseline"][0].append(base_report["preview"]["seconds"])
+                    previews["baseline"][1].append(base_wall)
         outputs[backend] = out
         medians[backend] = statistics.median(ours)
         line = f"  {backend:>6}: {medians[backend]:6.2f} s end to end (median of {runs}); {stages(report)}"
@@ -133,6 +160,12 @@ def time_case(case, tsynth, baseline, runs, tmp, cached):
                   f"{statistics.median(ratios):.3f} (pairs: {', '.join(f'{x:.3f}' for x in ratios)});"
                   f" output {'identical' if same_file(out, base_out) else 'DIFFERENT'}")
             print(f"          baseline's last run: {stages(base_report)}")
+        for who, (seconds, wholes) in previews.items():
+            if seconds:
+                print("         " + preview_line(who, seconds, wholes))
+        if previews["ours"][0] and previews["baseline"][0]:
+            pairs = [a / b for a, b in zip(*(previews[w][0] for w in ("ours", "baseline")))]
+            print(f"          preview ours / baseline {statistics.median(pairs):.3f}")
     if len(outputs) == 2:
         a, b = outputs.values()
         print("  identical output on both backends" if same_file(a, b) else "  OUTPUTS DIFFER")
@@ -200,6 +233,8 @@ def main():
     parser.add_argument("--peer", metavar="DIR", help="where Tasse's code was built")
     parser.add_argument("--cache", action="store_true",
                         help="ours reads the exemplars' preparation from a warm cache")
+    parser.add_argument("--preview", action="store_true",
+                        help="each run writes --preview first; its seconds are reported")
     parser.add_argument("--runs", type=int, default=3, help="runs per case and backend (default 3)")
     options = parser.parse_args()
     if options.runs < 1:
@@ -213,7 +248,8 @@ def main():
         fail("--large, --dense and --peer need ../shared beside the checkout")
     with tempfile.TemporaryDirectory() as tmp:
         for case in cases(options, tsynth, tmp):
-            ours = time_case(case, tsynth, baseline, options.runs, tmp, options.cache)
+            ours = time_case(case, tsynth, baseline, options.runs, tmp, options.cache,
+                             options.preview)
             if options.peer:
                 run_peer(options.peer, case, ours, tmp)
 
