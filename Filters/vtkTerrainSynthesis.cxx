@@ -481,9 +481,13 @@ public:
   std::thread worker;
   std::atomic<bool> stop{ false };
   std::atomic<bool> finished{ false };
-  bool announced = false;      // GetNeedsUpdate() said so
-  std::uint64_t key = 0;       // tsynth::synthesisRequestKey of the request it answers
-  tsynth::Heightfield preview; // shown until it is done, on the terrain's grid
+  bool announced = false; // GetNeedsUpdate() said so
+  std::uint64_t key = 0;  // tsynth::synthesisRequestKey of the request it answers
+  // Shown until it is done: the preview's heights on the terrain's grid, and the lines it
+  // followed (in metres, as the whole synthesis gives them).
+  tsynth::Heightfield preview;
+  tsynth::FeatureGraph sketchLines;
+  tsynth::FeatureGraph impliedLines;
   tsynth::ExemplarInputs exemplars;
   tsynth::SynthesisSetup setup;
   tsynth::SynthesisResult result;
@@ -648,6 +652,23 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
     });
 }
 
+namespace
+{
+
+// The preview in place of the whole synthesis: its heights, and the lines it followed so that
+// their representation keeps its colours; the other outputs empty.
+void showPreview(const vtkTerrainSynthesis::vtkRefinement& r, vtkInformationVector* outputVector)
+{
+  clearOutputs(outputVector);
+  tsynth::heightfieldToImage(r.preview, vtkImageData::GetData(outputVector, kTerrainPort));
+  tsynth::featureGraphToPolyData(
+    r.sketchLines, vtkPolyData::GetData(outputVector, kSketchFeaturesPort));
+  tsynth::featureGraphToPolyData(
+    r.impliedLines, vtkPolyData::GetData(outputVector, kImpliedLinesPort));
+}
+
+} // namespace
+
 void vtkTerrainSynthesis::PreviewOrRefined(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
@@ -661,7 +682,8 @@ void vtkTerrainSynthesis::PreviewOrRefined(vtkInformationVector** inputVector,
   {
     if (!r->finished.load())
     {
-      this->ShowPreview(r->preview, outputVector); // asked again while it runs
+      showPreview(*r, outputVector); // asked again while it runs
+      this->OutputLevel = "preview";
       return;
     }
     r->join();
@@ -691,19 +713,15 @@ void vtkTerrainSynthesis::PreviewOrRefined(vtkInformationVector** inputVector,
   quiet.progress = nullptr; // a fraction of a second
   auto r = std::make_unique<vtkRefinement>();
   r->key = key;
-  r->preview = tsynth::synthesizePreview(in, quiet).onFullGrid;
-  this->ShowPreview(r->preview, outputVector);
+  tsynth::Preview preview = tsynth::synthesizePreview(in, quiet);
+  r->preview = std::move(preview.onFullGrid);
+  r->sketchLines = std::move(preview.setup.target.graph);
+  r->impliedLines = std::move(preview.setup.target.implied);
+  showPreview(*r, outputVector);
+  this->OutputLevel = "preview";
   r->exemplars = std::move(ex);
   r->start(std::move(in), std::move(o));
   this->Refinement = r.release();
-}
-
-void vtkTerrainSynthesis::ShowPreview(const tsynth::Heightfield& preview,
-  vtkInformationVector* outputVector)
-{
-  clearOutputs(outputVector);
-  tsynth::heightfieldToImage(preview, vtkImageData::GetData(outputVector, kTerrainPort));
-  this->OutputLevel = "preview";
 }
 
 void vtkTerrainSynthesis::PrintSelf(ostream& os, vtkIndent indent)

@@ -36,10 +36,6 @@
 #include <string>
 #include <vector>
 
-namespace tsynth
-{
-struct Heightfield;
-}
 class vtkImageData;
 class vtkPolyData;
 class vtkTable;
@@ -146,8 +142,9 @@ public:
   /// when it is done, and the next update shows it, bit for bit what the filter gives with
   /// this off. A change to an input or a property stops the refinement under way and starts
   /// again from a preview; until a refinement lands the output keeps the last preview. In the
-  /// preview only the terrain port holds data (Elevation; no diagnostic arrays). Patches under
-  /// 32 cells have no coarser level: the whole synthesis is then done at once.
+  /// preview only the terrain (Elevation; no diagnostic arrays) and the sketch's and implied lines
+  /// hold data. Patches under 32 cells have no coarser level: the whole synthesis is then done at
+  /// once.
   vtkSetMacro(PreviewFirst, bool);
   vtkGetMacro(PreviewFirst, bool);
   vtkBooleanMacro(PreviewFirst, bool);
@@ -201,7 +198,6 @@ protected:
   // PreviewFirst's update: the refinement's result if it answers this request, else a preview
   // and a new refinement.
   void PreviewOrRefined(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
-  void ShowPreview(const tsynth::Heightfield& preview, vtkInformationVector* outputVector);
   void StopRefinement();
 
   int PatchSize = tsynth::kDefaultSynthesisPatch;
@@ -224,8 +220,10 @@ protected:
   std::string BackendUsed;
   std::vector<std::string> RegionMaps;
 
-private:
+public:
   class vtkRefinement; // the whole synthesis under way in the background (PreviewFirst)
+
+private:
   vtkRefinement* Refinement = nullptr;
   vtkTerrainSynthesis(const vtkTerrainSynthesis&) = delete;
   void operator=(const vtkTerrainSynthesis&) = delete;

@@ -1106,13 +1106,30 @@ class PluginTest(unittest.TestCase):
             width = (dem.GetDimensions()[0] - 1) * dem.GetSpacing()[0]
             self.assertAlmostEqual(points[0, 0], width / 3.0, delta=1.0)
             self.assertAlmostEqual(points[-1, 0], 2.0 * width / 3.0, delta=1.0)
-            out = sm.Fetch(terrain, arg1=None, arg2=None, idx=0)
-            self.assertEqual(out.GetDimensions(), dem.GetDimensions())
-            z = point_array(out, "Elevation").reshape(out.GetDimensions()[1], out.GetDimensions()[0])
             row = int(round(points[0, 1] / dem.GetSpacing()[1]))
             columns = slice(int(points[0, 0] / 90.0) + 20, int(points[-1, 0] / 90.0) - 20)
-            crest = float(np.median(z[row, columns]))
-            flanks = float(np.median(np.concatenate([z[row - 60, columns], z[row + 60, columns]])))
+
+            def crest_and_flanks():
+                out = sm.Fetch(terrain, arg1=None, arg2=None, idx=0)
+                self.assertEqual(out.GetDimensions(), dem.GetDimensions())
+                z = point_array(out, "Elevation").reshape(out.GetDimensions()[1], out.GetDimensions()[0])
+                crest = float(np.median(z[row, columns]))
+                flanks = float(np.median(np.concatenate([z[row - 60, columns], z[row + 60, columns]])))
+                return crest, flanks
+
+            # For dragging: the preview first, the ridge already in it, then the whole terrain.
+            sys.path.insert(0, PATHS.python_dir)
+            import terrainsynthesis  # noqa: F401  (the filter's own methods)
+            filter_ = terrain.GetClientSideObject()
+            self.assertEqual(filter_.GetOutputLevel(), "preview")
+            crest, flanks = crest_and_flanks()
+            print("macro ridge, preview: crest %.0f m, flanks %.0f m" % (crest, flanks))
+            self.assertGreater(crest, flanks + 150.0)
+            filter_.WaitForRefinement()
+            self.assertTrue(filter_.GetNeedsUpdate())
+            terrain.SMProxy.MarkModified(terrain.SMProxy)  # as ParaView's live-source poll does
+            crest, flanks = crest_and_flanks()
+            self.assertEqual(filter_.GetOutputLevel(), "final")
             print("macro ridge: crest %.0f m, flanks %.0f m" % (crest, flanks))
             self.assertGreater(crest, flanks + 150.0)  # a ridge along the drawn line
         finally:
