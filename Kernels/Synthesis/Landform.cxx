@@ -1,5 +1,6 @@
 #include "Landform.h"
 
+#include "../Core/Cancellation.h"
 #include "../Core/Constants.h"
 #include "../Core/Error.h"
 #include "../Core/Random.h"
@@ -1096,6 +1097,7 @@ std::vector<double> lineValueField(const RasterLines& lines,
   double cell,
   int patchSize)
 {
+  checkCancellation();
   const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
   std::vector<double> field(n, 0.0);
   if (near.empty())
@@ -1185,7 +1187,9 @@ LandformField landformField(const FeatureGraph& sketch,
   // Each landform's shape takes the room all the lines leave it (a valley
   // reaches up to the divide implied beside it); its raise and the scale the
   // result follows it at, the room the drawn lines leave.
+  checkCancellation(); // each step below takes tens of milliseconds at 1024^2: a stop waits
   const StrokeSpacing spacing = strokeSpacing(chainCells(graph, w, h, nullptr), w, h, cellX, cellY);
+  checkCancellation(); // for one step at most
   FeatureGraph drawn = graph;
   drawn.chains.resize(std::min(drawn.chains.size(), o.impliedChainsFrom));
   const bool anyImplied = drawn.chains.size() < graph.chains.size();
@@ -1257,6 +1261,7 @@ LandformField landformField(const FeatureGraph& sketch,
   }
   const RasterLines troughCells = rasteriseNetwork(graph, troughs, troughFloor, w, h);
   const NearestSeeds nearTrough = nearestSeeds(troughCells.seeds, w, h, cellX, cellY);
+  checkCancellation();
   const std::vector<double> crest =
     crestHeights(ridges, vertexValues(ridges, graph, heights), baseOf(ridges), s, o, cell, w, h);
   const ValleyFloors floors = valleyFloors(valleys,
@@ -1273,8 +1278,11 @@ LandformField landformField(const FeatureGraph& sketch,
   const RasterLines valleyCells = rasteriseNetwork(graph, valleys, floors.floor, w, h);
   const RasterLines valleyRims = rasteriseNetwork(graph, valleys, floors.rim, w, h);
   const RasterLines flow = rasteriseNetwork(graph, valleys, floors.downstream, w, h);
+  checkCancellation();
   const NearestSeeds nearRidge = nearestSeeds(ridgeCells.seeds, w, h, cellX, cellY);
+  checkCancellation();
   const NearestSeeds nearValley = nearestSeeds(valleyCells.seeds, w, h, cellX, cellY);
+  checkCancellation();
   const std::vector<double> crestAt =
     lineValueField(ridgeCells, nearRidge, w, h, cell, o.patchSize);
   const std::vector<double> floorAt =
@@ -1295,6 +1303,7 @@ LandformField landformField(const FeatureGraph& sketch,
   const double valleySoft2 = std::pow(kValleySoftening * cell, 2.0);
   for (std::size_t k = 0; k < n; ++k)
   {
+    pollCancellation();
     const double b = out.field.z[k];
     const double room = spacing.halfSpacing[k];
     double sum = 0.0;

@@ -2,6 +2,7 @@
 
 #include "Synthesizer.h"
 
+#include "../Core/Cancellation.h"
 #include "../Core/ContentHash.h"
 #include "../Core/Error.h"
 #include "../Core/Memory.h"
@@ -529,10 +530,12 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
     outputGrid(sketchExtent(in.sketch), in.grid, first.cellX, first.cellY, in.patchSize, in.names);
   checkMemory(in, s.grid, s);
   AnalysedSketch sketch = analyseSketch(in.sketch, s.grid, in.patchSize);
+  checkCancellation(); // between the set-up's steps: a stop waits for one step at most
   refuseEmptySketch(sketch);
   s.sketchKind = sketch.kind;
   s.warnings = std::move(sketch.warnings);
   prepareExemplars(in, s);
+  checkCancellation();
   PreparedExemplars prepared =
     prepareExemplarsCached(s.exemplarPointers(), in.patchSize, in.cacheDirectory, s.cache);
   s.graphs = std::move(prepared.graphs);
@@ -541,6 +544,7 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
   {
     s.warnings.push_back("Exemplar cache: " + s.cache.problem + ".");
   }
+  checkCancellation();
   const ExemplarStatistics& stats = prepared.statistics;
   const SketchHeights heights = !sketch.hasHeights ? SketchHeights::None
     : sketch.kind == "DEM"                         ? SketchHeights::Dem

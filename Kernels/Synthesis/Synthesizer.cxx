@@ -1254,7 +1254,9 @@ SynthesisResult synthesize(const SynthesisTarget& target,
   mo.weights.verticalOffset = o.verticalOffset;
   mo.pool = o.pool;
   PatchMatcher matcher(exemplars, graphs, mo);
+  checkCancellation(); // the set-up's parts take a tenth of a second each at 1024^2
   SynthesisState state(target, matcher, graphs, o);
+  checkCancellation();
   state.boundHeights(exemplars);
   state.setTypicalNoise(matcher.dense().typicalNoise());
   const double setup = secondsSince(t0);
