@@ -693,6 +693,13 @@ class PluginTest(unittest.TestCase):
         self.assertTrue(np.array_equal(point_array(sm.Fetch(live, arg1=None, arg2=None, idx=0), "Elevation"),
                                        point_array(sm.Fetch(plain, arg1=None, arg2=None, idx=0), "Elevation")))
 
+        # A patch with no coarser level: the whole synthesis at once (and a warning).
+        live.PatchSize = 28
+        live.UpdatePipeline()
+        self.assertEqual(filter_.GetOutputLevel(), "final")
+        self.assertFalse(filter_.GetNeedsUpdate())
+        self.assertIsNotNone(sm.Fetch(live, arg1=None, arg2=None, idx=0).GetPointData().GetArray("PatchId"))
+
     def test_an_edit_stops_the_refinement_under_way_and_keeps_the_preview(self):
         sys.path.insert(0, PATHS.python_dir)
         import terrainsynthesis  # noqa: F401
