@@ -79,6 +79,7 @@ SetupInputs previewInputs(const SetupInputs& full, const PreviewPlan& plan)
   in.grid.cellX = plan.coarse.cellX;
   in.grid.cellY = plan.coarse.cellY;
   in.patchSize = plan.patchSize;
+  in.rasterSketchPatch = full.rasterSketchPatch > 0 ? full.rasterSketchPatch : full.patchSize;
   in.openClMatcher = kPreviewBackend != Backend::Cpu;
   return in;
 }

@@ -456,15 +456,19 @@ double synthesisMemoryEstimate(int width,
   return bytes + (openCl ? kOpenClBaseBytes : 0.0);
 }
 
-AnalysedSketch analyseSketch(const SketchInput& sketch, const OutputGrid& grid, int patchSize)
+AnalysedSketch analyseSketch(const SketchInput& sketch,
+  const OutputGrid& grid,
+  int patchSize,
+  int rasterPatch)
 {
+  const int raster = rasterPatch > 0 ? rasterPatch : patchSize;
   if (const auto* image = std::get_if<ColourImage>(&sketch))
   {
-    return analyseImage(*image, patchSize);
+    return analyseImage(*image, raster);
   }
   if (const auto* dem = std::get_if<Heightfield>(&sketch))
   {
-    return analyseDem(*dem, patchSize);
+    return analyseDem(*dem, raster);
   }
   return analysePolylines(std::get<PolylineSketch>(sketch), grid, patchSize);
 }
@@ -529,7 +533,7 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
   s.grid =
     outputGrid(sketchExtent(in.sketch), in.grid, first.cellX, first.cellY, in.patchSize, in.names);
   checkMemory(in, s.grid, s);
-  AnalysedSketch sketch = analyseSketch(in.sketch, s.grid, in.patchSize);
+  AnalysedSketch sketch = analyseSketch(in.sketch, s.grid, in.patchSize, in.rasterSketchPatch);
   checkCancellation(); // between the set-up's steps: a stop waits for one step at most
   refuseEmptySketch(sketch);
   s.sketchKind = sketch.kind;
@@ -635,6 +639,7 @@ std::uint64_t synthesisRequestKey(const SetupInputs& in, const SynthesisOptions&
   h.value(in.patchSize);
   h.value(in.seed);
   h.value(in.landformRelief);
+  h.value(in.rasterSketchPatch);
   h.value(o.patchSize);
   h.value(o.merge);
   h.value(o.fill);

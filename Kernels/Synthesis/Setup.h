@@ -142,7 +142,13 @@ struct AnalysedSketch
 // Grey maps and DEMs through PPA (ridges and valleys), stroke maps through
 // thinning, poly-lines divided by the grid's cell size. A raster sketch smaller
 // than one patch is refused (tsynth::Error).
-AnalysedSketch analyseSketch(const SketchInput& sketch, const OutputGrid& grid, int patchSize);
+// A raster sketch (an image or a DEM) is analysed at `rasterPatch` of its own
+// pixels when given (> 0), else at patchSize: a preview reads the same lines
+// from it as the synthesis it previews (SetupInputs::rasterSketchPatch).
+AnalysedSketch analyseSketch(const SketchInput& sketch,
+  const OutputGrid& grid,
+  int patchSize,
+  int rasterPatch = 0);
 
 // The landform relief a user may ask for, in multiples of the exemplars' own.
 constexpr double kMinLandformRelief = 0.1;
@@ -163,6 +169,9 @@ struct SetupInputs
   // stand out of the exemplars' own land (the exemplars' major ones', raised
   // on rugged land: LandformFieldOptions::standOut); a DEM target keeps its own.
   double landformRelief = 1.0;
+  // The patch size a raster sketch is analysed at, in its own pixels; 0: patchSize. A
+  // preview (Preview.h) gives the whole synthesis' patch, so that both follow the same lines.
+  int rasterSketchPatch = 0;
   // Where what is computed from the exemplars alone is kept between runs
   // (ExemplarCache.h; defaultExemplarCacheDirectory()); empty: no cache.
   std::string cacheDirectory;

@@ -86,6 +86,7 @@ TEST(Preview, InputsAndOptionsAreTheCoarseLevelsAndKeepTheRest)
   EXPECT_EQ(coarse.grid.height, 65);
   EXPECT_DOUBLE_EQ(coarse.grid.cellX, 360.0);
   EXPECT_EQ(coarse.patchSize, 20);
+  EXPECT_EQ(coarse.rasterSketchPatch, 80); // the sketch read as the whole synthesis reads it
   EXPECT_EQ(coarse.seed, 7u);
   EXPECT_DOUBLE_EQ(coarse.landformRelief, 1.5);
 
