@@ -20,6 +20,8 @@ Comparisons (the figures that count on a shared, noisy machine):
                 --preview): its seconds (in the process: set-up, synthesis,
                 upsampling) are printed with their ratio to the same run's whole
                 synthesis and, with --vs, to the baseline's preview.
+  --rss         samples our resident memory every 0.25 s and says when, in
+                which stage, it peaked (on with --large).
   --cache       ours reads the exemplars' preparation back from an exemplar
                 cache (in the temporary folder, filled by one untimed run):
                 a redrawn sketch. Without it every build that has a cache
@@ -27,7 +29,7 @@ Comparisons (the figures that count on a shared, noisy machine):
 Timings are reported, never asserted.
 
 Usage: bench_synthesis.sh [--large [--both]] [--dense] [--vs BUILD] [--peer DIR]
-                          [--cache] [--preview] [--runs N] [build dir]
+                          [--cache] [--preview] [--rss] [--runs N] [build dir]
 """
 import argparse
 import json
@@ -83,22 +85,77 @@ def preview_line(label, seconds, wholes):
             f"{statistics.median(ratios):.3f} of the same run's synthesis")
 
 
-def run_synth(tsynth, case, backend, out, report, extra=()):
-    """One timed run; returns (wall seconds, report dict with its peak memory in GB added)."""
+RSS_INTERVAL_S = 0.25  # resident memory sampled this often with --rss
+
+
+def resident_gb(pid):
+    """The process's resident memory now, GB (None once it has gone)."""
+    try:
+        with open(f"/proc/{pid}/status") as f:
+            for line in f:
+                if line.startswith("VmRSS:"):
+                    return int(line.split()[1]) * 1024 / 1e9
+    except OSError:
+        return None
+    return None
+
+
+def child_pid(pid):
+    """The one child of /usr/bin/time: the tsynth it runs (None until it has started)."""
+    try:
+        with open(f"/proc/{pid}/task/{pid}/children") as f:
+            children = f.read().split()
+    except OSError:
+        return None
+    return int(children[0]) if children else None
+
+
+def run_synth(tsynth, case, backend, out, report, extra=(), rss=False):
+    """One timed run; returns (wall seconds, report dict with its peak memory in GB added, and
+    with rss its resident memory over time as [seconds, GB] pairs)."""
     command = [tsynth, "synth", *case.args, "--backend", backend, "-o", out,
                "--report", report, "--no-progress", *extra]
     peak = report + ".peak"
     start = time.monotonic()
-    done = subprocess.run(["/usr/bin/time", "-f", "%M", "-o", peak, *command],
-                          stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    process = subprocess.Popen(["/usr/bin/time", "-f", "%M", "-o", peak, *command],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    samples = []
+    while rss and process.poll() is None:
+        pid = child_pid(process.pid)
+        gb = resident_gb(pid) if pid else None
+        if gb is not None:
+            samples.append([time.monotonic() - start, gb])
+        time.sleep(RSS_INTERVAL_S)
+    _, err = process.communicate()
     wall = time.monotonic() - start
-    if done.returncode != 0:
-        fail(f"{' '.join(command)} failed: {done.stderr.strip()}")
+    if process.returncode != 0:
+        fail(f"{' '.join(command)} failed: {err.strip()}")
     with open(report) as f:
         result = json.load(f)
     with open(peak) as f:
         result["peak_gb"] = int(f.read().split()[-1]) * 1024 / 1e9  # kB of resident memory
+    result["rss"] = samples
     return wall, result
+
+
+def rss_line(report):
+    """Where resident memory peaked among the samples: when, and in which stage (the report's
+    stage times laid end to end from the start of the process)."""
+    samples = report.get("rss")
+    if not samples:
+        return None
+    when, gb = max(samples, key=lambda s: s[1])
+    t = report["times_s"]
+    stage, end = "finishing and measures", 0.0
+    for name in ("prepare", "setup", "features", "fill"):
+        end += t[name]
+        if when <= end:
+            stage = {"prepare": "preparation", "setup": "matcher set-up", "features": "feature placement",
+                     "fill": "fill"}[name]
+            break
+    median = statistics.median(s[1] for s in samples)
+    return (f"resident memory (sampled every {RSS_INTERVAL_S} s): peak {gb:.2f} GB at {when:.1f} s, "
+            f"in the {stage}; median {median:.2f} GB")
 
 
 def stages(report):
@@ -119,7 +176,7 @@ def same_file(a, b):
         return fa.read() == fb.read()
 
 
-def time_case(case, tsynth, baseline, runs, tmp, cached, preview):
+def time_case(case, tsynth, baseline, runs, tmp, cached, preview, rss=False):
     """Times each backend of the case; returns our median wall (first backend)."""
     print(case.label)
     ours_extra = cache_args(tsynth, os.path.join(tmp, "cache") if cached else None)
@@ -137,7 +194,7 @@ def time_case(case, tsynth, baseline, runs, tmp, cached, preview):
         for r in range(runs):
             out = os.path.join(tmp, f"ours-{backend}.tif")
             wall, report = run_synth(tsynth, case, backend, out, os.path.join(tmp, "rep.json"),
-                                     ours_extra)
+                                     ours_extra, rss)
             ours.append(wall)
             if "preview" in report:
                 previews["ours"][0].append(report["preview"]["seconds"])
@@ -155,6 +212,8 @@ def time_case(case, tsynth, baseline, runs, tmp, cached, preview):
         medians[backend] = statistics.median(ours)
         line = f"  {backend:>6}: {medians[backend]:6.2f} s end to end (median of {runs}); {stages(report)}"
         print(line)
+        if rss_line(report):
+            print("          ours' last run: " + rss_line(report))
         if baseline:
             print(f"          baseline {statistics.median(theirs):6.2f} s; ours / baseline "
                   f"{statistics.median(ratios):.3f} (pairs: {', '.join(f'{x:.3f}' for x in ratios)});"
@@ -235,6 +294,8 @@ def main():
                         help="ours reads the exemplars' preparation from a warm cache")
     parser.add_argument("--preview", action="store_true",
                         help="each run writes --preview first; its seconds are reported")
+    parser.add_argument("--rss", action="store_true",
+                        help="sample our resident memory over each run (on with --large)")
     parser.add_argument("--runs", type=int, default=3, help="runs per case and backend (default 3)")
     options = parser.parse_args()
     if options.runs < 1:
@@ -249,7 +310,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for case in cases(options, tsynth, tmp):
             ours = time_case(case, tsynth, baseline, options.runs, tmp, options.cache,
-                             options.preview)
+                             options.preview, options.rss or options.large)
             if options.peer:
                 run_peer(options.peer, case, ours, tmp)
 
