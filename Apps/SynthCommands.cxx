@@ -499,10 +499,10 @@ SynthArguments parseSynthArguments(std::vector<std::string> args)
     throw UsageError("Unexpected argument \"" + cl.positionals()[0] + "\".");
   }
   checkPaths(a);
-  if (a.preview && a.options.patchSize < 2 * kMinSynthesisPatch)
+  if (a.preview && a.options.patchSize < kMinPreviewedPatch)
   {
-    throw UsageError("--preview needs a --patch of at least " +
-      std::to_string(2 * kMinSynthesisPatch) + " cells (its coarser level halves it at least).");
+    throw UsageError("--preview needs a --patch of at least " + std::to_string(kMinPreviewedPatch) +
+      " cells (its coarser level halves it at least).");
   }
   return a;
 }

@@ -168,7 +168,7 @@ Preview synthesizePreview(const SetupInputs& full, const SynthesisOptions& optio
   {
     throw Error("No preview for a patch of " + std::to_string(full.patchSize) +
       " cells: a coarser level would need patches under " + std::to_string(kMinSynthesisPatch) +
-      " cells; give a patch of at least " + std::to_string(2 * kMinSynthesisPatch) + ".");
+      " cells; give a patch of at least " + std::to_string(kMinPreviewedPatch) + ".");
   }
   p.setup = prepareSynthesis(previewInputs(full, p.plan));
   p.prepareSeconds =

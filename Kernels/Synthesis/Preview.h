@@ -15,6 +15,9 @@ namespace tsynth
 // previewed on 257^2 cells), or half that when the patch would otherwise be
 // smaller than kMinSynthesisPatch.
 constexpr int kPreviewCoarsening = 4;
+// The smallest patch with a preview: halved, it is still a patch the synthesis
+// takes (front ends refuse a preview for less before any work).
+constexpr int kMinPreviewedPatch = 2 * kMinSynthesisPatch;
 
 // The whole synthesis and its preview level.
 struct PreviewPlan
@@ -53,8 +56,8 @@ struct Preview
 };
 
 // The preview of what synthesize(prepareSynthesis(full), options) would give.
-// Throws tsynth::Error when the plan has no coarser level (a patch under twice
-// kMinSynthesisPatch) or the inputs are unusable, tsynth::Cancelled when the
+// Throws tsynth::Error when the plan has no coarser level (a patch under
+// kMinPreviewedPatch) or the inputs are unusable, tsynth::Cancelled when the
 // caller's CancellationScope says stop.
 Preview synthesizePreview(const SetupInputs& full, const SynthesisOptions& options);
 
