@@ -597,7 +597,9 @@ PreviewSummary writePreview(const SynthArguments& a, const SetupInputs& in)
 // How the run went, besides the synthesis itself.
 struct RunRecord
 {
-  double prepare = 0.0; // seconds
+  double prepare = 0.0; // seconds: reading the inputs and prepareSynthesis
+  double write = 0.0;   // writing the terrain
+  double measure = 0.0; // the quality and landform figures
   std::optional<PreviewSummary> preview;
 };
 
@@ -626,7 +628,9 @@ void printSummary(const SynthesisSetup& setup,
               << " the exemplars' relief.\n";
   }
   std::cout << "Times: prepare " << run.prepare << " s, matcher setup " << r.timings.setup
-            << " s, features " << r.timings.features << " s, fill " << r.timings.fill << " s"
+            << " s, features " << r.timings.features << " s, fill " << r.timings.fill
+            << " s, finishing " << r.timings.finish << " s, writing " << run.write
+            << " s, figures " << run.measure << " s"
             << (setup.cache.hit ? " (the exemplars' preparation read from the cache)" : "")
             << ".\n";
   if (r.finishing.drained)
@@ -731,7 +735,10 @@ void writeReport(const std::string& path,
       { { "prepare", run.prepare },
         { "setup", r.timings.setup },
         { "features", r.timings.features },
-        { "fill", r.timings.fill } } },
+        { "fill", r.timings.fill },
+        { "finish", r.timings.finish },
+        { "write", run.write },
+        { "measure", run.measure } } },
     { "placements", r.placements.size() },
     { "anchored_merges", r.anchoredMerges },
     { "feature_placements", featurePlacements(r) },
@@ -882,8 +889,14 @@ int runSynth(std::vector<std::string> args)
                               : std::string("\ntsynth: stopped; nothing was written.\n"));
     return interruptedExit();
   }
+  auto since = [](std::chrono::steady_clock::time_point t)
+  { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count(); };
+  auto t1 = std::chrono::steady_clock::now();
   writeTerrainFile(a.output, r.terrain);
+  run.write = since(t1);
+  t1 = std::chrono::steady_clock::now();
   const SynthesisFigures figures = measureSynthesis(setup, r, a.options.patchSize);
+  run.measure = since(t1);
   printSummary(setup, r, figures, run, a.output);
   if (a.report)
   {

@@ -1267,8 +1267,9 @@ SynthesisResult synthesize(const SynthesisTarget& target,
   t0 = Clock::now();
   state.fill();
   const double fill = secondsSince(t0);
+  t0 = Clock::now();
   SynthesisResult r = state.finish();
-  r.timings = { setup, features, fill };
+  r.timings = { setup, features, fill, secondsSince(t0) };
   r.backend = matcher.backendName();
   r.warnings.insert(r.warnings.begin(), matcher.warnings().begin(), matcher.warnings().end());
   r.warnings.insert(r.warnings.begin(), target.warnings.begin(), target.warnings.end());

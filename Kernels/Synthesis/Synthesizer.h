@@ -145,7 +145,8 @@ struct SynthesisTimings
   double setup = 0.0;    // pools and dense tables
   double features = 0.0; // feature placement
   double fill = 0.0;     // non-feature filling
-  double total() const { return setup + features + fill; }
+  double finish = 0.0;   // final correction, valley drainage, height range and constraints
+  double total() const { return setup + features + fill + finish; }
 };
 
 struct SynthesisResult

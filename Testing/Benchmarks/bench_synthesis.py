@@ -146,12 +146,13 @@ def rss_line(report):
         return None
     when, gb = max(samples, key=lambda s: s[1])
     t = report["times_s"]
-    stage, end = "finishing and measures", 0.0
-    for name in ("prepare", "setup", "features", "fill"):
-        end += t[name]
+    names = {"prepare": "preparation", "setup": "matcher set-up", "features": "feature placement",
+             "fill": "fill", "finish": "finishing", "write": "writing", "measure": "measures"}
+    stage, end = "measures", 0.0
+    for name in names:
+        end += t.get(name, 0.0)  # a baseline's report may lack the later stages
         if when <= end:
-            stage = {"prepare": "preparation", "setup": "matcher set-up", "features": "feature placement",
-                     "fill": "fill"}[name]
+            stage = names[name]
             break
     median = statistics.median(s[1] for s in samples)
     return (f"resident memory (sampled every {RSS_INTERVAL_S} s): peak {gb:.2f} GB at {when:.1f} s, "
@@ -165,10 +166,12 @@ def stages(report):
     cache = report.get("exemplar_cache")
     exemplars = "" if not cache else (f" (of it the exemplars' {cache['seconds']:.2f}, "
                                       f"{'read back' if cache['hit'] else 'computed'})")
+    after = "" if "finish" not in t else (f", finishing {t['finish']:.2f}, writing {t['write']:.2f}, "
+                                          f"figures {t['measure']:.2f}")
     return (f"prepare {t['prepare']:.2f}{exemplars}, matcher setup {t['setup']:.2f}, features "
             f"{t['features']:.2f} ({1e3 * t['features'] / max(1, features):.1f} ms for each of "
             f"{features}), fill {t['fill']:.2f} ({1e3 * t['fill'] / max(1, fills):.1f} ms for "
-            f"each of {fills}); peak memory {report['peak_gb']:.2f} GB")
+            f"each of {fills}){after}; peak memory {report['peak_gb']:.2f} GB")
 
 
 def same_file(a, b):
