@@ -528,26 +528,36 @@ public:
     return core;
   }
 
-  // One candidate tried at a window: its patch at the fitted height, the
-  // merge's dry run, and for a feature patch the cells it owns.
+  // One candidate tried at a window: for a feature candidate its own line and
+  // how far that lies from the stroke (all eligible() needs); then, if it is
+  // eligible, its patch at the fitted height, the cells it owns and the
+  // merge's dry run.
   struct Trial
   {
+    OwnLine own;
+    float lineOffset = std::numeric_limits<float>::quiet_NaN();
     Heightfield patch;
     float offset = 0.0f;
     MergeResult dry;
     std::vector<std::uint8_t> core;
-    float lineOffset = std::numeric_limits<float>::quiet_NaN();
   };
 
+  // A feature candidate's own line and its offset from the stroke.
+  void alignTrial(const PatchCandidate& candidate, int x0, int y0, Trial& t) const
+  {
+    t.own = ownLine(candidate);
+    t.lineOffset = lineOffset(t.own, x0, y0);
+  }
+
   // The trial before its merge: the patch at its height and, for a feature
-  // patch, the cells it owns and how far its own line lies from the stroke.
-  Trial prepareTrial(const PatchCandidate& candidate,
+  // patch, the cells it owns (alignTrial first).
+  void prepareTrial(const PatchCandidate& candidate,
     int x0,
     int y0,
     bool feature,
-    const std::vector<std::uint8_t>& strokeCells) const
+    const std::vector<std::uint8_t>& strokeCells,
+    Trial& t) const
   {
-    Trial t;
     t.patch = extract(candidate);
     if (!feature)
     {
@@ -563,11 +573,10 @@ public:
       // The patch also owns its own ridge or valley near the centre, where it
       // strays from the drawn line: the crest stays one line, not two.
       t.core = strokeCells;
-      const OwnLine own = ownLine(candidate);
       // A strip as wide as the drawn line's (kLineHalfWidth each side): a
       // one-cell strip forced into the old content left seams along the crest.
       const int half = static_cast<int>(kLineHalfWidth);
-      for (const Point2& q : own.cells)
+      for (const Point2& q : t.own.cells)
       {
         const int ci = static_cast<int>(std::lround(q.x)) + P_ / 2;
         const int cj = static_cast<int>(std::lround(q.y)) + P_ / 2;
@@ -582,9 +591,7 @@ public:
           }
         }
       }
-      t.lineOffset = lineOffset(own, x0, y0);
     }
-    return t;
   }
 
   // The best-aligned feature candidate's line offset (+inf if none has one).
@@ -699,27 +706,37 @@ public:
     }
     const std::vector<std::uint8_t> strokeCells =
       feature ? strokeCore(x0, y0) : std::vector<std::uint8_t>();
-    // Every candidate's trial, then the dry run of each that choose() may
-    // take, in parallel (one merger workspace per thread); choose() reads them
-    // in candidate order, so it does not depend on the thread count.
+    // Every feature candidate's line offset, then the patch and dry run of
+    // each that choose() may take, in parallel (one merger workspace per
+    // thread); choose() reads them in candidate order, so it does not depend
+    // on the thread count. Patches of candidates choose() passes over are
+    // never cut out: on a DEM target that was 60% of them.
     std::vector<Trial> trials(candidates.size());
     const long count = static_cast<long>(candidates.size());
     const int threads = static_cast<int>(std::min(candidates.size(), mergers_.size()));
+    if (feature)
+    {
+#pragma omp parallel for schedule(dynamic) num_threads(threads)
+      for (long n = 0; n < count; ++n)
+      {
+        const std::size_t c = static_cast<std::size_t>(n);
+        alignTrial(candidates[c], x0, y0, trials[c]);
+      }
+    }
+    const float aligned = bestAlignment(trials);
+    auto tryCandidate = [&](std::size_t c, PatchMerger& merger)
+    {
+      Trial& t = trials[c];
+      prepareTrial(candidates[c], x0, y0, feature, strokeCells, t);
+      t.dry = merger.seamCost(out_, filled_, t.patch, x0, y0, feature ? &t.core : nullptr);
+    };
 #pragma omp parallel for schedule(dynamic) num_threads(threads)
     for (long n = 0; n < count; ++n)
     {
       const std::size_t c = static_cast<std::size_t>(n);
-      trials[c] = prepareTrial(candidates[c], x0, y0, feature, strokeCells);
-    }
-    const float aligned = bestAlignment(trials);
-#pragma omp parallel for schedule(dynamic) num_threads(threads)
-    for (long n = 0; n < count; ++n)
-    {
-      Trial& t = trials[static_cast<std::size_t>(n)];
-      if (eligible(t, aligned))
+      if (eligible(trials[c], aligned))
       {
-        t.dry = mergers_[static_cast<std::size_t>(omp_get_thread_num())].seamCost(
-          out_, filled_, t.patch, x0, y0, feature ? &t.core : nullptr);
+        tryCandidate(c, mergers_[static_cast<std::size_t>(omp_get_thread_num())]);
       }
     }
     double seam = 0.0;
@@ -728,7 +745,7 @@ public:
     if (!eligible(t, aligned))
     {
       // No candidate had a finite seam cost and choose() fell back to the first.
-      t.dry = mergers_[0].seamCost(out_, filled_, t.patch, x0, y0, feature ? &t.core : nullptr);
+      tryCandidate(chosen, mergers_[0]);
     }
     MergeOptions mo;
     mo.mode = o_.merge;
