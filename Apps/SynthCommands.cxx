@@ -629,8 +629,8 @@ void printSummary(const SynthesisSetup& setup,
   }
   std::cout << "Times: prepare " << run.prepare << " s, matcher setup " << r.timings.setup
             << " s, features " << r.timings.features << " s, fill " << r.timings.fill
-            << " s, finishing " << r.timings.finish << " s, writing " << run.write
-            << " s, figures " << run.measure << " s"
+            << " s, finishing " << r.timings.finish << " s, writing " << run.write << " s, figures "
+            << run.measure << " s"
             << (setup.cache.hit ? " (the exemplars' preparation read from the cache)" : "")
             << ".\n";
   if (r.finishing.drained)

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 
 namespace tsynth
@@ -151,20 +152,36 @@ double pearson(const std::vector<float>& a, const std::vector<float>& b)
   return aa > 0.0 && bb > 0.0 ? ab / std::sqrt(aa * bb) : StrokeLegibility::kNaN;
 }
 
-// G(sigma) - G(2 sigma), NaN where either is invalid.
-std::vector<float> bandPass(const Heightfield& hf, double sigma)
+// G(sigma) - G(2 sigma) at each sigma, NaN where either is invalid. A
+// Gaussian two bands share is computed once.
+std::vector<std::vector<float>> bandPasses(const Heightfield& hf, const std::vector<double>& sigmas)
 {
-  const Heightfield fine = smoothLarge(hf, sigma);
-  const Heightfield coarse = smoothLarge(hf, 2.0 * sigma);
-  std::vector<float> out(hf.size(), std::numeric_limits<float>::quiet_NaN());
-  for (std::size_t k = 0; k < hf.size(); ++k)
+  std::map<double, Heightfield> smoothed;
+  auto at = [&](double sigma) -> const Heightfield&
   {
-    if (hf.isValid(k) && fine.isValid(k) && coarse.isValid(k))
+    auto found = smoothed.find(sigma);
+    if (found == smoothed.end())
     {
-      out[k] = fine.z[k] - coarse.z[k];
+      found = smoothed.emplace(sigma, smoothLarge(hf, sigma)).first;
     }
+    return found->second;
+  };
+  std::vector<std::vector<float>> bands;
+  for (double sigma : sigmas)
+  {
+    const Heightfield& fine = at(sigma);
+    const Heightfield& coarse = at(2.0 * sigma);
+    std::vector<float> band(hf.size(), std::numeric_limits<float>::quiet_NaN());
+    for (std::size_t k = 0; k < hf.size(); ++k)
+    {
+      if (hf.isValid(k) && fine.isValid(k) && coarse.isValid(k))
+      {
+        band[k] = fine.z[k] - coarse.z[k];
+      }
+    }
+    bands.push_back(std::move(band));
   }
-  return out;
+  return bands;
 }
 
 } // namespace
@@ -242,16 +259,30 @@ std::vector<BandCorrelation> bandPassCorrelation(const Heightfield& terrain,
   const Heightfield& target,
   const std::vector<double>& sigmas)
 {
-  if (terrain.width != target.width || terrain.height != target.height)
+  return BandPassTarget(target, sigmas).correlate(terrain);
+}
+
+BandPassTarget::BandPassTarget(const Heightfield& target, std::vector<double> sigmas)
+  : width_(target.width)
+  , height_(target.height)
+  , sigmas_(std::move(sigmas))
+  , bands_(bandPasses(target, sigmas_))
+{
+}
+
+std::vector<BandCorrelation> BandPassTarget::correlate(const Heightfield& terrain) const
+{
+  if (terrain.width != width_ || terrain.height != height_)
   {
-    throw Error("The target (" + std::to_string(target.width) + " x " +
-      std::to_string(target.height) + " cells) is not on the terrain's grid (" +
-      std::to_string(terrain.width) + " x " + std::to_string(terrain.height) + ").");
+    throw Error("The target (" + std::to_string(width_) + " x " + std::to_string(height_) +
+      " cells) is not on the terrain's grid (" + std::to_string(terrain.width) + " x " +
+      std::to_string(terrain.height) + ").");
   }
+  const std::vector<std::vector<float>> bands = bandPasses(terrain, sigmas_);
   std::vector<BandCorrelation> out;
-  for (double sigma : sigmas)
+  for (std::size_t s = 0; s < sigmas_.size(); ++s)
   {
-    out.push_back({ sigma, pearson(bandPass(terrain, sigma), bandPass(target, sigma)) });
+    out.push_back({ sigmas_[s], pearson(bands[s], bands_[s]) });
   }
   return out;
 }

@@ -26,9 +26,9 @@ SynthesisFigures measureSynthesis(const SynthesisSetup& setup,
   f.patchLegibility = legibility.measure(r.patches);
   if (setup.sketchKind == "DEM")
   {
-    f.correlation = bandPassCorrelation(r.terrain, setup.target.field, defaultCorrelationScales());
-    f.patchCorrelation =
-      bandPassCorrelation(r.patches, setup.target.field, defaultCorrelationScales());
+    const BandPassTarget target(setup.target.field, defaultCorrelationScales());
+    f.correlation = target.correlate(r.terrain);
+    f.patchCorrelation = target.correlate(r.patches);
   }
   std::vector<float> offsets;
   for (const Placement& p : r.placements)

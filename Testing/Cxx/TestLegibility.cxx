@@ -3,6 +3,7 @@
 // (CrossSections), and the legibility measure and band-pass correlation built
 // on them, on analytic surfaces with known answers.
 #include "Core/Random.h"
+#include "Core/Smoothing.h"
 #include "Features/CrossSections.h"
 #include "Features/ImpliedLines.h"
 #include "Features/Sketch.h"
@@ -394,4 +395,63 @@ TEST(BandPassCorrelation, OneForTheSameRelief_MinusOneForItsNegativeAndNearZeroF
     EXPECT_LT(std::abs(c.correlation), 0.2) << c.sigma;
   }
   EXPECT_THROW(bandPassCorrelation(a, rough(150, 160, 1.0, 1), { 2.0 }), std::exception);
+}
+
+// BandPassTarget smooths each field once per distinct sigma and the target
+// once for several terrains; its numbers are those of the band-passes taken
+// one by one, G(sigma) - G(2 sigma) of each field, correlated by Pearson.
+TEST(BandPassCorrelation, SharedGaussiansGiveTheBandsTakenOneByOne)
+{
+  Heightfield terrain = rough(120, 100, 20.0, 21);
+  const Heightfield target = rough(120, 100, 20.0, 22);
+  terrain.valid.assign(terrain.size(), 1);
+  terrain.valid[5 * 120 + 7] = 0; // an invalid cell stays out of every band
+  terrain.z[5 * 120 + 7] = std::numeric_limits<float>::quiet_NaN();
+  auto band = [](const Heightfield& hf, double sigma)
+  {
+    const Heightfield fine = smoothLarge(hf, sigma);
+    const Heightfield coarse = smoothLarge(hf, 2.0 * sigma);
+    std::vector<double> out(hf.size(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t k = 0; k < hf.size(); ++k)
+    {
+      if (hf.isValid(k) && fine.isValid(k) && coarse.isValid(k))
+      {
+        out[k] = fine.z[k] - coarse.z[k];
+      }
+    }
+    return out;
+  };
+  const BandPassTarget shared(target, defaultCorrelationScales());
+  const std::vector<BandCorrelation> got = shared.correlate(terrain);
+  ASSERT_EQ(got.size(), defaultCorrelationScales().size());
+  for (const BandCorrelation& c : got)
+  {
+    const std::vector<double> a = band(terrain, c.sigma);
+    const std::vector<double> b = band(target, c.sigma);
+    double sa = 0.0, sb = 0.0, n = 0.0;
+    for (std::size_t k = 0; k < a.size(); ++k)
+    {
+      if (std::isfinite(a[k]) && std::isfinite(b[k]))
+      {
+        sa += a[k];
+        sb += b[k];
+        n += 1.0;
+      }
+    }
+    double ab = 0.0, aa = 0.0, bb = 0.0;
+    for (std::size_t k = 0; k < a.size(); ++k)
+    {
+      if (std::isfinite(a[k]) && std::isfinite(b[k]))
+      {
+        ab += (a[k] - sa / n) * (b[k] - sb / n);
+        aa += (a[k] - sa / n) * (a[k] - sa / n);
+        bb += (b[k] - sb / n) * (b[k] - sb / n);
+      }
+    }
+    EXPECT_NEAR(c.correlation, ab / std::sqrt(aa * bb), 1e-9) << c.sigma;
+  }
+  // A second terrain against the same target gives its own numbers.
+  const std::vector<BandCorrelation> self = shared.correlate(target);
+  EXPECT_NEAR(self.front().correlation, 1.0, 1e-12);
+  EXPECT_THROW(shared.correlate(rough(100, 120, 1.0, 1)), std::exception);
 }
