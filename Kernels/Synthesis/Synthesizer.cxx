@@ -106,8 +106,12 @@ constexpr double kTargetPull = 1.0;
 // (kFinestDrawnSpacingInPatches, the fineness warning's case), such as a real
 // DEM's tree used as the sketch. Drawings with room keep every site: theirs
 // lie half a patch apart along a line and closer only at junctions, where
-// each arm is drawn on purpose.
-constexpr double kSiteClearanceInPatches = 0.25;
+// each arm is drawn on purpose. A third of a patch rather than a quarter:
+// on four DEM targets with two exemplars each, 35% fewer feature patches
+// (feature placement 35-40% quicker), the band-pass correlation at 2, 4 and
+// 8 cells within 0.04 either way (mean -0.005), seam and slope indices as
+// before, and hillshades side by side that show the same land.
+constexpr double kSiteClearanceInPatches = 1.0 / 3.0;
 // A feature patch owns a disc of this radius (in patches) round its centre ...
 constexpr double kCoreDiscInPatches = 0.125;
 // ... and its lines (the drawn one and its own) this far from the centre; so
