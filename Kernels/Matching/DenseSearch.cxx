@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 
@@ -155,7 +156,7 @@ std::vector<std::size_t> smallestOffsets(const std::vector<float>& costs, std::s
   return kept;
 }
 
-// The same sum at one offset (a lane of runSsd, in the same order).
+// The same sum at one offset (a lane of ssdRuns, in the same order).
 float offsetSsd(const CoarseTerms& q, const std::vector<float>& pixels, int stride, int x, int y)
 {
   float acc = 0.0f;
@@ -169,32 +170,106 @@ float offsetSsd(const CoarseTerms& q, const std::vector<float>& pixels, int stri
   return acc;
 }
 
-// Coarse weighted SSD of the terms at 16 neighbouring offsets (x0 .. x0 + 15,
-// y), like one work-item of the OpenCL kernel (DenseSsd.cl), in the same order.
-TSYNTH_VECTOR_CLONES void runSsd(const CoarseTerms& q,
+// Runs of 16 offsets whose coarse SSD is summed at once.
+constexpr int kRunsAtOnce = 4;
+// 16 floats as one value of GCC's vector extension.
+using Lanes16 = float __attribute__((vector_size(16 * sizeof(float))));
+
+// Coarse weighted SSD of the terms at 16 neighbouring offsets (x0s[n] .. x0s[n]
+// + 15, y) for each of Runs runs, each run like one work-item of the OpenCL
+// kernel (DenseSsd.cl), in the same order. The runs' sums are independent, so
+// their additions overlap in the pipeline instead of waiting on one another.
+template<int Runs>
+inline __attribute__((always_inline)) void ssdRuns(const CoarseTerms& q,
   const std::vector<float>& pixels,
   int stride,
-  int x0,
+  const int* x0s,
   int y,
   float* out)
 {
-  // A local accumulator: through `out` every lane would be stored back on each
-  // term (it might alias the inputs) and nothing would vectorise.
-  float acc[16] = {};
+  // Local accumulators, one vector of 16 lanes per run (GCC's vector
+  // extension: one AVX-512 register, two AVX2 ones, four SSE ones; the lanes
+  // are computed as the scalar expression would be). Plain arrays of 16 x Runs
+  // floats were left scalar by the vectoriser.
+  Lanes16 acc[Runs] = {};
+  int x0[Runs];
+  std::copy(x0s, x0s + Runs, x0);
   for (std::size_t e = 0; e < q.size(); ++e)
   {
-    const float* cells = pixels.data() +
+    const float* row = pixels.data() +
       static_cast<std::size_t>(y + q.row[e]) * static_cast<std::size_t>(stride) +
-      static_cast<std::size_t>(x0 + q.column[e]);
+      static_cast<std::size_t>(q.column[e]);
     const float h = q.heights[e];
     const float m = q.weights[e];
-    for (int l = 0; l < 16; ++l)
+    for (int n = 0; n < Runs; ++n)
     {
-      const float d = h - cells[l];
-      acc[l] += m * d * d;
+      Lanes16 cells;
+      std::memcpy(&cells, row + x0[n], sizeof cells);
+      const Lanes16 d = h - cells;
+      acc[n] += m * d * d;
     }
   }
-  std::copy(acc, acc + 16, out);
+  std::memcpy(out, acc, sizeof acc);
+}
+
+TSYNTH_VECTOR_CLONES void ssdRuns4(const CoarseTerms& q,
+  const std::vector<float>& pixels,
+  int stride,
+  const int* x0s,
+  int y,
+  float* out)
+{
+  ssdRuns<kRunsAtOnce>(q, pixels, stride, x0s, y, out);
+}
+
+TSYNTH_VECTOR_CLONES void ssdRuns2(const CoarseTerms& q,
+  const std::vector<float>& pixels,
+  int stride,
+  const int* x0s,
+  int y,
+  float* out)
+{
+  ssdRuns<2>(q, pixels, stride, x0s, y, out);
+}
+
+TSYNTH_VECTOR_CLONES void ssdRuns1(const CoarseTerms& q,
+  const std::vector<float>& pixels,
+  int stride,
+  const int* x0s,
+  int y,
+  float* out)
+{
+  ssdRuns<1>(q, pixels, stride, x0s, y, out);
+}
+
+// ssdRuns over any number of runs, kRunsAtOnce at a time where there are as many.
+void ssdOfRuns(const CoarseTerms& q,
+  const std::vector<float>& pixels,
+  int stride,
+  const std::vector<int>& x0s,
+  int y,
+  float* out)
+{
+  const int count = static_cast<int>(x0s.size());
+  for (int done = 0; done < count;)
+  {
+    const int left = count - done;
+    const int step = left >= kRunsAtOnce ? kRunsAtOnce : left >= 2 ? 2 : 1;
+    float* sums = out + static_cast<std::size_t>(done) * 16;
+    if (step == kRunsAtOnce)
+    {
+      ssdRuns4(q, pixels, stride, &x0s[static_cast<std::size_t>(done)], y, sums);
+    }
+    else if (step == 2)
+    {
+      ssdRuns2(q, pixels, stride, &x0s[static_cast<std::size_t>(done)], y, sums);
+    }
+    else
+    {
+      ssdRuns1(q, pixels, stride, &x0s[static_cast<std::size_t>(done)], y, sums);
+    }
+    done += step;
+  }
 }
 
 // Means of f x f blocks of an image, rows of `stride` values (0 where a block
@@ -513,22 +588,26 @@ std::vector<std::vector<float>> DenseMatcher::coarseSsd(const CoarseTerms& q,
     // Sixteen neighbouring offsets at a time, like the OpenCL kernel (DenseSsd.cl),
     // skipping runs of offsets that are all invalid or not asked for.
     const int groups = (r.offsetsX + 15) / 16;
+    std::vector<int> x0s;
     for (int g = 0; g < groups; ++g)
     {
       const std::size_t run = static_cast<std::size_t>(y) * static_cast<std::size_t>(groups) +
         static_cast<std::size_t>(g);
-      if (r.groupValid[run] == 0 || (runs != nullptr && (*runs)[o][run] == 0))
+      if (r.groupValid[run] != 0 && (runs == nullptr || (*runs)[o][run] != 0))
       {
-        continue;
+        x0s.push_back(16 * g);
       }
-      const int x0 = 16 * g;
-      float acc[16];
-      runSsd(q, pixels, r.coarseStride, x0, y, acc);
+    }
+    std::vector<float> acc(x0s.size() * 16);
+    ssdOfRuns(q, pixels, r.coarseStride, x0s, y, acc.data());
+    for (std::size_t n = 0; n < x0s.size(); ++n)
+    {
+      const int x0 = x0s[n];
       for (int l = 0; l < 16 && x0 + l < r.offsetsX; ++l)
       {
         const std::size_t k = static_cast<std::size_t>(y) * static_cast<std::size_t>(r.offsetsX) +
           static_cast<std::size_t>(x0 + l);
-        costs[k] = r.coarseValid[k] != 0 ? acc[l] : kInf;
+        costs[k] = r.coarseValid[k] != 0 ? acc[n * 16 + static_cast<std::size_t>(l)] : kInf;
       }
     }
   }
@@ -603,34 +682,106 @@ std::vector<std::vector<float>> DenseMatcher::prunedCoarseCosts(const CoarseQuer
   return ssd(q.terms, CoarseImage::Blocks, &runs);
 }
 
-TSYNTH_VECTOR_CLONES void DenseMatcher::overlapRow(const std::vector<int>& cells,
+namespace
+{
+
+// Rows the refinement's squared differences are summed for at once.
+constexpr int kRowsAtOnce = 4;
+// kRowLanes floats as one value of GCC's vector extension.
+using LanesOfRow = float __attribute__((vector_size(kRowLanes * sizeof(float))));
+
+// Sums of squared differences of the known cells (offsets `cells` from `base`,
+// heights `heights`) at kRowLanes neighbouring offsets on each of Rows rows
+// `stride` apart. Each lane sums its cells in order, as for one offset alone;
+// the rows' sums are independent, so their additions overlap in the pipeline
+// instead of waiting on one another (one row at a time, each addition waited
+// for the last).
+template<int Rows>
+inline __attribute__((always_inline)) void squaredDifferenceRows(const float* base,
+  std::ptrdiff_t stride,
+  const std::vector<int>& cells,
+  const std::vector<float>& heights,
+  float* sums)
+{
+  LanesOfRow s[Rows] = {};
+  for (std::size_t e = 0; e < cells.size(); ++e)
+  {
+    const float h = heights[e];
+    for (int r = 0; r < Rows; ++r)
+    {
+      LanesOfRow cell;
+      std::memcpy(&cell, base + r * stride + cells[e], sizeof cell);
+      const LanesOfRow d = h - cell;
+      s[r] += d * d;
+    }
+  }
+  std::memcpy(sums, s, sizeof s);
+}
+
+TSYNTH_VECTOR_CLONES void squaredDifferenceRows4(const float* base,
+  std::ptrdiff_t stride,
+  const std::vector<int>& cells,
+  const std::vector<float>& heights,
+  float* sums)
+{
+  squaredDifferenceRows<kRowsAtOnce>(base, stride, cells, heights, sums);
+}
+
+TSYNTH_VECTOR_CLONES void squaredDifferenceRows2(const float* base,
+  std::ptrdiff_t stride,
+  const std::vector<int>& cells,
+  const std::vector<float>& heights,
+  float* sums)
+{
+  squaredDifferenceRows<2>(base, stride, cells, heights, sums);
+}
+
+TSYNTH_VECTOR_CLONES void squaredDifferenceRows1(const float* base,
+  std::ptrdiff_t stride,
+  const std::vector<int>& cells,
+  const std::vector<float>& heights,
+  float* sums)
+{
+  squaredDifferenceRows<1>(base, stride, cells, heights, sums);
+}
+
+} // namespace
+
+void DenseMatcher::overlapRows(const std::vector<int>& cells,
   const std::vector<float>& heights,
   std::size_t o,
   int x,
   int y,
+  int rows,
   float* out) const
 {
-  // kRowLanes neighbouring offsets at once: each known cell is read once per
-  // lane from one contiguous run, which vectorises; every lane sums in the
-  // same order as a single offset would.
   const Oriented& r = oriented_[o];
-  const float* base = r.full.z.data() + r.full.index(x, y);
-  float s[kRowLanes] = {};
-  for (std::size_t e = 0; e < cells.size(); ++e)
+  const std::ptrdiff_t stride = r.full.width;
+  for (int done = 0; done < rows;)
   {
-    const float* cell = base + cells[e];
-    const float h = heights[e];
-    for (int l = 0; l < kRowLanes; ++l)
+    const float* base = r.full.z.data() + r.full.index(x, y + done);
+    float* sums = out + static_cast<std::size_t>(done) * kRowLanes;
+    const int left = rows - done;
+    const int step = left >= kRowsAtOnce ? kRowsAtOnce : left >= 2 ? 2 : 1;
+    if (step == kRowsAtOnce)
     {
-      const float d = h - cell[l];
-      s[l] += d * d;
+      squaredDifferenceRows4(base, stride, cells, heights, sums);
     }
+    else if (step == 2)
+    {
+      squaredDifferenceRows2(base, stride, cells, heights, sums);
+    }
+    else
+    {
+      squaredDifferenceRows1(base, stride, cells, heights, sums);
+    }
+    done += step;
   }
-  for (int l = 0; l < kRowLanes; ++l)
+  for (int k = 0; k < rows * kRowLanes; ++k)
   {
-    out[l] = cells.empty()
+    out[k] = cells.empty()
       ? 0.0f
-      : static_cast<float>(s[l] / cells.size() / (heightScale_ * heightScale_));
+      : static_cast<float>(out[k] / cells.size() / (heightScale_ * heightScale_));
   }
 }
 
@@ -851,12 +1002,30 @@ std::vector<DenseMatch> DenseMatcher::refine(const DenseQuery& q,
     double bestLandform = 0.0;
     int bx = -1;
     int by = -1;
-    for (int y = std::max(0, seed.cy * f - reach); y <= std::min(ny - 1, seed.cy * f + reach); ++y)
+    // Every row of the neighbourhood at once (overlapRows), one run of
+    // kRowLanes offsets after another; then the offsets in the same order as
+    // ever, so ties go the same way.
+    const int ya = std::max(0, seed.cy * f - reach);
+    const int rows = std::min(ny - 1, seed.cy * f + reach) - ya + 1;
+    const int runs = xb >= xa ? (xb - xa) / kRowLanes + 1 : 0;
+    std::vector<float> v(static_cast<std::size_t>(std::max(0, rows) * runs * kRowLanes));
+    for (int run = 0; run < runs && rows > 0; ++run)
     {
-      for (int xs = xa; xs <= xb; xs += kRowLanes)
+      overlapRows(cells,
+        heights,
+        seed.oriented,
+        xa + run * kRowLanes,
+        ya,
+        rows,
+        &v[static_cast<std::size_t>(run * rows * kRowLanes)]);
+    }
+    for (int row = 0; row < rows; ++row)
+    {
+      const int y = ya + row;
+      for (int run = 0; run < runs; ++run)
       {
-        float v[kRowLanes];
-        overlapRow(cells, heights, seed.oriented, xs, y, v);
+        const int xs = xa + run * kRowLanes;
+        const float* lanes = &v[static_cast<std::size_t>((run * rows + row) * kRowLanes)];
         for (int x = xs; x < std::min(xs + kRowLanes, xb + 1); ++x)
         {
           if (r.fullValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) +
@@ -865,11 +1034,11 @@ std::vector<DenseMatch> DenseMatcher::refine(const DenseQuery& q,
             continue;
           }
           const double l = landformMisfit(samples, seed.oriented, x, y);
-          const float c = combined(v[x - xs], l);
+          const float c = combined(lanes[x - xs], l);
           if (c < best)
           {
             best = c;
-            bestOverlap = v[x - xs];
+            bestOverlap = lanes[x - xs];
             bestLandform = l;
             bx = x;
             by = y;
@@ -937,7 +1106,7 @@ std::vector<DenseMatch> DenseMatcher::bruteForce(const DenseQuery& q, std::size_
       for (int xs = 0; xs + kRowLanes <= nx; xs += kRowLanes)
       {
         float v[kRowLanes];
-        overlapRow(cells, heights, o, xs, y, v);
+        overlapRows(cells, heights, o, xs, y, 1, v);
         for (int x = xs; x < xs + kRowLanes; ++x)
         {
           if (r.fullValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) +

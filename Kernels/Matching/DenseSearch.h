@@ -189,12 +189,14 @@ public:
 
 private:
   // Mean squared difference over the known cells (listed as cell index and
-  // height) at offsets (x .. x + kRowLanes - 1, y), over heightScale^2.
-  void overlapRow(const std::vector<int>& cells,
+  // height) at offsets (x .. x + kRowLanes - 1, y .. y + rows - 1), over
+  // heightScale^2: out[r * kRowLanes + l] for offset (x + l, y + r).
+  void overlapRows(const std::vector<int>& cells,
     const std::vector<float>& heights,
     std::size_t o,
     int x,
     int y,
+    int rows,
     float* out) const;
   // The landform samples as offsets into an oriented exemplar's rows, and
   // their target heights and weights (samples of zero weight left out).
