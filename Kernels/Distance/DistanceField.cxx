@@ -12,6 +12,8 @@ namespace
 {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// Columns of the first pass done together: 16 doubles, two cache lines per row.
+constexpr std::size_t kColumnBlock = 16;
 
 // One line of the transform: squared distances f (inf = no seed) at positions
 // q * spacing; writes the lower envelope d and, per position, which input
@@ -99,48 +101,68 @@ NearestSeeds nearestSeeds(const std::vector<std::uint8_t>& seeds,
   out.distance.assign(w * h, std::numeric_limits<float>::infinity());
   out.nearest.assign(w * h, -1);
   // Pass 1, down each column: squared distance to the nearest seed of that
-  // column and its row.
+  // column and its row. Columns go kColumnBlock at a time, so that the row
+  // segments read and written are contiguous, not one cache line per cell.
   std::vector<double> columnD(w * h);
   std::vector<std::int32_t> columnRow(w * h);
+  const long blocks = static_cast<long>((w + kColumnBlock - 1) / kColumnBlock);
+#pragma omp parallel
   {
-    std::vector<double> f(h), d(h);
-    std::vector<std::int32_t> from(h);
     LineTransform line;
-    for (std::size_t i = 0; i < w; ++i)
+    std::vector<std::vector<double>> f(kColumnBlock, std::vector<double>(h));
+    std::vector<std::vector<double>> d(kColumnBlock, std::vector<double>(h));
+    std::vector<std::vector<std::int32_t>> from(kColumnBlock, std::vector<std::int32_t>(h));
+#pragma omp for schedule(static)
+    for (long b = 0; b < blocks; ++b)
     {
+      const std::size_t i0 = static_cast<std::size_t>(b) * kColumnBlock;
+      const std::size_t count = std::min(kColumnBlock, w - i0);
       for (std::size_t j = 0; j < h; ++j)
       {
-        f[j] = seeds[j * w + i] != 0 ? 0.0 : kInf;
+        for (std::size_t c = 0; c < count; ++c)
+        {
+          f[c][j] = seeds[j * w + i0 + c] != 0 ? 0.0 : kInf;
+        }
       }
-      line.run(f, h, cellY, d, from);
+      for (std::size_t c = 0; c < count; ++c)
+      {
+        line.run(f[c], h, cellY, d[c], from[c]);
+      }
       for (std::size_t j = 0; j < h; ++j)
       {
-        columnD[j * w + i] = d[j];
-        columnRow[j * w + i] = from[j];
+        for (std::size_t c = 0; c < count; ++c)
+        {
+          columnD[j * w + i0 + c] = d[c][j];
+          columnRow[j * w + i0 + c] = from[c][j];
+        }
       }
     }
   }
   // Pass 2, along each row over the column results.
-  std::vector<double> f(w), d(w);
-  std::vector<std::int32_t> from(w);
-  LineTransform line;
-  for (std::size_t j = 0; j < h; ++j)
+#pragma omp parallel
   {
-    for (std::size_t i = 0; i < w; ++i)
+    LineTransform line;
+    std::vector<double> f(w), d(w);
+    std::vector<std::int32_t> from(w);
+#pragma omp for schedule(static)
+    for (long row = 0; row < static_cast<long>(h); ++row)
     {
-      f[i] = columnD[j * w + i];
-    }
-    line.run(f, w, cellX, d, from);
-    for (std::size_t i = 0; i < w; ++i)
-    {
-      if (from[i] < 0 || !(d[i] < kInf))
+      const std::size_t j = static_cast<std::size_t>(row);
+      std::copy(columnD.begin() + static_cast<long>(j * w),
+        columnD.begin() + static_cast<long>((j + 1) * w),
+        f.begin());
+      line.run(f, w, cellX, d, from);
+      for (std::size_t i = 0; i < w; ++i)
       {
-        continue;
+        if (from[i] < 0 || !(d[i] < kInf))
+        {
+          continue;
+        }
+        const std::size_t column = static_cast<std::size_t>(from[i]);
+        const std::size_t seedRow = static_cast<std::size_t>(columnRow[j * w + column]);
+        out.distance[j * w + i] = static_cast<float>(std::sqrt(d[i]));
+        out.nearest[j * w + i] = static_cast<std::int32_t>(seedRow * w + column);
       }
-      const std::size_t column = static_cast<std::size_t>(from[i]);
-      const std::size_t row = static_cast<std::size_t>(columnRow[j * w + column]);
-      out.distance[j * w + i] = static_cast<float>(std::sqrt(d[i]));
-      out.nearest[j * w + i] = static_cast<std::int32_t>(row * w + column);
     }
   }
   return out;
