@@ -67,7 +67,8 @@ writes them: its output works directly as a sketch of the same DEM.
                          the grid they were found on, else half a patch past their reach)
   --cell M               output cell size in metres (default: the first exemplar's)
   --patch N              patch size in cells (default %PATCH%)
-  --backend B            auto (default), opencl or cpu: same result, different speed
+  --backend B            auto (default: OpenCL on a GPU or accelerator, else the CPU), opencl
+                         or cpu: same result, different speed
   --merge M              new (default), poisson, shepard or cut
   --fill F               best-first (default) or concentric
   --drainage M           make every cell drain at the end: breach (cut valleys out of closed
@@ -527,7 +528,7 @@ SetupInputs readSynthInputs(const SynthArguments& a)
   in.landformRelief = a.landformRelief;
   in.cacheDirectory = a.cacheDirectory;
   in.memoryBudget = a.memoryBudget;
-  in.openClMatcher = a.options.backend != Backend::Cpu;
+  in.openClMatcher = matchesOnOpenCl(a.options.backend);
   in.names.size = "--size";
   in.names.cell = "--cell";
   in.names.patch = "--patch";

@@ -448,7 +448,7 @@ tsynth::SetupInputs setupInputs(vtkTerrainSynthesis* filter,
     : filter->GetExemplarCacheDirectory().empty()    ? tsynth::defaultExemplarCacheDirectory()
                                                      : filter->GetExemplarCacheDirectory();
   in.memoryBudget = filter->GetMemoryBudget() * tsynth::kBytesPerGB;
-  in.openClMatcher = tsynth::backendFromProperty(filter->GetBackend()) != tsynth::Backend::Cpu;
+  in.openClMatcher = tsynth::matchesOnOpenCl(tsynth::backendFromProperty(filter->GetBackend()));
   in.names = propertyNames();
   return in;
 }

@@ -147,6 +147,33 @@ Backend parseBackend(const std::string& text)
   throw Error("The backend must be auto, opencl or cpu, not \"" + text + "\".");
 }
 
+bool openClHasAccelerator()
+{
+  cl_uint platforms = 0;
+  if (clGetPlatformIDs(0, nullptr, &platforms) != CL_SUCCESS || platforms == 0)
+  {
+    return false;
+  }
+  std::vector<cl_platform_id> ids(platforms);
+  clGetPlatformIDs(platforms, ids.data(), nullptr);
+  for (cl_platform_id p : ids)
+  {
+    cl_uint devices = 0;
+    if (clGetDeviceIDs(p, CL_DEVICE_TYPE_GPU | CL_DEVICE_TYPE_ACCELERATOR, 0, nullptr, &devices) ==
+        CL_SUCCESS &&
+      devices > 0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool matchesOnOpenCl(Backend backend)
+{
+  return backend == Backend::OpenCL || (backend == Backend::Auto && openClHasAccelerator());
+}
+
 OpenClDevice::OpenClDevice()
   : runtime_(std::make_unique<OpenClRuntime>())
 {

@@ -39,7 +39,7 @@ PatchMatcher::PatchMatcher(const std::vector<const Heightfield*>& exemplars,
   dopt.landformWeight = options.landformWeight;
   dense_ = std::make_unique<DenseMatcher>(exemplars, dopt);
 
-  if (options.backend == Backend::Cpu)
+  if (!matchesOnOpenCl(options.backend))
   {
     backend_ = Backend::Cpu;
     return;

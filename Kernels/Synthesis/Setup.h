@@ -162,7 +162,7 @@ struct SetupInputs
   GridRequest grid;
   int patchSize = kDefaultSynthesisPatch;
   double memoryBudget = 0.0; // bytes; 0: defaultMemoryBudget()
-  // The matcher may run on OpenCL (backend auto or opencl): its memory counts too.
+  // The matcher will run on OpenCL (matchesOnOpenCl): its memory counts too.
   bool openClMatcher = true;
   std::uint64_t seed = 0; // breaks ties in the target (valley outlets)
   // Sketched ridges and valleys get this times the relief they are given to
