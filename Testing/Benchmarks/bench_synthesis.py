@@ -3,9 +3,11 @@
 
 Cases (each a `tsynth synth` run; the per-stage split comes from --report):
   default   1024 x 1024 from one 648 x 648 exemplar (colorado, y_ridges), on
-            OpenCL and on the CPU; the two outputs must be identical.
-  --large   4096 x 4096 from five exemplars (needs ../shared/data).
-  --dense   dense feature sets: a DEM as the target (alps-montblanc, 647 x 647)
+            the backend auto picks (the default), on OpenCL and on the CPU; the
+            outputs must be identical.
+  --large   4096 x 4096 from five exemplars (needs ../shared/data), on auto
+            (--both: on all three).
+  --dense   dense feature sets (on auto): a DEM as the target (alps-montblanc, 647 x 647)
             and a real DEM's own feature tree as a poly-line sketch (Mount
             Jackson's ridges and valleys from `tsynth features --both`).
 Comparisons (the figures that count on a shared, noisy machine):
@@ -213,7 +215,8 @@ def time_case(case, tsynth, baseline, runs, tmp, cached, preview, rss=False):
                     previews["baseline"][1].append(base_wall)
         outputs[backend] = out
         medians[backend] = statistics.median(ours)
-        line = f"  {backend:>6}: {medians[backend]:6.2f} s end to end (median of {runs}); {stages(report)}"
+        label = f"auto ({report['backend'].split(' ')[0]})" if backend == "auto" else backend
+        line = f"  {label:>6}: {medians[backend]:6.2f} s end to end (median of {runs}); {stages(report)}"
         print(line)
         if rss_line(report):
             print("          ours' last run: " + rss_line(report))
@@ -228,9 +231,10 @@ def time_case(case, tsynth, baseline, runs, tmp, cached, preview, rss=False):
         if previews["ours"][0] and previews["baseline"][0]:
             pairs = [a / b for a, b in zip(*(previews[w][0] for w in ("ours", "baseline")))]
             print(f"          preview ours / baseline {statistics.median(pairs):.3f}")
-    if len(outputs) == 2:
-        a, b = outputs.values()
-        print("  identical output on both backends" if same_file(a, b) else "  OUTPUTS DIFFER")
+    if len(outputs) >= 2:
+        first, *others = outputs.values()
+        same = all(same_file(first, other) for other in others)
+        print(f"  identical output on all {len(outputs)} backends" if same else "  OUTPUTS DIFFER")
     return medians[case.backends[0]]
 
 
@@ -272,24 +276,24 @@ def cases(options, tsynth, tmp):
         args += ["--sketch", os.path.join(SHARED, "data", "sketches", "strokes_valley_meander.png"),
                  "--size", "4096x4096"]
         yield Case("4096x4096 from five exemplars", args,
-                   ["opencl", "cpu"] if options.both else ["opencl"])
+                   ["auto", "opencl", "cpu"] if options.both else ["auto"])
         return
     yield Case("1024x1024 from one exemplar",
                ["--exemplar", colorado, "--sketch", y_ridges, "--size", "1024x1024"],
-               ["opencl", "cpu"], sketch=y_ridges, size=(1024, 1024))
+               ["auto", "opencl", "cpu"], sketch=y_ridges, size=(1024, 1024))
     if options.dense:
         yield Case("a DEM as the target (alps-montblanc, 647x647), colorado exemplar",
                    ["--exemplar", colorado, "--sketch",
-                    os.path.join(DATA, "dems", "alps-montblanc.png")], ["opencl"])
+                    os.path.join(DATA, "dems", "alps-montblanc.png")], ["auto"])
         yield Case("Mount Jackson's feature tree as the sketch, colorado exemplar",
-                   ["--exemplar", colorado, "--sketch", tree_sketch(tsynth, tmp)], ["opencl"])
+                   ["--exemplar", colorado, "--sketch", tree_sketch(tsynth, tmp)], ["auto"])
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("build", nargs="?", default=os.path.join(ROOT, "build"))
     parser.add_argument("--large", action="store_true")
-    parser.add_argument("--both", action="store_true", help="--large on the CPU too")
+    parser.add_argument("--both", action="store_true", help="--large on OpenCL and on the CPU too")
     parser.add_argument("--dense", action="store_true")
     parser.add_argument("--vs", metavar="BUILD", help="a baseline build directory")
     parser.add_argument("--peer", metavar="DIR", help="where Tasse's code was built")
