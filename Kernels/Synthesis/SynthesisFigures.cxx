@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <utility>
 
 namespace tsynth
@@ -14,11 +15,19 @@ SynthesisFigures measureSynthesis(const SynthesisSetup& setup,
   int patchSize)
 {
   SynthesisFigures f;
-  f.quality = evaluateTerrain(r.terrain, setup.exemplarPointers(), &setup.target.graph);
-  LandformOptions lo;
-  lo.patchSize = patchSize;
-  f.landforms = evaluateLandforms(
-    r.terrain, setup.target.graph, setup.exemplarPointers(), setup.graphPointers(), lo);
+  // The quality and landform figures on threads of their own while this one
+  // reads the legibility and correlations: they share nothing but const
+  // inputs, and most of their work is serial.
+  auto quality = std::async(std::launch::async,
+    [&] { return evaluateTerrain(r.terrain, setup.exemplarPointers(), &setup.target.graph); });
+  auto landforms = std::async(std::launch::async,
+    [&]
+    {
+      LandformOptions lo;
+      lo.patchSize = patchSize;
+      return evaluateLandforms(
+        r.terrain, setup.target.graph, setup.exemplarPointers(), setup.graphPointers(), lo);
+    });
   LegibilityOptions go;
   go.loneHalfWidth = kLoneHalfWidthInPatches * patchSize;
   const LegibilityMeter legibility(setup.target.graph, setup.landform.land, go);
@@ -30,6 +39,8 @@ SynthesisFigures measureSynthesis(const SynthesisSetup& setup,
     f.correlation = target.correlate(r.terrain);
     f.patchCorrelation = target.correlate(r.patches);
   }
+  f.quality = quality.get();
+  f.landforms = landforms.get();
   std::vector<float> offsets;
   for (const Placement& p : r.placements)
   {
