@@ -408,6 +408,18 @@ DenseMatcher::DenseMatcher(const std::vector<const Heightfield*>& exemplars, con
           r.pairs[k] = 0.25f * (r.coarse[k] + r.coarse[k + 1] + r.coarse[up] + r.coarse[up + 1]);
         }
       }
+      r.quads.assign(r.coarse.size(), 0.0f);
+      for (int b = 0; b + 3 < r.coarseHeight; ++b)
+      {
+        for (int a = 0; a + 3 < r.coarseWidth; ++a)
+        {
+          const std::size_t k =
+            static_cast<std::size_t>(b) * static_cast<std::size_t>(r.coarseStride) +
+            static_cast<std::size_t>(a);
+          const std::size_t down = k + 2 * static_cast<std::size_t>(r.coarseStride);
+          r.quads[k] = 0.25f * (r.pairs[k] + r.pairs[k + 2] + r.pairs[down] + r.pairs[down + 2]);
+        }
+      }
       r.coarseValid = windowValidity(r.coarseWidth, r.coarseHeight, P / f, blockValid);
       r.offsetsX = std::max(0, r.coarseWidth - P / f + 1);
       r.offsetsY = std::max(0, r.coarseHeight - P / f + 1);
@@ -437,7 +449,7 @@ DenseMatcher::DenseMatcher(const std::vector<const Heightfield*>& exemplars, con
 
 void DenseMatcher::stackLandform()
 {
-  // The landform's block means go below the blocks (and below the pairs) of
+  // The landform's block means go below the blocks (and the pairs and quads) of
   // each oriented exemplar, from a row shared by all, so landform terms are
   // ordinary terms kLandformRow rows down: one pass sums both, the pruning
   // bound included, with no pass of its own.
@@ -450,7 +462,7 @@ void DenseMatcher::stackLandform()
   {
     const std::size_t below =
       static_cast<std::size_t>(landformRow_) * static_cast<std::size_t>(r.coarseStride);
-    for (std::vector<float>* image : { &r.coarse, &r.pairs })
+    for (std::vector<float>* image : { &r.coarse, &r.pairs, &r.quads })
     {
       image->resize(below, 0.0f);
       image->insert(image->end(), r.landformBlocks.begin(), r.landformBlocks.end());
@@ -519,6 +531,28 @@ CoarseQuery DenseMatcher::coarseQuery(const DenseQuery& q) const
       }
     }
   }
+  for (int b = 0; b + 3 < c.side; b += 4)
+  {
+    for (int a = 0; a + 3 < c.side; a += 4)
+    {
+      const float w = c.weights[static_cast<std::size_t>(b * c.side + a)];
+      double sum = 0.0;
+      bool equal = w > 0.0f;
+      for (int j = b; j < b + 4; ++j)
+      {
+        for (int i = a; i < a + 4; ++i)
+        {
+          const std::size_t k = static_cast<std::size_t>(j * c.side + i);
+          equal = equal && c.weights[k] == w;
+          sum += c.heights[k];
+        }
+      }
+      if (equal)
+      {
+        c.quadBound.add(b, a, static_cast<float>(sum / 16.0), 16.0f * w);
+      }
+    }
+  }
   // Landform terms weighted so that, as in refine(), they count against the
   // overlap as landformWeight against overlapWeight (the overlap's block sums
   // approximate known / f^2 times its mean; with nothing known any scale will do).
@@ -548,11 +582,12 @@ CoarseQuery DenseMatcher::coarseQuery(const DenseQuery& q) const
   }
   // The bound reads the same landform terms (from below the pairs): it stays a
   // lower bound of the full sum. Only with overlap terms to prune by.
-  if (!c.bound.empty())
+  for (CoarseTerms* bound : { &c.bound, &c.quadBound })
   {
-    for (std::size_t e = 0; e < c.landform.size(); ++e)
+    const bool overlap = !bound->empty();
+    for (std::size_t e = 0; e < c.landform.size() && overlap; ++e)
     {
-      c.bound.add(
+      bound->add(
         c.landform.row[e], c.landform.column[e], c.landform.heights[e], c.landform.weights[e]);
     }
   }
@@ -570,6 +605,11 @@ std::vector<std::vector<float>> DenseMatcher::coarseSsd(const CoarseTerms& q,
   for (std::size_t o = 0; o < oriented_.size(); ++o)
   {
     const Oriented& r = oriented_[o];
+    if (runs != nullptr &&
+      std::none_of((*runs)[o].begin(), (*runs)[o].end(), [](std::uint8_t m) { return m != 0; }))
+    {
+      continue; // nothing asked of it: no costs at all
+    }
     out[o].assign(
       static_cast<std::size_t>(r.offsetsX) * static_cast<std::size_t>(r.offsetsY), kInf);
     for (int y = 0; y < r.offsetsY; ++y)
@@ -583,7 +623,8 @@ std::vector<std::vector<float>> DenseMatcher::coarseSsd(const CoarseTerms& q,
   {
     const auto [o, y] = tasks[static_cast<std::size_t>(t)];
     const Oriented& r = oriented_[o];
-    const std::vector<float>& pixels = image == CoarseImage::Blocks ? r.coarse : r.pairs;
+    const std::vector<float>& pixels =
+      image == CoarseImage::Blocks ? r.coarse : (image == CoarseImage::Pairs ? r.pairs : r.quads);
     std::vector<float>& costs = out[o];
     // Sixteen neighbouring offsets at a time, like the OpenCL kernel (DenseSsd.cl),
     // skipping runs of offsets that are all invalid or not asked for.
@@ -624,8 +665,105 @@ std::size_t DenseMatcher::headSize() const
   return static_cast<std::size_t>(16 * std::max(1, options_.refinePerVariant));
 }
 
+namespace
+{
+
+// bestCoarseOffsets drops an offset within one block of a better chosen one.
+// Offsets this far apart (or more) can never be dropped for the same chosen
+// offset, so each of them stands for a seed of its own.
+constexpr int kSeparateSeedBlocks = 3;
+
+// The least cost T at which refine() is sure to have `needed` seeds costing at
+// most T, from offsets whose full costs are known (+inf if they do not show
+// it). Per oriented exemplar, refine() picks its seeds greedily from the head
+// of its costs. Every offset of cost <= T in that head is a seed or lies next
+// to a better seed, so the seeds <= T number at least as many as there are
+// known offsets <= T kSeparateSeedBlocks apart, up to refinePerVariant. (If
+// more than the head cost <= T, the head alone holds head / 9 >= that many.)
+float leastSureThreshold(std::vector<DenseMatcher::ScoredOffset> known,
+  std::size_t orientedCount,
+  std::size_t perOriented,
+  std::size_t needed)
+{
+  std::sort(known.begin(),
+    known.end(),
+    [](const DenseMatcher::ScoredOffset& a, const DenseMatcher::ScoredOffset& b) {
+      return std::tie(a.cost, a.oriented, a.cy, a.cx) < std::tie(b.cost, b.oriented, b.cy, b.cx);
+    });
+  std::vector<std::vector<DenseMatcher::ScoredOffset>> apart(orientedCount);
+  std::size_t seeds = 0;
+  for (const DenseMatcher::ScoredOffset& s : known)
+  {
+    std::vector<DenseMatcher::ScoredOffset>& mine = apart[s.oriented];
+    const bool separate = std::none_of(mine.begin(),
+      mine.end(),
+      [&](const DenseMatcher::ScoredOffset& m)
+      { return std::max(std::abs(m.cx - s.cx), std::abs(m.cy - s.cy)) < kSeparateSeedBlocks; });
+    if (std::isfinite(s.cost) && mine.size() < perOriented && separate)
+    {
+      mine.push_back(s);
+      if (++seeds >= needed)
+      {
+        return s.cost;
+      }
+    }
+  }
+  return kInf;
+}
+
+// `runs` less those of 16 offsets whose bounds are all above `threshold`.
+std::vector<std::uint8_t> runsUnder(const std::vector<float>& bound,
+  std::vector<std::uint8_t> runs,
+  const DenseMatcher::Oriented& r,
+  float threshold)
+{
+  const std::size_t nx = static_cast<std::size_t>(r.offsetsX);
+  const std::size_t groups = (nx + 15) / 16;
+  for (std::size_t y = 0; y < static_cast<std::size_t>(r.offsetsY); ++y)
+  {
+    for (std::size_t g = 0; g < groups; ++g)
+    {
+      const float* b = bound.data() + y * nx + 16 * g;
+      const std::size_t lanes = std::min<std::size_t>(16, nx - 16 * g);
+      bool any = false;
+      for (std::size_t l = 0; l < lanes; ++l)
+      {
+        any |= b[l] <= threshold;
+      }
+      runs[y * groups + g] &= any ? 1 : 0;
+    }
+  }
+  return runs;
+}
+
+// The quad bound's best offsets scored in full per oriented exemplar, as a
+// share of headSize(): enough for refinePerVariant seeds kSeparateSeedBlocks
+// apart where the land matches, few enough to cost little beside the pass.
+constexpr std::size_t kQuadHeadShare = 4;
+
+// How many times the seeds refine() takes the oriented exemplars asked must be
+// able to give before the quad pass runs (prunedCoarseCosts).
+constexpr std::size_t kQuadPassSurplus = 2;
+
+// Bounds and full costs differ by float round-off: a threshold on full costs
+// is widened by this share before it is compared with bounds.
+constexpr float kBoundRoundOff = 1e-3f;
+
+float widened(float threshold)
+{
+  return threshold * (1.0f + kBoundRoundOff) + 1e-30f;
+}
+
+} // namespace
+
+std::size_t DenseMatcher::seedCount(std::size_t k) const
+{
+  return std::max(k, static_cast<std::size_t>(options_.refineTotal));
+}
+
 std::vector<std::vector<float>> DenseMatcher::prunedCoarseCosts(const CoarseQuery& q,
-  const CoarseSsdFunction& ssd) const
+  const CoarseSsdFunction& ssd,
+  const RefineRequest* request) const
 {
   // Landform terms are among q.terms and q.bound (stackLandform).
   const std::size_t overlapTerms = q.terms.size() - q.landform.size();
@@ -633,53 +771,121 @@ std::vector<std::vector<float>> DenseMatcher::prunedCoarseCosts(const CoarseQuer
   {
     return ssd(q.terms, CoarseImage::Blocks, nullptr);
   }
-  const std::vector<std::vector<float>> bound = ssd(q.bound, CoarseImage::Pairs, nullptr);
+  // Oriented exemplars refine() will not look at are not scored at all.
+  const std::vector<int>* only = request != nullptr ? request->exemplars : nullptr;
   std::vector<std::vector<std::uint8_t>> runs(oriented_.size());
-  const std::size_t head = headSize();
+  for (std::size_t o = 0; o < oriented_.size(); ++o)
+  {
+    const bool asked = only == nullptr ||
+      std::find(only->begin(), only->end(), oriented_[o].exemplar) != only->end();
+    runs[o] = asked ? oriented_[o].groupValid
+                    : std::vector<std::uint8_t>(oriented_[o].groupValid.size(), 0);
+  }
+  // Across exemplars, the looser and cheaper quad bound first: the full cost
+  // of a few of its best offsets per oriented exemplar is enough to find a
+  // threshold for all (seedThreshold). Then the pair bound where that leaves
+  // room, with the full cost of its head: a threshold per oriented exemplar
+  // too, and a lower one across. Then the full sum where both leave room.
+  std::vector<float> local(oriented_.size(), kInf);
+  std::vector<std::vector<ScoredOffset>> known(oriented_.size());
+  struct Level
+  {
+    const CoarseTerms* terms;
+    CoarseImage image;
+    std::size_t scored; // offsets per oriented exemplar that get their full cost
+  };
+  std::vector<Level> levels;
+  // Only worth it where most oriented exemplars can be left out: where they
+  // could give kQuadPassSurplus times the seeds refine() takes (each gives at
+  // most refinePerVariant). With fewer, most of them keep seeds, the threshold
+  // across is near the worst of theirs, and the quad pass is extra work: one
+  // exemplar in 10 variants took 7% longer to fill with it.
+  const std::size_t asked = static_cast<std::size_t>(std::count_if(runs.begin(),
+    runs.end(),
+    [](const std::vector<std::uint8_t>& r)
+    { return std::any_of(r.begin(), r.end(), [](std::uint8_t m) { return m != 0; }); }));
+  const std::size_t perOriented = static_cast<std::size_t>(std::max(1, options_.refinePerVariant));
+  if (request != nullptr && asked * perOriented >= kQuadPassSurplus * seedCount(request->k))
+  {
+    levels.push_back({ &q.quadBound, CoarseImage::Quads, headSize() / kQuadHeadShare });
+  }
+  levels.push_back({ &q.bound, CoarseImage::Pairs, headSize() });
+  for (const Level& level : levels)
+  {
+    if (level.terms->size() > q.landform.size())
+    {
+      const std::vector<std::vector<float>> bound = ssd(*level.terms, level.image, &runs);
+      scoreHeads(q.terms, bound, level.scored, local, known);
+      const float across = request != nullptr ? seedThreshold(known, seedCount(request->k)) : kInf;
+      const long orientedCount = static_cast<long>(oriented_.size());
+#pragma omp parallel for schedule(dynamic)
+      for (long n = 0; n < orientedCount; ++n)
+      {
+        const std::size_t o = static_cast<std::size_t>(n);
+        const float threshold = std::min(local[o], across);
+        if (!bound[o].empty() && threshold < kInf)
+        {
+          runs[o] = runsUnder(bound[o], runs[o], oriented_[o], widened(threshold));
+        }
+      }
+    }
+  }
+  return ssd(q.terms, CoarseImage::Blocks, &runs);
+}
+
+void DenseMatcher::scoreHeads(const CoarseTerms& terms,
+  const std::vector<std::vector<float>>& bound,
+  std::size_t head,
+  std::vector<float>& local,
+  std::vector<std::vector<ScoredOffset>>& known) const
+{
   const long orientedCount = static_cast<long>(oriented_.size());
 #pragma omp parallel for schedule(dynamic)
   for (long n = 0; n < orientedCount; ++n)
   {
     const std::size_t o = static_cast<std::size_t>(n);
     const Oriented& r = oriented_[o];
-    runs[o] = r.groupValid;
-    const std::vector<std::size_t> best = smallestOffsets(bound[o], head);
-    if (best.size() < head)
-    {
-      continue; // too few valid offsets to prune any
-    }
-    // At least `head` offsets cost at most `threshold`, so the `head` best all
-    // do, and their bounds are below it. The margin covers float round-off
-    // between the bound's sums and the full ones.
     const std::size_t nx = static_cast<std::size_t>(r.offsetsX);
-    float threshold = 0.0f;
+    const std::vector<std::size_t> best = smallestOffsets(bound[o], head);
+    const std::size_t before = known[o].size();
+    float worst = 0.0f;
     for (std::size_t idx : best)
     {
-      threshold = std::max(threshold,
-        offsetSsd(q.terms,
-          r.coarse,
-          r.coarseStride,
-          static_cast<int>(idx % nx),
-          static_cast<int>(idx / nx)));
-    }
-    threshold = threshold * (1.0f + 1e-3f) + 1e-30f;
-    const std::size_t groups = (nx + 15) / 16;
-    for (std::size_t y = 0; y < static_cast<std::size_t>(r.offsetsY); ++y)
-    {
-      for (std::size_t g = 0; g < groups; ++g)
+      const int x = static_cast<int>(idx % nx);
+      const int y = static_cast<int>(idx / nx);
+      // An offset a looser bound already had scored keeps its cost.
+      const auto end = known[o].begin() + static_cast<std::ptrdiff_t>(before);
+      const auto seen = std::find_if(
+        known[o].begin(), end, [&](const ScoredOffset& s) { return s.cx == x && s.cy == y; });
+      const float cost =
+        seen != end ? seen->cost : offsetSsd(terms, r.coarse, r.coarseStride, x, y);
+      if (seen == end)
       {
-        const float* b = bound[o].data() + y * nx + 16 * g;
-        const std::size_t lanes = std::min<std::size_t>(16, nx - 16 * g);
-        bool any = false;
-        for (std::size_t l = 0; l < lanes; ++l)
-        {
-          any |= b[l] <= threshold;
-        }
-        runs[o][y * groups + g] = any ? 1 : 0;
+        known[o].push_back({ cost, o, x, y });
       }
+      worst = std::max(worst, cost);
+    }
+    // At least `head` offsets cost at most the worst of them, so the `head`
+    // best all do, and their bounds are below it.
+    if (head == headSize() && best.size() == head)
+    {
+      local[o] = std::min(local[o], worst);
     }
   }
-  return ssd(q.terms, CoarseImage::Blocks, &runs);
+}
+
+float DenseMatcher::seedThreshold(const std::vector<std::vector<ScoredOffset>>& known,
+  std::size_t needed) const
+{
+  std::vector<ScoredOffset> all;
+  for (const std::vector<ScoredOffset>& k : known)
+  {
+    all.insert(all.end(), k.begin(), k.end());
+  }
+  return leastSureThreshold(std::move(all),
+    oriented_.size(),
+    static_cast<std::size_t>(std::max(1, options_.refinePerVariant)),
+    needed);
 }
 
 namespace
@@ -976,7 +1182,7 @@ std::vector<DenseMatch> DenseMatcher::refine(const DenseQuery& q,
     seeds.insert(seeds.end(), s.begin(), s.end());
   }
   std::sort(seeds.begin(), seeds.end(), seedBefore);
-  seeds.resize(std::min(seeds.size(), std::max(k, static_cast<std::size_t>(options_.refineTotal))));
+  seeds.resize(std::min(seeds.size(), seedCount(k)));
 
   // Each seed at full resolution: the optimum lies within half a block of it.
   const int reach = f / 2 + 1;
@@ -1074,10 +1280,13 @@ std::vector<DenseMatch> DenseMatcher::refine(const DenseQuery& q,
 
 std::vector<DenseMatch> DenseMatcher::search(const DenseQuery& q, std::size_t k) const
 {
+  const RefineRequest request{ k, nullptr };
   return refine(q,
-    prunedCoarseCosts(coarseQuery(q),
+    prunedCoarseCosts(
+      coarseQuery(q),
       [this](const CoarseTerms& t, CoarseImage i, const std::vector<std::vector<std::uint8_t>>* r)
-      { return coarseSsd(t, i, r); }),
+      { return coarseSsd(t, i, r); },
+      &request),
     k);
 }
 

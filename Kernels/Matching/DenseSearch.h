@@ -99,9 +99,14 @@ struct CoarseQuery
   // group >= 4 w (mean d)^2, so this SSD is a lower bound of the one over
   // `terms` at every offset, for a quarter of the work.
   CoarseTerms bound;
+  // Aligned 4 x 4 groups of equally weighted blocks against the exemplar's
+  // 4 x 4 block means: by the same argument a lower bound of `bound`, for a
+  // quarter of its work again. Prunes before `bound` is summed.
+  CoarseTerms quadBound;
   // The landform samples, read from the low-passed exemplar's block means
-  // stacked below the blocks (and pairs), with weights that keep their share of
-  // the cost as in refine(); they are also the last terms of `terms` and `bound`.
+  // stacked below the blocks (and pairs and quads), with weights that keep their share of
+  // the cost as in refine(); they are also the last terms of `terms`, `bound`
+  // and `quadBound`.
   CoarseTerms landform;
 };
 
@@ -109,7 +114,8 @@ struct CoarseQuery
 enum class CoarseImage
 {
   Blocks, // f x f block means (then the low-passed exemplar's, see stackLandform)
-  Pairs   // means of 2 x 2 blocks (then the same)
+  Pairs,  // means of 2 x 2 blocks (then the same)
+  Quads   // means of 4 x 4 blocks (then the same)
 };
 
 // How far a window's roughness is from the one asked for: over the noise
@@ -138,7 +144,8 @@ public:
                                // then the landform's (landformBlocks) from a shared row
     std::vector<float>
       pairs; // same layout: mean of the 2 x 2 blocks from (a, b) on, then the same landform rows
-    Heightfield landform; // the low-passed exemplar (LandformTerm.h), laid out as `full`
+    std::vector<float> quads; // same layout: mean of the 4 x 4 blocks from (a, b) on, then the same
+    Heightfield landform;     // the low-passed exemplar (LandformTerm.h), laid out as `full`
     std::vector<float> landformBlocks;     // its block means, laid out as `coarse`
     std::vector<std::uint8_t> coarseValid; // per coarse offset: whole window valid
     std::vector<std::uint8_t> groupValid;  // per run of 16 coarse offsets: any of them valid
@@ -156,7 +163,8 @@ public:
   CoarseQuery coarseQuery(const DenseQuery& query) const;
   // Coarse weighted SSD of `terms` read from `image`, per oriented exemplar:
   // costs[o][y * offsetsX + x], +inf at invalid offsets and, when `runs` is
-  // given, in runs of 16 offsets it does not mark (runs[o][y * groups + x / 16]).
+  // given, in runs of 16 offsets it does not mark (runs[o][y * groups + x / 16]);
+  // empty for an oriented exemplar of which `runs` marks no run.
   // The CPU reference of OpenClDenseScorer::coarseSsd.
   std::vector<std::vector<float>> coarseSsd(const CoarseTerms& terms,
     CoarseImage image,
@@ -172,10 +180,31 @@ public:
   using CoarseSsdFunction = std::function<std::vector<std::vector<float>>(const CoarseTerms&,
     CoarseImage,
     const std::vector<std::vector<std::uint8_t>>*)>;
+  //
+  // Given what refine() will be asked (`request`), it also prunes across
+  // oriented exemplars: only offsets that could still be among refine()'s
+  // seeds are scored, so refine(query, costs, k, exemplars) is the same as on
+  // the full costs, while an oriented exemplar's own head may be lost (and its
+  // costs empty). With many exemplars most of them have no offset good enough.
+  struct RefineRequest
+  {
+    std::size_t k = 0;
+    const std::vector<int>* exemplars = nullptr; // as refine()'s
+  };
   std::vector<std::vector<float>> prunedCoarseCosts(const CoarseQuery& query,
-    const CoarseSsdFunction& ssd) const;
+    const CoarseSsdFunction& ssd,
+    const RefineRequest* request = nullptr) const;
   // Coarse offsets per oriented exemplar that refine() looks at.
   std::size_t headSize() const;
+  // Seeds refine() refines when asked for the k best.
+  std::size_t seedCount(std::size_t k) const;
+  // An offset whose full coarse cost is known before the full pass.
+  struct ScoredOffset
+  {
+    float cost;
+    std::size_t oriented;
+    int cx, cy;
+  };
   // Full-resolution refinement around the best coarse offsets; the k best.
   std::vector<DenseMatch> refine(const DenseQuery& query,
     const std::vector<std::vector<float>>& coarse,
@@ -188,6 +217,19 @@ public:
   std::vector<DenseMatch> bruteForce(const DenseQuery& query, std::size_t k) const;
 
 private:
+  // The full cost of each oriented exemplar's `head` best offsets by `bound`,
+  // added to `known` (an offset already there keeps its cost). Where `head` is
+  // headSize() and there are that many, the worst of them lowers the
+  // exemplar's threshold `local`: its whole head costs no more.
+  void scoreHeads(const CoarseTerms& terms,
+    const std::vector<std::vector<float>>& bound,
+    std::size_t head,
+    std::vector<float>& local,
+    std::vector<std::vector<ScoredOffset>>& known) const;
+  // The least cost under which refine() is sure to find `needed` seeds, from
+  // the offsets whose full costs are `known` (+inf if they cannot tell).
+  float seedThreshold(const std::vector<std::vector<ScoredOffset>>& known,
+    std::size_t needed) const;
   // Mean squared difference over the known cells (listed as cell index and
   // height) at offsets (x .. x + kRowLanes - 1, y .. y + rows - 1), over
   // heightScale^2: out[r * kRowLanes + l] for offset (x + l, y + r).
@@ -221,7 +263,7 @@ private:
   void stackLandform();
 
   DenseOptions options_;
-  int landformRow_ = 0; // where the landform block means start in coarse and pairs
+  int landformRow_ = 0; // where the landform block means start in coarse, pairs and quads
   double heightScale_ = 1.0;
   std::vector<Oriented> oriented_;
   std::vector<NoiseVariance> noise_; // per exemplar

@@ -341,7 +341,7 @@ std::vector<float> OpenClFeatureScorer::score(const FeatureQuery& q, const Match
 
 struct OpenClDenseScorer::Buffers
 {
-  DeviceBuffer blocks, pairs; // every oriented exemplar's image, concatenated
+  DeviceBuffer blocks, pairs, quads; // every oriented exemplar's image, concatenated
   DeviceBuffer rowOriented, rowY, imageStart, strides, offsetsX, runStart, outStart;
   DeviceBuffer output;
   std::vector<std::uint8_t> runs;     // groupValid of all, concatenated
@@ -358,7 +358,7 @@ OpenClDenseScorer::OpenClDenseScorer(std::shared_ptr<OpenClDevice> device,
 {
   cl_context ctx = device_->runtime().context;
   Buffers& b = *buffers_;
-  std::vector<float> blocks, pairs;
+  std::vector<float> blocks, pairs, quads;
   std::vector<int> rowOriented, rowY, imageStart, strides, offsetsX, runStart, outStart;
   for (std::size_t i = 0; i < matcher.oriented().size(); ++i)
   {
@@ -366,9 +366,11 @@ OpenClDenseScorer::OpenClDenseScorer(std::shared_ptr<OpenClDevice> device,
     imageStart.push_back(static_cast<int>(blocks.size()));
     blocks.insert(blocks.end(), o.coarse.begin(), o.coarse.end());
     pairs.insert(pairs.end(), o.pairs.begin(), o.pairs.end());
+    quads.insert(quads.end(), o.quads.begin(), o.quads.end());
     // One spare row: the last work-items read 16 offsets past the final one.
     blocks.resize(blocks.size() + static_cast<std::size_t>(o.coarseStride), 0.0f);
     pairs.resize(pairs.size() + static_cast<std::size_t>(o.coarseStride), 0.0f);
+    quads.resize(quads.size() + static_cast<std::size_t>(o.coarseStride), 0.0f);
     strides.push_back(o.coarseStride);
     offsetsX.push_back(o.offsetsX);
     runStart.push_back(static_cast<int>(b.runs.size()));
@@ -391,6 +393,7 @@ OpenClDenseScorer::OpenClDenseScorer(std::shared_ptr<OpenClDevice> device,
   b.rowCount = rowY.size();
   b.blocks = upload(ctx, blocks);
   b.pairs = upload(ctx, pairs);
+  b.quads = upload(ctx, quads);
   b.rowOriented = upload(ctx, rowOriented);
   b.rowY = upload(ctx, rowY);
   b.imageStart = upload(ctx, imageStart);
@@ -433,11 +436,16 @@ std::vector<std::vector<float>> OpenClDenseScorer::coarseSsd(const CoarseTerms& 
       }
     }
   }
+  // As on the CPU, no costs at all for an oriented exemplar nothing is asked of.
   std::vector<std::vector<float>> out(oriented.size());
   for (std::size_t i = 0; i < oriented.size(); ++i)
   {
-    out[i].resize(static_cast<std::size_t>(oriented[i].offsetsX) *
-      static_cast<std::size_t>(oriented[i].offsetsY));
+    if (runs == nullptr ||
+      std::any_of((*runs)[i].begin(), (*runs)[i].end(), [](std::uint8_t m) { return m != 0; }))
+    {
+      out[i].resize(static_cast<std::size_t>(oriented[i].offsetsX) *
+        static_cast<std::size_t>(oriented[i].offsetsY));
+    }
   }
   if (q.empty())
   {
@@ -455,7 +463,8 @@ std::vector<std::vector<float>> OpenClDenseScorer::coarseSsd(const CoarseTerms& 
     const DeviceBuffer weights = upload(r.context, q.weights);
     const DeviceBuffer runMask = upload(r.context, asked);
     cl_kernel k = r.coarseSsd;
-    const DeviceBuffer& pixels = image == CoarseImage::Blocks ? b.blocks : b.pairs;
+    const DeviceBuffer& pixels =
+      image == CoarseImage::Blocks ? b.blocks : (image == CoarseImage::Pairs ? b.pairs : b.quads);
     const cl_mem args[] = { pixels.get(),
       b.rowOriented.get(),
       b.rowY.get(),
@@ -503,6 +512,10 @@ std::vector<std::vector<float>> OpenClDenseScorer::coarseSsd(const CoarseTerms& 
   const float inf = std::numeric_limits<float>::infinity();
   for (std::size_t i = 0; i < oriented.size(); ++i)
   {
+    if (out[i].empty())
+    {
+      continue;
+    }
     const DenseMatcher::Oriented& o = oriented[i];
     const std::size_t nx = static_cast<std::size_t>(o.offsetsX);
     const std::size_t groups = (nx + 15) / 16;

@@ -116,9 +116,12 @@ std::vector<PatchCandidate> PatchMatcher::matchDense(const DenseQuery& window,
   const std::vector<int>* exemplars)
 {
   const CoarseQuery coarse = dense_->coarseQuery(window);
-  const auto costs = dense_->prunedCoarseCosts(coarse,
+  const DenseMatcher::RefineRequest request{ options_.k, exemplars };
+  const auto costs = dense_->prunedCoarseCosts(
+    coarse,
     [this](const CoarseTerms& t, CoarseImage i, const std::vector<std::vector<std::uint8_t>>* r)
-    { return denseScorer_ ? denseScorer_->coarseSsd(t, i, r) : dense_->coarseSsd(t, i, r); });
+    { return denseScorer_ ? denseScorer_->coarseSsd(t, i, r) : dense_->coarseSsd(t, i, r); },
+    &request);
   std::vector<PatchCandidate> out;
   for (const DenseMatch& m : dense_->refine(window, costs, options_.k, exemplars))
   {

@@ -642,6 +642,124 @@ TEST(DenseSearch, PrunedCoarsePassKeepsTheExactHeadOfEveryVariant)
   EXPECT_LT(scored, valid / 2) << scored << " of " << valid;
 }
 
+TEST(DenseSearch, PruningAcrossExemplarsKeepsWhatRefineReturns)
+{
+  // Five exemplars (40 oriented ones); queries with an L, a band or scattered
+  // cells known, with and without landform samples; refine() asked for
+  // several k and exemplar subsets (as regions ask).
+  std::vector<Heightfield> crops;
+  for (int e = 0; e < 5; ++e)
+  {
+    crops.push_back(crop(colorado(), 60 * e, 40 * e, 300 - 10 * e, 260));
+  }
+  std::vector<const Heightfield*> exemplars;
+  for (const Heightfield& c : crops)
+  {
+    exemplars.push_back(&c);
+  }
+  DenseOptions o;
+  o.patchSize = 32;
+  const DenseMatcher matcher(exemplars, o);
+  auto cpu = [&](
+               const CoarseTerms& t, CoarseImage i, const std::vector<std::vector<std::uint8_t>>* r)
+  { return matcher.coarseSsd(t, i, r); };
+  auto scored = [](const std::vector<std::vector<float>>& costs)
+  {
+    std::size_t n = 0;
+    for (const std::vector<float>& c : costs)
+    {
+      n += static_cast<std::size_t>(
+        std::count_if(c.begin(), c.end(), [](float v) { return std::isfinite(v); }));
+    }
+    return n;
+  };
+  const std::vector<int> someExemplars = { 1, 3 };
+  std::mt19937 rng(11);
+  std::size_t acrossScored = 0;
+  std::size_t eachScored = 0;
+  std::size_t valid = 0;
+  for (int n = 0; n < 8; ++n)
+  {
+    DenseQuery q;
+    q.heights.resize(32 * 32);
+    q.known.resize(32 * 32);
+    for (int j = 0; j < 32; ++j)
+    {
+      for (int i = 0; i < 32; ++i)
+      {
+        const std::size_t k = static_cast<std::size_t>(j * 32 + i);
+        q.heights[k] = colorado().at(400 + 17 * n + i, 380 + 9 * n + j) + 7.0f * n;
+        const bool band = n % 3 == 0 ? i < 16 : (n % 3 == 1 ? (i < 8 || j < 16) : rng() % 2 == 0);
+        q.known[k] = band ? 1 : 0;
+      }
+    }
+    if (n % 2 == 1)
+    {
+      for (int sy = 0; sy < kLandformSide; ++sy)
+      {
+        for (int sx = 0; sx < kLandformSide; ++sx)
+        {
+          const std::size_t k = static_cast<std::size_t>(sy * kLandformSide + sx);
+          q.landform.heights[k] = colorado().at(400 + 17 * n + landformCell(sx, 32, o.coarseFactor),
+                                    380 + 9 * n + landformCell(sy, 32, o.coarseFactor)) +
+            7.0f * n;
+          q.landform.weights[k] = 0.5f + static_cast<float>(k % 2) * 0.5f;
+        }
+      }
+    }
+    const CoarseQuery cq = matcher.coarseQuery(q);
+    // Scattered cells leave no 4 x 4 blocks of equal weight: no quad bound.
+    ASSERT_EQ(cq.quadBound.empty(), n % 3 == 2) << "query " << n;
+    const auto full = matcher.coarseCosts(cq);
+    const auto pairs = matcher.coarseSsd(cq.bound, CoarseImage::Pairs);
+    const auto quads = matcher.coarseSsd(cq.quadBound, CoarseImage::Quads);
+    for (std::size_t v = 0; v < full.size(); ++v)
+    {
+      for (std::size_t k = 0; k < full[v].size(); ++k)
+      {
+        if (std::isfinite(full[v][k]))
+        {
+          ASSERT_LE(quads[v][k], pairs[v][k] * (1 + 1e-5f) + 1e-6f) << "quads bound the pairs";
+          ASSERT_LE(pairs[v][k], full[v][k] * (1 + 1e-5f) + 1e-6f) << "pairs bound the blocks";
+        }
+      }
+    }
+    const auto each = matcher.prunedCoarseCosts(cq, cpu);
+    for (std::size_t k : { 1u, 4u, 40u })
+    {
+      for (const std::vector<int>* only :
+        { static_cast<const std::vector<int>*>(nullptr), &someExemplars })
+      {
+        const DenseMatcher::RefineRequest request{ k, only };
+        const auto across = matcher.prunedCoarseCosts(cq, cpu, &request);
+        const auto fast = matcher.refine(q, across, k, only);
+        const auto exact = matcher.refine(q, full, k, only);
+        ASSERT_EQ(fast.size(), exact.size()) << "query " << n << ", k " << k;
+        ASSERT_FALSE(exact.empty());
+        for (std::size_t r = 0; r < fast.size(); ++r)
+        {
+          EXPECT_EQ(fast[r].cost, exact[r].cost) << "query " << n << ", k " << k << ", match " << r;
+          EXPECT_EQ(fast[r].exemplar, exact[r].exemplar);
+          EXPECT_EQ(fast[r].variant, exact[r].variant);
+          EXPECT_EQ(fast[r].x, exact[r].x);
+          EXPECT_EQ(fast[r].y, exact[r].y);
+        }
+        if (only == nullptr && k == 4)
+        {
+          acrossScored += scored(across);
+          eachScored += scored(each);
+          valid += scored(full);
+        }
+      }
+    }
+  }
+  // The point of it: with many exemplars, most of them have nothing good
+  // enough to score in full, where pruning each on its own keeps its head.
+  EXPECT_LT(acrossScored * 4, eachScored * 3)
+    << acrossScored << " against " << eachScored << " of " << valid;
+  EXPECT_LT(eachScored, valid);
+}
+
 namespace
 {
 
