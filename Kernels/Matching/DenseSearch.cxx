@@ -352,6 +352,7 @@ DenseMatcher::DenseMatcher(const std::vector<const Heightfield*>& exemplars, con
   double sum = 0.0;
   double square = 0.0;
   double count = 0.0;
+  std::vector<std::pair<int, int>> wanted; // (exemplar, variant) of each oriented exemplar
   for (std::size_t e = 0; e < exemplars.size(); ++e)
   {
     const Heightfield& ex = *exemplars[e];
@@ -369,82 +370,108 @@ DenseMatcher::DenseMatcher(const std::vector<const Heightfield*>& exemplars, con
         count += 1.0;
       }
     }
-    noise_.emplace_back(ex);
     exemplarSize_.push_back({ ex.width, ex.height });
-    const Heightfield smooth = landformImage(ex, P);
     for (int v = 0; v < kVariantCount; ++v)
     {
-      if (!o.variants[static_cast<std::size_t>(v)])
+      if (o.variants[static_cast<std::size_t>(v)])
       {
-        continue;
+        wanted.push_back({ static_cast<int>(e), v });
       }
-      Oriented r;
-      r.exemplar = static_cast<int>(e);
-      r.variant = v;
-      r.full = padRight(orientExemplar(ex, variant(v), &r.centreX, &r.centreY), kRowLanes);
-      std::vector<std::uint8_t> cellValid(r.full.size());
-      for (std::size_t k = 0; k < cellValid.size(); ++k)
-      {
-        cellValid[k] = r.full.isValid(k) ? 1 : 0;
-      }
-      r.fullValid = windowValidity(r.full.width, r.full.height, P, cellValid);
-      r.coarseWidth = r.full.width / f;
-      r.coarseHeight = r.full.height / f;
-      r.coarseStride = r.coarseWidth + 16;
-      std::vector<std::uint8_t> blockValid;
-      r.coarse = blockMeans(r.full, f, r.coarseWidth, r.coarseHeight, r.coarseStride, &blockValid);
-      r.landform = padRight(orientExemplar(smooth, variant(v)), kRowLanes);
-      r.landformBlocks =
-        blockMeans(r.landform, f, r.coarseWidth, r.coarseHeight, r.coarseStride, nullptr);
-      r.pairs.assign(r.coarse.size(), 0.0f);
-      for (int b = 0; b + 1 < r.coarseHeight; ++b)
-      {
-        for (int a = 0; a + 1 < r.coarseWidth; ++a)
-        {
-          const std::size_t k =
-            static_cast<std::size_t>(b) * static_cast<std::size_t>(r.coarseStride) +
-            static_cast<std::size_t>(a);
-          const std::size_t up = k + static_cast<std::size_t>(r.coarseStride);
-          r.pairs[k] = 0.25f * (r.coarse[k] + r.coarse[k + 1] + r.coarse[up] + r.coarse[up + 1]);
-        }
-      }
-      r.quads.assign(r.coarse.size(), 0.0f);
-      for (int b = 0; b + 3 < r.coarseHeight; ++b)
-      {
-        for (int a = 0; a + 3 < r.coarseWidth; ++a)
-        {
-          const std::size_t k =
-            static_cast<std::size_t>(b) * static_cast<std::size_t>(r.coarseStride) +
-            static_cast<std::size_t>(a);
-          const std::size_t down = k + 2 * static_cast<std::size_t>(r.coarseStride);
-          r.quads[k] = 0.25f * (r.pairs[k] + r.pairs[k + 2] + r.pairs[down] + r.pairs[down + 2]);
-        }
-      }
-      r.coarseValid = windowValidity(r.coarseWidth, r.coarseHeight, P / f, blockValid);
-      r.offsetsX = std::max(0, r.coarseWidth - P / f + 1);
-      r.offsetsY = std::max(0, r.coarseHeight - P / f + 1);
-      const int groups = (r.offsetsX + 15) / 16;
-      r.groupValid.assign(
-        static_cast<std::size_t>(groups) * static_cast<std::size_t>(r.offsetsY), 0);
-      for (int y = 0; y < r.offsetsY; ++y)
-      {
-        for (int x = 0; x < r.offsetsX; ++x)
-        {
-          if (r.coarseValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(r.offsetsX) +
-                static_cast<std::size_t>(x)] != 0)
-          {
-            r.groupValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(groups) +
-              static_cast<std::size_t>(x / 16)] = 1;
-          }
-        }
-      }
-      oriented_.push_back(std::move(r));
     }
+  }
+  // Each exemplar's tables, then each oriented exemplar, on every core: each
+  // is computed alone from its inputs, so the thread count changes nothing.
+  noise_.resize(exemplars.size());
+  std::vector<Heightfield> smooth(exemplars.size());
+  const long exemplarCount = static_cast<long>(exemplars.size());
+  // (One exemplar keeps the cores for its smoothing's own loops.)
+#pragma omp parallel for schedule(dynamic) if (exemplarCount > 1)
+  for (long e = 0; e < exemplarCount; ++e)
+  {
+    const std::size_t i = static_cast<std::size_t>(e);
+    noise_[i] = NoiseVariance(*exemplars[i]);
+    smooth[i] = landformImage(*exemplars[i], P);
+  }
+  oriented_.resize(wanted.size());
+  const long orientedCount = static_cast<long>(wanted.size());
+#pragma omp parallel for schedule(dynamic)
+  for (long n = 0; n < orientedCount; ++n)
+  {
+    const auto [e, v] = wanted[static_cast<std::size_t>(n)];
+    oriented_[static_cast<std::size_t>(n)] =
+      orient(*exemplars[static_cast<std::size_t>(e)], smooth[static_cast<std::size_t>(e)], e, v);
   }
   stackLandform();
   const double mean = count > 0 ? sum / count : 0.0;
   heightScale_ =
     std::max(1e-6, std::sqrt(std::max(0.0, square / std::max(1.0, count) - mean * mean)));
+}
+
+DenseMatcher::Oriented DenseMatcher::orient(const Heightfield& ex,
+  const Heightfield& smooth,
+  int e,
+  int v) const
+{
+  const int P = options_.patchSize;
+  const int f = std::max(1, options_.coarseFactor);
+  Oriented r;
+  r.exemplar = e;
+  r.variant = v;
+  r.full = padRight(orientExemplar(ex, variant(v), &r.centreX, &r.centreY), kRowLanes);
+  std::vector<std::uint8_t> cellValid(r.full.size());
+  for (std::size_t k = 0; k < cellValid.size(); ++k)
+  {
+    cellValid[k] = r.full.isValid(k) ? 1 : 0;
+  }
+  r.fullValid = windowValidity(r.full.width, r.full.height, P, cellValid);
+  r.coarseWidth = r.full.width / f;
+  r.coarseHeight = r.full.height / f;
+  r.coarseStride = r.coarseWidth + 16;
+  std::vector<std::uint8_t> blockValid;
+  r.coarse = blockMeans(r.full, f, r.coarseWidth, r.coarseHeight, r.coarseStride, &blockValid);
+  r.landform = padRight(orientExemplar(smooth, variant(v)), kRowLanes);
+  r.landformBlocks =
+    blockMeans(r.landform, f, r.coarseWidth, r.coarseHeight, r.coarseStride, nullptr);
+  r.pairs.assign(r.coarse.size(), 0.0f);
+  for (int b = 0; b + 1 < r.coarseHeight; ++b)
+  {
+    for (int a = 0; a + 1 < r.coarseWidth; ++a)
+    {
+      const std::size_t k = static_cast<std::size_t>(b) * static_cast<std::size_t>(r.coarseStride) +
+        static_cast<std::size_t>(a);
+      const std::size_t up = k + static_cast<std::size_t>(r.coarseStride);
+      r.pairs[k] = 0.25f * (r.coarse[k] + r.coarse[k + 1] + r.coarse[up] + r.coarse[up + 1]);
+    }
+  }
+  r.quads.assign(r.coarse.size(), 0.0f);
+  for (int b = 0; b + 3 < r.coarseHeight; ++b)
+  {
+    for (int a = 0; a + 3 < r.coarseWidth; ++a)
+    {
+      const std::size_t k = static_cast<std::size_t>(b) * static_cast<std::size_t>(r.coarseStride) +
+        static_cast<std::size_t>(a);
+      const std::size_t down = k + 2 * static_cast<std::size_t>(r.coarseStride);
+      r.quads[k] = 0.25f * (r.pairs[k] + r.pairs[k + 2] + r.pairs[down] + r.pairs[down + 2]);
+    }
+  }
+  r.coarseValid = windowValidity(r.coarseWidth, r.coarseHeight, P / f, blockValid);
+  r.offsetsX = std::max(0, r.coarseWidth - P / f + 1);
+  r.offsetsY = std::max(0, r.coarseHeight - P / f + 1);
+  const int groups = (r.offsetsX + 15) / 16;
+  r.groupValid.assign(static_cast<std::size_t>(groups) * static_cast<std::size_t>(r.offsetsY), 0);
+  for (int y = 0; y < r.offsetsY; ++y)
+  {
+    for (int x = 0; x < r.offsetsX; ++x)
+    {
+      if (r.coarseValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(r.offsetsX) +
+            static_cast<std::size_t>(x)] != 0)
+      {
+        r.groupValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(groups) +
+          static_cast<std::size_t>(x / 16)] = 1;
+      }
+    }
+  }
+  return r;
 }
 
 void DenseMatcher::stackLandform()

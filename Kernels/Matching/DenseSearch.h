@@ -217,6 +217,9 @@ public:
   std::vector<DenseMatch> bruteForce(const DenseQuery& query, std::size_t k) const;
 
 private:
+  // Exemplar `ex` (number e, low-passed as `smooth`) turned as variant v, with
+  // its images and validity for the search.
+  Oriented orient(const Heightfield& ex, const Heightfield& smooth, int e, int v) const;
   // The full cost of each oriented exemplar's `head` best offsets by `bound`,
   // added to `known` (an offset already there keeps its cost). Where `head` is
   // headSize() and there are that many, the worst of them lowers the
