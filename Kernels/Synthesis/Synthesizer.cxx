@@ -139,7 +139,7 @@ public:
     const std::vector<const FeatureGraph*>& graphs,
     const SynthesisOptions& o)
     : target_(target)
-    , matcher_(matcher)
+    , matcher_(&matcher)
     , graphs_(graphs)
     , o_(o)
     , P_(o.patchSize)
@@ -195,7 +195,7 @@ public:
   OwnLine ownLine(const PatchCandidate& c) const
   {
     OwnLine own;
-    const CandidatePool& pool = matcher_.pool();
+    const CandidatePool& pool = matcher_->pool();
     if (!c.feature || c.poolIndex >= pool.size() ||
       static_cast<std::size_t>(c.exemplar) >= graphs_.size())
     {
@@ -279,7 +279,7 @@ public:
         q.known[k] = 1;
       }
     }
-    const int f = matcher_.dense().options().coarseFactor;
+    const int f = matcher_->dense().options().coarseFactor;
     for (int b = 0; b < kLandformSide; ++b)
     {
       for (int a = 0; a < kLandformSide; ++a)
@@ -304,14 +304,14 @@ public:
   // The candidate's patch, read from the exemplar seen through its variant.
   Heightfield extract(const PatchCandidate& c) const
   {
-    for (const DenseMatcher::Oriented& r : matcher_.dense().oriented())
+    for (const DenseMatcher::Oriented& r : matcher_->dense().oriented())
     {
       if (r.exemplar != c.exemplar || r.variant != c.variant)
       {
         continue;
       }
       const Variant v = variant(c.variant);
-      const auto& ex = matcher_.pool().exemplars[static_cast<std::size_t>(c.exemplar)];
+      const auto& ex = matcher_->pool().exemplars[static_cast<std::size_t>(c.exemplar)];
       const double dx = c.centreX - 0.5 * (ex.width - 1);
       const double dy = c.centreY - 0.5 * (ex.height - 1);
       const double det = v.m[0] * v.m[3] - v.m[1] * v.m[2];
@@ -813,8 +813,9 @@ public:
         q.noise.fill(0.0f);
       }
       const DenseQuery fallback = window(x0, y0);
-      place(allowed(
-              matcher_.matchFeature(q, &fallback), x0, y0, o_.k * matcher_.pool().exemplars.size()),
+      place(
+        allowed(
+          matcher_->matchFeature(q, &fallback), x0, y0, o_.k * matcher_->pool().exemplars.size()),
         x0,
         y0,
         true);
@@ -914,7 +915,7 @@ public:
   std::size_t fillWindow(int x0, int y0)
   {
     return place(
-      allowed(matcher_.matchDense(window(x0, y0), regionExemplars(x0, y0)), x0, y0, o_.fillK),
+      allowed(matcher_->matchDense(window(x0, y0), regionExemplars(x0, y0)), x0, y0, o_.fillK),
       x0,
       y0,
       false);
@@ -1019,6 +1020,22 @@ public:
       }
     }
     return sigma;
+  }
+
+  // Frees what only the placement needs (the target's roughness tables and
+  // low-pass, the distances to the strokes, the merger workspaces) and lets go
+  // of the matcher, so the finishing's fields can take that memory: at 4096 x
+  // 4096 from five exemplars the finishing is where memory peaks.
+  void releasePlacement()
+  {
+    matcher_ = nullptr;
+    noise_ = NoiseVariance();
+    lowTarget_ = Heightfield();
+    std::vector<float>().swap(toRidge_);
+    std::vector<float>().swap(toValley_);
+    std::vector<std::uint8_t>().swap(line_);
+    std::vector<PatchMerger>().swap(mergers_);
+    sources_.clear();
   }
 
   SynthesisResult finish()
@@ -1201,7 +1218,7 @@ private:
   }
 
   const SynthesisTarget& target_;
-  PatchMatcher& matcher_;
+  PatchMatcher* matcher_; // null once the placement is over (releasePlacement)
   const std::vector<const FeatureGraph*>& graphs_;
   std::vector<float> toRidge_, toValley_; // cells to the sketched ridges, valleys
   const SynthesisOptions& o_;
@@ -1274,12 +1291,12 @@ SynthesisResult synthesize(const SynthesisTarget& target,
   mo.k = o.k;
   mo.weights.verticalOffset = o.verticalOffset;
   mo.pool = o.pool;
-  PatchMatcher matcher(exemplars, graphs, mo);
+  auto matcher = std::make_unique<PatchMatcher>(exemplars, graphs, mo);
   checkCancellation(); // the set-up's parts take a tenth of a second each at 1024^2
-  SynthesisState state(target, matcher, graphs, o);
+  SynthesisState state(target, *matcher, graphs, o);
   checkCancellation();
   state.boundHeights(exemplars);
-  state.setTypicalNoise(matcher.dense().typicalNoise());
+  state.setTypicalNoise(matcher->dense().typicalNoise());
   const double setup = secondsSince(t0);
   state.report(0.1, "setup");
   t0 = Clock::now();
@@ -1289,10 +1306,14 @@ SynthesisResult synthesize(const SynthesisTarget& target,
   state.fill();
   const double fill = secondsSince(t0);
   t0 = Clock::now();
+  const std::string backend = matcher->backendName();
+  const std::vector<std::string> matcherWarnings = matcher->warnings();
+  state.releasePlacement();
+  matcher.reset();
   SynthesisResult r = state.finish();
   r.timings = { setup, features, fill, secondsSince(t0) };
-  r.backend = matcher.backendName();
-  r.warnings.insert(r.warnings.begin(), matcher.warnings().begin(), matcher.warnings().end());
+  r.backend = backend;
+  r.warnings.insert(r.warnings.begin(), matcherWarnings.begin(), matcherWarnings.end());
   r.warnings.insert(r.warnings.begin(), target.warnings.begin(), target.warnings.end());
   return r;
 }
