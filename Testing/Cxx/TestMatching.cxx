@@ -558,6 +558,44 @@ std::vector<std::size_t> head(const std::vector<float>& costs, std::size_t count
   return order;
 }
 
+// A 32 x 32 query cut from Colorado at (x0, y0), raised by `lift`, with the
+// cells `known(i, j)` says known (called row by row).
+template<typename Known>
+DenseQuery coloradoQuery(int x0, int y0, float lift, Known known)
+{
+  DenseQuery q;
+  q.heights.resize(32 * 32);
+  q.known.resize(32 * 32);
+  for (int j = 0; j < 32; ++j)
+  {
+    for (int i = 0; i < 32; ++i)
+    {
+      const std::size_t k = static_cast<std::size_t>(j * 32 + i);
+      q.heights[k] = colorado().at(x0 + i, y0 + j) + lift;
+      q.known[k] = known(i, j) ? 1 : 0;
+    }
+  }
+  return q;
+}
+
+// Landform samples of the same window where it continues (as the synthesis
+// asks for them), each of weight `weight(sx, sy)`.
+template<typename Weight>
+void addLandformSamples(DenseQuery& q, int x0, int y0, float lift, int coarseFactor, Weight weight)
+{
+  for (int sy = 0; sy < kLandformSide; ++sy)
+  {
+    for (int sx = 0; sx < kLandformSide; ++sx)
+    {
+      const std::size_t k = static_cast<std::size_t>(sy * kLandformSide + sx);
+      q.landform.heights[k] = colorado().at(x0 + landformCell(sx, 32, coarseFactor),
+                                y0 + landformCell(sy, 32, coarseFactor)) +
+        lift;
+      q.landform.weights[k] = weight(sx, sy);
+    }
+  }
+}
+
 TEST(DenseSearch, PrunedCoarsePassKeepsTheExactHeadOfEveryVariant)
 {
   // Three exemplars, queries with L-shaped known parts and one with scattered
@@ -576,33 +614,19 @@ TEST(DenseSearch, PrunedCoarsePassKeepsTheExactHeadOfEveryVariant)
   std::size_t scored = 0;
   for (int n = 0; n < 6; ++n)
   {
-    DenseQuery q;
-    q.heights.resize(32 * 32);
-    q.known.resize(32 * 32);
-    for (int j = 0; j < 32; ++j)
-    {
-      for (int i = 0; i < 32; ++i)
-      {
-        const std::size_t k = static_cast<std::size_t>(j * 32 + i);
-        q.heights[k] = colorado().at(450 + 20 * n + i, 420 + j) + 15.0f;
-        q.known[k] = n == 5 ? (rng() % 3 == 0 ? 1 : 0) : ((i < 8 + 3 * n || j < 10) ? 1 : 0);
-      }
-    }
+    DenseQuery q = coloradoQuery(450 + 20 * n,
+      420,
+      15.0f,
+      [&](int i, int j) { return n == 5 ? rng() % 3 == 0 : (i < 8 + 3 * n || j < 10); });
     if (n % 2 == 1)
     {
-      // Landform samples where the window continues (as the synthesis asks
-      // for them), some of them unsure.
-      for (int sy = 0; sy < kLandformSide; ++sy)
-      {
-        for (int sx = 0; sx < kLandformSide; ++sx)
-        {
-          const std::size_t k = static_cast<std::size_t>(sy * kLandformSide + sx);
-          q.landform.heights[k] = colorado().at(450 + 20 * n + landformCell(sx, 32, o.coarseFactor),
-                                    420 + landformCell(sy, 32, o.coarseFactor)) +
-            15.0f;
-          q.landform.weights[k] = static_cast<float>((sx + sy) % 3) * 0.5f;
-        }
-      }
+      // Landform samples, some of them unsure.
+      addLandformSamples(q,
+        450 + 20 * n,
+        420,
+        15.0f,
+        o.coarseFactor,
+        [](int sx, int sy) { return static_cast<float>((sx + sy) % 3) * 0.5f; });
     }
     const CoarseQuery cq = matcher.coarseQuery(q);
     const auto full = matcher.coarseCosts(cq);
@@ -680,32 +704,21 @@ TEST(DenseSearch, PruningAcrossExemplarsKeepsWhatRefineReturns)
   std::size_t valid = 0;
   for (int n = 0; n < 8; ++n)
   {
-    DenseQuery q;
-    q.heights.resize(32 * 32);
-    q.known.resize(32 * 32);
-    for (int j = 0; j < 32; ++j)
-    {
-      for (int i = 0; i < 32; ++i)
-      {
-        const std::size_t k = static_cast<std::size_t>(j * 32 + i);
-        q.heights[k] = colorado().at(400 + 17 * n + i, 380 + 9 * n + j) + 7.0f * n;
-        const bool band = n % 3 == 0 ? i < 16 : (n % 3 == 1 ? (i < 8 || j < 16) : rng() % 2 == 0);
-        q.known[k] = band ? 1 : 0;
-      }
-    }
+    const float lift = 7.0f * static_cast<float>(n);
+    DenseQuery q = coloradoQuery(400 + 17 * n,
+      380 + 9 * n,
+      lift,
+      [&](int i, int j)
+      { return n % 3 == 0 ? i < 16 : (n % 3 == 1 ? (i < 8 || j < 16) : rng() % 2 == 0); });
     if (n % 2 == 1)
     {
-      for (int sy = 0; sy < kLandformSide; ++sy)
-      {
-        for (int sx = 0; sx < kLandformSide; ++sx)
-        {
-          const std::size_t k = static_cast<std::size_t>(sy * kLandformSide + sx);
-          q.landform.heights[k] = colorado().at(400 + 17 * n + landformCell(sx, 32, o.coarseFactor),
-                                    380 + 9 * n + landformCell(sy, 32, o.coarseFactor)) +
-            7.0f * n;
-          q.landform.weights[k] = 0.5f + static_cast<float>(k % 2) * 0.5f;
-        }
-      }
+      addLandformSamples(q,
+        400 + 17 * n,
+        380 + 9 * n,
+        lift,
+        o.coarseFactor,
+        [](int sx, int sy)
+        { return 0.5f + static_cast<float>((sy * kLandformSide + sx) % 2) * 0.5f; });
     }
     const CoarseQuery cq = matcher.coarseQuery(q);
     // Scattered cells leave no 4 x 4 blocks of equal weight: no quad bound.
