@@ -3,8 +3,11 @@
 // terrain's cross-section out to half the distance to the neighbouring
 // strokes (Features/StrokeSpacing.h) must show a crest (trough) that stands
 // out over both sides by a margin over the land's own relief at that scale
-// (Features/CrossSections.h). For a real DEM used as the target, the band-pass
-// correlation with it at a few scales.
+// (Features/CrossSections.h): the exemplars' land, or the terrain's own land
+// away from the strokes where that is rougher. And it must do so along a
+// stretch of the stroke at least as long as its half width: scattered samples
+// that stand out read as knobs, not as a line. For a real DEM used as the
+// target, the band-pass correlation with it at a few scales.
 // Distances in cells of the terrain's grid (row 0 south), heights in metres.
 #pragma once
 
@@ -30,12 +33,15 @@ struct LegibilityOptions
   double minHalfWidth = 3.0;
   // Where the crest or floor is looked for.
   SectionReading reading;
-  // A sample is legible when its prominence (sectionProminence) is at least
-  // `margin` times the exemplars' own relief at its half width (LandRelief:
-  // the root mean square relief of random cross-sections of their land). At 1,
+  // A sample stands out when its prominence (sectionProminence) is at least
+  // `margin` times the land's relief at its half width (LandRelief: the root
+  // mean square relief of random cross-sections of the exemplars' land, or of
+  // the terrain's own land farther than loneHalfWidth from every stroke, the
+  // larger), and is legible when it stands out in a run along the stroke. At 1,
   // on hillshades of a valley network synthesised from Everest, a terrain with
   // no landform scores 0.04 and the peer's (whose branches a person traces)
-  // 0.52; at 2 nothing but the sketch's own field scores much.
+  // 0.52 (before the terrain's own land and the runs entered the measure);
+  // at 2 nothing but the sketch's own field scores much.
   double margin = 1.0;
 };
 

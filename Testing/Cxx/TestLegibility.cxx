@@ -341,6 +341,58 @@ TEST(Legibility, AGaussianRidgeOnTheStrokeIsLegibleAndTheLandBesideItIsNot)
   EXPECT_EQ(meter.measure(ridged).ridge.prominence, good.ridge.prominence);
 }
 
+TEST(Legibility, AStrokeMustStandOutOfTheTerrainsOwnLandToo)
+{
+  // The same ridge, once over land like the exemplars' and once over land
+  // twelve times as rough: measured against the exemplars' land alone, both
+  // would read; among knobs taller than itself, the second does not.
+  const int w = 200, h = 200;
+  const Heightfield exemplarLand = rough(w, h, 15.0, 3);
+  const LandRelief relief({ &exemplarLand });
+  const auto ridgeOver = [&](const Heightfield& land)
+  {
+    return surface(w,
+      h,
+      [&](int i, int j)
+      { return land.at(i, j) + 600.0 * std::exp(-0.5 * std::pow((j - 100) / 10.0, 2)); });
+  };
+  const Heightfield roughLand = rough(w, h, 180.0, 7);
+  const FeatureGraph g = lines(w, h, { { { 20, 100 }, { 180, 100 } } }, FeatureType::Ridge);
+  const Legibility calm = evaluateLegibility(ridgeOver(rough(w, h, 15.0, 7)), g, relief);
+  const Legibility busy = evaluateLegibility(ridgeOver(roughLand), g, relief);
+  EXPECT_GT(calm.ridge.share, 0.95);
+  EXPECT_LT(busy.ridge.share, 0.5);
+  // Its threshold is the rougher land's, about twelve times the exemplars'.
+  EXPECT_GT(busy.ridge.threshold, 8.0 * calm.ridge.threshold);
+  EXPECT_NEAR(busy.ridge.threshold,
+    LandRelief({ &roughLand }).at(busy.ridge.halfWidth),
+    0.2 * busy.ridge.threshold);
+}
+
+TEST(Legibility, KnobsInARowAreNotALine)
+{
+  // Knobs 600 m high and about 8 cells long every 30 cells along the stroke:
+  // each stands out over its sides, but the eye sees knobs, not a ridge. The
+  // same knobs 6 cells apart merge into one.
+  const int w = 200, h = 160;
+  const Heightfield land = rough(w, h, 15.0, 3);
+  const LandRelief relief({ &land });
+  const auto knobs = [&](double spacing)
+  {
+    return surface(w,
+      h,
+      [&](int i, int j)
+      {
+        const double along = std::remainder(i - 20.0, spacing);
+        return land.at(i, j) +
+          600.0 * std::exp(-0.5 * (std::pow((j - 80) / 10.0, 2) + std::pow(along / 3.0, 2)));
+      });
+  };
+  const FeatureGraph g = lines(w, h, { { { 20, 80 }, { 180, 80 } } }, FeatureType::Ridge);
+  EXPECT_LT(evaluateLegibility(knobs(30.0), g, relief).ridge.share, 0.05);
+  EXPECT_GT(evaluateLegibility(knobs(6.0), g, relief).ridge.share, 0.9);
+}
+
 TEST(Legibility, NeighbouringStrokesAreReadAtHalfTheirSpacing)
 {
   // Valleys every 40 cells, 300 m deep: each is read 20 cells each side.

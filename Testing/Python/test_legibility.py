@@ -98,9 +98,12 @@ class LegibilityTest(unittest.TestCase):
     def test_block_letters_carved_as_valleys_read_at_default_patches_and_drain(self):
         # H and I carved as valleys on the README's 512 x 512 frame at the default 80-cell patches,
         # where the strokes (120-140 cells apart) are narrower than the correction's blur used to
-        # draw: seed 0 reads 0.64 (Colorado) and 0.67 (Mont Blanc), the least over seeds 0-2 is 0.55;
-        # the previous landing (3e034fb), which drew each landform blurred at its own scale, reached
-        # 0.48 and 0.54 at seed 0 (0.54 at best). Each letter is a valley network whose outlet lies
+        # draw: seed 0 reads 0.46 (Colorado) and 0.50 (Mont Blanc), the least over seeds 0-2 is 0.28
+        # (Colorado, seed 1: by eye too the faintest H of the six). Those figures are the measure's
+        # since it asks a stroke to stand out of the terrain's own land as well as the exemplars',
+        # along a run at least its half width long; the measure before read the same terrains at
+        # 0.64, 0.67 and 0.55 at least (and 3e034fb's, which drew each landform blurred at its own
+        # scale, at 0.48 and 0.54 for seed 0). Each letter is a valley network whose outlet lies
         # inside the map: its water is led out of that closed basin (valley drainage 0.58-0.88 over
         # seeds 0-2; the previous landing 0.44 on Colorado seed 0).
         sketch = sketch_drawing.carved_letters().save(os.path.join(self.tmp, "carved_letters.png"))
@@ -108,7 +111,7 @@ class LegibilityTest(unittest.TestCase):
             with self.subTest(exemplar=exemplar):
                 out = os.path.join(self.tmp, exemplar + ".tif")
                 report, _ = self.synthesise(os.path.join(self.dems, exemplar), sketch, out)
-                self.assertGreaterEqual(report["legibility"]["legible_share"], 0.55, report["legibility"])
+                self.assertGreaterEqual(report["legibility"]["legible_share"], 0.25, report["legibility"])
                 self.assertGreaterEqual(report["landform_quality"]["valley_drainage"], 0.55)
 
     def test_strokes_closer_than_the_patches_draw_get_a_warning_naming_the_spacing_and_patch(self):
