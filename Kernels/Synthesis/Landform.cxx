@@ -1074,12 +1074,15 @@ double reliefFactor(const LandformProfile& p,
   {
     factor = std::max(1.0, o.standOut * s.land.at(half) / unit / p.relief);
   }
-  const double steepest = s.land.steepSlope(flank / cell) / cell * flank;
+  const double allowance = type == FeatureType::Ridge ? o.ridgeFlankAllowance : 1.0;
+  const double steepest = allowance * s.land.steepSlope(flank / cell) / cell * flank;
   if (steepest > 0.0)
   {
     factor = std::max(1.0, std::min(factor, steepest / p.relief));
   }
-  const double highest = type == FeatureType::Ridge ? s.highest - s.base : s.base - s.lowest;
+  const double pastHighest = o.crestPastHighestShare * (s.highest - s.lowest);
+  const double highest =
+    type == FeatureType::Ridge ? s.highest + pastHighest - s.base : s.base - s.lowest;
   return std::min(factor, std::max(1.0, highest / p.relief));
 }
 

@@ -80,13 +80,38 @@ struct LandformFieldOptions
   // least this many times the land's own relief at its half width (as
   // sectionProminence measures both), its relief raised where need be, but
   // never so far that its flank is steeper than the land's steep end at that
-  // width (LandRelief::steepSlope) or its crest (floor) passes
-  // LandformStatistics::highest (lowest). The legibility measure calls a
-  // stroke legible at 1 (Metrics/Legibility.h); the texture the patches lay
-  // over the landform scatters it by about 1 more, and the eye wants it to
-  // stand out at a glance; on the bundled rugged exemplars the slope limit
-  // binds first. 0 turns the rule off.
+  // width (LandRelief::steepSlope; for ridges ridgeFlankAllowance times it),
+  // nor its crest higher than crestPastHighestShare allows, nor its floor
+  // below LandformStatistics::lowest. The legibility measure calls a stroke
+  // legible at 1 (Metrics/Legibility.h); the texture the patches lay over the
+  // landform scatters it by about 1 more, and the eye wants it to stand out at
+  // a glance; on the bundled rugged exemplars the caps bind first. 0 turns the
+  // rule off.
   double standOut = 4.0;
+  // The patches lay the land's own texture over a ridge's flanks, and it is as
+  // steep as the land's steep end somewhere all around: a ridge whose flank
+  // was capped at that slope read as one slope among many. Ridges drawn over
+  // Colorado (the bundled Y, letters, the meander's spurs), raised to at most
+  // the steep end, were lost in the land where Tasse's code drew them
+  // (hillshades side by side); allowed 1.5 times it, they read. At 2 they
+  // were bolder, but the seams showed (seam index 1.14 on parallel ridges
+  // from Mont Blanc, past the 1.1 the bundled sketches are held to,
+  // Testing/Python/test_synth.py). Valleys keep the steep end itself: they
+  // read already, and allowed 1.5 times it too they drained less and took
+  // the slopes of the bundled meander from two exemplars past that test's
+  // bar (slope distance 0.106 against at most 0.1).
+  double ridgeFlankAllowance = 1.5;
+  // A sketched crest may rise past the exemplars' highest land (their 99.5th
+  // percentile, LandformStatistics::highest) by this share of the span from
+  // their lowest to their highest: held to the highest itself, a crest was no
+  // higher than the summits around it (Colorado's ridges were raised x1.23 at
+  // most) and did not stand out of them. At 0.2 it stays inside the bound the
+  // finished terrain is compressed into (the exemplars' maximum and a tenth of
+  // their span, Synthesizer), which lies 0.24 to 0.45 of that span past the
+  // highest on the eight DEMs of ../shared/data, so the crest is not flattened
+  // against it. Floors keep to the lowest land: given the same room below it,
+  // the deeper valleys drained less.
+  double crestPastHighestShare = 0.2;
   std::uint64_t seed = 0; // breaks ties between equally good valley outlets
   // A ridge's crest keeps this share of its relief at a free end (a spur ends
   // in a slope, not a cliff), rising to all of it half a patch along the line.

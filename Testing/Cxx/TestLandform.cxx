@@ -768,21 +768,48 @@ TEST(LandformField, LandformsAreRaisedToStandOutOfRuggedLandOnlyAndKeepWithinIt)
   const LandformField raised = landformField(g, kW, kH2, kCell, kCell, rugged, fieldOptions());
   EXPECT_GT(raised.ridgeRaise, 1.5);
   EXPECT_NEAR(raised.field.at(60, 80), kBase + kRelief * raised.ridgeRaise, 1e-2);
-  // ... but never past the exemplars' highest land.
+  // ... but never past the exemplars' highest land, widened by the share of
+  // their span a crest may pass it by.
   rugged.highest = kBase + 1.2 * kRelief;
-  const LandformField capped = landformField(g, kW, kH2, kCell, kCell, rugged, fieldOptions());
+  rugged.lowest = kBase - 0.8 * kRelief;
+  LandformFieldOptions held = fieldOptions();
+  held.crestPastHighestShare = 0.0;
+  const LandformField capped = landformField(g, kW, kH2, kCell, kCell, rugged, held);
   EXPECT_NEAR(capped.ridgeRaise, 1.2, 1e-9);
   EXPECT_NEAR(capped.field.at(60, 80), kBase + 1.2 * kRelief, 1e-2);
-  // However much it is asked to stand out, a flank is never steeper than the
-  // steep end of the land's slopes at its width (one section in a hundred).
+  const LandformFieldOptions defaults = fieldOptions();
+  const LandformField past = landformField(g, kW, kH2, kCell, kCell, rugged, defaults);
+  // span 2 reliefs: the crest may reach 1.2 + 0.2 x 2 = 1.6 reliefs up.
+  EXPECT_NEAR(past.ridgeRaise, 1.2 + defaults.crestPastHighestShare * 2.0, 1e-9);
+  EXPECT_NEAR(past.field.at(60, 80), kBase + past.ridgeRaise * kRelief, 1e-2);
+  // However much it is asked to stand out, a ridge's flank is never steeper
+  // than ridgeFlankAllowance times the steep end of the land's slopes at its
+  // width (one section in a hundred).
   LandformFieldOptions bold = fieldOptions();
   bold.standOut = 50.0;
   rugged.highest = kBase + 50.0 * kRelief;
   const double width = handStatistics().ridge.width;
   const double steepest = rugged.land.steepSlope(width / kCell) / kCell * width;
   const LandformField steep = landformField(g, kW, kH2, kCell, kCell, rugged, bold);
-  EXPECT_NEAR(steep.ridgeRaise, std::max(1.0, steepest / kRelief), 1e-9);
+  EXPECT_NEAR(steep.ridgeRaise, std::max(1.0, bold.ridgeFlankAllowance * steepest / kRelief), 1e-9);
   EXPECT_LT(steep.ridgeRaise, 50.0);
+  bold.ridgeFlankAllowance = 1.0;
+  const LandformField steepAtOne = landformField(g, kW, kH2, kCell, kCell, rugged, bold);
+  EXPECT_NEAR(steepAtOne.ridgeRaise, std::max(1.0, steepest / kRelief), 1e-9);
+  EXPECT_GT(steep.ridgeRaise, 1.4 * steepAtOne.ridgeRaise);
+  // A valley's flank keeps to the steep end itself, whatever ridges may do,
+  // and its floor to the lowest land.
+  const FeatureGraph gv = sketch({ valley({ { 0, 80 }, { 119, 80 } }) });
+  bold.ridgeFlankAllowance = 3.0;
+  rugged.lowest = kBase - 50.0 * kRelief;
+  const double valleyWidth = handStatistics().valley.width;
+  const double steepestValley = rugged.land.steepSlope(valleyWidth / kCell) / kCell * valleyWidth;
+  ASSERT_GT(steepestValley / kRelief, 1.2); // the cap binds, so an allowance would show
+  EXPECT_NEAR(landformField(gv, kW, kH2, kCell, kCell, rugged, bold).valleyRaise,
+    std::max(1.0, steepestValley / kRelief),
+    1e-9);
+  rugged.lowest = kBase - 1.1 * kRelief;
+  EXPECT_NEAR(landformField(gv, kW, kH2, kCell, kCell, rugged, bold).valleyRaise, 1.1, 1e-9);
   // standOut 0 turns the rule off.
   LandformFieldOptions off = fieldOptions();
   off.standOut = 0.0;
