@@ -259,23 +259,22 @@ class DrawnSketchTest(unittest.TestCase):
         # At the default 80-cell patches on 640 x 640 cells the new merge still drifted: each patch's
         # far side was carried off by its spread gradient correction and the next one fitted to it,
         # down to -5621 m (seed 4; seeds 1 and 3: -1646 and -3848 m) where the exemplar spans
-        # 454-4810 m. With the free border anchored they stay within 483-4143 m. Allowed: the
-        # exemplar's range widened by a tenth of its span (436 m) each way.
+        # 454-4810 m. With the free border anchored they stayed within 483-4143 m. Since the
+        # correction is spread over a tenth of a patch (Tasse's code), not a quarter, no merge needs
+        # the anchor here (the guard itself: TestPatchMerge). Allowed: the exemplar's range widened
+        # by a tenth of its span (436 m) each way.
         sketch = sketch_drawing.spiral().save(os.path.join(self.tmp, "spiral.png"))
         dem = os.path.join(PATHS.bundled_data, "dems", "alps-montblanc.png")
         out = os.path.join(self.tmp, "spiral.tif")
         low, high, slack = 454.0, 4810.0, 0.1 * (4810.0 - 454.0)
-        anchored = 0
         for seed in ("1", "3", "4"):
             report, _ = synthesise(self, dem, sketch, out, "--size", "640x640", "--seed", seed)
-            anchored += report["anchored_merges"]
             self.assertLess(report["anchored_merges"], 0.1 * report["placements"])
             heights = tsynth("info", out, "--json")
             self.assertEqual(heights.returncode, 0, heights.stderr)
             z = json.loads(heights.stdout)
             self.assertGreaterEqual(z["z_min_m"], low - slack, f"seed {seed}")
             self.assertLessEqual(z["z_max_m"], high + slack, f"seed {seed}")
-        self.assertGreater(anchored, 0)  # the guard, not luck, kept them in range
 
 
 class SynthTest(unittest.TestCase):
