@@ -12,6 +12,8 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <queue>
+#include <unordered_map>
 
 namespace tsynth
 {
@@ -146,12 +148,133 @@ void widenCuts(Heightfield& out,
   }
 }
 
+constexpr std::uint32_t kOffLines = 0;
+
+// Per cell, a label shared by the cells of one line network (8-connected
+// cells with a finite flow distance), kOffLines elsewhere.
+std::vector<std::uint32_t> labelNetworks(const std::vector<float>& flow, int w, int h)
+{
+  std::vector<std::uint32_t> label(flow.size(), kOffLines);
+  std::uint32_t next = kOffLines;
+  std::vector<std::size_t> stack;
+  for (std::size_t seed = 0; seed < flow.size(); ++seed)
+  {
+    if (!std::isfinite(flow[seed]) || label[seed] != kOffLines)
+    {
+      continue;
+    }
+    label[seed] = ++next;
+    stack.push_back(seed);
+    while (!stack.empty())
+    {
+      const std::size_t c = stack.back();
+      stack.pop_back();
+      const int i = static_cast<int>(c % static_cast<std::size_t>(w));
+      const int j = static_cast<int>(c / static_cast<std::size_t>(w));
+      for (std::size_t n = 0; n < kDx.size(); ++n)
+      {
+        const int x = i + kDx[n];
+        const int y = j + kDy[n];
+        if (x < 0 || y < 0 || x >= w || y >= h)
+        {
+          continue;
+        }
+        const std::size_t q =
+          static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+        if (std::isfinite(flow[q]) && label[q] == kOffLines)
+        {
+          label[q] = next;
+          stack.push_back(q);
+        }
+      }
+    }
+  }
+  return label;
+}
+
+// Whether water at cell c leaves the map: on its border or beside nodata.
+bool onTheEdge(const Heightfield& hf, std::size_t c)
+{
+  const int i = static_cast<int>(c % static_cast<std::size_t>(hf.width));
+  const int j = static_cast<int>(c / static_cast<std::size_t>(hf.width));
+  if (i == 0 || j == 0 || i == hf.width - 1 || j == hf.height - 1)
+  {
+    return true;
+  }
+  for (std::size_t n = 0; n < kDx.size(); ++n)
+  {
+    if (!hf.isValid(i + kDx[n], j + kDy[n]))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+// The way out of a closed outlet over the lowest crossing that does not run
+// back up the outlet's own network: cells are flooded from the outlet in order
+// of height, never into that network, until the flood reaches the map's edge
+// (or nodata) or another network's line. The way back from there is the one
+// whose highest cell is as low as any way out's, the crossing breaching cuts.
+// Returns the cells from the outlet's neighbour to that end. The flood covers
+// the basin up to its spill height, so what it reached is kept in a map, not
+// in a full-size array.
+std::vector<std::size_t> lowestWayOut(const Heightfield& out,
+  const std::vector<std::uint32_t>& network,
+  std::size_t outlet)
+{
+  using Entry = std::pair<float, std::size_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> flood;
+  std::unordered_map<std::size_t, std::size_t> parent{ { outlet, outlet } };
+  flood.emplace(out.z[outlet], outlet);
+  std::size_t end = outlet;
+  while (!flood.empty() && end == outlet)
+  {
+    const std::size_t c = flood.top().second;
+    flood.pop();
+    const int i = static_cast<int>(c % static_cast<std::size_t>(out.width));
+    const int j = static_cast<int>(c / static_cast<std::size_t>(out.width));
+    const bool otherLine = network[c] != kOffLines && network[c] != network[outlet];
+    forNeighbours(out,
+      i,
+      j,
+      [&](std::size_t q, double)
+      {
+        if (network[q] != network[outlet] && parent.emplace(q, c).second)
+        {
+          flood.emplace(out.z[q], q);
+        }
+      });
+    end = (c != outlet && (otherLine || onTheEdge(out, c))) ? c : outlet;
+  }
+  std::vector<std::size_t> way;
+  for (std::size_t k = end; k != outlet; k = parent.at(k))
+  {
+    way.push_back(k);
+  }
+  std::reverse(way.begin(), way.end());
+  return way;
+}
+
+// Metres between two neighbouring cells.
+double stepLength(const Heightfield& hf, std::size_t a, std::size_t b)
+{
+  const auto w = static_cast<std::ptrdiff_t>(hf.width);
+  const auto ia = static_cast<std::ptrdiff_t>(a);
+  const auto ib = static_cast<std::ptrdiff_t>(b);
+  return std::hypot(static_cast<double>(ib % w - ia % w) * hf.cellX,
+    static_cast<double>(ib / w - ia / w) * hf.cellY);
+}
+
 // Per line cell, the channel floor (below its sides) fitted, in the least-
 // squares sense, by floors that rise with the flow distance at `gradient` at
-// least (pool adjacent violators over the cells sorted by flow distance).
+// least (pool adjacent violators over the cells sorted by flow distance), each
+// network on its own: unconnected valleys drain apart, and pooled together a
+// high valley's floors were pulled down towards a low one's and the low one's up.
 std::vector<double> monotoneFloors(const Heightfield& out,
   const std::vector<std::size_t>& upstreamFirst,
   const std::vector<std::uint8_t>& line,
+  const std::vector<std::uint32_t>& network,
   const std::vector<float>& downstream,
   double depth,
   double maxCut,
@@ -162,18 +285,23 @@ std::vector<double> monotoneFloors(const Heightfield& out,
     double sum = 0.0;
     double count = 0.0;
     std::size_t first = 0, last = 0;
+    std::uint32_t network = kOffLines;
     double mean() const { return sum / count; }
   };
+  // Outlet first within each network; the minimum gradient is taken out and
+  // put back afterwards.
+  std::vector<std::size_t> outletFirst(upstreamFirst.rbegin(), upstreamFirst.rend());
+  std::stable_sort(outletFirst.begin(),
+    outletFirst.end(),
+    [&](std::size_t a, std::size_t b) { return network[a] < network[b]; });
   std::vector<Block> blocks;
-  const std::size_t n = upstreamFirst.size();
-  std::vector<double> fitted(n);
-  // Outlet first; the minimum gradient is taken out and put back afterwards.
-  for (std::size_t r = 0; r < n; ++r)
+  for (std::size_t r = 0; r < outletFirst.size(); ++r)
   {
-    const std::size_t c = upstreamFirst[n - 1 - r];
+    const std::size_t c = outletFirst[r];
     const double channel = channelFloor(out, line, c, depth, maxCut);
-    blocks.push_back({ channel - gradient * downstream[c], 1.0, r, r });
-    while (blocks.size() > 1 && blocks[blocks.size() - 2].mean() > blocks.back().mean())
+    blocks.push_back({ channel - gradient * downstream[c], 1.0, r, r, network[c] });
+    while (blocks.size() > 1 && blocks[blocks.size() - 2].network == blocks.back().network &&
+      blocks[blocks.size() - 2].mean() > blocks.back().mean())
     {
       const Block top = blocks.back();
       blocks.pop_back();
@@ -182,17 +310,14 @@ std::vector<double> monotoneFloors(const Heightfield& out,
       blocks.back().last = top.last;
     }
   }
+  std::vector<double> floors(out.size(), 0.0);
   for (const Block& b : blocks)
   {
-    std::fill(fitted.begin() + static_cast<long>(b.first),
-      fitted.begin() + static_cast<long>(b.last + 1),
-      b.mean());
-  }
-  std::vector<double> floors(out.size(), 0.0);
-  for (std::size_t r = 0; r < n; ++r)
-  {
-    const std::size_t c = upstreamFirst[n - 1 - r];
-    floors[c] = fitted[r] + gradient * downstream[c];
+    for (std::size_t r = b.first; r <= b.last; ++r)
+    {
+      const std::size_t c = outletFirst[r];
+      floors[c] = b.mean() + gradient * downstream[c];
+    }
   }
   return floors;
 }
@@ -389,31 +514,51 @@ double correctLandformAtScales(Heightfield& out,
 // border (Hydrology/PitRemoval.h), with distances below 0: a valley whose end
 // is a closed basin is led out of it as a channel of its own, shaped by the
 // same fit and spread as the drawn lines, instead of filling to a lake that
-// drowned its lower part.
+// drowned its lower part. Where that way runs back up the valley's own lines
+// (the land falls the other way along the valley, so breaching drains it
+// backwards), the valley is led out over the lowest crossing that leaves its
+// lines alone instead: without it a valley drawn to end in a closed basin
+// came out as a lake hundreds of metres deep.
 std::vector<float> throughClosedOutlets(const Heightfield& out,
   const std::vector<float>& downstream)
 {
   std::vector<float> flow = downstream;
   const Heightfield breached = breachDepressions(out);
   const std::vector<std::int8_t> dir = flowDirections(breached);
-  const std::array<double, kD8Directions> step = d8Distances(out.cellX, out.cellY);
+  const std::vector<std::uint32_t> network = labelNetworks(downstream, out.width, out.height);
   for (std::size_t c = 0; c < out.size(); ++c)
   {
-    if (!(downstream[c] <= 0.0f))
+    if (!(downstream[c] <= 0.0f) || onTheEdge(out, c))
     {
-      continue; // not an outlet
+      continue; // not an outlet, or one whose water leaves the map
     }
-    std::size_t k = c;
-    double distance = 0.0;
-    while (dir[k] != kNoFlow)
+    std::vector<std::size_t> way;
+    bool backUpItsOwnLines = false;
+    for (std::size_t k = c; dir[k] != kNoFlow;)
     {
-      distance -= step[static_cast<std::size_t>(dir[k])];
       k = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k) + d8Offset(dir[k], out.width));
+      way.push_back(k);
       if (std::isfinite(flow[k]))
       {
+        backUpItsOwnLines = network[k] == network[c];
         break; // joined a line (or a path already led out)
       }
+    }
+    if (backUpItsOwnLines)
+    {
+      way = lowestWayOut(out, network, c);
+    }
+    double distance = 0.0;
+    std::size_t from = c;
+    for (std::size_t k : way)
+    {
+      if (std::isfinite(flow[k]))
+      {
+        break;
+      }
+      distance -= stepLength(out, from, k);
       flow[k] = static_cast<float>(distance);
+      from = k;
     }
   }
   return flow;
@@ -429,6 +574,7 @@ DrainageReport drainValleys(Heightfield& out,
     return report; // no valley lines on this grid
   }
   const std::vector<float> downstream = throughClosedOutlets(out, drawnDownstream);
+  const std::vector<std::uint32_t> network = labelNetworks(downstream, out.width, out.height);
   std::vector<std::size_t> order;
   std::vector<std::uint8_t> line(out.size(), 0);
   for (std::size_t c = 0; c < out.size() && c < downstream.size(); ++c)
@@ -464,7 +610,7 @@ DrainageReport drainValleys(Heightfield& out,
   for (int round = 0; round < kSmoothingRounds; ++round)
   {
     const std::vector<double> floors =
-      monotoneFloors(out, order, line, downstream, depth, maxCut, o.minimumGradient);
+      monotoneFloors(out, order, line, network, downstream, depth, maxCut, o.minimumGradient);
     std::vector<double> change(out.size(), 0.0);
     for (std::size_t c : order)
     {

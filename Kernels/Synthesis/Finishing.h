@@ -76,9 +76,12 @@ struct DrainageReport
 // fades out smoothly over `reach` cells (stream burning, as hydrologists
 // condition a DEM to a known river). D8 flow then follows the lines. A line
 // whose outlet (flow distance 0) is a closed basin is continued out of it
-// first, down the way complete breaching would drain it to the border, and
-// that way is burnt as the lines are: its water leaves instead of filling a
-// lake over the valley's lower part. The report counts the drawn lines only.
+// first, down the way complete breaching would drain it to the border (or,
+// where that way runs back up the valley's own lines, over the lowest crossing
+// that leaves them alone), and that way is burnt as the lines are: its water
+// leaves instead of filling a lake over the valley's lower part. Each
+// connected network's floors are fitted on their own. The report counts the
+// drawn lines only.
 DrainageReport drainValleys(Heightfield& out,
   const std::vector<float>& downstream,
   const DrainageOptions& options = {});
