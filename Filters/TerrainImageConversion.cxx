@@ -138,6 +138,39 @@ bool heightsOnCells(vtkImageData* image)
   return image != nullptr && pointHeights(image) == nullptr && cellHeights(image) != nullptr;
 }
 
+namespace
+{
+
+// A grid another reader left in degrees (ParaView's GDAL Raster Reader: a
+// geographic MAP_PROJECTION and the spacing in degrees) gets its cell size in
+// metres at its centre latitude, as the Terrain Reader gives it; taken as
+// metres, a 3-arc-second DEM had cells of a millimetre and slopes of
+// thousands. hf's width and height and the image's spacing are read.
+void inMetres(vtkImageData* image, Heightfield& hf)
+{
+  auto* projection =
+    vtkStringArray::SafeDownCast(image->GetFieldData()->GetAbstractArray("MAP_PROJECTION"));
+  if (projection == nullptr || projection->GetNumberOfValues() == 0)
+  {
+    return;
+  }
+  int ext[6];
+  double origin[3];
+  double spacing[3];
+  image->GetExtent(ext);
+  image->GetOrigin(origin);
+  image->GetSpacing(spacing);
+  const double centreLatitude = origin[1] + (ext[2] + 0.5 * hf.height) * spacing[1];
+  if (const auto degree = geographicDegree(projection->GetValue(0), centreLatitude))
+  {
+    hf.cellX *= degree->east;
+    hf.cellY *= degree->north;
+    hf.georef.isGeographic = true;
+  }
+}
+
+} // namespace
+
 Heightfield imageToHeightfield(vtkImageData* image, vtkDataArray* heights)
 {
   if (image == nullptr)
@@ -197,6 +230,7 @@ Heightfield imageToHeightfield(vtkImageData* image, vtkDataArray* heights)
   {
     throw Error("The input image's spacing must be finite and positive (the cell size in metres).");
   }
+  inMetres(image, hf);
   for (vtkIdType k = 0; k < heights->GetNumberOfTuples(); ++k)
   {
     pollCancellation(); // a whole DEM's copy is a good part of a second under a filter's abort

@@ -213,6 +213,28 @@ double integerTypeMax(GDALDataType t)
   }
 }
 
+} // namespace
+
+std::optional<MetresPerDegree> geographicDegree(const std::string& crs, double centreLatitude)
+{
+  if (crs.empty() || !(std::abs(centreLatitude) <= 90.0))
+  {
+    return std::nullopt;
+  }
+  OGRSpatialReference srs;
+  CPLPushErrorHandler(CPLQuietErrorHandler); // a definition GDAL cannot read is simply not one
+  const OGRErr read = srs.SetFromUserInput(crs.c_str());
+  CPLPopErrorHandler();
+  if (read != OGRERR_NONE || !srs.IsGeographic())
+  {
+    return std::nullopt;
+  }
+  return metresPerDegree(centreLatitude, srs.GetSemiMajor(), srs.GetInvFlattening());
+}
+
+namespace
+{
+
 void fillCellSizeFromGeoreference(RasterInfo& info, const OGRSpatialReference* srs, int rows)
 {
   const auto& gt = info.georef.geoTransform;

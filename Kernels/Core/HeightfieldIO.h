@@ -1,6 +1,7 @@
 // Reading and writing heightfields through GDAL (GeoTIFF, PNG, SRTM .hgt, ESRI ASCII, ...).
 #pragma once
 
+#include "Geodesy.h"
 #include "Heightfield.h"
 #include "Sidecar.h"
 
@@ -48,6 +49,13 @@ struct RasterInfo
   std::string crsName;               // human-readable CRS name, empty if none
   std::vector<std::string> warnings; // things the user should know that did not stop the read
 };
+
+// The metric size of a degree at `centreLatitude` when `crs` (WKT, PROJ string or
+// any definition GDAL reads) is geographic, on that CRS's ellipsoid; nothing when
+// it is projected, local or not understood. For grids another reader left in
+// degrees (ParaView's GDAL Raster Reader gives its MAP_PROJECTION as a PROJ
+// string and its spacing in degrees).
+std::optional<MetresPerDegree> geographicDegree(const std::string& crs, double centreLatitude);
 
 // Reads the header. Throws tsynth::Error with one clear sentence on any problem
 // (missing file, not a raster, several colour bands, bad sidecar, ...).

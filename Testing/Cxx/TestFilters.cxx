@@ -14,11 +14,13 @@
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
+#include <vtkFloatArray.h>
 #include <vtkIdList.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 #include <vtkStringArray.h>
 
 #include <gtest/gtest.h>
@@ -73,6 +75,52 @@ TEST(Filters, ReaderGivesMetresSpacingAndGeoreference)
   EXPECT_NE(crs->GetValue(0).find("WGS 84"), std::string::npos);
   ASSERT_NE(image->GetFieldData()->GetArray("GeoTransform"), nullptr);
   EXPECT_NEAR(image->GetFieldData()->GetArray("GeoTransform")->GetComponent(0, 0), -107.0, 0.01);
+}
+
+// An image as ParaView's GDAL Raster Reader makes it from a geographic DEM: one
+// height per cell, the spacing in degrees and the CRS as a PROJ string.
+vtkSmartPointer<vtkImageData> gdalReaderImage(const char* projection, double spacing)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(11, 11, 1); // 10 x 10 cells
+  image->SetSpacing(spacing, spacing, 1.0);
+  image->SetOrigin(-107.0, 39.0, 0.0);
+  vtkNew<vtkFloatArray> z;
+  z->SetName("Elevation");
+  z->SetNumberOfTuples(100);
+  for (vtkIdType k = 0; k < 100; ++k)
+  {
+    z->SetValue(k, static_cast<float>(2000 + k));
+  }
+  image->GetCellData()->SetScalars(z);
+  vtkNew<vtkStringArray> crs;
+  crs->SetName("MAP_PROJECTION");
+  crs->InsertNextValue(projection);
+  image->GetFieldData()->AddArray(crs);
+  return image;
+}
+
+TEST(Filters, ImagesInDegreesFromOtherReadersAreReadInMetres)
+{
+  // 3 arc-seconds at latitude 39: the Terrain Reader's cell size for the same
+  // grid (ReaderGivesMetresSpacingAndGeoreference).
+  const double arcSeconds3 = 3.0 / 3600.0;
+  const tsynth::Heightfield geographic =
+    tsynth::imageToHeightfield(gdalReaderImage("+proj=longlat +datum=WGS84 +no_defs", arcSeconds3));
+  EXPECT_EQ(geographic.width, 10);
+  EXPECT_NEAR(geographic.cellX, 72.0, 0.5);
+  EXPECT_NEAR(geographic.cellY, 92.5, 0.3);
+  EXPECT_TRUE(geographic.georef.isGeographic);
+  // A projected grid is in metres already, and so is one without a CRS.
+  const tsynth::Heightfield projected =
+    tsynth::imageToHeightfield(gdalReaderImage("+proj=utm +zone=13 +datum=WGS84", 30.0));
+  EXPECT_DOUBLE_EQ(projected.cellX, 30.0);
+  EXPECT_FALSE(projected.georef.isGeographic);
+  const tsynth::Heightfield unknown = tsynth::imageToHeightfield(gdalReaderImage("", 30.0));
+  EXPECT_DOUBLE_EQ(unknown.cellY, 30.0);
+  const tsynth::Heightfield garbled =
+    tsynth::imageToHeightfield(gdalReaderImage("not a projection", 30.0));
+  EXPECT_DOUBLE_EQ(garbled.cellX, 30.0);
 }
 
 TEST(Filters, ReaderUnitOverride)
