@@ -16,6 +16,10 @@ from paraview import simple  # noqa: E402
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy  # noqa: E402
 
 
+# Marked lines and feature trees are shown this many pixels wide (Plugin/TerrainLineWidths.xml).
+THICK_LINE_WIDTH = 3.0
+
+
 def point_array(data, name):
     array = data.GetPointData().GetArray(name)
     if array is None:
@@ -1088,6 +1092,50 @@ class PluginTest(unittest.TestCase):
             self.assertNotEqual(list(shown.ColorArrayName), list(simple.Show(line, view).ColorArrayName))
         finally:
             simple.Delete(view)
+
+    def test_sketch_lines_and_feature_trees_are_shown_thick(self):
+        """Shown in a view, marked lines and feature trees are 3 pixels wide (Plugin/
+        TerrainLineWidths.xml), a plain Poly Line keeps ParaView's 1, and a width the script
+        gives wins."""
+        line = simple.PolyLineSource(Points=[900.0, 900.0, 0.0, 9000.0, 9000.0, 0.0])
+        marked = simple.TerrainSketchLines(Input=line)
+        colorado = simple.TerrainReader(FileName=os.path.join(PATHS.bundled_data, "dems", "colorado.png"))
+        synth = simple.TerrainSynthesis(Exemplars=[colorado], Sketch=marked, OutputSize=[128, 128], Backend="CPU")
+        view = simple.CreateRenderView()
+        try:
+            thick = {
+                "Sketch Lines": simple.Show(marked, view),
+                "Sketch Features": simple.Show(simple.TerrainSketchFeatures(Input=marked), view),
+                "synthesis's Sketch Features": simple.Show(simple.OutputPort(synth, 2), view),
+                "synthesis's Seams": simple.Show(simple.OutputPort(synth, 3), view),
+                "synthesis's Implied Lines": simple.Show(simple.OutputPort(synth, 6), view),
+            }
+            for what, shown in thick.items():
+                self.assertEqual(shown.GetXMLName(), "GeometryRepresentation", what)
+                self.assertEqual(shown.LineWidth, THICK_LINE_WIDTH, what)
+            self.assertEqual(simple.Show(line, view).LineWidth, 1.0)  # not a sketch: ParaView's width
+            explicit = simple.Show(simple.TerrainSketchLines(Input=line), view, LineWidth=5.0)
+            self.assertEqual(explicit.LineWidth, 5.0)
+        finally:
+            simple.Delete(view)
+
+    def test_a_line_width_saved_in_the_settings_wins_over_the_thick_default(self):
+        """A LineWidth the user saved as the default (Properties panel, "Save current settings as
+        default") is what sketch lines get too. In its own pvpython: settings cannot be taken back."""
+        script = "\n".join([
+            "from paraview import simple, servermanager as sm",
+            "simple.LoadPlugin(%r, remote=False)" % PATHS.plugin,
+            "sm.vtkSMSettings.GetInstance().AddCollectionFromString("
+            "'{\"representations\": {\"GeometryRepresentation\": {\"LineWidth\": 2.0}}}', 10.0)",
+            "view = simple.CreateRenderView()",
+            "line = simple.PolyLineSource(Points=[900.0, 900.0, 0.0, 9000.0, 9000.0, 0.0])",
+            "print('LineWidth', simple.Show(simple.TerrainSketchLines(Input=line), view).LineWidth)",
+            "simple.Delete(view)",
+        ])
+        run = subprocess.run([shutil.which("pvpython") or "pvpython", "-c", script],
+                             capture_output=True, text=True, timeout=120)
+        self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+        self.assertIn("LineWidth 2.0", run.stdout, run.stdout + run.stderr)
 
     def test_new_terrain_sketch_macro_sets_up_a_sketch_and_its_terrain(self):
         """Plugin/Macros/NewTerrainSketch.py, run as ParaView runs a macro (as __main__, with the
