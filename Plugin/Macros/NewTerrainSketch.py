@@ -73,14 +73,14 @@ def show(exemplar, line, ridge, terrain):
     shade = plugin_filter("TerrainHillshade")(registrationName="Terrain hillshade", Input=terrain)
     shown = simple.Show(shade, view)
     simple.ColorBy(shown, ("POINTS", "Hillshade"))
-    features = simple.Show(simple.OutputPort(terrain, 2), view)
-    features.LineWidth = 3.0
+    # The lines are drawn 3 pixels wide by the plugin's default (Plugin/TerrainLineWidths.xml),
+    # or as wide as the user's saved LineWidth setting.
+    simple.Show(simple.OutputPort(terrain, 2), view)
     seams = simple.Show(simple.OutputPort(terrain, 3), view)
     seams.AmbientColor = seams.DiffuseColor = [0.85, 0.0, 0.85]
     seams.ColorArrayName = ["POINTS", ""]
     simple.Hide(simple.OutputPort(terrain, 3), view)  # on the Eye in the Pipeline Browser
-    drawn = simple.Show(ridge, view)
-    drawn.LineWidth = 4.0
+    simple.Show(ridge, view)
     simple.SetActiveSource(line)  # its points are the ones to drag
     view.InteractionMode = "2D"
     simple.ResetCamera(view)

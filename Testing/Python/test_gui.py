@@ -3,8 +3,9 @@
 image (the Terrain Sketch Reader picked in ParaView's reader dialog, the exemplar picked with its
 file button), Apply; Filters > Terrain Synthesis with the sketch picked in ParaView's input
 dialog, the size and the Seed typed into their widgets, Apply; Macros > NewTerrainSketch on the
-exemplar; and File > Save State. The saved state then says which reader File > Open picked, which colour maps the views
-use and what the Seed widget set.
+exemplar; a Poly Line and Terrain Sketch Lines on it from the menus; and File > Save State. The
+saved state then says which reader File > Open picked, which colour maps the views use, what the
+Seed widget set and how wide the lines are drawn.
 
 Run with python3 and an X display (with_display.sh); ParaView runs with --dr (no user settings,
 so the plugin's defaults are what a fresh install shows) and a private HOME holding the macro.
@@ -38,6 +39,7 @@ TERRAIN_MAP_LOW = (0.16, 0.36, 0.20)
 RIDGE_RED = (0.85, 0.15, 0.10)
 VALLEY_BLUE = (0.10, 0.35, 0.85)
 POINTS, CELLS = "0", "1"
+THICK_LINE_WIDTH = 3.0  # marked lines and feature trees (Plugin/TerrainLineWidths.xml)
 
 
 def menu(name, action):
@@ -82,11 +84,23 @@ def synthesis_from_the_filters_menu():
                (PROPERTIES + "/Accept", "activate", "")])
 
 
+def sketch_lines_by_hand():
+    """Sources > Alphabetical > Poly Line, Apply; Filters > Alphabetical > Terrain Sketch Lines
+    on it, Apply: a stroke drawn by hand, as the README describes."""
+    return [("pqClientMainWindow/menubar", "activate", "menuSources"),
+            ("pqClientMainWindow/menubar/menuSources/Alphabetical", "activate", "PolyLineSource"),
+            (PROPERTIES + "/Accept", "activate", ""),
+            ("pqClientMainWindow/menubar", "activate", "menuFilters"),
+            ("pqClientMainWindow/menubar/menuFilters/Alphabetical", "activate", "TerrainSketchLines"),
+            (PROPERTIES + "/Accept", "activate", "")]
+
+
 def events(dem, sketch, state):
     """The newcomer's steps as QtTesting events (object, command, arguments)."""
     return (open_dem(dem) + open_sketch(sketch, dem) + synthesis_from_the_filters_menu()
             + [(PIPELINE, "currentChanged", EXEMPLAR_ROW)]
             + menu("menu_Macros", "NewTerrainSketch")
+            + sketch_lines_by_hand()
             + menu("menu_File", "actionFileSaveServerState")
             + [("pqClientMainWindow/FileSaveServerStateDialog", "filesSelected", state)])
 
@@ -225,6 +239,21 @@ class GuiTest(unittest.TestCase):
         dem = gdal.Open(self.dem)
         self.assertEqual(s.values(terrain, "OutputSize"), [str(dem.RasterXSize), str(dem.RasterYSize)])
         self.assertEqual(s.proxy("sources", "Ridge").get("type"), "TerrainSketchLines")
+
+    def test_sketch_lines_are_drawn_thick(self):
+        """Marked lines and feature trees are shown 3 pixels wide (Plugin/TerrainLineWidths.xml):
+        Terrain Sketch Lines added by hand from the Filters menu, and the macro's ridge and the
+        synthesis's Sketch Features; the Poly Line itself keeps ParaView's 1."""
+        s = self.state()
+        by_hand = s.proxy("sources", "TerrainSketchLines1")
+        self.assertEqual(by_hand.get("type"), "TerrainSketchLines")
+        self.assertEqual(s.numbers(s.representation_of(by_hand.get("id")), "LineWidth"), [THICK_LINE_WIDTH])
+        line_id = s.links(by_hand, "Input")[0]
+        self.assertEqual(s.proxies[line_id].get("type"), "PolyLineSource")
+        self.assertEqual(s.numbers(s.representation_of(line_id), "LineWidth"), [1.0])
+        for rep in (s.representation_of(s.collections["sources"]["Ridge"]),
+                    s.representation_of(s.collections["sources"]["Terrain"], port="2")):
+            self.assertEqual(s.numbers(rep, "LineWidth"), [THICK_LINE_WIDTH])
 
     def test_heights_and_hillshades_open_in_the_plugins_maps(self):
         s = self.state()
