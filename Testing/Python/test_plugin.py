@@ -547,6 +547,56 @@ class PluginTest(unittest.TestCase):
         self.assertGreater(float(np.abs(picked[inside] - dst_z[inside]).max()), 100.0,
                            "the source's relief is cloned in, not the destination's own")
 
+    def test_array_selections_read_elevation_when_made_before_their_input_ran(self):
+        """Made in pvpython on a reader that has not run yet, a heights selection names Elevation
+        (ParaView set it to the empty array list's "0"; the NoDefault hint keeps the XML's
+        Elevation), and the filters run on it."""
+        colorado = os.path.join(PATHS.bundled_data, "dems", "colorado.png")
+        strokes = os.path.join(PATHS.bundled_data, "sketches", "strokes_y_ridges.png")
+
+        def reader():
+            return simple.TerrainReader(FileName=colorado)  # not updated: no arrays known yet
+
+        def elements(proxy, name):
+            prop = proxy.GetProperty(name)
+            return [prop.GetElement(i) for i in range(prop.GetNumberOfElements())]
+
+        sketch = simple.TerrainSketchReader(FileName=strokes, ExemplarFileName=colorado)
+        made = {
+            "TerrainSynthesis": (simple.TerrainSynthesis(Exemplars=[reader()], Sketch=sketch, OutputSize=[128, 128],
+                                                         PatchSize=32, Backend="CPU"),
+                                 ["SelectExemplarScalars"]),
+            "TerrainFeatureExtractor": (simple.TerrainFeatureExtractor(Input=reader()), ["SelectInputScalars"]),
+            "TerrainHillshade": (simple.TerrainHillshade(Input=reader()), ["SelectInputScalars"]),
+            "TerrainCandidateBuilder": (simple.TerrainCandidateBuilder(Input=[reader()], PatchSize=64),
+                                        ["SelectExemplarScalars"]),
+            "TerrainPatchMatcher": (simple.TerrainPatchMatcher(Input=reader(), Exemplars=[reader()], PatchSize=32,
+                                                               Backend=2),
+                                    ["SelectInputScalars", "SelectExemplarScalars"]),
+            "TerrainGraphCutMerger": (simple.TerrainGraphCutMerger(Input=reader(), Patch=reader()),
+                                      ["SelectInputScalars", "SelectPatchScalars"]),
+            "TerrainPoissonSolver": (simple.TerrainPoissonSolver(Input=reader(), Source=reader()),
+                                     ["SelectInputScalars", "SelectSourceScalars"]),
+            "TerrainPitRemoval": (simple.TerrainPitRemoval(Input=reader(), Sinks=reader()),
+                                  ["SelectInputScalars", "SelectSinkScalars"]),
+            "TerrainOptimisation": (simple.TerrainOptimisation(Source=reader(), Guide=sketch, OutputSize=[64, 64]),
+                                    ["SelectInputScalars"]),
+        }
+        for filter_name, (proxy, selections) in made.items():
+            for name in selections:
+                self.assertEqual(elements(proxy, name)[3:], ["0", "Elevation"], "%s %s" % (filter_name, name))
+        # They run: the synthesis and the feature tree from the exemplar's heights.
+        synth, _ = made["TerrainSynthesis"]
+        synth.UpdatePipeline()
+        terrain = sm.Fetch(synth, arg1=None, arg2=None, idx=0)
+        self.assertEqual(terrain.GetDimensions(), (128, 128, 1))
+        z = point_array(terrain, "Elevation")
+        self.assertFalse(np.isnan(z).any())
+        self.assertGreater(float(z.max() - z.min()), 500.0)  # Colorado's relief, not a flat field
+        features, _ = made["TerrainFeatureExtractor"]
+        features.UpdatePipeline()
+        self.assertGreater(sm.Fetch(features).GetNumberOfLines(), 100)
+
     def test_exemplar_heights_are_chosen_by_name(self):
         full, spacing = dem_array(self.alps)
         a, b = full[:256, :256], full[300:556, 300:556]
