@@ -169,7 +169,7 @@ int vtkTerrainDistanceSynthesis::RequestData(vtkInformation*,
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   if (generators == nullptr || output == nullptr)
   {
-    vtkErrorMacro("Connect a stroke map or generator poly-lines.");
+    tsynth::reportRefusal(this, "Connect a stroke map or generator poly-lines.");
     return 0;
   }
   return tsynth::runFilterRequest(

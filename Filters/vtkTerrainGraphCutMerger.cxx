@@ -67,7 +67,7 @@ int vtkTerrainGraphCutMerger::RequestData(vtkInformation*,
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   if (patchImage == nullptr)
   {
-    vtkErrorMacro("No patch: connect the patch image to the second input.");
+    tsynth::reportRefusal(this, "No patch: connect the patch image to the second input.");
     return 0;
   }
   return tsynth::runFilterRequest(

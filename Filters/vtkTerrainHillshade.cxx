@@ -33,7 +33,7 @@ int vtkTerrainHillshade::RequestData(vtkInformation*,
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   if (input == nullptr || output == nullptr)
   {
-    vtkErrorMacro("Hillshade needs an image input.");
+    tsynth::reportRefusal(this, "Hillshade needs an image input.");
     return 0;
   }
   vtkDataArray* heights = this->GetInputArrayToProcess(0, inputVector);

@@ -134,7 +134,7 @@ int vtkTerrainOptimisation::RequestInformation(vtkInformation*,
   catch (const std::exception& e)
   {
     out->Remove(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
-    vtkErrorMacro(<< e.what());
+    tsynth::reportRefusal(this, e.what()); // once, not again in RequestData or the next update
     return 0;
   }
   return 1;

@@ -90,7 +90,7 @@ int vtkTerrainPitRemoval::RequestData(vtkInformation*,
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   if (input == nullptr || output == nullptr)
   {
-    vtkErrorMacro("Pit removal needs a heightfield image on its first input.");
+    tsynth::reportRefusal(this, "Pit removal needs a heightfield image on its first input.");
     return 0;
   }
   return tsynth::runFilterRequest(

@@ -84,7 +84,7 @@ int vtkTerrainReader::RequestInformation(vtkInformation*,
 {
   if (this->FileName == nullptr || *this->FileName == '\0')
   {
-    vtkErrorMacro("No file name: set FileName to a DEM file.");
+    tsynth::reportRefusal(this, "No file name: set FileName to a DEM file.");
     return 0;
   }
   int width = 0;
@@ -115,7 +115,7 @@ int vtkTerrainReader::RequestInformation(vtkInformation*,
   }
   catch (const std::bad_alloc&)
   {
-    vtkErrorMacro("Out of memory: give a smaller input.");
+    tsynth::reportRefusal(this, "Out of memory: give a smaller input.");
     return 0;
   }
   catch (const std::exception& e)
@@ -156,7 +156,7 @@ int vtkTerrainReader::RequestData(vtkInformation*,
   }
   catch (const std::bad_alloc&)
   {
-    vtkErrorMacro("Out of memory: give a smaller input.");
+    tsynth::reportRefusal(this, "Out of memory: give a smaller input.");
     return 0;
   }
   catch (const std::exception& e)

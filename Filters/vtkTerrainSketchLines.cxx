@@ -1,5 +1,7 @@
 #include "vtkTerrainSketchLines.h"
 
+#include "PipelineRequests.h"
+
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkFloatArray.h>
@@ -25,13 +27,13 @@ int vtkTerrainSketchLines::RequestData(vtkInformation*,
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   if (input == nullptr || output == nullptr)
   {
-    vtkErrorMacro("Sketch Lines needs poly-lines on its input.");
+    tsynth::reportRefusal(this, "Sketch Lines needs poly-lines on its input.");
     return 0;
   }
   if (input->GetNumberOfLines() == 0)
   {
-    vtkErrorMacro(
-      "The input has no lines: draw a Poly Line or Spline source and apply this to it.");
+    tsynth::reportRefusal(
+      this, "The input has no lines: draw a Poly Line or Spline source and apply this to it.");
     return 0;
   }
   // Lines only: points and polygons of the input are not a sketch.

@@ -205,7 +205,7 @@ int vtkTerrainSketchReader::RequestData(vtkInformation*,
   }
   catch (const std::bad_alloc&)
   {
-    vtkErrorMacro("Out of memory: give a smaller sketch.");
+    tsynth::reportRefusal(this, "Out of memory: give a smaller sketch.");
     output->Initialize();
     return 0;
   }

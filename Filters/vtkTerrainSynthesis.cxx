@@ -418,7 +418,7 @@ int vtkTerrainSynthesis::RequestInformation(vtkInformationVector** inputVector,
       out->Remove(vtkDataObject::SPACING());
       out->Remove(vtkDataObject::ORIGIN());
     }
-    vtkErrorMacro(<< e.what());
+    tsynth::reportRefusal(this, e.what()); // once, not again in RequestData or the next update
     return 0;
   }
   return 1;

@@ -321,6 +321,35 @@ class BadFilterInputTest(unittest.TestCase):
         self.assertEqual(len(errors), 3, errors)
         self.assertIn("gone.tif", errors[2])
 
+    def test_patch_size_refusal_is_said_once_through_paraview(self):
+        """The synthesis proxy as ParaView runs it: Apply updates the pipeline, then the view
+        fetches the output; a Patch Size of 0, 8 or 600 is refused in one sentence, not one
+        per update (it was said by RequestInformation and again by RequestData)."""
+        from paraview import servermanager as sm
+        from paraview import simple
+        simple.LoadPlugin(PATHS.plugin, remote=False)
+        dems, sketches = (os.path.join(PATHS.bundled_data, d) for d in ("dems", "sketches"))
+        dem = simple.TerrainReader(FileName=os.path.join(dems, "colorado.png"))
+        sketch = simple.TerrainSketchReader(FileName=os.path.join(sketches, "strokes_y_ridges.png"),
+                                            ExemplarFileName=os.path.join(dems, "colorado.png"))
+        for size in (0, 8, 600):
+            with self.subTest(patch_size=size):
+                synth = simple.TerrainSynthesis(Exemplars=[dem], Sketch=sketch, OutputSize=[128, 128])
+                errors = []
+
+                @calldata_type(VTK_STRING)
+                def on_error(_caller, _event, text):
+                    errors.append(text)
+
+                synth.GetClientSideObject().AddObserver(vtkCommand.ErrorEvent, on_error)
+                synth.PatchSize = size  # typed into the panel, then Apply
+                synth.UpdatePipeline()
+                self.assertEqual(sm.Fetch(synth).GetNumberOfPoints(), 0)
+                sentence = "Patch Size must be a multiple of 4 from 16 to 512 cells, not %d." % size
+                self.assertEqual(sum(sentence in e for e in errors), 1, errors)
+                self.assertEqual(len(errors), 1, errors)
+                simple.Delete(synth)
+
     def test_catalogue(self):
         self.producers = []
         cases = self.cases()
@@ -340,6 +369,10 @@ class BadFilterInputTest(unittest.TestCase):
 
                 algorithm.AddObserver(vtkCommand.ErrorEvent, on_error)
                 ok = algorithm.GetExecutive().Update()
+                # ParaView updates a filter twice on Apply (the pipeline, then its
+                # representation): the refusal is still said once, whether it came from
+                # RequestInformation (the patch sizes) or from RequestData.
+                algorithm.GetExecutive().Update()
                 if os.environ.get("TSYNTH_BAD_INPUT_VERBOSE"):
                     print("\n%-38s %d %s" % (case_id, ok, errors))
                 self.assertEqual(ok, 0, "the request did not fail; errors %r" % errors)
