@@ -3,6 +3,7 @@
 #include <vtkDataObject.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkPolyData.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <algorithm>
@@ -76,6 +77,30 @@ void requestWholeExtents(vtkInformationVector** inputVector, int ports)
       }
     }
   }
+}
+
+bool imageProducerFailed(vtkInformationVector* port)
+{
+  for (int c = 0; c < port->GetNumberOfInformationObjects(); ++c)
+  {
+    vtkInformation* in = port->GetInformationObject(c);
+    if (vtkPolyData::SafeDownCast(in->Get(vtkDataObject::DATA_OBJECT())) != nullptr)
+    {
+      continue;
+    }
+    if (!in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    {
+      return true;
+    }
+    int e[6];
+    in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), e);
+    const bool empty = e[1] < e[0] || e[3] < e[2] || e[5] < e[4];
+    if (empty && !in->Has(vtkDataObject::SPACING()))
+    {
+      return true;
+    }
+  }
+  return false;
 }
 
 void copyGrid(vtkInformation* from, vtkInformation* to)

@@ -19,6 +19,14 @@ namespace tsynth
 // Asks every connection of the first `ports` input ports for its whole extent.
 void requestWholeExtents(vtkInformationVector** inputVector, int ports);
 
+// Whether a producer on one of the port's connections failed to announce its image (a reader
+// whose file is missing: its RequestInformation failed and said why): no whole extent, or (past
+// ParaView's vtkPVPostFilter) an empty one without a spacing, which every image that was
+// announced has. A filter's RequestInformation then fails without a sentence of its own, which
+// would name a consequence (no cell size, an empty sketch) and not the cause. Poly data
+// announces no extent and never counts as failed here.
+bool imageProducerFailed(vtkInformationVector* port);
+
 // Gives the output the grid (whole extent, spacing, origin) of one input.
 void copyGrid(vtkInformation* from, vtkInformation* to);
 

@@ -72,6 +72,13 @@ tsynth::OptimisationOptions optimisationOptions(vtkTerrainOptimisation* f)
   return o;
 }
 
+// Whether the source's or the guide's producer failed (and said why).
+bool producerFailed(vtkInformationVector** inputVector)
+{
+  return tsynth::imageProducerFailed(inputVector[kSourcePort]) ||
+    tsynth::imageProducerFailed(inputVector[kGuidePort]);
+}
+
 } // namespace
 
 vtkTerrainOptimisation::vtkTerrainOptimisation()
@@ -110,6 +117,11 @@ int vtkTerrainOptimisation::RequestInformation(vtkInformation*,
 {
   vtkInformation* out = outputVector->GetInformationObject(0);
   vtkInformation* source = inputVector[kSourcePort]->GetInformationObject(0);
+  if (producerFailed(inputVector))
+  {
+    out->Remove(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+    return 0; // the reader that failed said why
+  }
   try
   {
     double spacing[3] = { 0.0, 0.0, 0.0 };
@@ -157,8 +169,13 @@ int vtkTerrainOptimisation::RequestData(vtkInformation*,
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   if (source == nullptr || guideData == nullptr || output == nullptr)
   {
-    vtkErrorMacro("Connect a source DEM and a guide.");
+    tsynth::reportRefusal(this, "Connect a source DEM and a guide.");
     return 0;
+  }
+  if (producerFailed(inputVector))
+  {
+    output->Initialize();
+    return 0; // ParaView asks for the data even after RequestInformation failed
   }
   return tsynth::runFilterRequest(
     this,

@@ -373,6 +373,25 @@ void fillConstruction(const tsynth::SynthesisSetup& setup,
   out->GetPointData()->SetActiveScalars("Target");
 }
 
+// Whether the exemplars' or the sketch's producer failed (and said why).
+bool producerFailed(vtkInformationVector** inputVector)
+{
+  return tsynth::imageProducerFailed(inputVector[0]) || tsynth::imageProducerFailed(inputVector[1]);
+}
+
+// Nothing announced on the image outputs: not the exemplar's grid the pipeline copied in by
+// default.
+void clearAnnouncedGrid(vtkInformationVector* outputVector)
+{
+  for (int port : { kTerrainPort, kConstructionPort })
+  {
+    vtkInformation* out = outputVector->GetInformationObject(port);
+    out->Remove(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+    out->Remove(vtkDataObject::SPACING());
+    out->Remove(vtkDataObject::ORIGIN());
+  }
+}
+
 } // namespace
 
 int vtkTerrainSynthesis::RequestInformation(vtkInformationVector** inputVector,
@@ -383,6 +402,11 @@ int vtkTerrainSynthesis::RequestInformation(vtkInformationVector** inputVector,
   if (sketch == nullptr || exemplar == nullptr)
   {
     return 1; // nothing to announce; RequestData says which input is missing
+  }
+  if (producerFailed(inputVector))
+  {
+    clearAnnouncedGrid(outputVector);
+    return 0; // the reader that failed said why
   }
   try
   {
@@ -410,14 +434,7 @@ int vtkTerrainSynthesis::RequestInformation(vtkInformationVector** inputVector,
   }
   catch (const std::exception& e)
   {
-    // Nothing announced: not the exemplar's grid the pipeline copied in by default.
-    for (int port : { kTerrainPort, kConstructionPort })
-    {
-      vtkInformation* out = outputVector->GetInformationObject(port);
-      out->Remove(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
-      out->Remove(vtkDataObject::SPACING());
-      out->Remove(vtkDataObject::ORIGIN());
-    }
+    clearAnnouncedGrid(outputVector);
     tsynth::reportRefusal(this, e.what()); // once, not again in RequestData or the next update
     return 0;
   }
@@ -615,6 +632,15 @@ void clearOutputs(vtkInformationVector* outputVector)
 int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  if (producerFailed(inputVector))
+  {
+    // ParaView asks for the data even after RequestInformation failed; nothing to add to what
+    // the reader said.
+    this->StopRefinement();
+    clearOutputs(outputVector);
+    this->OutputLevel = "none";
+    return 0;
+  }
   return tsynth::runFilterRequest(
     this,
     vtkRefinement::kOutOfMemory,

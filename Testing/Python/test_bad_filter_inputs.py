@@ -350,6 +350,76 @@ class BadFilterInputTest(unittest.TestCase):
                 self.assertEqual(len(errors), 1, errors)
                 simple.Delete(synth)
 
+    def test_a_reader_that_failed_is_the_only_one_to_say_so(self):
+        """A state loaded from another folder: its readers cannot find their files and say so;
+        the synthesis fed by them says nothing more (it said the exemplar had no positive cell
+        size, sending the user after a setting that was never the cause)."""
+        self.producers = []
+        missing = os.path.join("Data", "dems", "none.png")
+        errors = {"reader": [], "sketch reader": [], "synthesis": []}
+
+        def collect(algorithm, name):
+            @calldata_type(VTK_STRING)
+            def on_error(_caller, _event, text):
+                errors[name].append(text)
+            algorithm.AddObserver(vtkCommand.ErrorEvent, on_error)
+            return algorithm
+
+        for broken in ("reader", "sketch reader"):
+            with self.subTest(failed=broken):
+                for found in errors.values():
+                    found.clear()
+                reader = collect(self.make("vtkTerrainReader", FileName=missing if broken == "reader" else
+                                           os.path.join(PATHS.bundled_data, "dems", "colorado.png")), "reader")
+                sketch = collect(self.make("vtkTerrainSketchReader", FileName=missing if broken != "reader" else
+                                           os.path.join(PATHS.bundled_data, "sketches", "strokes_y_ridges.png"),
+                                           ExemplarFileName=os.path.join(PATHS.bundled_data, "dems", "colorado.png")),
+                                 "sketch reader")
+                synth = collect(self.make("vtkTerrainSynthesis", PatchSize=32), "synthesis")
+                synth.AddInputConnection(0, reader.GetOutputPort())
+                synth.SetInputConnection(1, sketch.GetOutputPort())
+                self.assertEqual(synth.GetExecutive().Update(), 0)
+                self.assertEqual(synth.GetExecutive().Update(), 0)
+                self.assertEqual(len(errors[broken]), 1, errors)
+                self.assertIn("No such file: " + missing, errors[broken][0])
+                self.assertEqual(errors["synthesis"], [], errors)
+
+    def test_a_state_loaded_from_another_folder_names_only_its_missing_files(self):
+        """The synthesis state's pipeline as proxies (ParaView puts a vtkPVPostFilter between a
+        reader and the filter), its files named relative to the repository and looked for in
+        another folder: the readers say which file is missing and how a state finds its files;
+        the synthesis adds nothing (it said "The first exemplar has no positive cell size; give
+        CellSize.", a setting that was never the cause)."""
+        from paraview import simple
+        from vtkmodules.vtkCommonCore import vtkOutputWindow
+        simple.LoadPlugin(PATHS.plugin, remote=False)
+        said = []
+
+        @calldata_type(VTK_STRING)
+        def on_error(_caller, _event, text):
+            said.append(text)
+
+        window = vtkOutputWindow.GetInstance()
+        observer = window.AddObserver(vtkCommand.ErrorEvent, on_error)
+        cwd = os.getcwd()
+        os.chdir(self.tmp.name)
+        try:
+            exemplar = simple.TerrainReader(FileName=os.path.join("Data", "dems", "colorado.png"))
+            sketch = simple.PNGSeriesReader(FileNames=[os.path.join("Data", "sketches", "strokes_y_ridges.png")])
+            synth = simple.TerrainSynthesis(Exemplars=[exemplar], Sketch=sketch, OutputSize=[256, 256])
+            synth.UpdatePipeline()
+        finally:
+            os.chdir(cwd)
+            window.RemoveObserver(observer)
+        def said_by(name):  # "ERROR: In FILE, line N\nvtkName (0x...): sentence"
+            return [e for e in said if e.split("\n")[1:2] and e.split("\n")[1].startswith(name + " (")]
+
+        self.assertTrue(any("No such file: Data/dems/colorado.png" in e and "Search files under specified directory"
+                            in e for e in said_by("vtkTerrainReader")), said)
+        self.assertEqual(said_by("vtkTerrainSynthesis"), [], said)
+        self.assertFalse(any("cell size" in e for e in said), said)
+        simple.Delete(synth)
+
     def test_catalogue(self):
         self.producers = []
         cases = self.cases()
