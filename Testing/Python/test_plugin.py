@@ -1020,6 +1020,16 @@ class PluginTest(unittest.TestCase):
                         clamped += 1
         self.assertGreater(clamped, 35)
 
+    def test_sketch_features_help_opens_sketches_with_the_sketch_reader(self):
+        """The README opens a sketch with the Terrain Sketch Reader (on the exemplar's grid); the
+        filter's own help said ParaView's PNG reader, whose 1 m pixels put it at the corner."""
+        import xml.etree.ElementTree as ET
+        path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Plugin",
+                            "TerrainSketchFeatures.xml")
+        help_text = " ".join(ET.parse(path).getroot().find(".//SourceProxy/Documentation").text.split())
+        self.assertIn("Open sketch images with the Terrain Sketch Reader", help_text)
+        self.assertNotIn("with ParaView's own PNG reader", help_text)
+
     def test_abort_stops_the_synthesis_promptly_with_an_empty_output(self):
         import time
         sys.path.insert(0, PATHS.python_dir)
