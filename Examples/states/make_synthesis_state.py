@@ -114,7 +114,8 @@ def show_all(view, exemplar, sketch, trees, synth, warped, seams):
 
 # The camera's distance from the pieces' centre, in their north-south extent: back to the south
 # and up. Close enough that the pieces fill the height of the view with a small margin (ParaView's
-# GUI keeps the vertical view angle, so a wider window adds room at the sides only).
+# GUI keeps the vertical view angle, so a wider window adds room at the sides only; open_state.py
+# fits the camera to the window it opens in, keeping this direction).
 CAMERA_BACK = 1.25
 CAMERA_UP = 0.95
 

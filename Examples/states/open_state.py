@@ -27,12 +27,15 @@ PLUGIN = os.environ.get(
 args = [a for a in getattr(sys, "argv", [])[1:] if a]  # the GUI's --script passes none
 state = args[0] if args else os.environ.get("TSYNTH_STATE", os.path.join(STATES, "synthesis.pvsm"))
 
+sys.path.insert(0, STATES)
+import state_files  # noqa: E402
+
 simple.LoadPlugin(PLUGIN, remote=False)
 simple.LoadState(state, data_directory=os.path.join(ROOT, "Data"), restrict_to_data_directory=True)
-simple._DisableFirstRenderCameraReset()  # keep the state's camera (as ParaView's traces do)
+simple._DisableFirstRenderCameraReset()  # the state's viewing direction, fitted below
 view = simple.GetActiveView() or simple.GetRenderViews()[0]
 simple.SetActiveView(view)
-simple.Render(view)
+state_files.fit_camera_to_view(view)  # the pieces fill the window, whatever its size
 if len(args) > 1:
     simple.SaveScreenshot(args[1], view, ImageResolution=list(view.ViewSize))
     print("Wrote", args[1])

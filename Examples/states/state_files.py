@@ -1,5 +1,5 @@
-"""Shared by the make_*_state.py scripts: where things are, and saving a state without
-machine-specific paths.
+"""Shared by the make_*_state.py scripts and open_state.py: where things are, saving a state
+without machine-specific paths, and fitting a loaded state's camera to the window it is shown in.
 
 A state written by ParaView holds absolute file names. save_portable_state() writes them
 relative to the repository ("Data/dems/colorado.png"), so the state names the bundled data
@@ -38,3 +38,60 @@ def save_portable_state(path):
     with open(path, "w") as f:
         f.write(text)
     print("Wrote", path)
+
+
+# The share of the view's limiting side (height in a wide window, width in a tall one) the pieces
+# span once fitted: a thin margin around them.
+FIT_SHARE = 0.92
+# Under perspective one pan and dolly lands near the fit, not on it; three passes settle it
+# within a few pixels.
+FIT_PASSES = 3
+
+
+def _display_box(renderer, corners):
+    """(x0, y0, x1, y1): the display-coordinate box around the projected world points."""
+    xs, ys = [], []
+    for corner in corners:
+        renderer.SetWorldPoint(*corner, 1.0)
+        renderer.WorldToDisplay()
+        x, y, _ = renderer.GetDisplayPoint()
+        xs.append(x)
+        ys.append(y)
+    return min(xs), min(ys), max(xs), max(ys)
+
+
+def _display_to_world(renderer, x, y, depth):
+    renderer.SetDisplayPoint(x, y, depth)
+    renderer.DisplayToWorld()
+    w = renderer.GetWorldPoint()
+    return [w[i] / w[3] for i in range(3)]
+
+
+def fit_camera_to_view(view):
+    """Keeps the state's viewing direction and brings its pieces to fill the view at its current
+    size: the state's camera was set for its 500 x 500 picture, and in a larger or wider window
+    (ParaView keeps the vertical view angle) the pieces sat small in the middle. The pieces are
+    fitted by their base (the lowest height of what is shown): the warped terrain's relief rises
+    from it without adding an empty band above everything."""
+    simple.Render(view)  # the renderer at the view's size
+    renderer = view.GetRenderer()
+    b = renderer.ComputeVisiblePropBounds()
+    if b[0] > b[1]:
+        return  # nothing shown
+    corners = [(x, y, b[4]) for x in b[0:2] for y in b[2:4]]
+    camera = view.GetActiveCamera()
+    width, height = renderer.GetSize()
+    for _ in range(FIT_PASSES):
+        x0, y0, x1, y1 = _display_box(renderer, corners)
+        renderer.SetWorldPoint(*camera.GetFocalPoint(), 1.0)
+        renderer.WorldToDisplay()
+        depth = renderer.GetDisplayPoint()[2]
+        here = _display_to_world(renderer, 0.5 * (x0 + x1), 0.5 * (y0 + y1), depth)
+        centre = _display_to_world(renderer, 0.5 * width, 0.5 * height, depth)
+        shift = [h - c for h, c in zip(here, centre)]
+        camera.SetFocalPoint(*[f + d for f, d in zip(camera.GetFocalPoint(), shift)])
+        camera.SetPosition(*[p + d for p, d in zip(camera.GetPosition(), shift)])
+        camera.Dolly(FIT_SHARE * min(width / (x1 - x0), height / (y1 - y0)))
+        renderer.ResetCameraClippingRange()
+    view.SMProxy.SynchronizeCameraProperties()
+    simple.Render(view)

@@ -42,6 +42,11 @@ MIN_STREAM_CELLS = 43000  # 47942
 MAX_IMAGE_ERROR = 2.0
 MAX_CHANGED_SHARE = 0.002
 PIXEL_STEP = 16
+# open_state.py fits the state's pieces to the window: in a wide one they span this much of its
+# height at least (the state's own camera, set for 500 x 500, left them 68% of it).
+WIDE_VIEW = [1800, 1000]
+MIN_FITTED_HEIGHT_SHARE = 0.85
+BACKGROUND_MIN = 250  # the white background; anything drawn is darker in some channel
 
 
 def point_array(data, name):
@@ -171,6 +176,36 @@ class SynthesisState(unittest.TestCase):
         lifted = vtk_to_numpy(seams.GetPoints().GetData())[:, 2]
         np.testing.assert_allclose(lifted, point_array(seams, "Elevation"), atol=1e-3)
         self.assertGreater(float(lifted.min()), np.nanmin(dem_z) - HEIGHT_MARGIN_M)
+
+    def test_open_state_fits_the_pieces_to_a_wide_window(self):
+        """In a window wider than the state's 500 x 500 view, open_state.py's camera fit keeps the
+        state's direction and brings the pieces to fill the height, centred."""
+        sys.path.insert(0, STATE_ARGS.states)
+        import state_files
+        view = simple.GetRenderViews()[0]
+        saved = {name: list(getattr(view, name)) if name != "CameraViewAngle" else view.CameraViewAngle
+                 for name in ("ViewSize", "CameraPosition", "CameraFocalPoint", "CameraViewUp", "CameraViewAngle")}
+        direction = np.subtract(view.CameraFocalPoint, view.CameraPosition)
+        try:
+            view.ViewSize = WIDE_VIEW
+            view.OrientationAxesVisibility = 0
+            state_files.fit_camera_to_view(view)
+            fitted = np.subtract(view.CameraFocalPoint, view.CameraPosition)
+            np.testing.assert_allclose(fitted / np.linalg.norm(fitted), direction / np.linalg.norm(direction),
+                                       atol=1e-9)  # the state's direction
+            out = os.path.join(STATE_ARGS.out_dir, "synthesis_wide.png")
+            simple.SaveScreenshot(out, view, ImageResolution=WIDE_VIEW, TransparentBackground=0)
+            image = read_png(out)
+            nx, ny, _ = image.GetDimensions()
+            rgb = vtk_to_numpy(image.GetPointData().GetScalars())[:, :3].reshape(ny, nx, 3)
+            drawn_rows = np.flatnonzero((rgb < BACKGROUND_MIN).any(axis=2).any(axis=1))
+            share = (drawn_rows[-1] - drawn_rows[0] + 1) / ny
+            print("fitted to %d x %d: the pieces span %.2f of the height" % (nx, ny, share))
+            self.assertGreaterEqual(share, MIN_FITTED_HEIGHT_SHARE)
+        finally:
+            for name, value in saved.items():
+                setattr(view, name, value)
+            simple.Render(view)
 
     def test_standard_view_matches_the_baseline(self):
         picture = render_standard_view(os.path.join(STATE_ARGS.out_dir, "synthesis_view.png"))
