@@ -224,6 +224,8 @@ class GuiTest(unittest.TestCase):
         self.assertEqual(s.links(terrain, "Sketch"), [s.collections["sources"][os.path.basename(self.sketch)]])
         self.assertEqual(s.values(terrain, "OutputSize"), [str(SIZE_TYPED)] * 2)
         self.assertEqual(s.values(terrain, "Seed"), [str(SEED_TYPED)])
+        # The heights selection (NoDefault in the XML) names the exemplar's heights.
+        self.assertEqual(s.values(terrain, "SelectExemplarScalars")[3:], [POINTS, "Elevation"])
         # Shown once applied: the terrain in the terrain map, as the exemplar.
         association, array, lut = s.coloured_by(s.representation_of(terrain.get("id")))
         self.assertEqual((association, array), (POINTS, "Elevation"))
