@@ -103,6 +103,18 @@ bool imageProducerFailed(vtkInformationVector* port)
   return false;
 }
 
+bool anyImageProducerFailed(vtkInformationVector** inputVector, int ports)
+{
+  for (int p = 0; p < ports; ++p)
+  {
+    if (imageProducerFailed(inputVector[p]))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 void copyGrid(vtkInformation* from, vtkInformation* to)
 {
   if (from == nullptr || !from->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))

@@ -27,6 +27,9 @@ void requestWholeExtents(vtkInformationVector** inputVector, int ports);
 // announces no extent and never counts as failed here.
 bool imageProducerFailed(vtkInformationVector* port);
 
+// Whether the image producer on any of the first `ports` input ports failed (see above).
+bool anyImageProducerFailed(vtkInformationVector** inputVector, int ports);
+
 // Gives the output the grid (whole extent, spacing, origin) of one input.
 void copyGrid(vtkInformation* from, vtkInformation* to);
 

@@ -72,13 +72,6 @@ tsynth::OptimisationOptions optimisationOptions(vtkTerrainOptimisation* f)
   return o;
 }
 
-// Whether the source's or the guide's producer failed (and said why).
-bool producerFailed(vtkInformationVector** inputVector)
-{
-  return tsynth::imageProducerFailed(inputVector[kSourcePort]) ||
-    tsynth::imageProducerFailed(inputVector[kGuidePort]);
-}
-
 } // namespace
 
 vtkTerrainOptimisation::vtkTerrainOptimisation()
@@ -117,7 +110,7 @@ int vtkTerrainOptimisation::RequestInformation(vtkInformation*,
 {
   vtkInformation* out = outputVector->GetInformationObject(0);
   vtkInformation* source = inputVector[kSourcePort]->GetInformationObject(0);
-  if (producerFailed(inputVector))
+  if (tsynth::anyImageProducerFailed(inputVector, this->GetNumberOfInputPorts()))
   {
     out->Remove(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
     return 0; // the reader that failed said why
@@ -172,7 +165,7 @@ int vtkTerrainOptimisation::RequestData(vtkInformation*,
     tsynth::reportRefusal(this, "Connect a source DEM and a guide.");
     return 0;
   }
-  if (producerFailed(inputVector))
+  if (tsynth::anyImageProducerFailed(inputVector, this->GetNumberOfInputPorts()))
   {
     output->Initialize();
     return 0; // ParaView asks for the data even after RequestInformation failed

@@ -373,12 +373,6 @@ void fillConstruction(const tsynth::SynthesisSetup& setup,
   out->GetPointData()->SetActiveScalars("Target");
 }
 
-// Whether the exemplars' or the sketch's producer failed (and said why).
-bool producerFailed(vtkInformationVector** inputVector)
-{
-  return tsynth::imageProducerFailed(inputVector[0]) || tsynth::imageProducerFailed(inputVector[1]);
-}
-
 // Nothing announced on the image outputs: not the exemplar's grid the pipeline copied in by
 // default.
 void clearAnnouncedGrid(vtkInformationVector* outputVector)
@@ -403,7 +397,7 @@ int vtkTerrainSynthesis::RequestInformation(vtkInformationVector** inputVector,
   {
     return 1; // nothing to announce; RequestData says which input is missing
   }
-  if (producerFailed(inputVector))
+  if (tsynth::anyImageProducerFailed(inputVector, this->GetNumberOfInputPorts()))
   {
     clearAnnouncedGrid(outputVector);
     return 0; // the reader that failed said why
@@ -632,7 +626,7 @@ void clearOutputs(vtkInformationVector* outputVector)
 int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  if (producerFailed(inputVector))
+  if (tsynth::anyImageProducerFailed(inputVector, this->GetNumberOfInputPorts()))
   {
     // ParaView asks for the data even after RequestInformation failed; nothing to add to what
     // the reader said.

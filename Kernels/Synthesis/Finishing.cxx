@@ -152,7 +152,7 @@ constexpr std::uint32_t kOffLines = 0;
 
 // Per cell, a label shared by the cells of one line network (8-connected
 // cells with a finite flow distance), kOffLines elsewhere.
-std::vector<std::uint32_t> labelNetworks(const std::vector<float>& flow, int w, int h)
+std::vector<std::uint32_t> labelNetworks(const Heightfield& hf, const std::vector<float>& flow)
 {
   std::vector<std::uint32_t> label(flow.size(), kOffLines);
   std::uint32_t next = kOffLines;
@@ -169,24 +169,17 @@ std::vector<std::uint32_t> labelNetworks(const std::vector<float>& flow, int w, 
     {
       const std::size_t c = stack.back();
       stack.pop_back();
-      const int i = static_cast<int>(c % static_cast<std::size_t>(w));
-      const int j = static_cast<int>(c / static_cast<std::size_t>(w));
-      for (std::size_t n = 0; n < kDx.size(); ++n)
-      {
-        const int x = i + kDx[n];
-        const int y = j + kDy[n];
-        if (x < 0 || y < 0 || x >= w || y >= h)
+      forNeighbours(hf,
+        static_cast<int>(c % static_cast<std::size_t>(hf.width)),
+        static_cast<int>(c / static_cast<std::size_t>(hf.width)),
+        [&](std::size_t q, double)
         {
-          continue;
-        }
-        const std::size_t q =
-          static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
-        if (std::isfinite(flow[q]) && label[q] == kOffLines)
-        {
-          label[q] = next;
-          stack.push_back(q);
-        }
-      }
+          if (std::isfinite(flow[q]) && label[q] == kOffLines)
+          {
+            label[q] = next;
+            stack.push_back(q);
+          }
+        });
     }
   }
   return label;
@@ -525,7 +518,7 @@ std::vector<float> throughClosedOutlets(const Heightfield& out,
   std::vector<float> flow = downstream;
   const Heightfield breached = breachDepressions(out);
   const std::vector<std::int8_t> dir = flowDirections(breached);
-  const std::vector<std::uint32_t> network = labelNetworks(downstream, out.width, out.height);
+  const std::vector<std::uint32_t> network = labelNetworks(out, downstream);
   for (std::size_t c = 0; c < out.size(); ++c)
   {
     if (!(downstream[c] <= 0.0f) || onTheEdge(out, c))
@@ -574,7 +567,7 @@ DrainageReport drainValleys(Heightfield& out,
     return report; // no valley lines on this grid
   }
   const std::vector<float> downstream = throughClosedOutlets(out, drawnDownstream);
-  const std::vector<std::uint32_t> network = labelNetworks(downstream, out.width, out.height);
+  const std::vector<std::uint32_t> network = labelNetworks(out, downstream);
   std::vector<std::size_t> order;
   std::vector<std::uint8_t> line(out.size(), 0);
   for (std::size_t c = 0; c < out.size() && c < downstream.size(); ++c)
