@@ -2,6 +2,7 @@
 // 1 with one sentence on bad input or failure, 2 on wrong usage.
 #include "CliSupport.h"
 #include "CommandLine.h"
+#include "ConvertCommand.h"
 #include "DistanceCommand.h"
 #include "HydrologyCommands.h"
 #include "Render3D.h"
@@ -63,7 +64,8 @@ Usage: tsynth COMMAND [options]
 Commands:
   info DEM               size, cell size, height range, CRS and units of a DEM
   render DEM -o PNG      hillshade picture with a colour ramp; --3d for an oblique 3D view
-  convert DEM -o OUT     write a DEM as GeoTIFF float32 (.tif), 16-bit PNG + sidecar (.png) or .vti
+  convert DEM -o OUT     write a DEM as GeoTIFF float32 (.tif), 16-bit PNG + sidecar (.png) or .vti;
+                         --tile-size N: tiles sharing their edges (GeoTIFF + .vrt, engine PNG/RAW)
   features DEM -o F.vtp  ridge (or valley) lines as a feature tree (PPA); --sketch for sketches
   synth --exemplar DEM --sketch SKETCH -o OUT   synthesise a terrain that follows a sketch
   evaluate TERRAIN --exemplar DEM [--sketch S]  quality figures, with baselines
@@ -124,13 +126,6 @@ ridges, blue valleys), or a .vtp of poly-lines with a FeatureType cell array.
   --min-tree N               smallest tree kept, cells (default 30)
   --patch P                  patch size in cells (default %PATCH%): control radius P/2,
                              and sketches must be at least one patch
-)";
-
-const char* const kConvertHelp = R"(Usage: tsynth convert DEM -o OUT [read options]
-
-Reads a DEM (units, sidecar, nodata as for every command) and writes heights in
-metres: .tif GeoTIFF float32 (georeference kept), .png 16-bit with a NAME.json
-sidecar recording the range and cell size, or .vti (opens in ParaView).
 )";
 
 int runInfo(std::vector<std::string> args)
@@ -395,35 +390,6 @@ int runRender(std::vector<std::string> args, int argc, char** argv)
   return 0;
 }
 
-int runConvert(std::vector<std::string> args)
-{
-  if (wantsHelp(args))
-  {
-    std::cout << kConvertHelp << kReadOptionsHelp;
-    return 0;
-  }
-  CommandLine cl(std::move(args));
-  const std::optional<std::string> output = cl.take("--output", "-o");
-  const tsynth::ReadOptions options = takeReadOptions(cl);
-  const std::string path = oneInput(cl, "convert");
-  if (!output)
-  {
-    throw UsageError("tsynth convert needs an output file: -o OUT.tif|.png|.vti.");
-  }
-  if (!tsynth::isVtiPath(*output) && !tsynth::isHeightfieldWriteExtension(*output))
-  {
-    throw UsageError("The output must end in .tif, .png or .vti, not " + *output + ".");
-  }
-  tsynth::FileRoles files;
-  files.input(path, "the DEM", options.useSidecar);
-  files.output(*output, "-o");
-  files.check();
-  const tsynth::Heightfield hf = readDem(path, options);
-  tsynth::writeTerrainFile(*output, hf);
-  std::cout << "Wrote " << *output << "\n";
-  return 0;
-}
-
 // The PPA options of `tsynth features` (control radius half the patch).
 tsynth::PpaOptions takePpaOptions(CommandLine& cl, int patch)
 {
@@ -644,7 +610,7 @@ int dispatch(const std::string& command,
   }
   if (command == "convert")
   {
-    return runConvert(std::move(args));
+    return tsynth::cli::runConvert(std::move(args));
   }
   if (command == "features")
   {

@@ -91,6 +91,11 @@ void FileRoles::output(const std::string& path, const std::string& role, Content
 {
   outputs_.push_back({ path, role });
   const std::string side = sidecarPathFor(path);
+  if (content == Content::HeightsAndSidecar)
+  {
+    outputs_.push_back({ side, "the sidecar of " + describe(role, path) });
+    return;
+  }
   if (content == Content::Heights && isPng(path))
   {
     outputs_.push_back({ side, "the sidecar of " + describe(role, path) });

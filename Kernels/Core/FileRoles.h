@@ -19,6 +19,9 @@ public:
   enum class Content
   {
     Heights,
+    // Heights whose NAME.json sidecar this command writes too (tiles): the
+    // sidecar is an output, and one left there by an earlier run is replaced.
+    HeightsAndSidecar,
     Other
   };
   // A file the command writes ("-o", "--flow").

@@ -596,16 +596,7 @@ void writeGeoTiff(const std::string& target, const std::string& tmp, const Heigh
   {
     throw Error(writeFailure(target, tmp, errno));
   }
-  std::array<double, 6> gt{};
-  if (hf.georef.hasGeoTransform)
-  {
-    gt = hf.georef.geoTransform;
-  }
-  else
-  {
-    // Local frame in metres: lower-left cell centre at (0, 0), north up.
-    gt = { -0.5 * hf.cellX, hf.cellX, 0.0, (hf.height - 0.5) * hf.cellY, 0.0, -hf.cellY };
-  }
+  std::array<double, 6> gt = geoTransformOf(hf);
   ds->SetGeoTransform(gt.data());
   if (!hf.georef.crsWkt.empty())
   {
@@ -640,21 +631,15 @@ void writeGeoTiff(const std::string& target, const std::string& tmp, const Heigh
   closeWritten(ds, target, tmp);
 }
 
-void writePng16(const std::string& target, const std::string& tmp, const Heightfield& hf)
+// The PNG's 16-bit codes: valid heights mapped linearly from `range` onto
+// lowCode..65535, nodata as 0. Row 0 of the file is the north edge.
+void writePng16Codes(const std::string& target,
+  const std::string& tmp,
+  const Heightfield& hf,
+  const Png16Range& range,
+  double lowCode)
 {
-  const HeightRange range = computeHeightRange(hf);
-  if (range.validCells == 0)
-  {
-    throw Error("Cannot write " + target + ": the heightfield has no valid cell.");
-  }
-  // Valid heights map to 1..65535 when nodata must be kept (0 marks it), else 0..65535.
-  const bool reserveZero = hf.hasMask();
-  const double lowCode = reserveZero ? 1.0 : 0.0;
-  double zLo = range.min;
-  double zHi = range.max > range.min ? static_cast<double>(range.max) : zLo + 1.0;
-  const double step = (zHi - zLo) / (65535.0 - lowCode);
-  const double zMinOfCodeZero = zLo - lowCode * step;
-
+  const double step = (range.zMax - range.zMin) / (kLargestPng16Code - lowCode);
   DatasetPtr mem = memoryDataset(hf.width, hf.height, 1, GDT_UInt16);
   std::vector<std::uint16_t> codes(hf.size());
   for (int r = 0; r < hf.height; ++r)
@@ -665,8 +650,9 @@ void writePng16(const std::string& target, const std::string& tmp, const Heightf
       std::uint16_t code = 0;
       if (hf.isValid(i, j))
       {
-        const double c = lowCode + (hf.at(i, j) - zLo) / step;
-        code = static_cast<std::uint16_t>(std::clamp(std::lround(c), 0L, 65535L));
+        const double c = lowCode + (hf.at(i, j) - range.zMin) / step;
+        code = static_cast<std::uint16_t>(
+          std::clamp(std::lround(c), 0L, static_cast<long>(kLargestPng16Code)));
       }
       codes[static_cast<std::size_t>(r) * static_cast<std::size_t>(hf.width) +
         static_cast<std::size_t>(i)] = code;
@@ -688,13 +674,30 @@ void writePng16(const std::string& target, const std::string& tmp, const Heightf
     throw Error("Cannot write " + target + ".");
   }
   createCopyTo("PNG", *mem, tmp, target);
+}
+
+void writePng16(const std::string& target, const std::string& tmp, const Heightfield& hf)
+{
+  const HeightRange range = computeHeightRange(hf);
+  if (range.validCells == 0)
+  {
+    throw Error("Cannot write " + target + ": the heightfield has no valid cell.");
+  }
+  // Valid heights map to 1..65535 when nodata must be kept (0 marks it), else 0..65535.
+  const bool reserveZero = hf.hasMask();
+  const double lowCode = reserveZero ? 1.0 : 0.0;
+  double zLo = range.min;
+  double zHi = range.max > range.min ? static_cast<double>(range.max) : zLo + 1.0;
+  const double step = (zHi - zLo) / (kLargestPng16Code - lowCode);
+  writePng16Codes(target, tmp, hf, { zLo, zHi }, lowCode);
 
   Sidecar sidecar;
   sidecar.zUnit = ZUnit::Metres;
   sidecar.cellX = hf.cellX;
   sidecar.cellY = hf.cellY;
+  const double zMinOfCodeZero = zLo - lowCode * step;
   sidecar.zMin = zMinOfCodeZero;
-  sidecar.zMax = zMinOfCodeZero + 65535.0 * step;
+  sidecar.zMax = zMinOfCodeZero + kLargestPng16Code * step;
   if (reserveZero)
   {
     sidecar.nodata = 0.0;
@@ -934,6 +937,32 @@ void writeHeightfield(const std::string& path, const Heightfield& hf)
   {
     writeGeoTiff(path, file.temporaryPath(), hf);
   }
+  file.commit();
+}
+
+std::array<double, 6> geoTransformOf(const Heightfield& hf)
+{
+  if (hf.georef.hasGeoTransform)
+  {
+    return hf.georef.geoTransform;
+  }
+  // Local frame in metres: lower-left cell centre at (0, 0), north up.
+  return { -0.5 * hf.cellX, hf.cellX, 0.0, (hf.height - 0.5) * hf.cellY, 0.0, -hf.cellY };
+}
+
+void writePng16InRange(const std::string& path, const Heightfield& hf, const Png16Range& range)
+{
+  if (hf.width <= 0 || hf.height <= 0 ||
+    hf.size() != static_cast<std::size_t>(hf.width) * static_cast<std::size_t>(hf.height))
+  {
+    throw Error("Cannot write " + path + ": the heightfield is empty or inconsistent.");
+  }
+  if (!(range.zMax > range.zMin))
+  {
+    throw Error("Cannot write " + path + ": its height range is empty.");
+  }
+  OutputFile file(path);
+  writePng16Codes(path, file.temporaryPath(), hf, range, 0.0);
   file.commit();
 }
 

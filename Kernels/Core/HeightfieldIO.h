@@ -5,6 +5,7 @@
 #include "Heightfield.h"
 #include "Sidecar.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -73,6 +74,26 @@ Heightfield readHeightfield(const std::string& path,
 // nodata), ".png" 16-bit PNG plus a NAME.json sidecar with the range and cell
 // size. The file appears complete or not at all (written aside, then renamed).
 void writeHeightfield(const std::string& path, const Heightfield& hf);
+
+// The largest code of a 16-bit image.
+constexpr double kLargestPng16Code = 65535.0;
+
+// The heights 16-bit codes 0 and 65535 stand for (a PNG sidecar's z_min and z_max).
+struct Png16Range
+{
+  double zMin = 0.0;
+  double zMax = 1.0;
+};
+
+// Writes a 16-bit PNG (no sidecar) whose codes span `range` rather than the
+// heightfield's own range, so that the tiles of one terrain share one scale and
+// their shared edges get the same codes. Invalid cells are written as code 0.
+// The file appears complete or not at all. Throws tsynth::Error naming `path`.
+void writePng16InRange(const std::string& path, const Heightfield& hf, const Png16Range& range);
+
+// The GDAL geotransform of a heightfield's file (x0, dx, rx, y0, ry, dy; row 0
+// north): its own, or a local frame in metres with the south-west cell centre at (0, 0).
+std::array<double, 6> geoTransformOf(const Heightfield& hf);
 
 // Writes an 8-bit RGB PNG; rgb holds width*height*3 bytes, first row at the top.
 void writeRgbPng(const std::string& path,

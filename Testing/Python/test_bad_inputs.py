@@ -101,6 +101,17 @@ CASES = [
     ("render-azimuth-inf", ["render", "$dem", "--azimuth", "inf", "-o", "^out.png"], 2, r"--azimuth"),
     ("render-exaggeration-inf", ["render", "$dem", "--exaggeration", "inf", "-o", "^out.png"], 2,
      r"--exaggeration"),
+    # Tiled export (issue 22) --------------------------------------------------------------------
+    ("tiles-png-not-engine-size", ["convert", "$dem", "--tile-size", "250", "-o", "^t.png"], 1,
+     r"2\^k \+ 1 samples a side \(33 to 8193\), not 250: try 129 or 257"),
+    ("tiles-raw-too-small", ["convert", "$dem", "--tile-size", "17", "-o", "^t.raw"], 1, r"not 17: try 33"),
+    ("tiles-too-many", ["convert", "$dem", "--tile-size", "3", "-o", "^t.vrt"], 1,
+     r"104976 files, more than 65536: choose larger tiles"),
+    ("tiles-size-one", ["convert", "$dem", "--tile-size", "1", "-o", "^t.vrt"], 2, r"--tile-size"),
+    ("tiles-vrt-without-size", ["convert", "$dem", "-o", "^t.vrt"], 2, r"give the tile size, --tile-size N"),
+    ("tiles-into-a-tif", ["convert", "$dem", "--tile-size", "65", "-o", "^t.tif"], 2, r"-o OUT\.vrt"),
+    ("tiles-16bit-with-nodata", ["convert", "@onecell.tif", "--tile-size", "65", "-o", "^t.png"], 1,
+     r"14399 cells without data, which a 16-bit engine heightmap cannot mark"),
     # Output paths -------------------------------------------------------------------------------
     ("out-missing-folder", ["convert", "$dem", "-o", "^missing/out.tif"], 1, r"does not exist"),
     ("out-parent-is-file", ["pits", "$dem", "-o", "@readme.tif/out.tif"], 1, r"readme\.tif.*(not a folder|does not exist)"),

@@ -203,6 +203,48 @@ class CliTest(unittest.TestCase):
         self.assertTrue(os.path.exists(self.path("jackson.json")))
         self.assertTrue(info(self.path("jackson.tif"))["geographic"])
 
+    def test_convert_cuts_tiles_that_share_their_edges(self):
+        source = os.path.join(PATHS.bundled_data, "dems", "colorado.png")
+        whole = info(source)
+        mosaic = self.path("tiles.vrt")
+        for attempt in ("first", "again over the first"):
+            with self.subTest(attempt=attempt):
+                result = tsynth("convert", source, "--tile-size", "257", "-o", mosaic)
+                self.assertEqual(result.returncode, 0, result.stderr)
+                self.assertIn("Wrote 9 tiles of 257 x 257 samples (3 x 3)", result.stdout)
+        back = info(mosaic)
+        self.assertEqual((back["width"], back["height"]), (whole["width"], whole["height"]))
+        self.assertAlmostEqual(back["z_min_m"], whole["z_min_m"], delta=1e-3)
+        self.assertAlmostEqual(back["z_max_m"], whole["z_max_m"], delta=1e-3)
+        corner = info(self.path("tiles_x2_y2.tif"))
+        self.assertEqual((corner["width"], corner["height"]), (648 - 512, 648 - 512))
+        with open(self.path("tiles_x1_y0.json")) as f:
+            self.assertEqual(json.load(f)["tile"]["first_sample"], [256, 0])
+
+        result = tsynth("convert", source, "--tile-size", "257", "-o", self.path("ue.png"))
+        self.assertEqual(result.returncode, 0, result.stderr)
+        ranges = []
+        for row in range(3):
+            for column in range(3):
+                name = self.path("ue_x%d_y%d" % (column, row))
+                self.assertEqual(png_size(name + ".png"), (257, 257))
+                with open(name + ".json") as f:
+                    side = json.load(f)
+                ranges.append((side["z_min"], side["z_max"]))
+                self.assertAlmostEqual(side["unity"]["size_m"][1], side["z_max"] - side["z_min"])
+        self.assertEqual(len(set(ranges)), 1, "the tiles do not share one height scale")
+        self.assertAlmostEqual(ranges[0][0], whole["z_min_m"], delta=1e-3)
+
+        result = tsynth("convert", source, "--tile-size", "129", "-o", self.path("un.raw"))
+        self.assertEqual(result.returncode, 0, result.stderr)
+        raws = sorted(n for n in os.listdir(self.tmp) if n.endswith(".raw"))
+        self.assertEqual(len(raws), 36)
+        self.assertEqual(os.path.getsize(self.path("un_0_0.raw")), 129 * 129 * 2)
+        with open(self.path("un_0_5.json")) as f:
+            north_west = json.load(f)
+        self.assertEqual(north_west["tile"]["first_sample"], [0, 0])
+        self.assertEqual(north_west["row_order"], "south first")
+
     # Features -----------------------------------------------------------------------------
 
     def test_features_of_a_dem(self):

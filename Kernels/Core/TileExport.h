@@ -1,0 +1,109 @@
+// Cutting a terrain into tiles that share their edge rows and columns, so that
+// neighbouring tiles meet exactly:
+// - GeoTIFF tiles (float32, metres, georeferenced) under a GDAL virtual mosaic
+//   (NAME.vrt), for GIS;
+// - 16-bit PNG heightmaps (rows north first, tiles NAME_x<column>_y<row> counted
+//   from the north-west, as Unreal's tiled landscape import reads them), or
+//   16-bit little-endian RAW heightmaps (rows south first, tiles
+//   NAME_<x>_<z> counted from the south-west, as Unity's terrain tools read them),
+//   of 2^k + 1 samples a side, all sharing one height scale.
+// Every tile has a NAME.json sidecar giving its height range, its place in the
+// terrain and, for the engines, the scales that reproduce the heights in metres.
+#pragma once
+
+#include "Heightfield.h"
+#include "Progress.h"
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tsynth
+{
+
+enum class TileFormat
+{
+  GeoTiff, // -o NAME.vrt
+  Png16,   // -o NAME.png
+  Raw16    // -o NAME.raw or NAME.r16
+};
+
+// The format an output name asks for; nullopt for any other extension.
+std::optional<TileFormat> tileFormatFor(const std::string& output);
+
+// The smallest and largest tile a side: a tile needs two samples to have an
+// edge to share; past 2^16 + 1 samples a 16-bit engine heightmap is no tile.
+constexpr int kSmallestTile = 2;
+constexpr int kLargestTile = 65537;
+// At most this many tiles per export (a 16k terrain in tiles of 65 samples):
+// more is almost surely a mistyped size, and would flood the folder.
+constexpr std::size_t kMostTiles = 65536;
+
+// The fixed grid of tiles over a width x height terrain: tiles of `size`
+// samples a side, each starting `size - 1` samples after the one before, so
+// that neighbours share their edge row or column; the last column and row of
+// tiles reach or pass the terrain's edge.
+struct TileGrid
+{
+  int size = 0;
+  int columns = 0;
+  int rows = 0;
+  int step() const { return size - 1; }
+  std::size_t count() const
+  {
+    return static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows);
+  }
+};
+
+// Throws tsynth::Error (one sentence, with the sizes that work) if `size` does
+// not suit `format` (engine heightmaps are 2^k + 1 samples, 33 to 8193), or the
+// grid would hold more than kMostTiles tiles.
+TileGrid tileGridFor(int width, int height, int size, TileFormat format);
+
+// One tile of the grid: column and row from the north-west, the samples it
+// takes from the terrain (file order: column from the west, row from the north).
+struct Tile
+{
+  int column = 0;
+  int row = 0;
+  int firstColumn = 0;
+  int firstRow = 0;
+  int validWidth = 0;  // samples taken from the terrain; a 16-bit tile repeats
+  int validHeight = 0; // its last column and row beyond them, up to `size`
+};
+
+Tile tileAt(const TileGrid& grid, int column, int row, int width, int height);
+
+// The files of one tile: the heightmap and its sidecar.
+struct TileFiles
+{
+  std::string heights;
+  std::string sidecar;
+};
+
+// Where tile (column, row) of `output` is written (beside it, named after it).
+TileFiles tileFilesFor(const std::string& output, TileFormat format, const Tile& tile, int rows);
+
+struct TileExportReport
+{
+  TileGrid grid;
+  TileFormat format = TileFormat::GeoTiff;
+  std::vector<TileFiles> tiles;  // in row-major order from the north-west
+  std::string mosaic;            // the .vrt (GeoTIFF tiles); empty otherwise
+  double zMin = 0.0;             // 16-bit tiles: the heights of codes 0 and 65535,
+  double zMax = 0.0;             // the same for every tile
+  std::size_t paddedSamples = 0; // 16-bit tiles: samples repeated past the terrain's edge
+};
+
+// Writes the tiles of `hf` for `output` (.vrt, .png, .raw or .r16), and the
+// mosaic for GeoTIFF tiles. Each file appears complete or not at all (inside an
+// open Publication, all together). Throws tsynth::Error (one sentence) for a
+// size that does not suit the format, a 16-bit export of a terrain with nodata
+// (engines cannot mark it), or a failed write; tsynth::Cancelled when stopped.
+TileExportReport exportTiles(const Heightfield& hf,
+  const std::string& output,
+  int tileSize,
+  const ProgressReport& progress = {});
+
+} // namespace tsynth
