@@ -21,6 +21,7 @@ set(tsynth_plugin_xmls
   Plugin/TerrainOptimisation.xml
   Plugin/TerrainDistanceSynthesis.xml
   Plugin/TerrainSynthesis.xml
+  Plugin/TerrainTileWriter.xml
   Plugin/TerrainLineWidths.xml)
 
 # Colour maps and the DEM reader ParaView uses once the plugin is loaded.

@@ -87,6 +87,30 @@ class PluginTest(unittest.TestCase):
         self.assertAlmostEqual(float(z.min()), 454.0, places=2)
         self.assertAlmostEqual(float(z.max()), 4810.0, places=2)
 
+    def test_tile_writer_writes_tiles_that_give_the_heights_back(self):
+        folder = tempfile.mkdtemp(prefix="tsynth-tiles-")
+        try:
+            reader = simple.TerrainReader(FileName=self.alps)
+            mosaic = os.path.join(folder, "alps.vrt")
+            writer = sm.writers.TerrainTileWriter(Input=reader, FileName=mosaic, TileSize=257)
+            writer.UpdatePipeline()
+            tiles = sorted(n for n in os.listdir(folder) if n.endswith(".tif"))
+            self.assertEqual(len(tiles), 9)  # 647 samples: tiles from 0, 256 and 512
+            self.assertEqual(len([n for n in os.listdir(folder) if n.endswith(".json")]), 9)
+            original = point_array(sm.Fetch(reader), "Elevation")
+            back = point_array(sm.Fetch(simple.TerrainReader(FileName=mosaic)), "Elevation")
+            np.testing.assert_array_equal(back, original)
+
+            engine = os.path.join(folder, "alps.png")
+            refused = sm.writers.TerrainTileWriter(Input=reader, FileName=engine, TileSize=250)
+            refused.UpdatePipeline()  # says why (2^k + 1 samples) and writes nothing
+            self.assertFalse([n for n in os.listdir(folder) if n.endswith(".png")])
+            accepted = sm.writers.TerrainTileWriter(Input=reader, FileName=engine, TileSize=129)
+            accepted.UpdatePipeline()
+            self.assertEqual(len([n for n in os.listdir(folder) if n.endswith(".png")]), 36)
+        finally:
+            shutil.rmtree(folder)
+
     def test_reader_to_hillshade_arrays_and_ranges(self):
         reader = simple.TerrainReader(FileName=self.alps)
         shade = simple.TerrainHillshade(Input=reader)

@@ -1,0 +1,61 @@
+/**
+ * @class vtkTerrainTileWriter
+ * @brief Writes a heightfield image as tiles that share their edge rows and
+ * columns (kernel: Kernels/Core/TileExport.h, as `tsynth convert --tile-size`).
+ *
+ * The FileName's extension chooses the format:
+ * - NAME.vrt: float32 GeoTIFF tiles NAME_x<column>_y<row>.tif and NAME.vrt, a
+ *   GDAL virtual mosaic that gives the heights back bit for bit;
+ * - NAME.png: 16-bit PNG tiles (Unreal's tiled landscape: NAME_x<column>_y<row>,
+ *   rows north first);
+ * - NAME.raw or NAME.r16: 16-bit little-endian RAW tiles (Unity's terrain tools:
+ *   NAME_<x>_<z> from the south-west, rows south first).
+ * 16-bit tiles are 2^k + 1 samples a side and share one height scale. Each tile
+ * has a NAME.json sidecar with its placement, its height range and, for 16-bit
+ * tiles, the engines' import scales. All files appear together or none.
+ */
+#pragma once
+
+#include "TerrainSynthesisFiltersModule.h"
+
+#include <vtkWriter.h>
+
+class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainTileWriter : public vtkWriter
+{
+public:
+  static vtkTerrainTileWriter* New();
+  vtkTypeMacro(vtkTerrainTileWriter, vtkWriter);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The mosaic or tile name: NAME.vrt, NAME.png, NAME.raw or NAME.r16.
+  vtkSetStringMacro(FileName);
+  vtkGetStringMacro(FileName);
+  ///@}
+
+  ///@{
+  /// Samples per tile side (default 1025, Unity's and a common Unreal size);
+  /// neighbouring tiles share one row or column. 16-bit tiles need 2^k + 1,
+  /// 33 to 8193.
+  vtkSetClampMacro(TileSize, int, 2, 65537);
+  vtkGetMacro(TileSize, int);
+  ///@}
+
+  /// How many tiles the last Write() wrote (0 if it failed).
+  vtkGetMacro(TilesWritten, int);
+
+protected:
+  vtkTerrainTileWriter() = default;
+  ~vtkTerrainTileWriter() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  void WriteData() override;
+
+  char* FileName = nullptr;
+  int TileSize = 1025;
+  int TilesWritten = 0;
+
+private:
+  vtkTerrainTileWriter(const vtkTerrainTileWriter&) = delete;
+  void operator=(const vtkTerrainTileWriter&) = delete;
+};
