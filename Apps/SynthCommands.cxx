@@ -23,6 +23,7 @@
 #include "Synthesis/Setup.h"
 #include "Synthesis/SynthesisFigures.h"
 #include "Synthesis/Synthesizer.h"
+#include "Synthesis/Tiling.h"
 
 #include <nlohmann/json.hpp>
 #include <vtkNew.h>
@@ -87,6 +88,11 @@ writes them: its output works directly as a sketch of the same DEM.
                          it); label L is served by exemplar number L (counting from 0) unless
                          --region L=E1,E2 says otherwise (repeatable)
   --no-vertical-offset   place patches at their own heights (default: fitted to the overlap)
+  --tile-size N          synthesise in square tiles of N cells (at least two patches), each
+                         with a halo of one patch, in an order fixed by the tile grid, then
+                         finish the whole terrain at once: the placement's memory follows the
+                         tile, and the same tile grid gives the same terrain whoever runs it
+                         (default: one piece)
   --repetition P         seam-cost penalty for reusing a nearby source (default 0.5; 0 = off)
   --landform-relief F    sketched ridges and valleys get F times the relief they are given
                          to stand out of the exemplars' own land (the exemplars' major ones',
@@ -432,6 +438,18 @@ SynthesisOptions takeSynthesisOptions(CommandLine& cl)
     }
   }
   o.verticalOffset = !cl.takeFlag("--no-vertical-offset");
+  if (const auto tile = takeCount(cl, "--tile-size", 1, kMaxOutputSide))
+  {
+    try
+    {
+      checkTileSize(*tile, o.patchSize);
+    }
+    catch (const Error& e)
+    {
+      throw UsageError(std::string(e.what()) + " (--tile-size)");
+    }
+    o.tileSize = *tile;
+  }
   if (const auto repetition = cl.takeNumber("--repetition"))
   {
     if (*repetition < 0.0)

@@ -288,6 +288,7 @@ tsynth::SynthesisOptions synthesisOptions(vtkTerrainSynthesis* filter)
   o.drainage = tsynth::drainageFromProperty(filter->GetDrainage());
   o.verticalOffset = filter->GetVerticalOffset();
   o.repetitionPenalty = filter->GetRepetition();
+  o.tileSize = filter->GetTileSize();
   o.seed = static_cast<std::uint64_t>(filter->GetSeed());
   o.progress = [filter](double f, const std::string&)
   { filter->UpdateProgress(kSetupProgress + kSynthesisProgress * f); };
@@ -754,6 +755,7 @@ void vtkTerrainSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Drainage: " << this->Drainage << "\n";
   os << indent << "VerticalOffset: " << this->VerticalOffset << "\n";
   os << indent << "Repetition: " << this->Repetition << "\n";
+  os << indent << "TileSize: " << this->TileSize << "\n";
   os << indent << "OutputSize: " << this->OutputSize[0] << " x " << this->OutputSize[1] << "\n";
   os << indent << "CellSize: " << this->CellSize << "\n";
   os << indent << "Seed: " << this->Seed << "\n";

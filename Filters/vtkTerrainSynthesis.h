@@ -99,6 +99,12 @@ public:
   /// placement's (default 0.5; 0 off): discourages visible repeats.
   vtkSetClampMacro(Repetition, double, 0.0, 100.0);
   vtkGetMacro(Repetition, double);
+  /// Tiled synthesis (Kernels/Synthesis/Tiling.h): square tiles of this many
+  /// cells, at least two patches (smaller is refused), each synthesised with a
+  /// halo of one patch in an order fixed by the tile grid, then the whole
+  /// terrain finished at once (default 0: one piece).
+  vtkSetClampMacro(TileSize, int, 0, VTK_INT_MAX);
+  vtkGetMacro(TileSize, int);
   /// Output size in cells; 0 0 (default) takes the sketch image's pixels, or
   /// the poly-lines' frame (their GridSize x CellSize field data) or extent and half a patch.
   vtkSetVector2Macro(OutputSize, int);
@@ -207,6 +213,7 @@ protected:
   int Drainage = NO_DRAINAGE;
   bool VerticalOffset;
   double Repetition;
+  int TileSize = 0;
   int OutputSize[2] = { 0, 0 };
   double CellSize = 0.0;
   vtkIdType Seed = 0;

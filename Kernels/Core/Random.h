@@ -32,6 +32,14 @@ constexpr double seededUniform(std::uint64_t seed, std::uint64_t stream, std::ui
   return static_cast<double>(h >> 11) * (1.0 / 9007199254740992.0); // 53 bits
 }
 
+// A seed of its own for part `index` of the work of kind `stream` under
+// `seed` (a tile of a tiled synthesis): its decisions differ from every other
+// part's, and follow from the part's place alone.
+constexpr std::uint64_t derivedSeed(std::uint64_t seed, std::uint64_t stream, std::uint64_t index)
+{
+  return mixBits(mixBits(mixBits(seed) ^ stream) ^ index);
+}
+
 // An index in [0, n) for decision `index` of kind `stream` under `seed`; n > 0.
 constexpr std::uint64_t seededIndex(std::uint64_t seed,
   std::uint64_t stream,
@@ -49,5 +57,6 @@ constexpr std::uint64_t kStreamFillOrder = 2; // ties in the best-first fill ord
 constexpr std::uint64_t kStreamChoice = 3;    // the choice among equally good candidates
 constexpr std::uint64_t kStreamSites = 4;     // phases of the sites along features
 constexpr std::uint64_t kStreamOutlet = 5;    // a valley network's outlet among near-ties
+constexpr std::uint64_t kStreamTile = 6;      // a tile's own seed (tiled synthesis)
 
 } // namespace tsynth

@@ -9,4 +9,5 @@ set(TSYNTH_SYNTHESIS_SOURCES
   Synthesis/Setup.cxx
   Synthesis/SynthesisFigures.cxx
   Synthesis/Synthesizer.cxx
-  Synthesis/Target.cxx)
+  Synthesis/Target.cxx
+  Synthesis/Tiling.cxx)

@@ -7,11 +7,13 @@
 #include "../Features/Ppa.h"
 #include "../Hydrology/MultiscalePitRemoval.h"
 #include "Finishing.h"
+#include "Tiling.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <queue>
 #include <unordered_map>
 
@@ -130,6 +132,12 @@ constexpr float kLineOffsetSlack = 2.0f;
 // height: the target decides its vertical offset instead.
 constexpr double kMinOverlapForOffset = 0.05;
 
+// A tiled synthesis reports its tiles' placement as this share of its
+// progress, the finishing of the whole output as the rest.
+constexpr double kTiledPlacementShare = 0.9;
+// ... in two passes over the tiles: feature patches, then the fill.
+constexpr std::size_t kTiledPasses = 2;
+
 double secondsSince(Clock::time_point t0)
 {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -139,27 +147,39 @@ double secondsSince(Clock::time_point t0)
 class SynthesisState
 {
 public:
+  // `known`: cells already synthesised (its valid ones, on the target's grid),
+  // which the placement continues (a tile's neighbours done before it).
+  // `matcher` null: only finish() will run (the whole terrain after its tiles).
   SynthesisState(const SynthesisTarget& target,
-    PatchMatcher& matcher,
+    PatchMatcher* matcher,
     const std::vector<const FeatureGraph*>& graphs,
-    const SynthesisOptions& o)
+    const SynthesisOptions& o,
+    const Heightfield* known = nullptr)
     : target_(target)
-    , matcher_(&matcher)
+    , matcher_(matcher)
     , graphs_(graphs)
     , o_(o)
     , P_(o.patchSize)
-    , out_(target.field.width, target.field.height, std::numeric_limits<float>::quiet_NaN())
+    , out_(known != nullptr ? *known
+                            : Heightfield(target.field.width,
+                                target.field.height,
+                                std::numeric_limits<float>::quiet_NaN()))
     , filled_(out_.size(), 0)
     // Only a detailed target (a DEM) asks for its own roughness; a drawing's
     // queries ask for the exemplars' (typicalNoise_) or none, so its tables
     // (six of doubles over the output: 800 MB at 4096 x 4096) are not built.
-    , noise_(target.detailed ? NoiseVariance(target.field) : NoiseVariance())
-    , lowTarget_(landformImage(target.field, o.patchSize))
+    , noise_(matcher != nullptr && target.detailed ? NoiseVariance(target.field) : NoiseVariance())
+    , lowTarget_(matcher != nullptr ? landformImage(target.field, o.patchSize) : Heightfield())
     , ownConfidence_(target.weight.size() == target.field.size()
           ? std::vector<float>()
           : std::vector<float>(target.field.size(), 1.0f))
     , confidence_(target.weight.size() == target.field.size() ? target.weight : ownConfidence_)
   {
+    for (std::size_t c = 0; c < out_.size(); ++c)
+    {
+      filled_[c] = known != nullptr && known->isValid(c) ? 1 : 0;
+    }
+    out_.valid.clear();
     out_.cellX = target.field.cellX;
     out_.cellY = target.field.cellY;
     out_.cellSizeKnown = true;
@@ -167,6 +187,11 @@ public:
     result_.patchId.assign(out_.size(), -1);
     result_.seam.assign(out_.size(), 0);
     result_.matchCost.assign(out_.size(), std::numeric_limits<float>::quiet_NaN());
+    if (matcher == nullptr)
+    {
+      mergers_.clear();
+      return;
+    }
     // Cells within a few cells of the sketched lines: feature patches own them,
     // fill patches may not take them once they are filled.
     const std::vector<float> d = distanceTransform(
@@ -393,7 +418,8 @@ public:
     return nTarget > 0 ? static_cast<float>(sTarget / nTarget) : 0.0f;
   }
 
-  // Fill patches leave the sketched lines that feature patches already hold.
+  // Fill patches leave the sketched lines that feature patches already hold,
+  // and the frozen cells (a tile's border that it does not keep).
   void protectLines(Heightfield& patch, int x0, int y0) const
   {
     bool any = false;
@@ -406,7 +432,7 @@ public:
         if (x >= 0 && y >= 0 && x < out_.width && y < out_.height)
         {
           const std::size_t c = out_.index(x, y);
-          if (line_[c] != 0 && filled_[c] != 0)
+          if ((line_[c] != 0 || (!frozen_.empty() && frozen_[c] != 0)) && filled_[c] != 0)
           {
             if (!any)
             {
@@ -801,7 +827,11 @@ public:
 
   void placeFeatures()
   {
-    const std::vector<FeatureSite> sites = orderedSites();
+    placeFeatures(orderedSites());
+  }
+
+  void placeFeatures(const std::vector<FeatureSite>& sites)
+  {
     for (std::size_t s = 0; s < sites.size(); ++s)
     {
       const FeatureSite& site = sites[s];
@@ -1122,6 +1152,106 @@ public:
     reportProgress(o_.progress, fraction, stage);
   }
 
+  // Tiled synthesis (Tiling.h), on the state of the whole output: the feature
+  // sites a tile owns (centres on its cells), in the whole output's order,
+  // moved into the tile's region.
+  std::vector<FeatureSite> sitesOf(const SynthesisTile& t,
+    const std::vector<FeatureSite>& all) const
+  {
+    std::vector<FeatureSite> own;
+    for (FeatureSite site : all)
+    {
+      const long x = std::lround(site.centre.x);
+      const long y = std::lround(site.centre.y);
+      if (x < t.x0 || y < t.y0 || x >= t.x0 + t.width || y >= t.y0 + t.height)
+      {
+        continue;
+      }
+      site.centre = { site.centre.x - t.regionX0, site.centre.y - t.regionY0 };
+      for (ControlPoint& arm : site.arms)
+      {
+        arm.position = { arm.position.x - t.regionX0, arm.position.y - t.regionY0 };
+      }
+      own.push_back(site);
+    }
+    return own;
+  }
+
+  std::vector<FeatureSite> sitesInOrder() const
+  {
+    return orderedSites();
+  }
+
+  // Cells whose known heights no fill patch may change (frozen_).
+  void freeze(std::vector<std::uint8_t> cells)
+  {
+    frozen_ = std::move(cells);
+  }
+
+  // The region's cells as the tiles done so far left them: the filled ones
+  // valid, the rest NaN.
+  Heightfield knownIn(const SynthesisTile& t) const
+  {
+    Heightfield known(t.regionWidth, t.regionHeight, std::numeric_limits<float>::quiet_NaN());
+    known.valid.assign(known.size(), 0);
+    for (int j = 0; j < t.regionHeight; ++j)
+    {
+      for (int i = 0; i < t.regionWidth; ++i)
+      {
+        const std::size_t c = out_.index(t.regionX0 + i, t.regionY0 + j);
+        if (filled_[c] != 0)
+        {
+          known.at(i, j) = out_.z[c];
+          known.valid[known.index(i, j)] = 1;
+        }
+      }
+    }
+    return known;
+  }
+
+  // Takes over what a tile's placement made of its region: heights, the
+  // placements (renumbered after those before, moved into the output's
+  // frame) and the cells they wrote.
+  // `dropped` (over the region, may be empty): cells not taken over.
+  void adopt(const SynthesisTile& t,
+    const SynthesisState& tile,
+    const std::vector<std::uint8_t>& dropped)
+  {
+    const int first = static_cast<int>(result_.placements.size());
+    for (int j = 0; j < t.regionHeight; ++j)
+    {
+      for (int i = 0; i < t.regionWidth; ++i)
+      {
+        const std::size_t from = tile.out_.index(i, j);
+        const std::size_t to = out_.index(t.regionX0 + i, t.regionY0 + j);
+        if (tile.filled_[from] == 0 || (!dropped.empty() && dropped[from] != 0))
+        {
+          continue;
+        }
+        out_.z[to] = tile.out_.z[from];
+        filled_[to] = 1;
+        if (tile.result_.patchId[from] >= 0)
+        {
+          result_.patchId[to] = first + tile.result_.patchId[from];
+          result_.matchCost[to] = tile.result_.matchCost[from];
+          result_.seam[to] = tile.result_.seam[from];
+        }
+        else if (tile.result_.seam[from] != 0)
+        {
+          result_.seam[to] = 1;
+        }
+      }
+    }
+    for (Placement p : tile.result_.placements)
+    {
+      p.order += first;
+      p.x0 += t.regionX0;
+      p.y0 += t.regionY0;
+      result_.placements.push_back(p);
+    }
+    result_.anchoredMerges += tile.result_.anchoredMerges;
+  }
+
 private:
   // Breadth-first: each node, then the path points of its not yet visited chains.
   std::vector<FeatureSite> orderedSites() const
@@ -1231,7 +1361,8 @@ private:
   Heightfield out_;
   std::vector<std::uint8_t> filled_;
   std::vector<std::uint8_t> line_;
-  NoiseVariance noise_; // empty unless target_.detailed
+  std::vector<std::uint8_t> frozen_; // empty: none
+  NoiseVariance noise_;              // empty unless target_.detailed
   float lowest_ = -std::numeric_limits<float>::infinity();
   std::array<float, kNoiseLevels> typicalNoise_{};
   float highest_ = std::numeric_limits<float>::infinity();
@@ -1244,6 +1375,137 @@ private:
   SynthesisResult result_;
   std::unordered_map<std::int64_t, std::vector<std::size_t>> sources_;
 };
+
+} // namespace
+
+namespace
+{
+
+std::unique_ptr<PatchMatcher> makeMatcher(const std::vector<const Heightfield*>& exemplars,
+  const std::vector<const FeatureGraph*>& graphs,
+  const SynthesisOptions& o)
+{
+  MatcherOptions mo;
+  mo.patchSize = o.patchSize;
+  mo.backend = o.backend;
+  mo.k = o.k;
+  mo.weights.verticalOffset = o.verticalOffset;
+  mo.pool = o.pool;
+  return std::make_unique<PatchMatcher>(exemplars, graphs, mo);
+}
+
+// A tile's options: the whole run's, with the tile's own seed (from the run's
+// seed and the tile's place), its region's style labels, and its progress as
+// its share of the run's.
+SynthesisOptions tileOptions(const SynthesisOptions& o,
+  const SynthesisTile& t,
+  int outputWidth,
+  std::size_t done,
+  std::size_t tiles)
+{
+  SynthesisOptions to = o;
+  to.tileSize = 0;
+  to.seed = derivedSeed(o.seed, kStreamTile, t.index);
+  if (!o.regionLabels.empty())
+  {
+    to.regionLabels.clear();
+    for (int j = 0; j < t.regionHeight; ++j)
+    {
+      const auto row = o.regionLabels.begin() +
+        static_cast<std::ptrdiff_t>(
+          static_cast<std::size_t>(t.regionY0 + j) * static_cast<std::size_t>(outputWidth) +
+          static_cast<std::size_t>(t.regionX0));
+      to.regionLabels.insert(to.regionLabels.end(), row, row + t.regionWidth);
+    }
+  }
+  const ProgressReport whole = o.progress;
+  to.progress = [whole, done, tiles](double f, const std::string& stage)
+  {
+    const double share = kTiledPlacementShare / static_cast<double>(tiles);
+    reportProgress(whole, share * (static_cast<double>(done) + f), stage);
+  };
+  return to;
+}
+
+// Tiling.h: the tiles in their fixed order place their feature patches, then
+// in the same order fill what is left, each on its region with what the
+// tiles before it wrote held as known; then the whole output is finished at
+// once, as an untiled synthesis is. Features first, over all tiles, as
+// without tiles: a tile's fill would otherwise cover the strokes in its halo
+// before the next tile's feature patches could lay them.
+SynthesisResult synthesizeTiled(const SynthesisTarget& target,
+  const std::vector<const Heightfield*>& exemplars,
+  const std::vector<const FeatureGraph*>& graphs,
+  const SynthesisOptions& o)
+{
+  const std::vector<SynthesisTile> tiles =
+    tileSchedule(target.field.width, target.field.height, o.tileSize, o.patchSize);
+  auto t0 = Clock::now();
+  reportProgress(o.progress, 0.0, "setup");
+  auto matcher = makeMatcher(exemplars, graphs, o);
+  SynthesisState whole(target, nullptr, graphs, o);
+  whole.boundHeights(exemplars);
+  const std::vector<FeatureSite> sites = whole.sitesInOrder();
+  SynthesisTimings timings;
+  timings.setup = secondsSince(t0);
+  enum Pass
+  {
+    Features,
+    Fill
+  };
+  for (Pass pass : { Features, Fill })
+  {
+    for (std::size_t k = 0; k < tiles.size(); ++k)
+    {
+      const SynthesisTile& t = tiles[k];
+      t0 = Clock::now();
+      const SynthesisTarget part = regionTarget(target, t);
+      const Heightfield known = whole.knownIn(t);
+      const std::size_t done = pass * tiles.size() + k;
+      const SynthesisOptions to =
+        tileOptions(o, t, target.field.width, done, kTiledPasses * tiles.size());
+      SynthesisState tile(part, matcher.get(), graphs, to, &known);
+      tile.boundHeights(exemplars);
+      tile.setTypicalNoise(matcher->dense().typicalNoise());
+      timings.setup += secondsSince(t0);
+      t0 = Clock::now();
+      std::vector<std::uint8_t> border;
+      if (pass == Features)
+      {
+        tile.placeFeatures(whole.sitesOf(t, sites));
+      }
+      else
+      {
+        // The fill keeps its region less its inner border: there its patches
+        // could not see what lies just past the region (other tiles' feature
+        // patches), so a later tile fills it, seeing both sides; known cells
+        // there stay as they are.
+        border = innerBorder(t, target.field.width, target.field.height, o.patchSize);
+        std::vector<std::uint8_t> frozen(border.size(), 0);
+        for (std::size_t c = 0; c < border.size(); ++c)
+        {
+          frozen[c] = border[c] != 0 && known.isValid(c) ? 1 : 0;
+        }
+        tile.freeze(std::move(frozen));
+        tile.fill();
+      }
+      whole.adopt(t, tile, border);
+      (pass == Features ? timings.features : timings.fill) += secondsSince(t0);
+    }
+  }
+  t0 = Clock::now();
+  const std::string backend = matcher->backendName();
+  const std::vector<std::string> matcherWarnings = matcher->warnings();
+  matcher.reset();
+  whole.report(kTiledPlacementShare, "finishing");
+  SynthesisResult r = whole.finish();
+  timings.finish = secondsSince(t0);
+  r.timings = timings;
+  r.backend = backend;
+  r.warnings.insert(r.warnings.begin(), matcherWarnings.begin(), matcherWarnings.end());
+  r.warnings.insert(r.warnings.begin(), target.warnings.begin(), target.warnings.end());
+  return r;
+}
 
 } // namespace
 
@@ -1288,17 +1550,15 @@ SynthesisResult synthesize(const SynthesisTarget& target,
       }
     }
   }
+  if (o.tileSize > 0)
+  {
+    return synthesizeTiled(target, exemplars, graphs, o);
+  }
   auto t0 = Clock::now();
   reportProgress(o.progress, 0.0, "setup");
-  MatcherOptions mo;
-  mo.patchSize = o.patchSize;
-  mo.backend = o.backend;
-  mo.k = o.k;
-  mo.weights.verticalOffset = o.verticalOffset;
-  mo.pool = o.pool;
-  auto matcher = std::make_unique<PatchMatcher>(exemplars, graphs, mo);
+  auto matcher = makeMatcher(exemplars, graphs, o);
   checkCancellation(); // the set-up's parts take a tenth of a second each at 1024^2
-  SynthesisState state(target, *matcher, graphs, o);
+  SynthesisState state(target, matcher.get(), graphs, o);
   checkCancellation();
   state.boundHeights(exemplars);
   state.setTypicalNoise(matcher->dense().typicalNoise());

@@ -92,6 +92,11 @@ struct SynthesisOptions
   // label missing from the map may use every exemplar).
   std::vector<int> regionLabels;
   std::vector<std::vector<int>> regionExemplars;
+  // Tiled synthesis (Tiling.h): square tiles of this many cells (at least two
+  // patches), each synthesised on its own with a halo of one patch in an order
+  // fixed by the tile grid, then the whole output finished at once; peak
+  // memory of the placement follows the tile, not the output. 0: one piece.
+  int tileSize = 0;
   // The exemplars' feature candidate pool at this patch size, prepared before
   // (SynthesisSetup::pool, perhaps read from the exemplar cache); null: built here.
   std::shared_ptr<const CandidatePool> pool;

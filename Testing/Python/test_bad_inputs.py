@@ -101,7 +101,10 @@ CASES = [
     ("render-azimuth-inf", ["render", "$dem", "--azimuth", "inf", "-o", "^out.png"], 2, r"--azimuth"),
     ("render-exaggeration-inf", ["render", "$dem", "--exaggeration", "inf", "-o", "^out.png"], 2,
      r"--exaggeration"),
-    # Tiled export (issue 22) --------------------------------------------------------------------
+    # Tiled export and synthesis (issue 22) ------------------------------------------------------
+    ("synth-tile-too-small", ["synth", "--exemplar", "$dem", "--sketch", "$strokes", "--tile-size", "100",
+                              "-o", "^out.tif"], 2,
+     r"Tiles of 100 cells are too small for patches of 80: a tile must be at least two patches wide \(160 cells\)"),
     ("tiles-png-not-engine-size", ["convert", "$dem", "--tile-size", "250", "-o", "^t.png"], 1,
      r"2\^k \+ 1 samples a side \(33 to 8193\), not 250: try 129 or 257"),
     ("tiles-raw-too-small", ["convert", "$dem", "--tile-size", "17", "-o", "^t.raw"], 1, r"not 17: try 33"),

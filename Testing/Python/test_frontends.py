@@ -227,6 +227,20 @@ class FrontEndsTest(unittest.TestCase):
         self.assertFalse(np.array_equal(vtk_to_numpy(filtered.GetPointData().GetArray("Elevation")),
                                         vtk_to_numpy(default.GetPointData().GetArray("Elevation"))))
 
+    def test_a_tiled_synthesis_gives_the_same_terrain(self):
+        exemplar = simple.TerrainReader(FileName=self.colorado)
+        sketch = simple.PNGSeriesReader(FileNames=[self.strokes])
+        tile = 3 * PATCH  # 2 x 2 tiles over 160 x 160 cells
+        synth = simple.TerrainSynthesis(Exemplars=[exemplar], Sketch=sketch, OutputSize=[160, 160],
+                                        PatchSize=PATCH, Backend=CPU, Seed=SEED, TileSize=tile)
+        synth.UpdatePipeline()
+        tiled = sm.Fetch(synth, arg1=None, arg2=None, idx=0)
+        self.assert_same_terrain(tiled, self.cli(self.colorado, self.strokes, "--size", "160x160",
+                                                 "--tile-size", str(tile)))
+        whole = self.cli(self.colorado, self.strokes, "--size", "160x160")
+        self.assertFalse(np.array_equal(vtk_to_numpy(tiled.GetPointData().GetArray("Elevation")),
+                                        vtk_to_numpy(whole.GetPointData().GetArray("Elevation"))))
+
     def test_a_patch_size_off_the_step_is_refused_by_the_filter_too(self):
         exemplar = simple.TerrainReader(FileName=self.colorado)
         sketch = simple.PNGSeriesReader(FileNames=[self.strokes])

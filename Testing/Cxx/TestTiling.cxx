@@ -1,0 +1,207 @@
+// Tiled synthesis (Synthesis/Tiling.h): the schedule keeps the tiles of a
+// colour class apart, every cell belongs to one tile, and a tiled synthesis
+// of a real exemplar is deterministic, fills every cell, and leaves no
+// straight step along the tiles' edges.
+#include "Core/Error.h"
+#include "Core/HeightfieldIO.h"
+#include "Synthesis/Setup.h"
+#include "Synthesis/Synthesizer.h"
+#include "Synthesis/Tiling.h"
+#include "TestData.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+using namespace tsynth;
+
+namespace
+{
+
+bool overlap(const SynthesisTile& a, const SynthesisTile& b)
+{
+  return a.regionX0 < b.regionX0 + b.regionWidth && b.regionX0 < a.regionX0 + a.regionWidth &&
+    a.regionY0 < b.regionY0 + b.regionHeight && b.regionY0 < a.regionY0 + a.regionHeight;
+}
+
+// The set-up of a 256 x 256 terrain at patch 32 from the bundled Colorado DEM
+// and the Y of ridges, made once.
+const SynthesisSetup& yOverColoradoSetup()
+{
+  static const SynthesisSetup setup = []
+  {
+    SetupInputs in;
+    in.exemplars.push_back(readHeightfield(test::realDem("colorado.png")));
+    in.sketch =
+      readColourImage((test::bundledData() / "sketches" / "strokes_y_ridges.png").string());
+    in.grid.width = 256;
+    in.grid.height = 256;
+    in.patchSize = 32;
+    in.openClMatcher = false;
+    return prepareSynthesis(in);
+  }();
+  return setup;
+}
+
+// That terrain in tiles of `tile` cells (0: one piece).
+SynthesisResult yOverColorado(int tile)
+{
+  const SynthesisSetup& setup = yOverColoradoSetup();
+  SynthesisOptions o;
+  o.patchSize = 32;
+  o.backend = Backend::Cpu;
+  o.pool = setup.pool;
+  o.tileSize = tile;
+  return synthesize(setup, o);
+}
+
+// The largest ratio, over the columns (or rows) of `hf`, of the mean height
+// step across a line to the median of the 8 lines beside it: a straight seam
+// or step along a tile's edge stands out as a line steeper than its neighbours.
+double steepestLineRatio(const Heightfield& hf, bool columns)
+{
+  const int lines = (columns ? hf.width : hf.height) - 1;
+  const int along = columns ? hf.height : hf.width;
+  std::vector<double> step(static_cast<std::size_t>(lines), 0.0);
+  for (int l = 0; l < lines; ++l)
+  {
+    for (int k = 0; k < along; ++k)
+    {
+      step[static_cast<std::size_t>(l)] +=
+        columns ? std::abs(hf.at(l + 1, k) - hf.at(l, k)) : std::abs(hf.at(k, l + 1) - hf.at(k, l));
+    }
+  }
+  double worst = 0.0;
+  for (int l = 4; l < lines - 4; ++l)
+  {
+    std::vector<double> beside;
+    for (int d = -4; d <= 4; ++d)
+    {
+      if (d != 0)
+      {
+        beside.push_back(step[static_cast<std::size_t>(l + d)]);
+      }
+    }
+    std::nth_element(beside.begin(), beside.begin() + 4, beside.end());
+    worst = std::max(worst, step[static_cast<std::size_t>(l)] / beside[4]);
+  }
+  return worst;
+}
+
+} // namespace
+
+TEST(Tiling, TilesOfAColourClassNeverShareACellOfTheirRegions)
+{
+  const int width = 1000;
+  const int height = 700;
+  const std::vector<SynthesisTile> tiles = tileSchedule(width, height, 160, 80);
+  ASSERT_EQ(tiles.size(), 7u * 5u);
+  std::vector<int> owners(static_cast<std::size_t>(width) * height, 0);
+  for (std::size_t a = 0; a < tiles.size(); ++a)
+  {
+    const SynthesisTile& t = tiles[a];
+    if (a > 0)
+    {
+      EXPECT_GE(t.colour, tiles[a - 1].colour) << "the classes run in order";
+    }
+    EXPECT_EQ(t.colour, (t.column % 2) + 2 * (t.row % 2));
+    for (std::size_t b = a + 1; b < tiles.size(); ++b)
+    {
+      if (tiles[b].colour == t.colour)
+      {
+        EXPECT_FALSE(overlap(t, tiles[b]))
+          << "tiles " << t.column << "," << t.row << " and " << tiles[b].column << ","
+          << tiles[b].row << " of one class share cells";
+      }
+    }
+    for (int y = t.y0; y < t.y0 + t.height; ++y)
+    {
+      for (int x = t.x0; x < t.x0 + t.width; ++x)
+      {
+        ++owners[static_cast<std::size_t>(y) * width + x];
+      }
+    }
+    // The region is the tile and a patch round it, within the output.
+    EXPECT_EQ(t.regionX0, std::max(0, t.x0 - 80));
+    EXPECT_EQ(t.regionX0 + t.regionWidth, std::min(width, t.x0 + t.width + 80));
+  }
+  EXPECT_TRUE(std::all_of(owners.begin(), owners.end(), [](int n) { return n == 1; }))
+    << "every cell belongs to exactly one tile";
+}
+
+TEST(Tiling, TheInnerBorderLiesOutsideTheTileAndOnlyInsideTheOutput)
+{
+  const std::vector<SynthesisTile> tiles = tileSchedule(500, 500, 200, 80);
+  for (const SynthesisTile& t : tiles)
+  {
+    const std::vector<std::uint8_t> border = innerBorder(t, 500, 500, 80);
+    for (int j = 0; j < t.regionHeight; ++j)
+    {
+      for (int i = 0; i < t.regionWidth; ++i)
+      {
+        const int x = t.regionX0 + i;
+        const int y = t.regionY0 + j;
+        const bool own = x >= t.x0 && x < t.x0 + t.width && y >= t.y0 && y < t.y0 + t.height;
+        const bool onBorder =
+          border[static_cast<std::size_t>(j) * static_cast<std::size_t>(t.regionWidth) +
+            static_cast<std::size_t>(i)] != 0;
+        ASSERT_FALSE(own && onBorder) << "a tile keeps its own cells";
+        // Half a patch (40 cells) in from an edge inside the output, not on the output's edge.
+        const bool expected = !own &&
+          ((t.regionX0 > 0 && i < 40) ||
+            (x < 499 && i >= t.regionWidth - 40 && t.regionX0 + t.regionWidth < 500) ||
+            (t.regionY0 > 0 && j < 40) ||
+            (t.regionY0 + t.regionHeight < 500 && j >= t.regionHeight - 40));
+        ASSERT_EQ(onBorder, expected) << "cell " << x << "," << y;
+      }
+    }
+  }
+}
+
+TEST(Tiling, ATileNarrowerThanTwoPatchesIsRefusedWithTheSmallestThatWorks)
+{
+  try
+  {
+    tileSchedule(1000, 1000, 100, 80);
+    FAIL() << "tiles of 100 cells at patch 80 were accepted";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE(
+      std::string(e.what()).find("at least two patches wide (160 cells)"), std::string::npos)
+      << e.what();
+  }
+}
+
+TEST(TiledSynthesis, IsDeterministicFillsEveryCellAndShowsNoTileEdge)
+{
+  const SynthesisResult a = yOverColorado(64);
+  const SynthesisResult b = yOverColorado(64);
+  ASSERT_EQ(a.terrain.z.size(), 256u * 256u);
+  EXPECT_EQ(a.terrain.z, b.terrain.z) << "the same tiles and seed gave other heights";
+  EXPECT_EQ(a.terrain.validCount(), a.terrain.size());
+  // Every cell was written by a placement, and every id names one.
+  for (int id : a.patchId)
+  {
+    ASSERT_GE(id, 0);
+    ASSERT_LT(static_cast<std::size_t>(id), a.placements.size());
+  }
+  for (std::size_t p = 0; p < a.placements.size(); ++p)
+  {
+    EXPECT_EQ(a.placements[p].order, static_cast<int>(p));
+  }
+  // No line, least of all along the tiles' edges (every 64 cells), is much
+  // steeper than those beside it; the same measure on the untiled terrain.
+  const SynthesisResult whole = yOverColorado(0);
+  const double untiled =
+    std::max(steepestLineRatio(whole.terrain, true), steepestLineRatio(whole.terrain, false));
+  const double tiled =
+    std::max(steepestLineRatio(a.terrain, true), steepestLineRatio(a.terrain, false));
+  EXPECT_LT(tiled, 1.5 * untiled) << "tiled " << tiled << ", untiled " << untiled;
+  // And another tile grid gives another, equally complete terrain.
+  const SynthesisResult c = yOverColorado(96);
+  EXPECT_NE(a.terrain.z, c.terrain.z);
+  EXPECT_EQ(c.terrain.validCount(), c.terrain.size());
+}
