@@ -1209,47 +1209,66 @@ public:
     return known;
   }
 
-  // Takes over what a tile's placement made of its region: heights, the
-  // placements (renumbered after those before, moved into the output's
-  // frame) and the cells they wrote.
-  // `dropped` (over the region, may be empty): cells not taken over.
-  void adopt(const SynthesisTile& t,
-    const SynthesisState& tile,
-    const std::vector<std::uint8_t>& dropped)
+  // What this tile's placement made of its region (this state is the tile's),
+  // less the `dropped` cells (over the region; may be empty).
+  TileOutcome outcome(std::size_t tile, const std::vector<std::uint8_t>& dropped) const
+  {
+    TileOutcome o;
+    o.tile = tile;
+    o.kept.resize(out_.size());
+    for (std::size_t c = 0; c < out_.size(); ++c)
+    {
+      o.kept[c] = filled_[c] != 0 && (dropped.empty() || dropped[c] == 0) ? 1 : 0;
+    }
+    o.heights = out_.z;
+    o.patchId.assign(result_.patchId.begin(), result_.patchId.end());
+    o.seam = result_.seam;
+    o.matchCost = result_.matchCost;
+    o.placements = result_.placements;
+    o.anchoredMerges = result_.anchoredMerges;
+    return o;
+  }
+
+  // Takes over a tile's outcome (this state is the whole output's): its kept
+  // cells, and its placements, numbered after those before and moved into the
+  // output's frame.
+  void adopt(const SynthesisTile& t, const TileOutcome& tile)
   {
     const int first = static_cast<int>(result_.placements.size());
     for (int j = 0; j < t.regionHeight; ++j)
     {
       for (int i = 0; i < t.regionWidth; ++i)
       {
-        const std::size_t from = tile.out_.index(i, j);
+        const std::size_t from =
+          static_cast<std::size_t>(j) * static_cast<std::size_t>(t.regionWidth) +
+          static_cast<std::size_t>(i);
         const std::size_t to = out_.index(t.regionX0 + i, t.regionY0 + j);
-        if (tile.filled_[from] == 0 || (!dropped.empty() && dropped[from] != 0))
+        if (tile.kept[from] == 0)
         {
           continue;
         }
-        out_.z[to] = tile.out_.z[from];
+        out_.z[to] = tile.heights[from];
         filled_[to] = 1;
-        if (tile.result_.patchId[from] >= 0)
+        if (tile.patchId[from] >= 0)
         {
-          result_.patchId[to] = first + tile.result_.patchId[from];
-          result_.matchCost[to] = tile.result_.matchCost[from];
-          result_.seam[to] = tile.result_.seam[from];
+          result_.patchId[to] = first + tile.patchId[from];
+          result_.matchCost[to] = tile.matchCost[from];
+          result_.seam[to] = tile.seam[from];
         }
-        else if (tile.result_.seam[from] != 0)
+        else if (tile.seam[from] != 0)
         {
           result_.seam[to] = 1;
         }
       }
     }
-    for (Placement p : tile.result_.placements)
+    for (Placement p : tile.placements)
     {
       p.order += first;
       p.x0 += t.regionX0;
       p.y0 += t.regionY0;
       result_.placements.push_back(p);
     }
-    result_.anchoredMerges += tile.result_.anchoredMerges;
+    result_.anchoredMerges += static_cast<std::size_t>(tile.anchoredMerges);
   }
 
 private:
@@ -1427,6 +1446,135 @@ SynthesisOptions tileOptions(const SynthesisOptions& o,
   return to;
 }
 
+// What a rank that failed a tile shares in place of its outcomes, before the
+// sentence that says why (outcomes never start with it: they start with a count).
+const std::string kFailedTile = "tsynth: failed tile\n";
+
+// The two passes of a tiled synthesis over its tiles.
+enum class TilePass
+{
+  Features,
+  Fill
+};
+
+// Everything the tiles of one tiled synthesis share.
+struct TiledRun
+{
+  const SynthesisTarget& target;
+  const std::vector<const Heightfield*>& exemplars;
+  const std::vector<const FeatureGraph*>& graphs;
+  const SynthesisOptions& o;
+  std::vector<SynthesisTile> tiles;
+  PatchMatcher& matcher;
+  SynthesisState& whole;
+  std::vector<FeatureSite> sites;
+  SynthesisTimings timings;
+
+  // Places tile k in this pass, on the whole output as it stands.
+  TileOutcome place(TilePass pass, std::size_t k)
+  {
+    const SynthesisTile& t = tiles[k];
+    auto t0 = Clock::now();
+    const SynthesisTarget part = regionTarget(target, t);
+    const Heightfield known = whole.knownIn(t);
+    const std::size_t done = (pass == TilePass::Fill ? tiles.size() : 0) + k;
+    const SynthesisOptions to =
+      tileOptions(o, t, target.field.width, done, kTiledPasses * tiles.size());
+    SynthesisState tile(part, &matcher, graphs, to, &known);
+    tile.boundHeights(exemplars);
+    tile.setTypicalNoise(matcher.dense().typicalNoise());
+    timings.setup += secondsSince(t0);
+    t0 = Clock::now();
+    std::vector<std::uint8_t> border;
+    if (pass == TilePass::Features)
+    {
+      tile.placeFeatures(whole.sitesOf(t, sites));
+    }
+    else
+    {
+      // The fill keeps its region less its inner border: there its patches
+      // could not see what lies just past the region (other tiles' feature
+      // patches), so a later tile fills it, seeing both sides; known cells
+      // there stay as they are.
+      border = innerBorder(t, target.field.width, target.field.height, o.patchSize);
+      std::vector<std::uint8_t> frozen(border.size(), 0);
+      for (std::size_t c = 0; c < border.size(); ++c)
+      {
+        frozen[c] = border[c] != 0 && known.isValid(c) ? 1 : 0;
+      }
+      tile.freeze(std::move(frozen));
+      tile.fill();
+    }
+    TileOutcome outcome = tile.outcome(k, border);
+    (pass == TilePass::Features ? timings.features : timings.fill) += secondsSince(t0);
+    return outcome;
+  }
+
+  // One step: the tiles [first, last) of one colour class in this pass, this
+  // process's share placed here, everyone's shared, all taken over in
+  // schedule order.
+  void step(TilePass pass, std::size_t first, std::size_t last)
+  {
+    const SynthesisOptions::TileSharing& share = o.sharing;
+    if (share.ranks <= 1)
+    {
+      for (std::size_t k = first; k < last; ++k)
+      {
+        whole.adopt(tiles[k], place(pass, k));
+      }
+      return;
+    }
+    // A tile that fails here fails every rank, with the same sentence, after
+    // the gathering they all wait in: no rank is left waiting for this one.
+    std::vector<TileOutcome> outcomes;
+    std::string failure;
+    for (std::size_t k = first; k < last && failure.empty(); ++k)
+    {
+      if ((k - first) % static_cast<std::size_t>(share.ranks) ==
+        static_cast<std::size_t>(share.rank))
+      {
+        try
+        {
+          outcomes.push_back(place(pass, k));
+        }
+        catch (const std::exception& e)
+        {
+          failure = "Tile " + std::to_string(tiles[k].column) + ", " +
+            std::to_string(tiles[k].row) + " (rank " + std::to_string(share.rank) +
+            ") failed: " + e.what();
+        }
+      }
+    }
+    const std::vector<std::string> all =
+      share.allGather(failure.empty() ? writeOutcomes(outcomes) : kFailedTile + failure);
+    outcomes.clear();
+    for (const std::string& bytes : all)
+    {
+      if (bytes.compare(0, kFailedTile.size(), kFailedTile) == 0)
+      {
+        throw Error(bytes.substr(kFailedTile.size()));
+      }
+      for (TileOutcome& outcome : readOutcomes(bytes))
+      {
+        outcomes.push_back(std::move(outcome));
+      }
+    }
+    std::sort(outcomes.begin(),
+      outcomes.end(),
+      [](const TileOutcome& a, const TileOutcome& b) { return a.tile < b.tile; });
+    if (outcomes.size() != last - first)
+    {
+      throw Error("The processes of this tiled synthesis placed " +
+        std::to_string(outcomes.size()) + " of the " + std::to_string(last - first) +
+        " tiles of a step: they disagree on the tile grid.");
+    }
+    for (const TileOutcome& outcome : outcomes)
+    {
+      whole.adopt(tiles[outcome.tile], outcome);
+    }
+  }
+};
+
 // Tiling.h: the tiles in their fixed order place their feature patches, then
 // in the same order fill what is left, each on its region with what the
 // tiles before it wrote held as known; then the whole output is finished at
@@ -1438,59 +1586,33 @@ SynthesisResult synthesizeTiled(const SynthesisTarget& target,
   const std::vector<const FeatureGraph*>& graphs,
   const SynthesisOptions& o)
 {
-  const std::vector<SynthesisTile> tiles =
-    tileSchedule(target.field.width, target.field.height, o.tileSize, o.patchSize);
   auto t0 = Clock::now();
   reportProgress(o.progress, 0.0, "setup");
   auto matcher = makeMatcher(exemplars, graphs, o);
   SynthesisState whole(target, nullptr, graphs, o);
   whole.boundHeights(exemplars);
-  const std::vector<FeatureSite> sites = whole.sitesInOrder();
-  SynthesisTimings timings;
-  timings.setup = secondsSince(t0);
-  enum Pass
+  TiledRun run{ target,
+    exemplars,
+    graphs,
+    o,
+    tileSchedule(target.field.width, target.field.height, o.tileSize, o.patchSize),
+    *matcher,
+    whole,
+    whole.sitesInOrder(),
+    {} };
+  run.timings.setup = secondsSince(t0);
+  for (TilePass pass : { TilePass::Features, TilePass::Fill })
   {
-    Features,
-    Fill
-  };
-  for (Pass pass : { Features, Fill })
-  {
-    for (std::size_t k = 0; k < tiles.size(); ++k)
+    std::size_t first = 0;
+    while (first < run.tiles.size())
     {
-      const SynthesisTile& t = tiles[k];
-      t0 = Clock::now();
-      const SynthesisTarget part = regionTarget(target, t);
-      const Heightfield known = whole.knownIn(t);
-      const std::size_t done = pass * tiles.size() + k;
-      const SynthesisOptions to =
-        tileOptions(o, t, target.field.width, done, kTiledPasses * tiles.size());
-      SynthesisState tile(part, matcher.get(), graphs, to, &known);
-      tile.boundHeights(exemplars);
-      tile.setTypicalNoise(matcher->dense().typicalNoise());
-      timings.setup += secondsSince(t0);
-      t0 = Clock::now();
-      std::vector<std::uint8_t> border;
-      if (pass == Features)
+      std::size_t last = first;
+      while (last < run.tiles.size() && run.tiles[last].colour == run.tiles[first].colour)
       {
-        tile.placeFeatures(whole.sitesOf(t, sites));
+        ++last;
       }
-      else
-      {
-        // The fill keeps its region less its inner border: there its patches
-        // could not see what lies just past the region (other tiles' feature
-        // patches), so a later tile fills it, seeing both sides; known cells
-        // there stay as they are.
-        border = innerBorder(t, target.field.width, target.field.height, o.patchSize);
-        std::vector<std::uint8_t> frozen(border.size(), 0);
-        for (std::size_t c = 0; c < border.size(); ++c)
-        {
-          frozen[c] = border[c] != 0 && known.isValid(c) ? 1 : 0;
-        }
-        tile.freeze(std::move(frozen));
-        tile.fill();
-      }
-      whole.adopt(t, tile, border);
-      (pass == Features ? timings.features : timings.fill) += secondsSince(t0);
+      run.step(pass, first, last);
+      first = last;
     }
   }
   t0 = Clock::now();
@@ -1499,8 +1621,8 @@ SynthesisResult synthesizeTiled(const SynthesisTarget& target,
   matcher.reset();
   whole.report(kTiledPlacementShare, "finishing");
   SynthesisResult r = whole.finish();
-  timings.finish = secondsSince(t0);
-  r.timings = timings;
+  run.timings.finish = secondsSince(t0);
+  r.timings = run.timings;
   r.backend = backend;
   r.warnings.insert(r.warnings.begin(), matcherWarnings.begin(), matcherWarnings.end());
   r.warnings.insert(r.warnings.begin(), target.warnings.begin(), target.warnings.end());

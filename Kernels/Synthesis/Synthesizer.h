@@ -97,6 +97,17 @@ struct SynthesisOptions
   // fixed by the tile grid, then the whole output finished at once; peak
   // memory of the placement follows the tile, not the output. 0: one piece.
   int tileSize = 0;
+  // A tiled synthesis shared among processes (ParaView's MPI ranks): tile k of
+  // each step (one pass over one colour class) is placed by rank k mod ranks,
+  // and after each step allGather hands every rank's outcomes (its argument,
+  // this rank's) to every rank, in rank order. Every rank then holds the same
+  // whole terrain, bit for bit what one process makes. ranks 1: no sharing.
+  struct TileSharing
+  {
+    int rank = 0;
+    int ranks = 1;
+    std::function<std::vector<std::string>(const std::string& mine)> allGather;
+  } sharing;
   // The exemplars' feature candidate pool at this patch size, prepared before
   // (SynthesisSetup::pool, perhaps read from the exemplar cache); null: built here.
   std::shared_ptr<const CandidatePool> pool;

@@ -158,3 +158,110 @@ SynthesisTarget regionTarget(const SynthesisTarget& target, const SynthesisTile&
 }
 
 } // namespace tsynth
+
+namespace tsynth
+{
+
+namespace
+{
+
+template<class T>
+void put(std::string& out, const std::vector<T>& values)
+{
+  const std::uint64_t n = values.size();
+  out.append(reinterpret_cast<const char*>(&n), sizeof n);
+  out.append(reinterpret_cast<const char*>(values.data()), n * sizeof(T));
+}
+
+void put(std::string& out, std::uint64_t value)
+{
+  out.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+class Reader
+{
+public:
+  explicit Reader(const std::string& bytes)
+    : bytes_(bytes)
+  {
+  }
+
+  std::uint64_t number()
+  {
+    std::uint64_t v = 0;
+    take(&v, sizeof v);
+    return v;
+  }
+
+  template<class T>
+  std::vector<T> values()
+  {
+    const std::uint64_t n = number();
+    if (n > (bytes_.size() - at_) / sizeof(T))
+    {
+      throw Error("A shared tile's data is cut short: the processes of this synthesis disagree.");
+    }
+    std::vector<T> v(n);
+    take(v.data(), n * sizeof(T));
+    return v;
+  }
+
+private:
+  void take(void* to, std::size_t n)
+  {
+    if (n > bytes_.size() - at_)
+    {
+      throw Error("A shared tile's data is cut short: the processes of this synthesis disagree.");
+    }
+    std::copy_n(bytes_.data() + at_, n, static_cast<char*>(to));
+    at_ += n;
+  }
+
+  const std::string& bytes_;
+  std::size_t at_ = 0;
+};
+
+} // namespace
+
+std::string writeOutcomes(const std::vector<TileOutcome>& outcomes)
+{
+  std::string out;
+  put(out, static_cast<std::uint64_t>(outcomes.size()));
+  for (const TileOutcome& o : outcomes)
+  {
+    put(out, static_cast<std::uint64_t>(o.tile));
+    put(out, o.kept);
+    put(out, o.heights);
+    put(out, o.patchId);
+    put(out, o.seam);
+    put(out, o.matchCost);
+    put(out, o.placements);
+    put(out, o.anchoredMerges);
+  }
+  return out;
+}
+
+std::vector<TileOutcome> readOutcomes(const std::string& bytes)
+{
+  Reader in(bytes);
+  const std::uint64_t count = in.number();
+  if (count > bytes.size())
+  {
+    throw Error("A shared tile's data is damaged: the processes of this synthesis disagree.");
+  }
+  std::vector<TileOutcome> outcomes(count);
+  for (TileOutcome& o : outcomes)
+  {
+    o.tile = in.number();
+    o.kept = in.values<std::uint8_t>();
+    o.heights = in.values<float>();
+    o.patchId = in.values<std::int32_t>();
+    o.seam = in.values<std::uint8_t>();
+    o.matchCost = in.values<float>();
+    o.placements = in.values<Placement>();
+    o.anchoredMerges = in.number();
+  }
+  return outcomes;
+}
+
+} // namespace tsynth

@@ -11,10 +11,12 @@
 // grid, never on how many processes share the work.
 #pragma once
 
+#include "Synthesizer.h"
 #include "Target.h"
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace tsynth
@@ -61,6 +63,27 @@ std::vector<std::uint8_t> innerBorder(const SynthesisTile& tile,
   int width,
   int height,
   int patchSize);
+
+// What one tile's placement made of its region, which the whole output takes
+// over: the cells it keeps, the placements that wrote them (numbered and
+// placed within the tile's region), and how many merges were anchored.
+struct TileOutcome
+{
+  std::size_t tile = 0;              // its place in tileSchedule()
+  std::vector<std::uint8_t> kept;    // per region cell: 1 where taken over
+  std::vector<float> heights;        // per region cell
+  std::vector<std::int32_t> patchId; // the tile's own placement number (-1: none)
+  std::vector<std::uint8_t> seam;
+  std::vector<float> matchCost;
+  std::vector<Placement> placements;
+  std::uint64_t anchoredMerges = 0;
+};
+
+// Outcomes as bytes and back, for processes that share a tiled synthesis (all
+// of one build: the bytes are the values' own). readOutcomes throws
+// tsynth::Error if the bytes are cut short.
+std::string writeOutcomes(const std::vector<TileOutcome>& outcomes);
+std::vector<TileOutcome> readOutcomes(const std::string& bytes);
 
 // The part of a target a tile synthesises: its cells in the region, and the
 // feature graph moved into the region's frame (lines outside it are kept, off

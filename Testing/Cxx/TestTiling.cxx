@@ -13,7 +13,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
+#include <mutex>
 #include <numeric>
+#include <thread>
 
 using namespace tsynth;
 
@@ -55,6 +58,96 @@ SynthesisResult yOverColorado(int tile)
   o.pool = setup.pool;
   o.tileSize = tile;
   return synthesize(setup, o);
+}
+
+// Stands in for ParaView's MPI ranks: `ranks` threads, each running the same
+// tiled synthesis with its share of the tiles, gathering through memory.
+class Ranks
+{
+public:
+  explicit Ranks(int ranks)
+    : slots_(static_cast<std::size_t>(ranks))
+  {
+  }
+
+  std::vector<std::string> allGather(int rank, const std::string& mine)
+  {
+    std::unique_lock<std::mutex> lock(mutex_);
+    const std::size_t round = round_;
+    slots_[static_cast<std::size_t>(rank)] = mine;
+    if (++arrived_ == slots_.size())
+    {
+      gathered_ = slots_;
+      arrived_ = 0;
+      ++round_;
+      ready_.notify_all();
+    }
+    else
+    {
+      ready_.wait(lock, [&] { return round_ != round; });
+    }
+    return gathered_;
+  }
+
+private:
+  std::mutex mutex_;
+  std::condition_variable ready_;
+  std::vector<std::string> slots_, gathered_;
+  std::size_t arrived_ = 0;
+  std::size_t round_ = 0;
+};
+
+// yOverColorado(tile) shared among `ranks` processes: every rank's terrain
+// (or, where a rank failed, its sentence in `failures`). `failingRank`'s
+// progress reports throw once its fill begins.
+std::vector<SynthesisResult> yOverColoradoOnRanks(int tile,
+  int ranks,
+  int failingRank = -1,
+  std::vector<std::string>* failures = nullptr)
+{
+  const SynthesisSetup& setup = yOverColoradoSetup();
+  Ranks world(ranks);
+  std::vector<SynthesisResult> results(static_cast<std::size_t>(ranks));
+  std::vector<std::thread> threads;
+  for (int r = 0; r < ranks; ++r)
+  {
+    threads.emplace_back(
+      [&, r]
+      {
+        SynthesisOptions o;
+        o.patchSize = 32;
+        o.backend = Backend::Cpu;
+        o.pool = setup.pool;
+        o.tileSize = tile;
+        o.sharing.rank = r;
+        o.sharing.ranks = ranks;
+        o.sharing.allGather = [&world, r](const std::string& mine)
+        { return world.allGather(r, mine); };
+        if (r == failingRank)
+        {
+          o.progress = [](double, const std::string& stage)
+          {
+            if (stage == "fill")
+            {
+              throw Error("the disk is on fire.");
+            }
+          };
+        }
+        try
+        {
+          results[static_cast<std::size_t>(r)] = synthesize(setup, o);
+        }
+        catch (const Error& e)
+        {
+          (*failures)[static_cast<std::size_t>(r)] = e.what();
+        }
+      });
+  }
+  for (std::thread& t : threads)
+  {
+    t.join();
+  }
+  return results;
 }
 
 // The largest ratio, over the columns (or rows) of `hf`, of the mean height
@@ -204,4 +297,51 @@ TEST(TiledSynthesis, IsDeterministicFillsEveryCellAndShowsNoTileEdge)
   const SynthesisResult c = yOverColorado(96);
   EXPECT_NE(a.terrain.z, c.terrain.z);
   EXPECT_EQ(c.terrain.validCount(), c.terrain.size());
+}
+
+TEST(TiledSynthesis, SharedAmongRanksEveryRankHoldsTheOneProcessTerrain)
+{
+  const SynthesisResult one = yOverColorado(64);
+  for (int ranks : { 2, 3 })
+  {
+    const std::vector<SynthesisResult> shared = yOverColoradoOnRanks(64, ranks);
+    for (std::size_t r = 0; r < shared.size(); ++r)
+    {
+      EXPECT_EQ(shared[r].terrain.z, one.terrain.z) << "rank " << r << " of " << ranks;
+      EXPECT_EQ(shared[r].patchId, one.patchId) << "rank " << r << " of " << ranks;
+      EXPECT_EQ(shared[r].placements.size(), one.placements.size());
+    }
+  }
+}
+
+TEST(TiledSynthesis, SharedTileDataCutShortIsRefused)
+{
+  TileOutcome o;
+  o.tile = 3;
+  o.kept = { 1, 0, 1 };
+  o.heights = { 1.0f, 2.0f, 3.0f };
+  o.patchId = { 0, -1, 0 };
+  o.seam = { 0, 0, 1 };
+  o.matchCost = { 0.5f, 0.5f, 0.5f };
+  o.placements.resize(1);
+  o.placements[0].x0 = 17;
+  const std::string bytes = writeOutcomes({ o });
+  const std::vector<TileOutcome> back = readOutcomes(bytes);
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_EQ(back[0].tile, 3u);
+  EXPECT_EQ(back[0].heights, o.heights);
+  EXPECT_EQ(back[0].placements[0].x0, 17);
+  EXPECT_THROW(readOutcomes(bytes.substr(0, bytes.size() - 5)), Error);
+}
+
+TEST(TiledSynthesis, ATileThatFailsOnOneRankFailsEveryRankWithOneSentence)
+{
+  std::vector<std::string> failures(2);
+  yOverColoradoOnRanks(64, 2, 1, &failures);
+  for (const std::string& f : failures)
+  {
+    // Every rank stops (none waits for the failed one) and says which tile failed where.
+    EXPECT_NE(f.find("(rank 1) failed: the disk is on fire."), std::string::npos) << f;
+    EXPECT_EQ(f.rfind("Tile ", 0), 0u) << f;
+  }
 }
