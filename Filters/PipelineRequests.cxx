@@ -69,6 +69,9 @@ void requestWholeExtents(vtkInformationVector** inputVector, int ports)
     for (int c = 0; c < inputVector[port]->GetNumberOfInformationObjects(); ++c)
     {
       vtkInformation* in = inputVector[port]->GetInformationObject(c);
+      // The whole input on every rank of a parallel engine too, not its piece.
+      in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+      in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
       if (in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
       {
         int extent[6];

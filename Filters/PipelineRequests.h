@@ -16,7 +16,8 @@ class vtkInformationVector;
 namespace tsynth
 {
 
-// Asks every connection of the first `ports` input ports for its whole extent.
+// Asks every connection of the first `ports` input ports for its whole extent,
+// as one piece (on every rank of a parallel engine).
 void requestWholeExtents(vtkInformationVector** inputVector, int ports);
 
 // Whether a producer on one of the port's connections failed to announce its image (a reader

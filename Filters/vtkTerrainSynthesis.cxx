@@ -2,6 +2,7 @@
 
 #include "FeatureGraphConversion.h"
 #include "MatchingInputs.h"
+#include "ParallelPieces.h"
 #include "PipelineRequests.h"
 #include "PropertyEnums.h"
 #include "SketchInputs.h"
@@ -423,6 +424,8 @@ int vtkTerrainSynthesis::RequestInformation(vtkInformationVector** inputVector,
       const bool made = port == kTerrainPort || this->DebugOutputs;
       vtkInformation* out = outputVector->GetInformationObject(port);
       out->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), made ? wholeExtent : noExtent, 6);
+      // Each rank of a parallel engine may ask for its piece only (ParallelPieces.h).
+      out->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
       out->Set(vtkDataObject::SPACING(), grid.cellX, grid.cellY, 1.0);
       out->Set(vtkDataObject::ORIGIN(), origin, 3);
     }
@@ -614,6 +617,24 @@ void writeOutputs(vtkTerrainSynthesis* filter,
   }
 }
 
+// On ParaView's parallel engine each rank's outputs hold its piece: the
+// images their extent, the tables and lines the first piece alone.
+void keepRequestedPieces(vtkInformationVector* outputVector)
+{
+  for (int port = 0; port < kOutputPorts; ++port)
+  {
+    vtkInformation* out = outputVector->GetInformationObject(port);
+    if (auto* image = vtkImageData::GetData(outputVector, port))
+    {
+      tsynth::keepRequestedExtent(out, image);
+    }
+    else if (!tsynth::holdsFirstPiece(out))
+    {
+      vtkDataObject::GetData(outputVector, port)->Initialize();
+    }
+  }
+}
+
 void clearOutputs(vtkInformationVector* outputVector)
 {
   for (int port = 0; port < kOutputPorts; ++port)
@@ -664,11 +685,13 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
         vtkWarningMacro(<< w);
       }
       this->UpdateProgress(kSetupProgress);
-      const tsynth::SynthesisOptions o =
+      tsynth::SynthesisOptions o =
         optionsOnGrid(this, inputVector, this->RegionMaps, setup.grid, setup.exemplars.size());
+      tsynth::shareTilesAmongRanks(o);
       const tsynth::SynthesisResult r = tsynth::synthesize(setup, o);
       this->BackendUsed = r.backend;
       writeOutputs(this, setup, r, ex, outputVector);
+      keepRequestedPieces(outputVector);
       this->OutputLevel = "final";
     });
 }

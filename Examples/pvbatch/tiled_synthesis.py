@@ -1,0 +1,82 @@
+"""A tiled terrain synthesis on ParaView's MPI engine: every rank places its share of the tiles.
+
+    mpiexec -np N pvbatch Examples/pvbatch/tiled_synthesis.py --exemplar DEM [--exemplar DEM ...] \\
+        --sketch SKETCH --size WxH --tile-size T -o OUT.pvti [--patch P] [--seed S]
+
+The Terrain Synthesis filter cuts the terrain into tiles of T x T cells (at least two patches) in a
+fixed grid and places them in four colour classes; within a class, tile k goes to rank k mod N, and
+after each class the ranks share what they placed (Kernels/Synthesis/Tiling.h). Every rank then
+finishes the whole terrain and keeps its own piece, which ParaView's parallel image writer writes:
+OUT.pvti and its pieces OUT/OUT_<rank>.vti. The heights are those of `tsynth synth --tile-size T` with
+the same inputs, bit for bit, for any N (Testing/Python/test_mpi.py checks N = 1, 2 and 3).
+
+The sketch is read by its kind: poly-lines (.vtp), a DEM as target (.tif, .hgt, .asc, .vti, or a
+.png with a NAME.json sidecar), else a stroke or grey sketch map (.png, .jpg). The plugin is looked
+up in ./build (override with TSYNTH_PLUGIN=/path/to/TerrainSynthesis.so). Under `mpiexec` as root,
+Open MPI wants --allow-run-as-root (and --oversubscribe for more ranks than cores).
+"""
+import argparse
+import os
+import time
+
+from paraview import servermanager as sm
+from paraview import simple
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+PLUGIN = os.environ.get(
+    "TSYNTH_PLUGIN",
+    os.path.join(ROOT, "build", "lib", "paraview-plugins", "TerrainSynthesis", "TerrainSynthesis.so"))
+DEM_EXTENSIONS = (".tif", ".tiff", ".hgt", ".asc", ".vti")
+
+
+def arguments():
+    p = argparse.ArgumentParser(description="Tiled terrain synthesis on ParaView's MPI engine.")
+    p.add_argument("--exemplar", action="append", required=True, help="a DEM to copy terrain from (repeat)")
+    p.add_argument("--sketch", required=True, help="stroke or grey map, poly-lines (.vtp) or a DEM")
+    p.add_argument("--size", required=True, help="output size in cells, WxH")
+    p.add_argument("--tile-size", type=int, required=True, help="tile side in cells (at least two patches)")
+    p.add_argument("--patch", type=int, default=80, help="patch size in cells (default 80)")
+    p.add_argument("--seed", type=int, default=0, help="the seed (default 0)")
+    p.add_argument("-o", "--output", required=True, help="OUT.pvti")
+    a = p.parse_args()
+    try:
+        width, height = (int(v) for v in a.size.lower().split("x"))
+    except ValueError:
+        p.error("--size expects WxH in cells, such as 2048x2048, not %s" % a.size)
+    if not a.output.lower().endswith(".pvti"):
+        p.error("the output is ParaView's parallel image format: -o OUT.pvti, not %s" % a.output)
+    for path in a.exemplar + [a.sketch]:
+        if not os.path.isfile(path):
+            p.error("%s does not exist" % path)
+    a.width, a.height = width, height
+    return a
+
+
+def sketch_reader(path, exemplar):
+    ext = os.path.splitext(path)[1].lower()
+    if ext == ".vtp":
+        return simple.XMLPolyDataReader(FileName=[path])
+    if ext in DEM_EXTENSIONS or os.path.isfile(os.path.splitext(path)[0] + ".json"):
+        return simple.TerrainReader(FileName=path)
+    # The sketch's pixels laid on the exemplar's cells, as tsynth synth does.
+    return simple.TerrainSketchReader(FileName=path, ExemplarFileName=exemplar)
+
+
+def main():
+    a = arguments()
+    simple.LoadPlugin(PLUGIN, remote=True)
+    ranks = sm.ActiveConnection.GetNumberOfDataPartitions()
+    exemplars = [simple.TerrainReader(FileName=path) for path in a.exemplar]
+    synthesis = simple.TerrainSynthesis(Exemplars=exemplars, Sketch=sketch_reader(a.sketch, a.exemplar[0]),
+                                        OutputSize=[a.width, a.height], PatchSize=a.patch,
+                                        Seed=a.seed, TileSize=a.tile_size, Backend="CPU")
+    print("Synthesising %d x %d cells in tiles of %d on %d rank%s ..." % (
+        a.width, a.height, a.tile_size, ranks, "" if ranks == 1 else "s"), flush=True)
+    start = time.time()
+    simple.SaveData(a.output, proxy=synthesis, ChooseArraysToWrite=1, PointDataArrays=["Elevation"])
+    print("Wrote %s (%d piece%s) in %.1f s" % (a.output, ranks, "" if ranks == 1 else "s",
+                                              time.time() - start), flush=True)
+
+
+# Not sys.exit(): pvbatch must return from the script to finalise MPI on every rank.
+main()

@@ -1,0 +1,28 @@
+// The Terrain Synthesis filter on ParaView's MPI engine (pvbatch, pvserver): the
+// ranks share a tiled synthesis, and each rank's outputs hold only its piece.
+#pragma once
+
+#include "Synthesis/Synthesizer.h"
+
+class vtkDataObject;
+class vtkImageData;
+class vtkInformation;
+
+namespace tsynth
+{
+
+// With several processes under ParaView's global controller and tiles asked
+// for, lets them share the tiles (SynthesisOptions::sharing); otherwise
+// leaves the options as they are (each process synthesises the whole).
+void shareTilesAmongRanks(SynthesisOptions& options);
+
+// Crops an image output to the extent the pipeline asked of it (its piece),
+// when smaller than what it holds.
+void keepRequestedExtent(vtkInformation* outInfo, vtkImageData* image);
+
+// Whether the pipeline asked this output for its first piece (or asked for
+// none): outputs that are not split by extent (tables, lines) are given by
+// the first piece alone, so that ParaView does not gather one copy per rank.
+bool holdsFirstPiece(vtkInformation* outInfo);
+
+} // namespace tsynth

@@ -1,0 +1,93 @@
+"""Tiled synthesis on ParaView's MPI engine (issue 22): `mpiexec -np N pvbatch
+Examples/pvbatch/tiled_synthesis.py` writes the same heights for N = 1, 2 and 3 ranks, bit for bit,
+and the same as `tsynth synth --tile-size` in one process; bad arguments get one sentence."""
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import harness  # noqa: E402
+from harness import PATHS  # noqa: E402
+
+import numpy as np  # noqa: E402
+from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
+from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLPImageDataReader  # noqa: E402
+
+SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Examples", "pvbatch",
+                      "tiled_synthesis.py")
+SIZE = 256
+PATCH = 32
+TILE = 96  # 3 x 3 tiles of 96 cells (three patches), the last ones 64 wide
+SEED = 3
+# Open MPI refuses root without these, and more ranks than cores without --oversubscribe.
+MPI_FLAGS = ["--allow-run-as-root", "--oversubscribe"]
+TIMEOUT_S = 600
+
+
+def heights(reader_class, path):
+    reader = reader_class()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    return image.GetDimensions(), vtk_to_numpy(image.GetPointData().GetArray("Elevation")).copy()
+
+
+class MpiTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix="tsynth-mpi-")
+        cls.exemplar = os.path.join(PATHS.bundled_data, "dems", "colorado.png")
+        cls.sketch = os.path.join(PATHS.bundled_data, "sketches", "strokes_y_ridges.png")
+        cls.mpiexec = shutil.which("mpiexec")
+        cls.pvbatch = shutil.which("pvbatch")
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp)
+
+    def on_ranks(self, ranks, output, *extra):
+        # pvpython runs as an MPI singleton: its Open MPI and PMIx variables would make mpiexec's
+        # ranks join this process's job instead of their own.
+        env = {k: v for k, v in os.environ.items() if not k.startswith(("OMPI_", "PMIX_", "OPAL_"))}
+        env["TSYNTH_PLUGIN"] = PATHS.plugin
+        return subprocess.run(
+            [self.mpiexec, *MPI_FLAGS, "-np", str(ranks), self.pvbatch, SCRIPT, "--exemplar", self.exemplar,
+             "--sketch", self.sketch, "--size", "%dx%d" % (SIZE, SIZE), "--tile-size", str(TILE),
+             "--patch", str(PATCH), "--seed", str(SEED), "-o", output, *extra],
+            capture_output=True, text=True, timeout=TIMEOUT_S, env=env)
+
+    def test_every_rank_count_writes_the_heights_of_one_process(self):
+        one = os.path.join(self.tmp, "one.vti")
+        result = subprocess.run(
+            [PATHS.tsynth, "synth", "--exemplar", self.exemplar, "--sketch", self.sketch, "--size",
+             "%dx%d" % (SIZE, SIZE), "--tile-size", str(TILE), "--patch", str(PATCH), "--seed", str(SEED),
+             "--backend", "cpu", "--no-progress", "-o", one], capture_output=True, text=True, timeout=TIMEOUT_S)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        dims, expected = heights(vtkXMLImageDataReader, one)
+        self.assertEqual(dims, (SIZE, SIZE, 1))
+        self.assertGreater(float(expected.max() - expected.min()), 100.0)  # real relief
+        for ranks in (1, 2, 3):
+            with self.subTest(ranks=ranks):
+                out = os.path.join(self.tmp, "ranks%d.pvti" % ranks)
+                result = self.on_ranks(ranks, out)
+                self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+                self.assertIn("on %d rank" % ranks, result.stdout)
+                pieces = os.listdir(os.path.join(self.tmp, "ranks%d" % ranks))
+                self.assertEqual(len(pieces), ranks, "one piece per rank: %s" % pieces)
+                got_dims, got = heights(vtkXMLPImageDataReader, out)
+                self.assertEqual(got_dims, dims)
+                np.testing.assert_array_equal(got, expected)
+
+    def test_bad_arguments_get_one_sentence(self):
+        out = os.path.join(self.tmp, "bad.pvti")
+        result = self.on_ranks(1, os.path.join(self.tmp, "bad.tif"))
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn("-o OUT.pvti, not", result.stderr)
+        self.assertFalse(os.path.exists(out))
+
+
+if __name__ == "__main__":
+    harness.run(__name__)
