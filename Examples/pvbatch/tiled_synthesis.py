@@ -17,6 +17,8 @@ Open MPI wants --allow-run-as-root (and --oversubscribe for more ranks than core
 """
 import argparse
 import os
+import shutil
+import tempfile
 import time
 
 from paraview import servermanager as sm
@@ -73,7 +75,22 @@ def main():
     print("Synthesising %d x %d cells in tiles of %d on %d rank%s ..." % (
         a.width, a.height, a.tile_size, ranks, "" if ranks == 1 else "s"), flush=True)
     start = time.time()
-    simple.SaveData(a.output, proxy=synthesis, ChooseArraysToWrite=1, PointDataArrays=["Elevation"])
+    # Written aside, under the final names inside a temporary folder, then moved into place: a run
+    # that fails or is stopped leaves no half-written mosaic under OUT.pvti.
+    folder, name = os.path.split(os.path.abspath(a.output))
+    stem = os.path.splitext(name)[0]
+    aside = tempfile.mkdtemp(prefix=".%s.tmp-" % stem, dir=folder)
+    try:
+        simple.SaveData(os.path.join(aside, name), proxy=synthesis, ChooseArraysToWrite=1,
+                        PointDataArrays=["Elevation"])
+        # Gathered from every rank after its write: no rank is still writing its piece.
+        synthesis.GetDataInformation().GetNumberOfPoints()
+        if os.path.isdir(os.path.join(folder, stem)):
+            shutil.rmtree(os.path.join(folder, stem))
+        os.replace(os.path.join(aside, stem), os.path.join(folder, stem))
+        os.replace(os.path.join(aside, name), os.path.join(folder, name))
+    finally:
+        shutil.rmtree(aside, ignore_errors=True)
     print("Wrote %s (%d piece%s) in %.1f s" % (a.output, ranks, "" if ranks == 1 else "s",
                                               time.time() - start), flush=True)
 

@@ -75,6 +75,8 @@ class MpiTest(unittest.TestCase):
                 result = self.on_ranks(ranks, out)
                 self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
                 self.assertIn("on %d rank" % ranks, result.stdout)
+                self.assertEqual([n for n in os.listdir(self.tmp) if ".tmp-" in n], [],
+                                 "the temporary folder is left behind")
                 pieces = os.listdir(os.path.join(self.tmp, "ranks%d" % ranks))
                 self.assertEqual(len(pieces), ranks, "one piece per rank: %s" % pieces)
                 got_dims, got = heights(vtkXMLPImageDataReader, out)
