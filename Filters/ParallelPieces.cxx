@@ -5,6 +5,8 @@
 #include <vtkMultiProcessController.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
+#include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,6 +15,9 @@ namespace tsynth
 
 namespace
 {
+
+// Each rank reports its progress in steps of this share of the run.
+constexpr double kRankProgressStep = 0.1;
 
 // Every rank's bytes, in rank order, through the controller's collectives.
 std::vector<std::string> allGatherBytes(vtkMultiProcessController* c, const std::string& mine)
@@ -48,6 +53,27 @@ void shareTilesAmongRanks(SynthesisOptions& options)
   options.sharing.rank = c->GetLocalProcessId();
   options.sharing.ranks = c->GetNumberOfProcesses();
   options.sharing.allGather = [c](const std::string& mine) { return allGatherBytes(c, mine); };
+  // Each rank says how far it is, a line every kRankProgressStep, on its own standard output
+  // (mpiexec shows every rank's): the filter's progress bar only ever shows rank 0's.
+  const std::string who = "rank " + std::to_string(options.sharing.rank) + " of " +
+    std::to_string(options.sharing.ranks) + ": ";
+  auto said = std::make_shared<int>(-1);
+  const ProgressReport filterProgress = options.progress;
+  options.progress = [filterProgress, who, said](double fraction, const std::string& stage)
+  {
+    if (filterProgress)
+    {
+      filterProgress(fraction, stage);
+    }
+    const int step = static_cast<int>(fraction / kRankProgressStep);
+    if (step > *said)
+    {
+      *said = step;
+      // One line in one write, so that the ranks' lines do not interleave.
+      std::cout << who + stage + ", " + std::to_string(static_cast<int>(100.0 * fraction)) + "%\n"
+                << std::flush;
+    }
+  };
 }
 
 void keepRequestedExtent(vtkInformation* outInfo, vtkImageData* image)

@@ -13,7 +13,8 @@ namespace tsynth
 
 // With several processes under ParaView's global controller and tiles asked
 // for, lets them share the tiles (SynthesisOptions::sharing); otherwise
-// leaves the options as they are (each process synthesises the whole).
+// leaves the options as they are (each process synthesises the whole). Each
+// sharing rank then also prints its progress ("rank 1 of 2: fill, 40%").
 void shareTilesAmongRanks(SynthesisOptions& options);
 
 // Crops an image output to the extent the pipeline asked of it (its piece),

@@ -7,7 +7,7 @@ The Terrain Synthesis filter cuts the terrain into tiles of T x T cells (at leas
 fixed grid and places them in four colour classes; within a class, tile k goes to rank k mod N, and
 after each class the ranks share what they placed (Kernels/Synthesis/Tiling.h). Every rank then
 finishes the whole terrain and keeps its own piece, which ParaView's parallel image writer writes:
-OUT.pvti and its pieces OUT/OUT_<rank>.vti. The heights are those of `tsynth synth --tile-size T` with
+OUT.pvti and its pieces OUT/OUT_<rank>.vti. Each rank prints how far it is ("rank 1 of 2: fill, 60%"). The heights are those of `tsynth synth --tile-size T` with
 the same inputs, bit for bit, for any N (Testing/Python/test_mpi.py checks N = 1, 2 and 3).
 
 The sketch is read by its kind: poly-lines (.vtp), a DEM as target (.tif, .hgt, .asc, .vti, or a

@@ -75,6 +75,9 @@ class MpiTest(unittest.TestCase):
                 result = self.on_ranks(ranks, out)
                 self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
                 self.assertIn("on %d rank" % ranks, result.stdout)
+                if ranks > 1:  # every rank says how far it is
+                    for rank in range(ranks):
+                        self.assertIn("rank %d of %d: fill" % (rank, ranks), result.stdout)
                 self.assertEqual([n for n in os.listdir(self.tmp) if ".tmp-" in n], [],
                                  "the temporary folder is left behind")
                 pieces = os.listdir(os.path.join(self.tmp, "ranks%d" % ranks))
