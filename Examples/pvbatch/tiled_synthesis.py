@@ -7,7 +7,7 @@ The Terrain Synthesis filter cuts the terrain into tiles of T x T cells (at leas
 fixed grid and places them in four colour classes; within a class, tile k goes to rank k mod N, and
 after each class the ranks share what they placed (Kernels/Synthesis/Tiling.h). Every rank then
 finishes the whole terrain and keeps its own piece, which ParaView's parallel image writer writes:
-OUT.pvti and its pieces OUT/OUT_<rank>.vti. Each rank prints how far it is ("rank 1 of 2: fill, 60%"). The heights are those of `tsynth synth --tile-size T` with
+OUT.pvti and its pieces OUT/OUT_<rank>.vti. Ctrl-C on mpiexec stops every rank. Each rank prints how far it is ("rank 1 of 2: fill, 60%"). The heights are those of `tsynth synth --tile-size T` with
 the same inputs, bit for bit, for any N (Testing/Python/test_mpi.py checks N = 1, 2 and 3).
 
 The sketch is read by its kind: poly-lines (.vtp), a DEM as target (.tif, .hgt, .asc, .vti, or a
@@ -16,7 +16,9 @@ up in ./build (override with TSYNTH_PLUGIN=/path/to/TerrainSynthesis.so). Under 
 Open MPI wants --allow-run-as-root (and --oversubscribe for more ranks than cores).
 """
 import argparse
+import glob
 import os
+import re
 import shutil
 import tempfile
 import time
@@ -64,6 +66,22 @@ def sketch_reader(path, exemplar):
     return simple.TerrainSketchReader(FileName=path, ExemplarFileName=exemplar)
 
 
+def sweep_stopped_runs(folder, stem):
+    """Removes the temporary folders of earlier runs to this output that were stopped (Ctrl-C on
+    mpiexec ends every rank at once, before it can clean up): each is named after the process that
+    made it, and one whose process is gone is left over."""
+    for path in glob.glob(os.path.join(folder, ".%s.tmp-*" % glob.escape(stem))):
+        made_by = re.match(r"\.tmp-(\d+)-", os.path.basename(path)[len(stem) + 1:])
+        if made_by is None or not os.path.isdir(path):
+            continue
+        try:
+            os.kill(int(made_by.group(1)), 0)
+        except ProcessLookupError:
+            shutil.rmtree(path, ignore_errors=True)
+        except PermissionError:
+            pass  # another user's live run
+
+
 def main():
     a = arguments()
     simple.LoadPlugin(PLUGIN, remote=True)
@@ -76,10 +94,13 @@ def main():
         a.width, a.height, a.tile_size, ranks, "" if ranks == 1 else "s"), flush=True)
     start = time.time()
     # Written aside, under the final names inside a temporary folder, then moved into place: a run
-    # that fails or is stopped leaves no half-written mosaic under OUT.pvti.
+    # that fails or is stopped leaves no half-written mosaic under OUT.pvti. Ctrl-C on mpiexec stops
+    # every rank within about a second (Open MPI sends them SIGTERM); the next run to the same
+    # output removes the folder such a run leaves.
     folder, name = os.path.split(os.path.abspath(a.output))
     stem = os.path.splitext(name)[0]
-    aside = tempfile.mkdtemp(prefix=".%s.tmp-" % stem, dir=folder)
+    sweep_stopped_runs(folder, stem)
+    aside = tempfile.mkdtemp(prefix=".%s.tmp-%d-" % (stem, os.getpid()), dir=folder)
     try:
         simple.SaveData(os.path.join(aside, name), proxy=synthesis, ChooseArraysToWrite=1,
                         PointDataArrays=["Elevation"])

@@ -3,9 +3,11 @@ Examples/pvbatch/tiled_synthesis.py` writes the same heights for N = 1, 2 and 3 
 and the same as `tsynth synth --tile-size` in one process; bad arguments get one sentence."""
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -25,6 +27,7 @@ SEED = 3
 # Open MPI refuses root without these, and more ranks than cores without --oversubscribe.
 MPI_FLAGS = ["--allow-run-as-root", "--oversubscribe"]
 TIMEOUT_S = 600
+STOP_SIZE = 1024  # 11 x 11 tiles: the fill on 2 ranks takes several seconds
 
 
 def heights(reader_class, path):
@@ -48,16 +51,32 @@ class MpiTest(unittest.TestCase):
     def tearDownClass(cls):
         shutil.rmtree(cls.tmp)
 
-    def on_ranks(self, ranks, output, *extra):
+    def command(self, ranks, output, size=SIZE):
+        return [self.mpiexec, *MPI_FLAGS, "-np", str(ranks), self.pvbatch, SCRIPT, "--exemplar", self.exemplar,
+                "--sketch", self.sketch, "--size", "%dx%d" % (size, size), "--tile-size", str(TILE),
+                "--patch", str(PATCH), "--seed", str(SEED), "-o", output]
+
+    @staticmethod
+    def environment():
         # pvpython runs as an MPI singleton: its Open MPI and PMIx variables would make mpiexec's
         # ranks join this process's job instead of their own.
         env = {k: v for k, v in os.environ.items() if not k.startswith(("OMPI_", "PMIX_", "OPAL_"))}
         env["TSYNTH_PLUGIN"] = PATHS.plugin
-        return subprocess.run(
-            [self.mpiexec, *MPI_FLAGS, "-np", str(ranks), self.pvbatch, SCRIPT, "--exemplar", self.exemplar,
-             "--sketch", self.sketch, "--size", "%dx%d" % (SIZE, SIZE), "--tile-size", str(TILE),
-             "--patch", str(PATCH), "--seed", str(SEED), "-o", output, *extra],
-            capture_output=True, text=True, timeout=TIMEOUT_S, env=env)
+        return env
+
+    def on_ranks(self, ranks, output):
+        return subprocess.run(self.command(ranks, output), capture_output=True, text=True,
+                              timeout=TIMEOUT_S, env=self.environment())
+
+    def until_rank_fills(self, output):
+        """Starts a run of 2 ranks on STOP_SIZE cells and waits for rank 1 to start its fill."""
+        run = subprocess.Popen(self.command(2, output, STOP_SIZE), stdout=subprocess.PIPE,
+                               stderr=subprocess.STDOUT, text=True, env=self.environment())
+        for line in run.stdout:
+            if "rank 1 of 2: fill" in line:
+                return run
+        run.wait()
+        self.fail("rank 1 never reached its fill")
 
     def test_every_rank_count_writes_the_heights_of_one_process(self):
         one = os.path.join(self.tmp, "one.vti")
@@ -85,6 +104,32 @@ class MpiTest(unittest.TestCase):
                 got_dims, got = heights(vtkXMLPImageDataReader, out)
                 self.assertEqual(got_dims, dims)
                 np.testing.assert_array_equal(got, expected)
+
+    def test_ctrl_c_on_mpiexec_stops_every_rank(self):
+        # The bound comes from this run: how long an uninterrupted run goes on past the point where
+        # the other is stopped. A rank that ignored the stop would take about that long.
+        run = self.until_rank_fills(os.path.join(self.tmp, "whole.pvti"))
+        reached = time.monotonic()
+        run.stdout.read()
+        self.assertEqual(run.wait(timeout=TIMEOUT_S), 0)
+        remaining = time.monotonic() - reached
+        stopped = os.path.join(self.tmp, "stopped.pvti")
+        run = self.until_rank_fills(stopped)
+        interrupted = time.monotonic()
+        run.send_signal(signal.SIGINT)
+        run.stdout.read()
+        code = run.wait(timeout=TIMEOUT_S)
+        took = time.monotonic() - interrupted
+        print("stopped in %.2f s; %.2f s were left" % (time.monotonic() - interrupted, remaining))
+        self.assertNotEqual(code, 0, "a stopped run must not report success")
+        self.assertLess(took, 0.5 * remaining, "ranks went on after Ctrl-C: %.1f s against %.1f s left"
+                        % (took, remaining))
+        ranks = subprocess.run(["pgrep", "-f", stopped], capture_output=True, text=True).stdout.split()
+        self.assertEqual(ranks, [], "a rank outlived mpiexec")
+        self.assertFalse(os.path.exists(stopped), "a stopped run left a mosaic under the final name")
+        # The stopped run's temporary folder goes with the next run to that output.
+        self.assertEqual(self.on_ranks(1, stopped).returncode, 0)
+        self.assertEqual([n for n in os.listdir(self.tmp) if n.startswith(".stopped.tmp-")], [])
 
     def test_bad_arguments_get_one_sentence(self):
         out = os.path.join(self.tmp, "bad.pvti")
