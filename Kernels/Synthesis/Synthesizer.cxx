@@ -1620,6 +1620,7 @@ SynthesisResult synthesizeTiled(const SynthesisTarget& target,
   const std::vector<std::string> matcherWarnings = matcher->warnings();
   matcher.reset();
   whole.report(kTiledPlacementShare, "finishing");
+  whole.releasePlacement(); // as untiled: the finishing's fields take that memory
   SynthesisResult r = whole.finish();
   run.timings.finish = secondsSince(t0);
   r.timings = run.timings;
