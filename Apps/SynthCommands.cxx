@@ -236,6 +236,23 @@ nlohmann::json correlationJson(const std::vector<BandCorrelation>& bands)
   return out;
 }
 
+// Each tile's place and colour, its pass and how long it took (wall clock and CPU), in the
+// order it was placed: the figures Testing/Benchmarks/tile_cost_model.py models ranks from.
+nlohmann::json tileTimingsJson(const std::vector<TileTiming>& tiles)
+{
+  nlohmann::json out = nlohmann::json::array();
+  for (const TileTiming& t : tiles)
+  {
+    out.push_back({ { "column", t.column },
+      { "row", t.row },
+      { "colour", t.colour },
+      { "pass", t.fill ? "fill" : "features" },
+      { "seconds", t.seconds },
+      { "cpu_seconds", t.cpuSeconds } });
+  }
+  return out;
+}
+
 void printLegibility(const char* name, const Legibility& l)
 {
   std::cout << std::left << std::setw(22) << name << " legible: " << figure(l.share, 2)
@@ -773,6 +790,10 @@ void writeReport(const std::string& path,
     { "landforms", landforms },
     { "finishing", finishing },
     { "placement_list", list } };
+  if (!r.tiles.empty())
+  {
+    report["tiles"] = tileTimingsJson(r.tiles);
+  }
   if (run.preview)
   {
     const PreviewSummary& p = *run.preview;

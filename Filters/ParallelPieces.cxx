@@ -5,8 +5,10 @@
 #include <vtkMultiProcessController.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
+#include <iomanip>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -74,6 +76,29 @@ void shareTilesAmongRanks(SynthesisOptions& options)
                 << std::flush;
     }
   };
+}
+
+void reportRankWork(const SynthesisOptions& options, const SynthesisResult& result)
+{
+  if (options.sharing.ranks <= 1)
+  {
+    return;
+  }
+  double seconds = 0.0;
+  double cpu = 0.0;
+  std::size_t fills = 0;
+  for (const TileTiming& t : result.tiles)
+  {
+    seconds += t.seconds;
+    cpu += t.cpuSeconds;
+    fills += t.fill ? 1 : 0;
+  }
+  std::ostringstream line;
+  line << std::fixed << std::setprecision(2) << "rank " << options.sharing.rank << " of "
+       << options.sharing.ranks << ": " << result.tiles.size() - fills << " feature and " << fills
+       << " fill tile passes in " << seconds << " s (CPU " << cpu << " s), waited "
+       << result.waitedSeconds << " s for the other ranks\n";
+  std::cout << line.str() << std::flush; // one write: the ranks' lines do not interleave
 }
 
 void keepRequestedExtent(vtkInformation* outInfo, vtkImageData* image)

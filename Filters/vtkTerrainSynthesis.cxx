@@ -689,6 +689,7 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
         optionsOnGrid(this, inputVector, this->RegionMaps, setup.grid, setup.exemplars.size());
       tsynth::shareTilesAmongRanks(o);
       const tsynth::SynthesisResult r = tsynth::synthesize(setup, o);
+      tsynth::reportRankWork(o, r);
       this->BackendUsed = r.backend;
       writeOutputs(this, setup, r, ex, outputVector);
       keepRequestedPieces(outputVector);

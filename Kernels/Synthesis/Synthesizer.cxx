@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <limits>
 #include <memory>
 #include <queue>
@@ -1469,12 +1470,16 @@ struct TiledRun
   SynthesisState& whole;
   std::vector<FeatureSite> sites;
   SynthesisTimings timings;
+  std::vector<TileTiming> tileTimings;
+  double waited = 0.0;
 
   // Places tile k in this pass, on the whole output as it stands.
   TileOutcome place(TilePass pass, std::size_t k)
   {
     const SynthesisTile& t = tiles[k];
-    auto t0 = Clock::now();
+    const auto start = Clock::now();
+    const std::clock_t cpuStart = std::clock();
+    auto t0 = start;
     const SynthesisTarget part = regionTarget(target, t);
     const Heightfield known = whole.knownIn(t);
     const std::size_t done = (pass == TilePass::Fill ? tiles.size() : 0) + k;
@@ -1507,6 +1512,12 @@ struct TiledRun
     }
     TileOutcome outcome = tile.outcome(k, border);
     (pass == TilePass::Features ? timings.features : timings.fill) += secondsSince(t0);
+    tileTimings.push_back({ t.column,
+      t.row,
+      t.colour,
+      pass == TilePass::Fill,
+      secondsSince(start),
+      static_cast<double>(std::clock() - cpuStart) / CLOCKS_PER_SEC });
     return outcome;
   }
 
@@ -1545,8 +1556,10 @@ struct TiledRun
         }
       }
     }
+    const auto gathering = Clock::now();
     const std::vector<std::string> all =
       share.allGather(failure.empty() ? writeOutcomes(outcomes) : kFailedTile + failure);
+    waited += secondsSince(gathering);
     outcomes.clear();
     for (const std::string& bytes : all)
     {
@@ -1599,7 +1612,9 @@ SynthesisResult synthesizeTiled(const SynthesisTarget& target,
     *matcher,
     whole,
     whole.sitesInOrder(),
-    {} };
+    {},
+    {},
+    0.0 };
   run.timings.setup = secondsSince(t0);
   for (TilePass pass : { TilePass::Features, TilePass::Fill })
   {
@@ -1624,6 +1639,8 @@ SynthesisResult synthesizeTiled(const SynthesisTarget& target,
   SynthesisResult r = whole.finish();
   run.timings.finish = secondsSince(t0);
   r.timings = run.timings;
+  r.tiles = std::move(run.tileTimings);
+  r.waitedSeconds = run.waited;
   r.backend = backend;
   r.warnings.insert(r.warnings.begin(), matcherWarnings.begin(), matcherWarnings.end());
   r.warnings.insert(r.warnings.begin(), target.warnings.begin(), target.warnings.end());

@@ -165,6 +165,18 @@ struct SynthesisTimings
   double total() const { return setup + features + fill + finish; }
 };
 
+// How long one tile of a tiled synthesis took to place in one pass, on the
+// process that placed it (measured, for the report and the tile cost model).
+struct TileTiming
+{
+  int column = 0;
+  int row = 0;
+  int colour = 0;          // its colour class (Tiling.h)
+  bool fill = false;       // the fill pass; else the feature pass
+  double seconds = 0.0;    // wall clock
+  double cpuSeconds = 0.0; // this process's CPU time meanwhile, all its threads
+};
+
 struct SynthesisResult
 {
   Heightfield terrain;
@@ -177,6 +189,10 @@ struct SynthesisResult
   FinishingReport finishing;
   // The terrain as the patches made it, before the final corrections.
   Heightfield patches;
+  // Tiled: the tiles this process placed, in the order it placed them, and
+  // the time it waited for the other processes' tiles after each step.
+  std::vector<TileTiming> tiles;
+  double waitedSeconds = 0.0;
   std::vector<std::string> warnings;
   std::string backend;
 };

@@ -12,11 +12,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <condition_variable>
 #include <mutex>
 #include <numeric>
+#include <set>
 #include <thread>
+#include <tuple>
 
 using namespace tsynth;
 
@@ -312,6 +315,43 @@ TEST(TiledSynthesis, SharedAmongRanksEveryRankHoldsTheOneProcessTerrain)
       EXPECT_EQ(shared[r].placements.size(), one.placements.size());
     }
   }
+}
+
+TEST(TiledSynthesis, TimesEveryTileOfEachPassOnTheRankThatPlacedIt)
+{
+  // 256^2 in tiles of 64: 4 x 4 tiles, each placed once per pass.
+  constexpr std::size_t kTiles = 16;
+  const SynthesisResult one = yOverColorado(64);
+  ASSERT_EQ(one.tiles.size(), 2 * kTiles);
+  std::set<std::tuple<int, int, bool>> seen;
+  double fill = 0.0;
+  for (const TileTiming& t : one.tiles)
+  {
+    EXPECT_TRUE(seen.insert({ t.column, t.row, t.fill }).second) << "a tile timed twice";
+    EXPECT_GT(t.seconds, 0.0);
+    EXPECT_GE(t.cpuSeconds, 0.0);
+    fill += t.fill ? t.seconds : 0.0;
+  }
+  // The tiles' fill times make up the run's fill time (less the set-up of each tile).
+  EXPECT_LE(fill, one.timings.fill + one.timings.setup + 1e-6);
+  EXPECT_GT(fill, 0.5 * one.timings.fill);
+  EXPECT_EQ(one.waitedSeconds, 0.0) << "one process waits for no other";
+  // Shared by 3 ranks, each times its own share and together they time every
+  // tile once. Each colour class holds 4 tiles, of which rank k mod 3 takes
+  // tile k: rank 0 two, ranks 1 and 2 one, in each of 4 classes and 2 passes.
+  const std::vector<SynthesisResult> shared = yOverColoradoOnRanks(64, 3);
+  const std::array<std::size_t, 3> share{ 16, 8, 8 };
+  std::set<std::tuple<int, int, bool>> together;
+  for (std::size_t rank = 0; rank < shared.size(); ++rank)
+  {
+    const SynthesisResult& r = shared[rank];
+    EXPECT_EQ(r.tiles.size(), share[rank]) << "rank " << rank;
+    for (const TileTiming& t : r.tiles)
+    {
+      EXPECT_TRUE(together.insert({ t.column, t.row, t.fill }).second) << "two ranks placed a tile";
+    }
+  }
+  EXPECT_EQ(together, seen);
 }
 
 TEST(TiledSynthesis, SharedTileDataCutShortIsRefused)

@@ -110,6 +110,8 @@ class MpiTest(unittest.TestCase):
                 if ranks > 1:  # every rank says how far it is
                     for rank in range(ranks):
                         self.assertIn("rank %d of %d: fill" % (rank, ranks), result.stdout)
+                        self.assertRegex(result.stdout, r"rank %d of %d: \d+ feature and \d+ fill tile "
+                                         r"passes in [\d.]+ s \(CPU [\d.]+ s\), waited" % (rank, ranks))
                 self.assertEqual([n for n in os.listdir(self.tmp) if ".tmp-" in n], [],
                                  "the temporary folder is left behind")
                 pieces = os.listdir(os.path.join(self.tmp, "ranks%d" % ranks))

@@ -373,6 +373,22 @@ class SynthTest(unittest.TestCase):
         self.assertIn("--cache and --no-cache contradict each other", both.stderr)
         self.assertFalse(os.path.exists(self.path("both.tif")))
 
+    def test_a_tiled_report_times_every_tile_of_each_pass(self):
+        sketch = os.path.join(self.sketches, "strokes_y_ridges.png")
+        report = self.synth("colorado.png", sketch, self.path("tiled.tif"), "--size", "320x320",
+                            "--tile-size", "160")  # 2 x 2 tiles of two patches
+        tiles = report["tiles"]
+        self.assertEqual(sorted((t["column"], t["row"], t["pass"]) for t in tiles),
+                         sorted((c, r, p) for c in (0, 1) for r in (0, 1) for p in ("features", "fill")))
+        self.assertEqual(sorted({(t["column"] % 2, t["row"] % 2): t["colour"] for t in tiles}.values()),
+                         [0, 1, 2, 3])
+        self.assertTrue(all(t["seconds"] > 0 and t["cpu_seconds"] >= 0 for t in tiles), tiles)
+        fill = sum(t["seconds"] for t in tiles if t["pass"] == "fill")
+        times = report["times_s"]
+        self.assertLess(fill, times["fill"] + times["setup"] + 1e-6, (tiles, times))
+        untiled = self.synth("colorado.png", sketch, self.path("untiled.tif"), "--size", "320x320")
+        self.assertNotIn("tiles", untiled)
+
     def test_preview_comes_first_draws_the_sketch_and_leaves_the_terrain_unchanged(self):
         sketch = os.path.join(self.sketches, "strokes_y_ridges.png")
         colorado = os.path.join(self.dems, "colorado.png")
