@@ -5,6 +5,7 @@
 #include <vtkMultiProcessController.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -44,6 +45,28 @@ std::vector<std::string> allGatherBytes(vtkMultiProcessController* c, const std:
 }
 
 } // namespace
+
+int rankCount()
+{
+  vtkMultiProcessController* c = vtkMultiProcessController::GetGlobalController();
+  return c != nullptr ? std::max(1, c->GetNumberOfProcesses()) : 1;
+}
+
+int thisRank()
+{
+  vtkMultiProcessController* c = vtkMultiProcessController::GetGlobalController();
+  return c != nullptr ? c->GetLocalProcessId() : 0;
+}
+
+std::vector<std::string> allGatherBytes(const std::string& mine)
+{
+  vtkMultiProcessController* c = vtkMultiProcessController::GetGlobalController();
+  if (c == nullptr || c->GetNumberOfProcesses() <= 1)
+  {
+    return { mine };
+  }
+  return allGatherBytes(c, mine);
+}
 
 void shareTilesAmongRanks(SynthesisOptions& options)
 {

@@ -4,12 +4,23 @@
 
 #include "Synthesis/Synthesizer.h"
 
+#include <string>
+#include <vector>
+
 class vtkDataObject;
 class vtkImageData;
 class vtkInformation;
 
 namespace tsynth
 {
+
+// The processes under ParaView's global controller and this one's rank (1 and
+// 0 without a controller).
+int rankCount();
+int thisRank();
+
+// Every process's bytes, in rank order; a collective: every process calls it.
+std::vector<std::string> allGatherBytes(const std::string& mine);
 
 // With several processes under ParaView's global controller and tiles asked
 // for, lets them share the tiles (SynthesisOptions::sharing); otherwise

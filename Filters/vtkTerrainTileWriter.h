@@ -13,12 +13,22 @@
  * 16-bit tiles are 2^k + 1 samples a side and share one height scale. Each tile
  * has a NAME.json sidecar with its placement, its height range and, for 16-bit
  * tiles, the engines' import scales. All files appear together or none.
+ *
+ * On ParaView's MPI engine (pvbatch, pvserver) every rank writes a contiguous
+ * share of the tile rows: it asks its input for just the rows those tiles need
+ * (a source that produces sub-extents, as the Terrain Synthesis filter does,
+ * makes only them), the ranks agree on the terrain's frame (nodata, and the
+ * 16-bit height scale) and rank 0 writes the mosaic. The files are those of
+ * one process, byte for byte. A rank that fails makes every rank fail with its
+ * sentence, and none publishes its tiles.
  */
 #pragma once
 
 #include "TerrainSynthesisFiltersModule.h"
 
 #include <vtkWriter.h>
+
+class vtkImageData;
 
 class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainTileWriter : public vtkWriter
 {
@@ -49,7 +59,11 @@ protected:
   ~vtkTerrainTileWriter() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  vtkTypeBool ProcessRequest(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   void WriteData() override;
+  void WriteShare(vtkImageData* image);
 
   char* FileName = nullptr;
   int TileSize = 1025;

@@ -80,47 +80,48 @@ int tilesAlong(int samples, int size)
 }
 
 // The terrain's sample at a file position (column from the west, row from
-// the north), clamped to its edge.
-float sampleAt(const Heightfield& hf, int column, int rowFromNorth)
+// the north), clamped to its edge, from the band of its rows that `band` holds.
+float sampleAt(const TerrainBand& band, int column, int rowFromNorth)
 {
+  const Heightfield& hf = band.heights;
   const int i = std::min(column, hf.width - 1);
-  const int j = hf.height - 1 - std::min(rowFromNorth, hf.height - 1);
-  return hf.at(i, j);
+  const int row = std::min(rowFromNorth, band.frame.height - 1) - band.firstRow;
+  return hf.at(i, hf.height - 1 - row);
 }
 
-bool validAt(const Heightfield& hf, int column, int rowFromNorth)
+bool validAt(const TerrainBand& band, int column, int rowFromNorth)
 {
+  const Heightfield& hf = band.heights;
   const int i = std::min(column, hf.width - 1);
-  const int j = hf.height - 1 - std::min(rowFromNorth, hf.height - 1);
-  return hf.isValid(i, j);
+  const int row = std::min(rowFromNorth, band.frame.height - 1) - band.firstRow;
+  return hf.isValid(i, hf.height - 1 - row);
 }
 
 // The tile's own heightfield (row 0 south, as every Heightfield): its valid
 // samples for a GeoTIFF, `size` samples a side for a 16-bit tile.
-Heightfield cutTile(const Heightfield& hf, const TileGrid& grid, const Tile& t, TileFormat format)
+Heightfield cutTile(const TerrainBand& band, const TileGrid& grid, const Tile& t, TileFormat format)
 {
+  const TerrainFrame& frame = band.frame;
   const int w = sixteenBit(format) ? grid.size : t.validWidth;
   const int h = sixteenBit(format) ? grid.size : t.validHeight;
   Heightfield tile(w, h);
-  tile.cellX = hf.cellX;
-  tile.cellY = hf.cellY;
-  tile.cellSizeKnown = hf.cellSizeKnown;
+  tile.cellX = frame.cellX;
+  tile.cellY = frame.cellY;
+  tile.cellSizeKnown = frame.cellSizeKnown;
   tile.sourceZUnit = "m";
   for (int k = 0; k < h; ++k) // rows from the tile's north edge
   {
     for (int i = 0; i < w; ++i)
     {
-      const bool valid = validAt(hf, t.firstColumn + i, t.firstRow + k);
-      tile.at(i, h - 1 - k) = valid ? sampleAt(hf, t.firstColumn + i, t.firstRow + k)
+      const bool valid = validAt(band, t.firstColumn + i, t.firstRow + k);
+      tile.at(i, h - 1 - k) = valid ? sampleAt(band, t.firstColumn + i, t.firstRow + k)
                                     : std::numeric_limits<float>::quiet_NaN();
     }
   }
   normaliseMask(tile);
   // The tile's frame: the terrain's, moved to the tile's north-west sample.
-  const std::array<double, 6> gt = geoTransformOf(hf);
-  tile.georef = hf.georef;
-  tile.georef.hasGeoTransform = true;
-  tile.georef.geoTransform = gt;
+  const std::array<double, 6>& gt = frame.georef.geoTransform;
+  tile.georef = frame.georef;
   tile.georef.geoTransform[0] = gt[0] + t.firstColumn * gt[1] + t.firstRow * gt[2];
   tile.georef.geoTransform[3] = gt[3] + t.firstColumn * gt[4] + t.firstRow * gt[5];
   return tile;
@@ -153,7 +154,7 @@ void writeText(const std::string& path, const std::string& text)
   file.commit();
 }
 
-nlohmann::ordered_json tilePlacement(const Heightfield& hf,
+nlohmann::ordered_json tilePlacement(const TerrainFrame& hf,
   const TileGrid& grid,
   const Tile& t,
   const Heightfield& tile)
@@ -178,7 +179,7 @@ nlohmann::ordered_json tilePlacement(const Heightfield& hf,
 }
 
 // The scales at which the engines reproduce the heights in metres.
-nlohmann::ordered_json engineScales(const Heightfield& hf,
+nlohmann::ordered_json engineScales(const TerrainFrame& hf,
   const TileGrid& grid,
   const Tile& t,
   const Png16Range& range)
@@ -202,13 +203,13 @@ nlohmann::ordered_json engineScales(const Heightfield& hf,
   };
 }
 
-std::string sidecarText(const Heightfield& hf,
+std::string sidecarText(const TerrainFrame& hf,
   const TileGrid& grid,
   const Tile& t,
   const Heightfield& tile,
-  TileFormat format,
-  const Png16Range& range)
+  TileFormat format)
 {
+  const Png16Range& range = hf.range;
   nlohmann::ordered_json doc = { { "z_unit", "m" }, { "cell_size_m", { hf.cellX, hf.cellY } } };
   if (sixteenBit(format))
   {
@@ -239,13 +240,13 @@ std::string xmlEscaped(const std::string& text)
 // A GDAL virtual mosaic of the GeoTIFF tiles, in the terrain's frame; tile
 // files are named relative to it. Shared edges hold the same values in both
 // tiles, so the order of the sources does not matter.
-std::string mosaicText(const Heightfield& hf,
+std::string mosaicText(const TerrainFrame& hf,
   const std::vector<Tile>& tiles,
   const std::vector<TileFiles>& files)
 {
   std::ostringstream x;
   x.precision(17);
-  const std::array<double, 6> gt = geoTransformOf(hf);
+  const std::array<double, 6>& gt = hf.georef.geoTransform;
   x << "<VRTDataset rasterXSize=\"" << hf.width << "\" rasterYSize=\"" << hf.height << "\">\n";
   if (!hf.georef.crsWkt.empty())
   {
@@ -254,7 +255,7 @@ std::string mosaicText(const Heightfield& hf,
   x << "  <GeoTransform>" << gt[0] << ", " << gt[1] << ", " << gt[2] << ", " << gt[3] << ", "
     << gt[4] << ", " << gt[5] << "</GeoTransform>\n";
   x << "  <VRTRasterBand dataType=\"Float32\" band=\"1\">\n";
-  if (hf.hasMask())
+  if (hf.hasNodata)
   {
     x << "    <NoDataValue>nan</NoDataValue>\n";
   }
@@ -276,17 +277,6 @@ std::string mosaicText(const Heightfield& hf,
   }
   x << "  </VRTRasterBand>\n</VRTDataset>\n";
   return x.str();
-}
-
-// One scale for every 16-bit tile: the terrain's whole range.
-Png16Range sharedRange(const Heightfield& hf, const std::string& output)
-{
-  const HeightRange r = computeHeightRange(hf);
-  if (r.validCells == 0)
-  {
-    throw Error("Cannot write " + output + ": the terrain has no valid cell.");
-  }
-  return { r.min, r.max > r.min ? static_cast<double>(r.max) : r.min + 1.0 };
 }
 
 void writeTile(const Heightfield& tile,
@@ -388,6 +378,164 @@ TileFiles tileFilesFor(const std::string& output, TileFormat format, const Tile&
   return { name, sidecarPathFor(name) };
 }
 
+HeightSummary summaryOf(const Heightfield& hf, int first, int rows)
+{
+  HeightSummary h;
+  for (int row = first; row < first + rows; ++row)
+  {
+    const int j = hf.height - 1 - row;
+    for (int i = 0; i < hf.width; ++i)
+    {
+      if (!hf.isValid(i, j))
+      {
+        ++h.holes;
+        continue;
+      }
+      const double z = hf.at(i, j);
+      h.min = h.valid == 0 ? z : std::min(h.min, z);
+      h.max = h.valid == 0 ? z : std::max(h.max, z);
+      ++h.valid;
+    }
+  }
+  return h;
+}
+
+HeightSummary combined(const HeightSummary& a, const HeightSummary& b)
+{
+  if (a.valid == 0 || b.valid == 0)
+  {
+    HeightSummary h = a.valid == 0 ? b : a;
+    h.holes = a.holes + b.holes;
+    return h;
+  }
+  return { a.holes + b.holes, a.valid + b.valid, std::min(a.min, b.min), std::max(a.max, b.max) };
+}
+
+TerrainFrame terrainFrameFrom(const Heightfield& like,
+  int width,
+  int height,
+  const HeightSummary& heights,
+  TileFormat format,
+  const std::string& output)
+{
+  TerrainFrame f;
+  f.width = width;
+  f.height = height;
+  f.cellX = like.cellX;
+  f.cellY = like.cellY;
+  f.cellSizeKnown = like.cellSizeKnown;
+  f.georef = like.georef;
+  if (!f.georef.hasGeoTransform)
+  {
+    Heightfield whole;
+    whole.width = width;
+    whole.height = height;
+    whole.cellX = like.cellX;
+    whole.cellY = like.cellY;
+    f.georef.geoTransform = geoTransformOf(whole);
+    f.georef.hasGeoTransform = true;
+  }
+  f.hasNodata = heights.holes > 0;
+  if (sixteenBit(format))
+  {
+    if (heights.holes > 0)
+    {
+      throw Error("The terrain has " + std::to_string(heights.holes) +
+        " cells without data, which a 16-bit engine heightmap cannot mark: write GeoTIFF tiles "
+        "(-o NAME.vrt) or fill the holes first.");
+    }
+    if (heights.valid == 0)
+    {
+      throw Error("Cannot write " + output + ": the terrain has no valid cell.");
+    }
+    // One scale for every 16-bit tile: the terrain's whole range.
+    f.range = { heights.min, heights.max > heights.min ? heights.max : heights.min + 1.0 };
+  }
+  return f;
+}
+
+TerrainFrame terrainFrameOf(const Heightfield& hf, TileFormat format, const std::string& output)
+{
+  return terrainFrameFrom(hf, hf.width, hf.height, summaryOf(hf, 0, hf.height), format, output);
+}
+
+std::pair<int, int> tileRowsOf(const TileGrid& grid, int rank, int ranks)
+{
+  const auto share = [&](int r)
+  { return static_cast<int>(static_cast<long long>(grid.rows) * r / ranks); };
+  return { share(rank), share(rank + 1) };
+}
+
+std::pair<int, int> terrainRowsOf(const TileGrid& grid, int height, int first, int last)
+{
+  return { first * grid.step(), std::min(height - 1, (last - 1) * grid.step() + grid.size - 1) };
+}
+
+TileExportReport exportTileRows(const TerrainBand& band,
+  const std::string& output,
+  const TileGrid& grid,
+  TileFormat format,
+  int firstTileRow,
+  int lastTileRow,
+  const ProgressReport& progress)
+{
+  const TerrainFrame& frame = band.frame;
+  TileExportReport report;
+  report.format = format;
+  report.grid = grid;
+  report.zMin = frame.range.zMin;
+  report.zMax = frame.range.zMax;
+  if (firstTileRow >= lastTileRow)
+  {
+    return report;
+  }
+  const auto [needFirst, needLast] = terrainRowsOf(grid, frame.height, firstTileRow, lastTileRow);
+  if (band.heights.width != frame.width || band.firstRow > needFirst ||
+    band.firstRow + band.heights.height - 1 < needLast)
+  {
+    throw Error("The tiles of rows " + std::to_string(firstTileRow) + " to " +
+      std::to_string(lastTileRow - 1) + " need the terrain's rows " + std::to_string(needFirst) +
+      " to " + std::to_string(needLast) + ", which this part of it does not hold.");
+  }
+  const std::size_t count =
+    static_cast<std::size_t>(lastTileRow - firstTileRow) * static_cast<std::size_t>(grid.columns);
+  for (int r = firstTileRow; r < lastTileRow; ++r)
+  {
+    for (int c = 0; c < grid.columns; ++c)
+    {
+      const Tile t = tileAt(grid, c, r, frame.width, frame.height);
+      const TileFiles files = tileFilesFor(output, format, t, grid.rows);
+      const Heightfield tile = cutTile(band, grid, t, format);
+      writeTile(tile, files, format, frame.range);
+      writeText(files.sidecar, sidecarText(frame, grid, t, tile, format));
+      if (sixteenBit(format))
+      {
+        report.paddedSamples += tile.size() -
+          static_cast<std::size_t>(t.validWidth) * static_cast<std::size_t>(t.validHeight);
+      }
+      report.tiles.push_back(files);
+      reportProgress(
+        progress, static_cast<double>(report.tiles.size()) / static_cast<double>(count), "tiles");
+    }
+  }
+  return report;
+}
+
+void writeTileMosaic(const TerrainFrame& frame, const TileGrid& grid, const std::string& output)
+{
+  std::vector<Tile> tiles;
+  std::vector<TileFiles> files;
+  for (int r = 0; r < grid.rows; ++r)
+  {
+    for (int c = 0; c < grid.columns; ++c)
+    {
+      tiles.push_back(tileAt(grid, c, r, frame.width, frame.height));
+      files.push_back(tileFilesFor(output, TileFormat::GeoTiff, tiles.back(), grid.rows));
+    }
+  }
+  writeText(output, mosaicText(frame, tiles, files));
+}
+
 TileExportReport exportTiles(const Heightfield& hf,
   const std::string& output,
   int tileSize,
@@ -400,49 +548,14 @@ TileExportReport exportTiles(const Heightfield& hf,
                 "PNG) or .raw/.r16 (16-bit RAW), not " +
       output + ".");
   }
-  TileExportReport report;
-  report.format = *format;
-  report.grid = tileGridFor(hf.width, hf.height, tileSize, *format);
-  const TileGrid& grid = report.grid;
-  Png16Range range;
-  if (sixteenBit(*format))
-  {
-    const std::size_t holes = hf.size() - hf.validCount();
-    if (holes > 0)
-    {
-      throw Error("The terrain has " + std::to_string(holes) +
-        " cells without data, which a 16-bit engine heightmap cannot mark: write GeoTIFF tiles "
-        "(-o NAME.vrt) or fill the holes first.");
-    }
-    range = sharedRange(hf, output);
-    report.zMin = range.zMin;
-    report.zMax = range.zMax;
-  }
-  std::vector<Tile> tiles;
-  for (int r = 0; r < grid.rows; ++r)
-  {
-    for (int c = 0; c < grid.columns; ++c)
-    {
-      const Tile t = tileAt(grid, c, r, hf.width, hf.height);
-      const TileFiles files = tileFilesFor(output, *format, t, grid.rows);
-      const Heightfield tile = cutTile(hf, grid, t, *format);
-      writeTile(tile, files, *format, range);
-      writeText(files.sidecar, sidecarText(hf, grid, t, tile, *format, range));
-      if (sixteenBit(*format))
-      {
-        report.paddedSamples += tile.size() -
-          static_cast<std::size_t>(t.validWidth) * static_cast<std::size_t>(t.validHeight);
-      }
-      tiles.push_back(t);
-      report.tiles.push_back(files);
-      reportProgress(
-        progress, static_cast<double>(tiles.size()) / static_cast<double>(grid.count()), "tiles");
-    }
-  }
+  const TileGrid grid = tileGridFor(hf.width, hf.height, tileSize, *format);
+  const TerrainFrame frame = terrainFrameOf(hf, *format, output);
+  TileExportReport report =
+    exportTileRows({ frame, hf, 0 }, output, grid, *format, 0, grid.rows, progress);
   if (*format == TileFormat::GeoTiff)
   {
     report.mosaic = output;
-    writeText(output, mosaicText(hf, tiles, report.tiles));
+    writeTileMosaic(frame, grid, output);
   }
   return report;
 }

@@ -12,11 +12,13 @@
 #pragma once
 
 #include "Heightfield.h"
+#include "HeightfieldIO.h"
 #include "Progress.h"
 
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tsynth
@@ -85,6 +87,67 @@ struct TileFiles
 // Where tile (column, row) of `output` is written (beside it, named after it).
 TileFiles tileFilesFor(const std::string& output, TileFormat format, const Tile& tile, int rows);
 
+// What the tiles' files need to know of the whole terrain, which one process
+// may hold only in part (a band of its rows).
+struct TerrainFrame
+{
+  int width = 0; // samples
+  int height = 0;
+  double cellX = 1.0; // metres
+  double cellY = 1.0;
+  bool cellSizeKnown = false;
+  Georeference georef; // always with the whole terrain's geotransform
+  bool hasNodata = false;
+  Png16Range range; // 16-bit tiles: the heights of codes 0 and 65535 (the terrain's range)
+};
+
+// The frame of a terrain held whole (for 16-bit tiles, with its range).
+// Throws tsynth::Error for a 16-bit format and a terrain with nodata or none valid.
+TerrainFrame terrainFrameOf(const Heightfield& hf, TileFormat format, const std::string& output);
+
+// What a frame needs of the heights: summed over the bands of several
+// processes (each counting its own rows once), it is the whole terrain's.
+struct HeightSummary
+{
+  std::size_t holes = 0;
+  std::size_t valid = 0;
+  double min = 0.0; // over the valid heights
+  double max = 0.0;
+};
+
+// The summary of `rows` rows of `hf` from row `first` (from the north).
+HeightSummary summaryOf(const Heightfield& hf, int first, int rows);
+
+// Two summaries as one.
+HeightSummary combined(const HeightSummary& a, const HeightSummary& b);
+
+// The frame of a width x height terrain with these heights; `like` (the whole
+// or a band of it) gives its cell size and georeference. Throws as terrainFrameOf.
+TerrainFrame terrainFrameFrom(const Heightfield& like,
+  int width,
+  int height,
+  const HeightSummary& heights,
+  TileFormat format,
+  const std::string& output);
+
+// Rows of a terrain held by one process: `heights` holds the rows
+// [firstRow, firstRow + heights.height) counted from the north (row 0 south,
+// as in every Heightfield), all its columns.
+struct TerrainBand
+{
+  const TerrainFrame& frame;
+  const Heightfield& heights;
+  int firstRow = 0;
+};
+
+// The tile rows [first, last) process `rank` of `ranks` writes: a contiguous
+// share, as even as the rows allow (empty for ranks beyond the rows).
+std::pair<int, int> tileRowsOf(const TileGrid& grid, int rank, int ranks);
+
+// The terrain rows, from the north, that tile rows [first, last) need:
+// [firstRow, lastRow] (both included; neighbours share their edge row).
+std::pair<int, int> terrainRowsOf(const TileGrid& grid, int height, int first, int last);
+
 struct TileExportReport
 {
   TileGrid grid;
@@ -105,5 +168,21 @@ TileExportReport exportTiles(const Heightfield& hf,
   const std::string& output,
   int tileSize,
   const ProgressReport& progress = {});
+
+// The same, for tile rows [firstTileRow, lastTileRow) of `grid` from a band
+// that holds their rows (terrainRowsOf), without the mosaic: the part of an
+// export one of several processes writes. Throws tsynth::Error when the band
+// lacks a row the tiles need.
+TileExportReport exportTileRows(const TerrainBand& band,
+  const std::string& output,
+  const TileGrid& grid,
+  TileFormat format,
+  int firstTileRow,
+  int lastTileRow,
+  const ProgressReport& progress = {});
+
+// Writes the GDAL virtual mosaic over every GeoTIFF tile of `grid` (named as
+// exportTiles names them beside `output`).
+void writeTileMosaic(const TerrainFrame& frame, const TileGrid& grid, const std::string& output);
 
 } // namespace tsynth

@@ -326,3 +326,91 @@ TEST(TileExport, AFailedTileLeavesNoTileOfThatExportBehind)
   }
   EXPECT_EQ(left, std::vector<std::string>{ "t_x4_y3.json" });
 }
+
+namespace
+{
+
+// Rows [first, last] (from the north) of `hf`, as one process of several holds them.
+Heightfield rowsOf(const Heightfield& hf, int first, int last)
+{
+  Heightfield band(hf.width, last - first + 1);
+  band.cellX = hf.cellX;
+  band.cellY = hf.cellY;
+  for (int row = first; row <= last; ++row)
+  {
+    for (int i = 0; i < hf.width; ++i)
+    {
+      const int from = hf.height - 1 - row;
+      band.at(i, last - row) = hf.at(i, from);
+    }
+  }
+  normaliseMask(band);
+  return band;
+}
+
+std::string bytesOf(const fs::path& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  return { std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>() };
+}
+
+} // namespace
+
+TEST(TileExport, ProcessesWritingTheirBandsOfTileRowsWriteTheFilesOfOneExport)
+{
+  for (const char* name : { "parts.vrt", "parts.png" })
+  {
+    const bool sixteen = std::string(name).find(".png") != std::string::npos;
+    const Heightfield hf = terrain(!sixteen);
+    const fs::path whole = freshFolder(std::string("whole-") + name);
+    const fs::path parts = freshFolder(std::string("parts-") + name);
+    constexpr int kTile = 33;
+    const tsynth::TileExportReport one = tsynth::exportTiles(hf, (whole / name).string(), kTile);
+    const tsynth::TileFormat format = *tsynth::tileFormatFor(name);
+    const tsynth::TileGrid grid = tsynth::tileGridFor(hf.width, hf.height, kTile, format);
+    ASSERT_EQ(grid.rows, 2); // 50 rows in tiles of 33: three processes leave one with none
+    const tsynth::TerrainFrame frame = tsynth::terrainFrameOf(hf, format, name);
+    std::size_t written = 0;
+    for (int rank = 0; rank < 3; ++rank)
+    {
+      const auto [first, last] = tsynth::tileRowsOf(grid, rank, 3);
+      if (first == last)
+      {
+        continue;
+      }
+      const auto [top, bottom] = tsynth::terrainRowsOf(grid, hf.height, first, last);
+      const Heightfield band = rowsOf(hf, top, bottom);
+      written += tsynth::exportTileRows(
+        { frame, band, top }, (parts / name).string(), grid, format, first, last)
+                   .tiles.size();
+      if (rank == 0 && top == 0 && bottom + 1 < hf.height)
+      {
+        // A band one row short of what its tiles need is refused.
+        const Heightfield shorter = rowsOf(hf, top, bottom - 1);
+        EXPECT_NE(
+          errorOf(
+            [&]
+            {
+              tsynth::exportTileRows(
+                { frame, shorter, top }, (parts / "short.vrt").string(), grid, format, first, last);
+            })
+            .find("does not hold"),
+          std::string::npos);
+      }
+    }
+    if (!sixteen)
+    {
+      tsynth::writeTileMosaic(frame, grid, (parts / name).string());
+    }
+    EXPECT_EQ(written, one.tiles.size());
+    std::size_t files = 0;
+    for (const auto& entry : fs::directory_iterator(whole))
+    {
+      const fs::path twin = parts / entry.path().filename();
+      ASSERT_TRUE(fs::exists(twin)) << twin;
+      EXPECT_EQ(bytesOf(entry.path()), bytesOf(twin)) << entry.path().filename();
+      ++files;
+    }
+    EXPECT_EQ(files, 2 * one.tiles.size() + (sixteen ? 0 : 1)) << name;
+  }
+}

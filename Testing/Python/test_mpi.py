@@ -2,6 +2,7 @@
 Examples/pvbatch/tiled_synthesis.py` writes the same heights for N = 1, 2 and 3 ranks, bit for bit,
 and the same as `tsynth synth --tile-size` in one process; bad arguments get one sentence."""
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -145,11 +146,43 @@ class MpiTest(unittest.TestCase):
         self.assertEqual(self.on_ranks(1, stopped).returncode, 0)
         self.assertEqual([n for n in os.listdir(self.tmp) if n.startswith(".stopped.tmp-")], [])
 
+    def test_a_mosaic_of_geotiff_tiles_written_by_every_rank_holds_the_heights_of_one_process(self):
+        one = os.path.join(self.tmp, "one-for-mosaic.vti")
+        result = subprocess.run(
+            [PATHS.tsynth, "synth", "--exemplar", self.exemplar, "--sketch", self.sketch, "--size",
+             "%dx%d" % (SIZE, SIZE), "--tile-size", str(TILE), "--patch", str(PATCH), "--seed", str(SEED),
+             "--backend", "cpu", "--no-progress", "-o", one], capture_output=True, text=True, timeout=TIMEOUT_S)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        _, expected = heights(vtkXMLImageDataReader, one)
+        # 256 samples in tiles of 65 that share their edges: 4 x 4 tiles; 3 ranks write 1, 1 and 2
+        # tile rows (Kernels/Core/TileExport.h tileRowsOf).
+        names = sorted("mosaic_x%d_y%d.tif" % (c, r) for c in range(4) for r in range(4))
+        for ranks in (2, 3):
+            with self.subTest(ranks=ranks):
+                folder = os.path.join(self.tmp, "mosaic%d" % ranks)
+                os.mkdir(folder)
+                out = os.path.join(folder, "mosaic.vrt")
+                result = subprocess.run(self.command(ranks, out) + ["--file-tile-size", "65"], capture_output=True,
+                                        text=True, timeout=TIMEOUT_S, env=self.environment())
+                self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+                self.assertIn("(16 GeoTIFF tiles)", result.stdout)
+                # One synthesis per rank: the writer's request for its rows is the only one.
+                self.assertEqual(len(re.findall(r"rank 0 of %d: \d+ feature" % ranks, result.stdout)), 1,
+                                 result.stdout)
+                self.assertEqual(sorted(n for n in os.listdir(folder) if n.endswith(".tif")), names)
+                self.assertEqual(len([n for n in os.listdir(folder) if n.endswith(".json")]), 16)
+                back = os.path.join(self.tmp, "back%d.vti" % ranks)
+                converted = subprocess.run([PATHS.tsynth, "convert", out, "-o", back], capture_output=True, text=True)
+                self.assertEqual(converted.returncode, 0, converted.stderr)
+                dims, got = heights(vtkXMLImageDataReader, back)
+                self.assertEqual(dims, (SIZE, SIZE, 1))
+                np.testing.assert_array_equal(got, expected)
+
     def test_bad_arguments_get_one_sentence(self):
         out = os.path.join(self.tmp, "bad.pvti")
         result = self.on_ranks(1, os.path.join(self.tmp, "bad.tif"))
         self.assertNotEqual(result.returncode, 0)
-        self.assertIn("-o OUT.pvti, not", result.stderr)
+        self.assertIn("-o OUT.vrt or -o OUT.pvti, not", result.stderr)
         self.assertFalse(os.path.exists(out))
 
 
