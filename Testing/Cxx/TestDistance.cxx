@@ -6,6 +6,7 @@
 #include "Core/Smoothing.h"
 #include "Distance/DistanceField.h"
 #include "Distance/Profile.h"
+#include "ErrorOf.h"
 #include "Features/Ppa.h"
 #include "TestData.h"
 
@@ -196,20 +197,7 @@ TEST(DistanceField, NoSeedsAndBadInput)
 namespace
 {
 
-// The message of the tsynth::Error `f` throws ("" if none).
-template<typename F>
-std::string errorOf(F f)
-{
-  try
-  {
-    f();
-  }
-  catch (const Error& e)
-  {
-    return e.what();
-  }
-  return "";
-}
+using tsynth::test::errorOf;
 
 bool contains(const std::string& text, const std::string& part)
 {

@@ -3,6 +3,7 @@
 #include "Core/Geodesy.h"
 #include "Core/HeightfieldIO.h"
 #include "Core/Resample.h"
+#include "ErrorOf.h"
 #include "TestData.h"
 
 #include <gdal_priv.h>
@@ -30,18 +31,7 @@ std::string scratch(const std::string& name)
   return (tsynth::test::scratchDir() / name).string();
 }
 
-std::string errorOf(const std::function<void()>& f)
-{
-  try
-  {
-    f();
-  }
-  catch (const tsynth::Error& e)
-  {
-    return e.what();
-  }
-  return "";
-}
+using tsynth::test::errorOf;
 
 // Writes a raster through GDAL directly, independent of the code under test.
 void writeWithGdal(const std::string& path,

@@ -5,6 +5,7 @@
 #include "Core/Memory.h"
 #include "Distance/DistanceMemory.h"
 #include "Distance/DistanceSynthesis.h"
+#include "ErrorOf.h"
 #include "Hydrology/PitRemoval.h"
 #include "Optimisation/TerrainOptimisation.h"
 
@@ -23,18 +24,7 @@ using namespace tsynth;
 namespace
 {
 
-std::string errorOf(const std::function<void()>& call)
-{
-  try
-  {
-    call();
-  }
-  catch (const Error& e)
-  {
-    return e.what();
-  }
-  return "";
-}
+using tsynth::test::errorOf;
 
 // "about N MB" as bytesText prints the estimate.
 std::string about(double bytes)

@@ -1,4 +1,5 @@
 #include "Core/Error.h"
+#include "ErrorOf.h"
 #include "Synthesis/Setup.h"
 
 #include <gtest/gtest.h>
@@ -39,21 +40,7 @@ SetupOptionNames cliNames()
   return n;
 }
 
-// The message of the tsynth::Error `f` throws (fails the test if none).
-template<typename F>
-std::string errorOf(F&& f)
-{
-  try
-  {
-    f();
-  }
-  catch (const Error& e)
-  {
-    return e.what();
-  }
-  ADD_FAILURE() << "no tsynth::Error thrown";
-  return {};
-}
+using tsynth::test::errorOf;
 
 OutputGrid gridOf(const PolylineSketch& s, GridRequest request = {})
 {

@@ -5,6 +5,7 @@
 #include "Core/Error.h"
 #include "Core/OutputFile.h"
 #include "Core/TileExport.h"
+#include "ErrorOf.h"
 #include "TestData.h"
 
 #include <gdal_priv.h>
@@ -128,18 +129,7 @@ nlohmann::json readJson(const fs::path& path)
   return nlohmann::json::parse(in);
 }
 
-std::string errorOf(const std::function<void()>& f)
-{
-  try
-  {
-    f();
-  }
-  catch (const tsynth::Error& e)
-  {
-    return e.what();
-  }
-  return "";
-}
+using tsynth::test::errorOf;
 
 } // namespace
 
