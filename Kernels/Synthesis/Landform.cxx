@@ -1108,14 +1108,16 @@ std::vector<double> lineValueField(const RasterLines& lines,
     return field;
   }
   Heightfield raw(w, h, 0.0f);
-  std::vector<double> sigma(n, 0.0); // cells
+  // Each cell's smoothing (cells), worked out where it is needed rather than
+  // held: a plane of doubles at the peak of a large target's set-up.
+  const double widestAllowed = kLineValueSmoothingInPatches * patchSize;
+  auto sigmaAt = [&](std::size_t k)
+  { return std::min(kLineValueSmoothingShare * near.distance[k] / cell, widestAllowed); };
   double widest = 0.0;
   for (std::size_t k = 0; k < n; ++k)
   {
     raw.z[k] = lines.value[static_cast<std::size_t>(near.nearest[k])];
-    sigma[k] = std::min(
-      kLineValueSmoothingShare * near.distance[k] / cell, kLineValueSmoothingInPatches * patchSize);
-    widest = std::max(widest, sigma[k]);
+    widest = std::max(widest, sigmaAt(k));
   }
   // Smoothed at sigmas kLineValueLevelStep apart, interpolated between them in
   // log sigma: each cell between the first level at least its sigma and the
@@ -1130,7 +1132,7 @@ std::vector<double> lineValueField(const RasterLines& lines,
   }
   for (std::size_t k = 0; k < n; ++k)
   {
-    if (levels.size() == 1 || sigma[k] <= 0.0)
+    if (levels.size() == 1 || sigmaAt(k) <= 0.0)
     {
       field[k] = raw.z[k];
     }
@@ -1144,7 +1146,7 @@ std::vector<double> lineValueField(const RasterLines& lines,
     const bool last = l + 1 == levels.size();
     for (std::size_t k = 0; k < n; ++k)
     {
-      const double s = sigma[k];
+      const double s = sigmaAt(k);
       if (s <= 0.0 || (l > 1 && !(lo < s)) || !(hi >= s || last))
       {
         continue; // done raw, or blended at another pair of levels
@@ -1155,6 +1157,18 @@ std::vector<double> lineValueField(const RasterLines& lines,
     previous = std::move(current);
   }
   return field;
+}
+
+// Lets go of what only lineValueField reads: the raster's values and seeds,
+// and (unless another raster still needs them) the map's nearest cells.
+void releaseLineValues(RasterLines& lines, NearestSeeds& near, bool nearestToo = true)
+{
+  std::vector<float>().swap(lines.value);
+  std::vector<std::uint8_t>().swap(lines.seeds);
+  if (nearestToo)
+  {
+    std::vector<std::int32_t>().swap(near.nearest);
+  }
 }
 
 // The statistics with each kind's relief raised by its factor.
@@ -1262,8 +1276,16 @@ LandformField landformField(const FeatureGraph& sketch,
   {
     z -= s.valley.relief;
   }
-  const RasterLines troughCells = rasteriseNetwork(graph, troughs, troughFloor, w, h);
-  const NearestSeeds nearTrough = nearestSeeds(troughCells.seeds, w, h, cellX, cellY);
+  // Each kind's line values are spread (lineValueField) right after its
+  // nearest-line map is made, and then the rasters' values and the maps'
+  // nearest cells go: the loop below reads only the distances. Held for every
+  // kind at once they set the peak of a large target's set-up.
+  RasterLines troughCells = rasteriseNetwork(graph, troughs, troughFloor, w, h);
+  NearestSeeds nearTrough = nearestSeeds(troughCells.seeds, w, h, cellX, cellY);
+  const bool anyTrough = !nearTrough.empty();
+  const std::vector<double> troughAt =
+    lineValueField(troughCells, nearTrough, w, h, cell, o.patchSize);
+  releaseLineValues(troughCells, nearTrough);
   checkCancellation();
   const std::vector<double> crest =
     crestHeights(ridges, vertexValues(ridges, graph, heights), baseOf(ridges), s, o, cell, w, h);
@@ -1277,22 +1299,26 @@ LandformField landformField(const FeatureGraph& sketch,
     w,
     h,
     out.warnings);
-  const RasterLines ridgeCells = rasteriseNetwork(graph, ridges, crest, w, h);
-  const RasterLines valleyCells = rasteriseNetwork(graph, valleys, floors.floor, w, h);
-  const RasterLines valleyRims = rasteriseNetwork(graph, valleys, floors.rim, w, h);
-  const RasterLines flow = rasteriseNetwork(graph, valleys, floors.downstream, w, h);
+  RasterLines ridgeCells = rasteriseNetwork(graph, ridges, crest, w, h);
   checkCancellation();
-  const NearestSeeds nearRidge = nearestSeeds(ridgeCells.seeds, w, h, cellX, cellY);
-  checkCancellation();
-  const NearestSeeds nearValley = nearestSeeds(valleyCells.seeds, w, h, cellX, cellY);
-  checkCancellation();
+  NearestSeeds nearRidge = nearestSeeds(ridgeCells.seeds, w, h, cellX, cellY);
+  const bool anyRidge = !nearRidge.empty();
   const std::vector<double> crestAt =
     lineValueField(ridgeCells, nearRidge, w, h, cell, o.patchSize);
+  releaseLineValues(ridgeCells, nearRidge);
+  checkCancellation();
+  RasterLines valleyCells = rasteriseNetwork(graph, valleys, floors.floor, w, h);
+  RasterLines valleyRims = rasteriseNetwork(graph, valleys, floors.rim, w, h);
+  const RasterLines flow = rasteriseNetwork(graph, valleys, floors.downstream, w, h);
+  checkCancellation();
+  NearestSeeds nearValley = nearestSeeds(valleyCells.seeds, w, h, cellX, cellY);
+  const bool anyValley = !nearValley.empty();
+  checkCancellation();
   const std::vector<double> floorAt =
     lineValueField(valleyCells, nearValley, w, h, cell, o.patchSize);
+  releaseLineValues(valleyCells, nearValley, false);
   const std::vector<double> rimAt = lineValueField(valleyRims, nearValley, w, h, cell, o.patchSize);
-  const std::vector<double> troughAt =
-    lineValueField(troughCells, nearTrough, w, h, cell, o.patchSize);
+  releaseLineValues(valleyRims, nearValley);
   const MonotoneProfile ridgeShape = s.ridge.section.normalised();
   const MonotoneProfile valleyShape = s.valley.section.normalised();
   const CrossSection ridgeSection(ridgeShape, s.ridge.width, narrowest);
@@ -1314,7 +1340,7 @@ LandformField landformField(const FeatureGraph& sketch,
     double conf = 0.0;
     double nearest = kInfinity;
     double width = 0.0;
-    if (!nearRidge.empty())
+    if (anyRidge)
     {
       const double d = ridgeSection.distance(nearRidge.distance[k], room);
       const double top = crestAt[k];
@@ -1326,7 +1352,7 @@ LandformField landformField(const FeatureGraph& sketch,
       width = s.ridge.width;
     }
     double gorge = kInfinity;
-    if (!nearValley.empty())
+    if (anyValley)
     {
       const double d = valleySection.distance(nearValley.distance[k], room);
       const double bottom = floorAt[k];
@@ -1341,7 +1367,7 @@ LandformField landformField(const FeatureGraph& sketch,
         width = s.valley.width;
       }
     }
-    if (!nearTrough.empty())
+    if (anyTrough)
     {
       const double d = valleySection.distance(nearTrough.distance[k], room);
       const double bottom = troughAt[k];
