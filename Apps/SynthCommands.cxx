@@ -82,7 +82,8 @@ writes them: its output works directly as a sketch of the same DEM.
                          smaller: the same landforms in the same places, less detail. Needs
                          a patch of at least 32. Stopped (Ctrl-C) after it, the run leaves
                          the preview complete
-  --report FILE.json     per-stage times, counts, costs and quality figures
+  --report FILE.json     per-stage times, counts, costs and quality figures (with --tile-size,
+                         each tile's time in each pass: "tiles")
   --debug-dir DIR        target field, feature trees, patch ids and seams as files
   --regions LABELS       style regions: a single-band image of labels over the output (resized to
                          it); label L is served by exemplar number L (counting from 0) unless
