@@ -61,16 +61,21 @@ void boxLine(double* value,
 }
 
 // One box pass down every column at once, row by row: a running sum per
-// column of rows j - r .. j + r (clipped), read and written row-contiguously.
+// column of rows j - r .. j + r (clipped), read and written row-contiguously,
+// in place. The sum drops row j - r - 1 after that row was overwritten, so the
+// last r + 1 rows' old values are kept in a ring (`ring`): a few rows rather
+// than a second plane of doubles, which set the peak of large terrains.
 void boxColumns(std::vector<double>& value,
   std::size_t w,
   std::size_t h,
   int width,
-  std::vector<double>& out)
+  std::vector<double>& ring)
 {
   const std::size_t r = static_cast<std::size_t>(width / 2);
+  const std::size_t kept = r + 1; // rows in the ring
+  const bool drops = kept < h;
   std::vector<double> sum(w, 0.0);
-  out.assign(w * h, 0.0);
+  ring.assign(drops ? kept * w : 0, 0.0);
   for (std::size_t j = 0; j < std::min(h, r); ++j)
   {
     for (std::size_t i = 0; i < w; ++i)
@@ -80,6 +85,7 @@ void boxColumns(std::vector<double>& value,
   }
   for (std::size_t j = 0; j < h; ++j)
   {
+    double* row = value.data() + j * w;
     if (j + r < h)
     {
       const double* add = value.data() + (j + r) * w;
@@ -88,17 +94,21 @@ void boxColumns(std::vector<double>& value,
         sum[i] += add[i];
       }
     }
-    if (j >= r + 1)
+    if (drops)
     {
-      const double* drop = value.data() + (j - r - 1) * w;
-      for (std::size_t i = 0; i < w; ++i)
+      // Row j - r - 1's old values sit where row j's go: (j - r - 1) mod (r + 1) = j mod (r + 1).
+      double* slot = ring.data() + (j % kept) * w;
+      if (j >= kept)
       {
-        sum[i] -= drop[i];
+        for (std::size_t i = 0; i < w; ++i)
+        {
+          sum[i] -= slot[i];
+        }
       }
+      std::copy(row, row + w, slot);
     }
-    std::copy(sum.begin(), sum.end(), out.begin() + static_cast<long>(j * w));
+    std::copy(sum.begin(), sum.end(), row);
   }
-  value.swap(out);
 }
 
 } // namespace
@@ -139,11 +149,11 @@ Heightfield smoothLarge(const Heightfield& hf, double sigma)
       }
     }
   }
-  std::vector<double> scratch;
+  std::vector<double> ring;
   for (int width : widths)
   {
-    boxColumns(value, w, h, width, scratch);
-    boxColumns(weight, w, h, width, scratch);
+    boxColumns(value, w, h, width, ring);
+    boxColumns(weight, w, h, width, ring);
   }
   Heightfield out = hf;
   for (std::size_t k = 0; k < out.size(); ++k)
