@@ -65,6 +65,20 @@ class MpiTest(unittest.TestCase):
     def tearDownClass(cls):
         shutil.rmtree(cls.tmp)
 
+    def one_process_heights(self):
+        """The dimensions and heights `tsynth synth --tile-size` makes of the test's inputs in one
+        process: what every rank count must give (made once for the tests that compare with it)."""
+        if not hasattr(MpiTest, "_one"):
+            one = os.path.join(self.tmp, "one.vti")
+            result = subprocess.run(
+                [PATHS.tsynth, "synth", "--exemplar", self.exemplar, "--sketch", self.sketch, "--size",
+                 "%dx%d" % (SIZE, SIZE), "--tile-size", str(TILE), "--patch", str(PATCH), "--seed", str(SEED),
+                 "--backend", "cpu", "--no-progress", "-o", one], capture_output=True, text=True,
+                timeout=TIMEOUT_S)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            MpiTest._one = heights(vtkXMLImageDataReader, one)
+        return MpiTest._one
+
     def command(self, ranks, output, size=SIZE):
         return [self.mpiexec, *MPI_FLAGS, "-np", str(ranks), self.pvbatch, SCRIPT, "--exemplar", self.exemplar,
                 "--sketch", self.sketch, "--size", "%dx%d" % (size, size), "--tile-size", str(TILE),
@@ -93,13 +107,7 @@ class MpiTest(unittest.TestCase):
         self.fail("rank 1 never reached its fill")
 
     def test_every_rank_count_writes_the_heights_of_one_process(self):
-        one = os.path.join(self.tmp, "one.vti")
-        result = subprocess.run(
-            [PATHS.tsynth, "synth", "--exemplar", self.exemplar, "--sketch", self.sketch, "--size",
-             "%dx%d" % (SIZE, SIZE), "--tile-size", str(TILE), "--patch", str(PATCH), "--seed", str(SEED),
-             "--backend", "cpu", "--no-progress", "-o", one], capture_output=True, text=True, timeout=TIMEOUT_S)
-        self.assertEqual(result.returncode, 0, result.stderr)
-        dims, expected = heights(vtkXMLImageDataReader, one)
+        dims, expected = self.one_process_heights()
         self.assertEqual(dims, (SIZE, SIZE, 1))
         self.assertGreater(float(expected.max() - expected.min()), 100.0)  # real relief
         for ranks in (1, 2, 3):
@@ -147,13 +155,7 @@ class MpiTest(unittest.TestCase):
         self.assertEqual([n for n in os.listdir(self.tmp) if n.startswith(".stopped.tmp-")], [])
 
     def test_a_mosaic_of_geotiff_tiles_written_by_every_rank_holds_the_heights_of_one_process(self):
-        one = os.path.join(self.tmp, "one-for-mosaic.vti")
-        result = subprocess.run(
-            [PATHS.tsynth, "synth", "--exemplar", self.exemplar, "--sketch", self.sketch, "--size",
-             "%dx%d" % (SIZE, SIZE), "--tile-size", str(TILE), "--patch", str(PATCH), "--seed", str(SEED),
-             "--backend", "cpu", "--no-progress", "-o", one], capture_output=True, text=True, timeout=TIMEOUT_S)
-        self.assertEqual(result.returncode, 0, result.stderr)
-        _, expected = heights(vtkXMLImageDataReader, one)
+        _, expected = self.one_process_heights()
         # 256 samples in tiles of 65 that share their edges: 4 x 4 tiles; 3 ranks write 1, 1 and 2
         # tile rows (Kernels/Core/TileExport.h tileRowsOf).
         names = sorted("mosaic_x%d_y%d.tif" % (c, r) for c in range(4) for r in range(4))
