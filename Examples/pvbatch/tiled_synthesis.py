@@ -87,12 +87,25 @@ def sweep_stopped_runs(folder, stem):
         made_by = re.match(r"\.tmp-(\d+)-", os.path.basename(path)[len(stem) + 1:])
         if made_by is None or not os.path.isdir(path):
             continue
-        try:
-            os.kill(int(made_by.group(1)), 0)
-        except ProcessLookupError:
+        if not running(int(made_by.group(1))):
             shutil.rmtree(path, ignore_errors=True)
-        except PermissionError:
-            pass  # another user's live run
+
+
+def running(pid):
+    """Whether process `pid` lives: a zombie does not (in a container whose first process reaps no
+    orphans, a rank ended by Ctrl-C stays one, and os.kill(pid, 0) still finds it)."""
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        pass  # gone, or no /proc here
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True  # another user's live run
+    return True
 
 
 def write_pieces(synthesis, path, ranks):
