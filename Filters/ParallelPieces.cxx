@@ -124,12 +124,12 @@ void reportRankWork(const SynthesisOptions& options, const SynthesisResult& resu
   std::cout << line.str() << std::flush; // one write: the ranks' lines do not interleave
 }
 
-void keepRequestedExtent(vtkInformation* outInfo, vtkImageData* image)
+bool keepRequestedExtent(vtkInformation* outInfo, vtkImageData* image)
 {
   if (outInfo == nullptr || image == nullptr || image->GetNumberOfPoints() == 0 ||
     !outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
   {
-    return;
+    return false;
   }
   int asked[6];
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), asked);
@@ -138,7 +138,9 @@ void keepRequestedExtent(vtkInformation* outInfo, vtkImageData* image)
   if (asked[0] > held[0] || asked[1] < held[1] || asked[2] > held[2] || asked[3] < held[3])
   {
     image->Crop(asked);
+    return true;
   }
+  return false;
 }
 
 bool holdsFirstPiece(vtkInformation* outInfo)

@@ -34,8 +34,8 @@ void shareTilesAmongRanks(SynthesisOptions& options);
 void reportRankWork(const SynthesisOptions& options, const SynthesisResult& result);
 
 // Crops an image output to the extent the pipeline asked of it (its piece),
-// when smaller than what it holds.
-void keepRequestedExtent(vtkInformation* outInfo, vtkImageData* image);
+// when smaller than what it holds; true if it did.
+bool keepRequestedExtent(vtkInformation* outInfo, vtkImageData* image);
 
 // Whether the pipeline asked this output for its first piece (or asked for
 // none): outputs that are not split by extent (tables, lines) are given by

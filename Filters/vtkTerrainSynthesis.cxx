@@ -8,6 +8,7 @@
 #include "SketchInputs.h"
 #include "TerrainImageConversion.h"
 
+#include "Core/ContentHash.h"
 #include "Core/Error.h"
 #include "Core/Memory.h"
 #include "Synthesis/PatchColours.h"
@@ -33,12 +34,14 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSignedCharArray.h>
+#include <vtkSmartPointer.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
 #include <vtkTable.h>
 #include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <iterator>
@@ -558,6 +561,7 @@ public:
 vtkTerrainSynthesis::~vtkTerrainSynthesis()
 {
   this->StopRefinement();
+  this->ForgetWholeOutputs();
 }
 
 void vtkTerrainSynthesis::StopRefinement()
@@ -618,21 +622,25 @@ void writeOutputs(vtkTerrainSynthesis* filter,
 }
 
 // On ParaView's parallel engine each rank's outputs hold its piece: the
-// images their extent, the tables and lines the first piece alone.
-void keepRequestedPieces(vtkInformationVector* outputVector)
+// images their extent, the tables and lines the first piece alone. True if any
+// output now holds less than the whole.
+bool keepRequestedPieces(vtkInformationVector* outputVector)
 {
+  bool cut = false;
   for (int port = 0; port < kOutputPorts; ++port)
   {
     vtkInformation* out = outputVector->GetInformationObject(port);
     if (auto* image = vtkImageData::GetData(outputVector, port))
     {
-      tsynth::keepRequestedExtent(out, image);
+      cut = tsynth::keepRequestedExtent(out, image) || cut;
     }
     else if (!tsynth::holdsFirstPiece(out))
     {
       vtkDataObject::GetData(outputVector, port)->Initialize();
+      cut = true;
     }
   }
+  return cut;
 }
 
 void clearOutputs(vtkInformationVector* outputVector)
@@ -640,6 +648,66 @@ void clearOutputs(vtkInformationVector* outputVector)
   for (int port = 0; port < kOutputPorts; ++port)
   {
     vtkDataObject::GetData(outputVector, port)->Initialize();
+  }
+}
+
+} // namespace
+
+// The whole outputs of the last synthesis (shallow copies taken before they were cut to this
+// rank's piece) and the key of what made them (wholeOutputsKey).
+class vtkTerrainSynthesis::vtkWholeOutputs
+{
+public:
+  std::uint64_t key = 0;
+  std::array<vtkSmartPointer<vtkDataObject>, kOutputPorts> outputs;
+};
+
+void vtkTerrainSynthesis::ForgetWholeOutputs()
+{
+  delete this->WholeOutputs;
+  this->WholeOutputs = nullptr;
+}
+
+namespace
+{
+
+// What decides every output of a synthesis: what decides its terrain (the kernel's key), the
+// exemplars' origins (the placement table's source positions) and whether the debug outputs
+// are filled.
+std::uint64_t wholeOutputsKey(const tsynth::SetupInputs& in,
+  const tsynth::SynthesisOptions& o,
+  const tsynth::ExemplarInputs& ex,
+  bool debugOutputs)
+{
+  tsynth::ContentHasher h;
+  h.value(tsynth::synthesisRequestKey(in, o));
+  h.values(ex.originX);
+  h.values(ex.originY);
+  h.value(debugOutputs);
+  return h.digest();
+}
+
+std::unique_ptr<vtkTerrainSynthesis::vtkWholeOutputs> copyWholeOutputs(std::uint64_t key,
+  vtkInformationVector* outputVector)
+{
+  auto whole = std::make_unique<vtkTerrainSynthesis::vtkWholeOutputs>();
+  whole->key = key;
+  for (int port = 0; port < kOutputPorts; ++port)
+  {
+    vtkDataObject* output = vtkDataObject::GetData(outputVector, port);
+    whole->outputs[static_cast<std::size_t>(port)].TakeReference(output->NewInstance());
+    whole->outputs[static_cast<std::size_t>(port)]->ShallowCopy(output);
+  }
+  return whole;
+}
+
+void restoreWholeOutputs(const vtkTerrainSynthesis::vtkWholeOutputs& whole,
+  vtkInformationVector* outputVector)
+{
+  for (int port = 0; port < kOutputPorts; ++port)
+  {
+    vtkDataObject::GetData(outputVector, port)
+      ->ShallowCopy(whole.outputs[static_cast<std::size_t>(port)]);
   }
 }
 
@@ -653,6 +721,7 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
     // ParaView asks for the data even after RequestInformation failed; nothing to add to what
     // the reader said.
     this->StopRefinement();
+    this->ForgetWholeOutputs();
     clearOutputs(outputVector);
     this->OutputLevel = "none";
     return 0;
@@ -669,32 +738,51 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
     {
       if (this->PreviewFirst)
       {
+        this->ForgetWholeOutputs();
         this->PreviewOrRefined(inputVector, outputVector);
         return;
       }
       this->StopRefinement();
-      tsynth::ExemplarInputs ex;
-      tsynth::SetupInputs in = setupInputs(this, inputVector, ex);
-      for (const auto& w : ex.warnings)
-      {
-        vtkWarningMacro(<< w);
-      }
-      const tsynth::SynthesisSetup setup = tsynth::prepareSynthesis(std::move(in));
-      for (const auto& w : setup.warnings)
-      {
-        vtkWarningMacro(<< w);
-      }
-      this->UpdateProgress(kSetupProgress);
-      tsynth::SynthesisOptions o =
-        optionsOnGrid(this, inputVector, this->RegionMaps, setup.grid, setup.exemplars.size());
-      tsynth::shareTilesAmongRanks(o);
-      const tsynth::SynthesisResult r = tsynth::synthesize(setup, o);
-      tsynth::reportRankWork(o, r);
-      this->BackendUsed = r.backend;
-      writeOutputs(this, setup, r, ex, outputVector);
-      keepRequestedPieces(outputVector);
+      this->SynthesiseOrCut(inputVector, outputVector);
       this->OutputLevel = "final";
     });
+}
+
+void vtkTerrainSynthesis::SynthesiseOrCut(vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  tsynth::ExemplarInputs ex;
+  tsynth::SetupInputs in = setupInputs(this, inputVector, ex);
+  tsynth::SynthesisOptions o = optionsOnGrid(
+    this, inputVector, this->RegionMaps, tsynth::plannedGrid(in), in.exemplars.size());
+  const std::uint64_t key = wholeOutputsKey(in, o, ex, this->DebugOutputs);
+  if (this->WholeOutputs != nullptr && this->WholeOutputs->key == key)
+  {
+    restoreWholeOutputs(*this->WholeOutputs, outputVector);
+    keepRequestedPieces(outputVector);
+    return;
+  }
+  this->ForgetWholeOutputs(); // its memory goes to the new synthesis
+  for (const auto& w : ex.warnings)
+  {
+    vtkWarningMacro(<< w);
+  }
+  const tsynth::SynthesisSetup setup = tsynth::prepareSynthesis(std::move(in));
+  for (const auto& w : setup.warnings)
+  {
+    vtkWarningMacro(<< w);
+  }
+  this->UpdateProgress(kSetupProgress);
+  tsynth::shareTilesAmongRanks(o);
+  const tsynth::SynthesisResult r = tsynth::synthesize(setup, o);
+  tsynth::reportRankWork(o, r);
+  this->BackendUsed = r.backend;
+  writeOutputs(this, setup, r, ex, outputVector);
+  auto whole = copyWholeOutputs(key, outputVector);
+  if (keepRequestedPieces(outputVector))
+  {
+    this->WholeOutputs = whole.release(); // for the next extent of this synthesis
+  }
 }
 
 namespace
@@ -787,6 +875,7 @@ void vtkTerrainSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LandformRelief: " << this->LandformRelief << "\n";
   os << indent << "UseExemplarCache: " << this->UseExemplarCache << "\n";
   os << indent << "ExemplarCacheDirectory: " << this->ExemplarCacheDirectory << "\n";
+  os << indent << "WholeOutputsKept: " << (this->WholeOutputs != nullptr ? "yes" : "no") << "\n";
   os << indent << "DebugOutputs: " << (this->DebugOutputs ? "on" : "off") << "\n";
   os << indent << "PreviewFirst: " << (this->PreviewFirst ? "on" : "off") << "\n";
   os << indent << "OutputLevel: " << this->OutputLevel << "\n";

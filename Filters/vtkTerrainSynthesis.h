@@ -25,6 +25,13 @@
  * filters' kernels: feature extraction, candidate pools and matching (OpenCL or CPU), graph-cut
  * merging. Optional input port 2: style regions, an image of integer labels resized to the output;
  * label L is served by exemplar L unless AddRegionMap("L=E1,E2").
+ *
+ * On ParaView's parallel engine each rank's outputs hold its piece. While they do, the filter
+ * keeps the whole outputs of its last synthesis, so that a request for another extent of the same
+ * synthesis (File > Save Data's writer asking for its tile rows after the view asked for pieces)
+ * is cut from them instead of synthesised again. Whatever changes the terrain (inputs' content,
+ * properties) makes it synthesise anew; in one process, where the outputs hold the whole, nothing
+ * is kept.
  */
 #pragma once
 
@@ -205,6 +212,9 @@ protected:
   // and a new refinement.
   void PreviewOrRefined(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
   void StopRefinement();
+  // The non-preview update: the kept whole outputs cut to this request's piece if they answer
+  // it, else a synthesis (whose whole outputs are kept if the outputs hold only a piece).
+  void SynthesiseOrCut(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 
   int PatchSize = tsynth::kDefaultSynthesisPatch;
   int Backend = AUTO;
@@ -228,10 +238,13 @@ protected:
   std::vector<std::string> RegionMaps;
 
 public:
-  class vtkRefinement; // the whole synthesis under way in the background (PreviewFirst)
+  class vtkRefinement;   // the whole synthesis under way in the background (PreviewFirst)
+  class vtkWholeOutputs; // the last synthesis' whole outputs, while the outputs hold a piece
 
 private:
   vtkRefinement* Refinement = nullptr;
+  vtkWholeOutputs* WholeOutputs = nullptr;
+  void ForgetWholeOutputs();
   vtkTerrainSynthesis(const vtkTerrainSynthesis&) = delete;
   void operator=(const vtkTerrainSynthesis&) = delete;
 };

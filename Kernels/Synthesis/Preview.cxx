@@ -42,14 +42,8 @@ int coarseCells(int cells, int factor)
 
 PreviewPlan planPreview(const SetupInputs& full)
 {
-  if (full.exemplars.empty())
-  {
-    throw Error("No exemplar: give at least one DEM to copy terrain from.");
-  }
   PreviewPlan plan;
-  const Heightfield& first = full.exemplars.front();
-  plan.full = outputGrid(
-    sketchExtent(full.sketch), full.grid, first.cellX, first.cellY, full.patchSize, full.names);
+  plan.full = plannedGrid(full);
   for (int factor = kPreviewCoarsening; factor > 1; factor /= 2)
   {
     if (coarsePatch(full.patchSize, factor) >= kMinSynthesisPatch)

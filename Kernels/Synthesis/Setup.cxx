@@ -529,9 +529,7 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
   checkPatchSize(in.patchSize, in.names.patch);
   reuseFreedWorkMemory(); // the filters' synthesis too, not only tsynth's
   SynthesisSetup s;
-  const Heightfield& first = in.exemplars.front();
-  s.grid =
-    outputGrid(sketchExtent(in.sketch), in.grid, first.cellX, first.cellY, in.patchSize, in.names);
+  s.grid = plannedGrid(in);
   checkMemory(in, s.grid, s);
   AnalysedSketch sketch = analyseSketch(in.sketch, s.grid, in.patchSize, in.rasterSketchPatch);
   checkCancellation(); // between the set-up's steps: a stop waits for one step at most
@@ -623,6 +621,18 @@ void hashSketch(ContentHasher& h, const SketchInput& sketch)
 
 } // namespace
 
+OutputGrid plannedGrid(const SetupInputs& in)
+{
+  if (in.exemplars.empty())
+  {
+    throw Error("No exemplar: give at least one DEM to copy terrain from.");
+  }
+  checkPatchSize(in.patchSize, in.names.patch); // before the grid, which needs a patch
+  const Heightfield& first = in.exemplars.front();
+  return outputGrid(
+    sketchExtent(in.sketch), in.grid, first.cellX, first.cellY, in.patchSize, in.names);
+}
+
 std::uint64_t synthesisRequestKey(const SetupInputs& in, const SynthesisOptions& o)
 {
   ContentHasher h;
@@ -651,6 +661,7 @@ std::uint64_t synthesisRequestKey(const SetupInputs& in, const SynthesisOptions&
   h.value(o.repetitionPenalty);
   h.value(o.correctionScale);
   h.value(o.drainValleys);
+  h.value(o.tileSize);
   h.value(o.drainage.has_value());
   h.value(o.drainage.value_or(PitRemovalMethod{}));
   h.values(o.regionLabels);

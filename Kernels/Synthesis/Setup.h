@@ -212,9 +212,16 @@ std::optional<std::string> finenessWarning(const SynthesisTarget& target, int pa
 // patch at the output's cell size.
 SynthesisSetup prepareSynthesis(SetupInputs inputs);
 
+// The grid prepareSynthesis() will make of these inputs, without preparing
+// anything (what the options laid on the grid, such as style regions, need
+// first). Throws tsynth::Error as outputGrid() does, and for no exemplar or a
+// bad patch size (checkPatchSize).
+OutputGrid plannedGrid(const SetupInputs& inputs);
+
 // A key of everything that decides a synthesis' terrain: the set-up's inputs
 // (the exemplars' heights and cells, the sketch's content, the grid asked for,
-// patch, seed, landform relief) and the options that change it. Not the
+// patch, seed, landform relief) and the options that change it (the tile size
+// among them: a tiled terrain differs from an untiled one). Not the
 // backend (every backend gives the same bits), the progress report, a prepared
 // pool, the memory budget or the cache. Equal keys: the same terrain.
 std::uint64_t synthesisRequestKey(const SetupInputs& inputs, const SynthesisOptions& options);

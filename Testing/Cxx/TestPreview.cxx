@@ -195,6 +195,9 @@ TEST(Preview, RequestKeyFollowsWhatChangesTheTerrainOnly)
   SynthesisOptions spaced = o;
   spaced.fillSpacing = 0.75;
   EXPECT_NE(synthesisRequestKey(in, spaced), key);
+  SynthesisOptions tiled = o; // tiles change the terrain (Tiling.h)
+  tiled.tileSize = 128;
+  EXPECT_NE(synthesisRequestKey(in, tiled), key);
   SynthesisOptions drained = o;
   drained.drainage = PitRemovalMethod::Fill;
   EXPECT_NE(synthesisRequestKey(in, drained), key);

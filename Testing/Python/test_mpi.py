@@ -5,6 +5,7 @@ import os
 import re
 import shutil
 import signal
+import socket
 import subprocess
 import sys
 import tempfile
@@ -50,6 +51,23 @@ def processes_naming(path):
         except OSError:
             pass  # ended meanwhile
     return found
+
+
+# A pvpython client of a pvserver, as the GUI would drive it: the view's update, then Save Data's
+# Terrain tiles writer; again with another seed.
+CLIENT = """
+from paraview import simple
+simple.Connect("localhost", %(port)d)
+simple.LoadPlugin(%(plugin)r, remote=True)
+exemplar = simple.TerrainReader(FileName=%(exemplar)r)
+sketch = simple.TerrainSketchReader(FileName=%(sketch)r, ExemplarFileName=%(exemplar)r)
+synthesis = simple.TerrainSynthesis(Exemplars=[exemplar], Sketch=sketch, OutputSize=[%(size)d, %(size)d],
+                                    PatchSize=%(patch)d, Seed=%(seed)d, TileSize=%(tile)d, Backend="CPU")
+for seed in (%(seed)d, %(seed)d + 1):
+    synthesis.Seed = seed
+    synthesis.UpdatePipeline()
+    simple.SaveData("%(folder)s/seed%%d.vrt" %% seed, proxy=synthesis, TileSize=65)
+"""
 
 
 class MpiTest(unittest.TestCase):
@@ -179,6 +197,47 @@ class MpiTest(unittest.TestCase):
                 dims, got = heights(vtkXMLImageDataReader, back)
                 self.assertEqual(dims, (SIZE, SIZE, 1))
                 np.testing.assert_array_equal(got, expected)
+
+    def test_a_pvserver_on_two_ranks_synthesises_once_for_the_view_and_the_writer(self):
+        """As in the GUI connected to `mpiexec -np 2 pvserver`: the view asks for each rank's piece,
+        then File > Save Data's tile writer for its tile rows. The second request is cut from the
+        first synthesis, not synthesised again; a changed property synthesises anew."""
+        _, expected = self.one_process_heights()
+        with socket.socket() as probe:  # a free port
+            probe.bind(("localhost", 0))
+            port = probe.getsockname()[1]
+        server = subprocess.Popen([self.mpiexec, *MPI_FLAGS, "-np", "2", shutil.which("pvserver"),
+                                   "--server-port=%d" % port], stdout=subprocess.PIPE,
+                                  stderr=subprocess.STDOUT, text=True, env=self.environment())
+        try:
+            for line in server.stdout:
+                if "Accepting connection" in line:
+                    break
+            folder = os.path.join(self.tmp, "served")
+            os.mkdir(folder)
+            client = os.path.join(self.tmp, "client.py")
+            with open(client, "w") as f:
+                f.write(CLIENT % dict(port=port, plugin=PATHS.plugin, exemplar=self.exemplar,
+                                      sketch=self.sketch, size=SIZE, patch=PATCH, seed=SEED, tile=TILE,
+                                      folder=folder))
+            result = subprocess.run([shutil.which("pvpython"), client], capture_output=True, text=True,
+                                    timeout=TIMEOUT_S, env=self.environment())
+            self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        finally:
+            server.terminate()
+            served = server.communicate(timeout=60)[0]
+        # Two saves, one synthesis each: the first for seed 3, the second for seed 4.
+        self.assertEqual(len(re.findall(r"rank 0 of 2: \d+ feature", served)), 2, served)
+        self.assertEqual(len(re.findall(r"rank 1 of 2: \d+ feature", served)), 2, served)
+        mosaics = []
+        for name in ("seed3", "seed4"):
+            back = os.path.join(self.tmp, "%s.vti" % name)
+            converted = subprocess.run([PATHS.tsynth, "convert", os.path.join(folder, name + ".vrt"), "-o", back],
+                                       capture_output=True, text=True)
+            self.assertEqual(converted.returncode, 0, converted.stderr)
+            mosaics.append(heights(vtkXMLImageDataReader, back)[1])
+        np.testing.assert_array_equal(mosaics[0], expected)
+        self.assertGreater(float(np.abs(mosaics[1] - expected).max()), 10.0, "seed 4 gave seed 3's terrain")
 
     def test_bad_arguments_get_one_sentence(self):
         out = os.path.join(self.tmp, "bad.pvti")
