@@ -4,6 +4,7 @@
 #include "../Core/Smoothing.h"
 #include "../Distance/DistanceField.h"
 #include "../Hydrology/Flow.h"
+#include "../Hydrology/MultiscalePitRemoval.h"
 #include "../Hydrology/PitRemoval.h"
 #include "../Merging/Poisson.h"
 
@@ -19,6 +20,44 @@ namespace tsynth
 {
 namespace
 {
+
+// Scale of the final landform correction, in patches: relief coarser than a
+// sixth of a patch is pulled towards the target (what the patches missed or
+// drifted off); the detail within it stays the patches' own. Applied once, at
+// the end: also pulling what was placed during the synthesis drew the
+// landforms more strongly but flattened the land (slope distance 0.18-0.21
+// against 0.04-0.08 on the bundled sketches). A quarter patch left lone
+// strokes to the texture (legible 0.55 and 0.36 on Everest's letters and
+// Colorado's spiral; 0.64 and 0.47 at a sixth); an eighth (0.77, 0.60) made
+// the bundled sketches flatter than the exemplars (slope distance 0.063 over
+// 44 terrains against 0.043 at a sixth, 0.039 at a quarter) and drain worse.
+constexpr double kCorrectionScaleInPatches = 1.0 / 6.0;
+// Where sketched landforms are narrower than that (strokes drawn close), the
+// correction works at this share of their half width (a valley 25 cells wide
+// each side: relief coarser than 8 cells), so each one is drawn at its own
+// scale; the texture finer than it stays the patches'.
+constexpr double kCorrectionShareOfHalfWidth = 1.0 / kCorrectionSigmasPerHalfWidth;
+// ... but never finer than kFinestCorrectionInPatches (Finishing.h).
+// A drawn target's landforms replace the output's relief coarser than that
+// scale in their own shape, smoothed over this many cells only
+// (correctLandformAtScales' targetSigma): a crest or floor a few cells wide.
+// Taken at the correction's own scale, as a DEM target still is, strokes
+// closer than a patch came out at about half their depth and read faintly
+// (legible share over the 44-run sweep of the bundled sketches 0.61; block
+// letters carved into Colorado 0.48, Tasse's code 0.63). Over 20 of those
+// runs 3 cells drew them crisper still (0.84) but steeper than the exemplars'
+// own slopes (slope distance 0.053 against 0.045), 5 read 0.80 at 0.046; 6
+// keeps their slopes (0.044 over all 44, as before) and reads 0.79.
+constexpr double kDrawnTargetSigmaCells = 6.0;
+// Where the target leaves the land free, the final correction only removes
+// drift coarser than this (in patches), toward the target's base level.
+constexpr double kDriftScaleInPatches = 2.0;
+// Valley carving fades out over this share of a patch beside the line.
+constexpr double kDrainageReachInPatches = 0.25;
+// Drainage (--drainage) starts on blocks of this share of a patch: the width
+// of the cross-sections the landform term matches, so a basin that a seam
+// closed off is opened by a valley of the patches' own scale.
+constexpr double kPitRemovalCoarsestInPatches = 0.25;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Rounds of drainage smoothing, each at half the radius of the one before.
@@ -765,6 +804,98 @@ void meetConstraints(Heightfield& out, const FeatureGraph& graph, double reach)
       out.z[c] = static_cast<float>(out.z[c] + correction[c]);
     }
   }
+}
+
+namespace
+{
+
+// The coarsest scale of the landform correction, cells.
+double correctionScale(const FinishingPlan& plan)
+{
+  return plan.correctionScale < 0.0 ? kCorrectionScaleInPatches * plan.patchSize
+                                    : plan.correctionScale;
+}
+
+// Per cell, the scale the landform correction pulls the relief coarser than
+// towards the target: kCorrectionShareOfHalfWidth of the sketched landform's
+// half width there, at most correctionScale().
+std::vector<float> correctionScales(const SynthesisTarget& target, const FinishingPlan& plan)
+{
+  const float largest = static_cast<float>(correctionScale(plan));
+  std::vector<float> sigma(target.field.size(), largest);
+  if (target.halfWidth.size() == sigma.size())
+  {
+    for (std::size_t c = 0; c < sigma.size(); ++c)
+    {
+      sigma[c] =
+        std::min(largest, static_cast<float>(kCorrectionShareOfHalfWidth * target.halfWidth[c]));
+    }
+  }
+  return sigma;
+}
+
+void drainEverywhere(Heightfield& out, PitRemovalMethod method, int patchSize, FinishingReport& f)
+{
+  MultiscalePitRemovalOptions d;
+  d.pitRemoval.method = method;
+  d.coarsestFactor = std::max(1, static_cast<int>(kPitRemovalCoarsestInPatches * patchSize));
+  const MultiscalePitRemovalReport r = removePitsMultiscale(out, d);
+  f.drained = true;
+  f.pitsBefore = r.pitsBefore;
+  f.pitsAfter = r.pitsAfter;
+  f.largestDrainageRaise = r.largestRaise;
+  f.largestDrainageLowering = r.largestLowering;
+  f.meanDrainageChange = r.meanAbsoluteChange;
+}
+
+} // namespace
+
+FinishingReport finishSynthesis(Heightfield& out,
+  const SynthesisTarget& target,
+  const std::vector<float>& confidence,
+  const FinishingPlan& plan)
+{
+  if (out.width != target.field.width || out.height != target.field.height)
+  {
+    throw Error("The terrain to finish and its target differ in size.");
+  }
+  const double P = plan.patchSize;
+  FinishingReport f;
+  f.landformCorrection = correctLandformAtScales(out,
+    target.field,
+    confidence,
+    correctionScales(target, plan),
+    correctionScale(plan),
+    kFinestCorrectionInPatches * P,
+    target.detailed ? 0.0 : kDrawnTargetSigmaCells);
+  // Free land: only the drift at the scale of several patches.
+  std::vector<float> free(confidence.size());
+  std::transform(
+    confidence.begin(), confidence.end(), free.begin(), [](float w) { return 1.0f - w; });
+  const double drift = kDriftScaleInPatches * P;
+  correctLandform(out, smoothLarge(target.field, drift), free, drift);
+  if (plan.drainValleys)
+  {
+    DrainageOptions d;
+    d.reach = kDrainageReachInPatches * P;
+    const DrainageReport r = drainValleys(out, target.downstream, d);
+    f.valleyCells = r.cells;
+    f.valleyCellsLowered = r.lowered;
+    f.deepestValleyCut = r.largest;
+    f.meanValleyCut = r.mean;
+  }
+  // A patch holding a deep valley, merged where the land had already come
+  // down to the exemplars' lowest, took the land past it (a spiral on Mont
+  // Blanc, seed 3: 650 m under its lowest land, though every patch's free
+  // border kept within the merge's bounds). Height constraints come after:
+  // the user's heights win.
+  f.cellsBroughtIntoRange = compressIntoRange(out, plan.lowest, plan.highest, plan.slack);
+  meetConstraints(out, target.graph, P);
+  if (plan.drainage)
+  {
+    drainEverywhere(out, *plan.drainage, plan.patchSize, f);
+  }
+  return f;
 }
 
 } // namespace tsynth

@@ -4,12 +4,83 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/PatchSize.h"
 #include "../Features/FeatureGraph.h"
+#include "../Hydrology/PitRemoval.h"
+#include "Target.h"
 
+#include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace tsynth
 {
+
+// The final correction draws the target down to this share of a patch
+// (Gaussian sigma; 8 cells for 80-cell patches): relief finer than it is the
+// exemplars' own character, which a finer correction would replace by the
+// target's (a DEM target's whole shape, a drawing's smooth flanks).
+constexpr double kFinestCorrectionInPatches = 0.1;
+// It follows landforms this many sigmas wide each side: strokes closer than
+// 2 x 3 x 0.1 = 0.6 patches apart cannot be drawn at their own scale.
+constexpr double kCorrectionSigmasPerHalfWidth = 3.0;
+// So lines closer than this share of a patch are finer than patches draw.
+constexpr double kFinestDrawnSpacingInPatches =
+  2.0 * kCorrectionSigmasPerHalfWidth * kFinestCorrectionInPatches;
+
+struct FinishingReport
+{
+  double landformCorrection = 0.0; // largest change of the landform correction, m
+  std::size_t valleyCells = 0;     // sketched valley line cells
+  std::size_t valleyCellsLowered = 0;
+  double deepestValleyCut = 0.0; // m
+  double meanValleyCut = 0.0;    // m, over the valley line cells
+  bool drained = false;          // drainage was asked for; then:
+  std::size_t pitsBefore = 0;    // strict local minima before it
+  std::size_t pitsAfter = 0;
+  double largestDrainageRaise = 0.0;    // m
+  double largestDrainageLowering = 0.0; // m
+  double meanDrainageChange = 0.0;      // m, mean absolute change over the terrain
+  // Cells past the exemplars' range brought back within a tenth of its span
+  // of it (compressIntoRange, Finishing.h).
+  std::size_t cellsBroughtIntoRange = 0;
+};
+
+// How a synthesis is finished: the options of SynthesisOptions that the
+// finishing follows, and the height range the placement kept to.
+struct FinishingPlan
+{
+  int patchSize = kDefaultSynthesisPatch;
+  // SynthesisOptions::correctionScale: the coarsest scale of the landform
+  // correction, cells; < 0: kCorrectionScaleInPatches of a patch; 0: off.
+  double correctionScale = -1.0;
+  bool drainValleys = true;                 // SynthesisOptions::drainValleys
+  std::optional<PitRemovalMethod> drainage; // SynthesisOptions::drainage
+  // The exemplars' height range, and how far past it heights may end
+  // (compressIntoRange). lowest > highest: no range.
+  double lowest = 0.0;
+  double highest = -1.0;
+  double slack = 0.0;
+};
+
+// The finishing of a synthesis, on `out`, the placed patches with every cell
+// filled, and the target they followed (its confidence per cell; empty: 1):
+// 1. the landform correction: the relief coarser than each cell's scale (a
+//    share of the sketched landform's half width there, at most the plan's
+//    correction scale) pulled towards the target's, as far as the target is
+//    confident; a drawn target's landforms in their own shape
+//    (correctLandformAtScales);
+// 2. where the target leaves the land free, only the drift over several
+//    patches removed (correctLandform);
+// 3. the sketched valleys made to drain (drainValleys), if the plan says so;
+// 4. heights past the exemplars' range brought back into it (compressIntoRange);
+// 5. the height constraints met exactly (meetConstraints): the user's heights win;
+// 6. every cell drained by the plan's method (removePitsMultiscale), if asked.
+// Returns what each step did.
+FinishingReport finishSynthesis(Heightfield& out,
+  const SynthesisTarget& target,
+  const std::vector<float>& confidence,
+  const FinishingPlan& plan);
 
 // Pulls the output's relief coarser than `sigma` cells towards the target's
 // (`smoothTarget`: the target through smoothLarge at the same sigma), by the

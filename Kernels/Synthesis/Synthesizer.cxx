@@ -5,7 +5,6 @@
 #include "../Core/Smoothing.h"
 #include "../Distance/DistanceField.h"
 #include "../Features/Ppa.h"
-#include "../Hydrology/MultiscalePitRemoval.h"
 #include "Finishing.h"
 #include "Tiling.h"
 
@@ -29,34 +28,6 @@ using Clock = std::chrono::steady_clock;
 
 constexpr float kLineHalfWidth = 3.0f; // cells each side of a sketched line
 constexpr int kMaxAttempts = 4;        // placements tried at one fill site
-// Scale of the final landform correction, in patches: relief coarser than a
-// sixth of a patch is pulled towards the target (what the patches missed or
-// drifted off); the detail within it stays the patches' own. Applied once, at
-// the end: also pulling what was placed during the synthesis drew the
-// landforms more strongly but flattened the land (slope distance 0.18-0.21
-// against 0.04-0.08 on the bundled sketches). A quarter patch left lone
-// strokes to the texture (legible 0.55 and 0.36 on Everest's letters and
-// Colorado's spiral; 0.64 and 0.47 at a sixth); an eighth (0.77, 0.60) made
-// the bundled sketches flatter than the exemplars (slope distance 0.063 over
-// 44 terrains against 0.043 at a sixth, 0.039 at a quarter) and drain worse.
-constexpr double kCorrectionScaleInPatches = 1.0 / 6.0;
-// Where sketched landforms are narrower than that (strokes drawn close), the
-// correction works at this share of their half width (a valley 25 cells wide
-// each side: relief coarser than 8 cells), so each one is drawn at its own
-// scale; the texture finer than it stays the patches'.
-constexpr double kCorrectionShareOfHalfWidth = 1.0 / kCorrectionSigmasPerHalfWidth;
-// ... but never finer than kFinestCorrectionInPatches (Synthesizer.h).
-// A drawn target's landforms replace the output's relief coarser than that
-// scale in their own shape, smoothed over this many cells only
-// (correctLandformAtScales' targetSigma): a crest or floor a few cells wide.
-// Taken at the correction's own scale, as a DEM target still is, strokes
-// closer than a patch came out at about half their depth and read faintly
-// (legible share over the 44-run sweep of the bundled sketches 0.61; block
-// letters carved into Colorado 0.48, Tasse's code 0.63). Over 20 of those
-// runs 3 cells drew them crisper still (0.84) but steeper than the exemplars'
-// own slopes (slope distance 0.053 against 0.045), 5 read 0.80 at 0.046; 6
-// keeps their slopes (0.044 over all 44, as before) and reads 0.79.
-constexpr double kDrawnTargetSigmaCells = 6.0;
 // The merge spreads the seam's gradient mismatch this far, in patches: a
 // tenth, as Tasse's code does (8 cells at 80; the peer's patch_merging is
 // called with bsize / 10). Spread over a quarter (20 cells), the correction
@@ -86,15 +57,6 @@ constexpr std::size_t kMaxCandidates = 4096;
 // Candidates whose seam costs are within this share of each other are equally
 // good: the seed picks among them.
 constexpr double kNearTie = 0.1;
-// Where the target leaves the land free, the final correction only removes
-// drift coarser than this (in patches), toward the target's base level.
-constexpr double kDriftScaleInPatches = 2.0;
-// Valley carving fades out over this share of a patch beside the line.
-constexpr double kDrainageReachInPatches = 0.25;
-// Drainage (--drainage) starts on blocks of this share of a patch: the width
-// of the cross-sections the landform term matches, so a basin that a seam
-// closed off is opened by a valley of the patches' own scale.
-constexpr double kPitRemovalCoarsestInPatches = 0.25;
 // Where the sketch leaves the land free the target still holds it, this
 // weakly, near the exemplars' level: otherwise patch after patch, each fitted
 // to the last, the land would wander off by kilometres.
@@ -1034,30 +996,6 @@ public:
     }
   }
 
-  // The coarsest scale of the final correction, cells.
-  double correctionScale() const
-  {
-    return o_.correctionScale < 0.0 ? kCorrectionScaleInPatches * P_ : o_.correctionScale;
-  }
-
-  // Per cell, the scale the final correction pulls the relief coarser than
-  // towards the target: kCorrectionShareOfHalfWidth of the sketched
-  // landform's half width there, at most correctionScale().
-  std::vector<float> correctionScales() const
-  {
-    const float largest = static_cast<float>(correctionScale());
-    std::vector<float> sigma(out_.size(), largest);
-    if (target_.halfWidth.size() == sigma.size())
-    {
-      for (std::size_t c = 0; c < sigma.size(); ++c)
-      {
-        sigma[c] =
-          std::min(largest, static_cast<float>(kCorrectionShareOfHalfWidth * target_.halfWidth[c]));
-      }
-    }
-    return sigma;
-  }
-
   // Frees what only the placement needs (the target's roughness tables and
   // low-pass, the distances to the strokes, the merger workspaces) and lets go
   // of the matcher, so the finishing's fields can take that memory: at 4096 x
@@ -1093,59 +1031,18 @@ public:
     }
     normaliseMask(out_);
     result_.patches = out_;
-    result_.finishing.landformCorrection = correctLandformAtScales(out_,
-      target_.field,
-      confidence_,
-      correctionScales(),
-      correctionScale(),
-      kFinestCorrectionInPatches * P_,
-      target_.detailed ? 0.0 : kDrawnTargetSigmaCells);
-    // Free land: only the drift at the scale of several patches.
-    std::vector<float> free(confidence_.size());
-    std::transform(
-      confidence_.begin(), confidence_.end(), free.begin(), [](float w) { return 1.0f - w; });
-    const double drift = kDriftScaleInPatches * P_;
-    correctLandform(out_, smoothLarge(target_.field, drift), free, drift);
-    if (o_.drainValleys)
-    {
-      DrainageOptions d;
-      d.reach = kDrainageReachInPatches * P_;
-      const DrainageReport r = drainValleys(out_, target_.downstream, d);
-      result_.finishing.valleyCells = r.cells;
-      result_.finishing.valleyCellsLowered = r.lowered;
-      result_.finishing.deepestValleyCut = r.largest;
-      result_.finishing.meanValleyCut = r.mean;
-    }
-    // A patch holding a deep valley, merged where the land had already come
-    // down to the exemplars' lowest, took the land past it (a spiral on Mont
-    // Blanc, seed 3: 650 m under its lowest land, though every patch's free
-    // border kept within the merge's bounds). Height constraints come after:
-    // the user's heights win.
-    const double slack = kHeightSlackShare * (highest_ - lowest_) / (1.0 + 2.0 * kHeightSlackShare);
-    result_.finishing.cellsBroughtIntoRange =
-      compressIntoRange(out_, lowest_ + slack, highest_ - slack, slack);
-    meetConstraints(out_, target_.graph, P_);
-    if (o_.drainage)
-    {
-      drainEverywhere(*o_.drainage);
-    }
+    FinishingPlan plan;
+    plan.patchSize = P_;
+    plan.correctionScale = o_.correctionScale;
+    plan.drainValleys = o_.drainValleys;
+    plan.drainage = o_.drainage;
+    // The bounds the merge kept to are the exemplars' range widened by the slack.
+    plan.slack = kHeightSlackShare * (highest_ - lowest_) / (1.0 + 2.0 * kHeightSlackShare);
+    plan.lowest = lowest_ + plan.slack;
+    plan.highest = highest_ - plan.slack;
+    result_.finishing = finishSynthesis(out_, target_, confidence_, plan);
     result_.terrain = std::move(out_);
     return std::move(result_);
-  }
-
-  void drainEverywhere(PitRemovalMethod method)
-  {
-    MultiscalePitRemovalOptions d;
-    d.pitRemoval.method = method;
-    d.coarsestFactor = std::max(1, static_cast<int>(kPitRemovalCoarsestInPatches * P_));
-    const MultiscalePitRemovalReport r = removePitsMultiscale(out_, d);
-    FinishingReport& f = result_.finishing;
-    f.drained = true;
-    f.pitsBefore = r.pitsBefore;
-    f.pitsAfter = r.pitsAfter;
-    f.largestDrainageRaise = r.largestRaise;
-    f.largestDrainageLowering = r.largestLowering;
-    f.meanDrainageChange = r.meanAbsoluteChange;
   }
 
   void report(double fraction, const char* stage) const

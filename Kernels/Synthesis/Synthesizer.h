@@ -11,6 +11,7 @@
 #include "../Hydrology/PitRemoval.h"
 #include "../Matching/PatchMatcher.h"
 #include "../Merging/PatchMerger.h"
+#include "Finishing.h"
 #include "Target.h"
 
 #include <cstdint>
@@ -29,18 +30,6 @@ enum class FillOrder
   BestFirst, // priority = confidence + data term, updated locally after each merge
   Concentric // confidence only: layer by layer around what is filled
 };
-
-// The final correction draws the target down to this share of a patch
-// (Gaussian sigma; 8 cells for 80-cell patches): relief finer than it is the
-// exemplars' own character, which a finer correction would replace by the
-// target's (a DEM target's whole shape, a drawing's smooth flanks).
-constexpr double kFinestCorrectionInPatches = 0.1;
-// It follows landforms this many sigmas wide each side: strokes closer than
-// 2 x 3 x 0.1 = 0.6 patches apart cannot be drawn at their own scale.
-constexpr double kCorrectionSigmasPerHalfWidth = 3.0;
-// So lines closer than this share of a patch are finer than patches draw.
-constexpr double kFinestDrawnSpacingInPatches =
-  2.0 * kCorrectionSigmasPerHalfWidth * kFinestCorrectionInPatches;
 
 // The fill's windows stand this far apart, in patches: half a patch, so that
 // each overlaps what is there by at least a quarter patch on every side, and a
@@ -138,24 +127,6 @@ struct Placement
 };
 
 // What the final steps changed, for reports.
-struct FinishingReport
-{
-  double landformCorrection = 0.0; // largest change of the landform correction, m
-  std::size_t valleyCells = 0;     // sketched valley line cells
-  std::size_t valleyCellsLowered = 0;
-  double deepestValleyCut = 0.0; // m
-  double meanValleyCut = 0.0;    // m, over the valley line cells
-  bool drained = false;          // drainage was asked for; then:
-  std::size_t pitsBefore = 0;    // strict local minima before it
-  std::size_t pitsAfter = 0;
-  double largestDrainageRaise = 0.0;    // m
-  double largestDrainageLowering = 0.0; // m
-  double meanDrainageChange = 0.0;      // m, mean absolute change over the terrain
-  // Cells past the exemplars' range brought back within a tenth of its span
-  // of it (compressIntoRange, Finishing.h).
-  std::size_t cellsBroughtIntoRange = 0;
-};
-
 struct SynthesisTimings
 {
   double setup = 0.0;    // pools and dense tables

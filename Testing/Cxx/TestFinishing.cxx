@@ -1,6 +1,7 @@
 // The last steps of a synthesis: draining the sketched valleys, the gentle
 // landform correction and the exact height constraints, on terrains whose
 // answer is known.
+#include "Core/Error.h"
 #include "Core/Smoothing.h"
 #include "Features/Sketch.h"
 #include "Hydrology/Flow.h"
@@ -683,4 +684,102 @@ TEST(CompressIntoRange, HeightsPastTheRangeComeBackSmoothlyAndInOrder)
   EXPECT_EQ(compressIntoRange(same, 300.0, 700.0, 0.0), 0u);
   EXPECT_EQ(compressIntoRange(same, 700.0, 300.0, 40.0), 0u);
   EXPECT_EQ(same.z, before.z);
+}
+
+// The whole finishing of a synthesis (finishSynthesis), on the dammed valley
+// placed 80 m too high with a tilt across it: the drift goes where the target
+// is confident, the valley drains past the dam, heights past the exemplars'
+// range come back into it, and a height constraint above that range still
+// wins (the constraints come after the range); drainage everywhere only when
+// asked.
+TEST(FinishSynthesis, CorrectsDrainsKeepsTheRangeAndMeetsConstraintsLast)
+{
+  constexpr double kOffset = 80.0; // metres the placed land stands too high
+  constexpr double kTilt = 0.5;    // ... and metres per cell it rises eastwards
+  SynthesisTarget target;
+  target.field =
+    terrain(kW, kH, [](int i, int j) { return 500.0 + 5.0 * std::abs(i - kAxis) + j; });
+  target.downstream = axisDownstream();
+  constexpr double kConstraint = 1200.0; // above the range below
+  const Polyline line{ { { 100, 12 }, { 115, 12 } },
+    { static_cast<float>(kConstraint), static_cast<float>(kConstraint) },
+    FeatureType::Ridge };
+  target.graph = polylineFeatures({ line }, kW, kH, kCell, kCell);
+  std::vector<float> confidence(target.field.size(), 0.0f);
+  for (int j = 0; j < kH; ++j)
+  {
+    for (int i = 0; i < kW; ++i)
+    {
+      confidence[cell(i, j)] = std::abs(i - kAxis) < 20 ? 1.0f : 0.0f;
+    }
+  }
+  const Heightfield dammed = dammedValley();
+  Heightfield out =
+    terrain(kW, kH, [&](int i, int j) { return dammed.at(i, j) + kOffset + kTilt * i; });
+  FinishingPlan plan;
+  plan.patchSize = 40; // reach of the constraint: 40 cells
+  plan.lowest = 450.0;
+  plan.highest = 900.0; // the valley's upper flanks (up to 970 m) lie past it
+  plan.slack = 20.0;
+
+  Heightfield finished = out;
+  const FinishingReport f = finishSynthesis(finished, target, confidence, plan);
+
+  // The drift is gone where the target is confident (away from the dam).
+  double before = 0.0;
+  double after = 0.0;
+  int n = 0;
+  for (int j = 20; j < 80; ++j)
+  {
+    for (int i = kAxis - 15; i <= kAxis + 15; ++i)
+    {
+      before += out.at(i, j) - target.field.at(i, j);
+      after += finished.at(i, j) - target.field.at(i, j);
+      ++n;
+    }
+  }
+  EXPECT_GT(before / n, kOffset);
+  EXPECT_LT(std::abs(after / n), 10.0);
+  EXPECT_GT(f.landformCorrection, kOffset);
+  // The valley drains past the dam: the floor falls all the way to the border.
+  EXPECT_EQ(f.valleyCells, static_cast<std::size_t>(kHead + 1));
+  EXPECT_GT(f.valleyCellsLowered, 0u);
+  for (int j = 1; j <= kHead; ++j)
+  {
+    ASSERT_LT(finished.at(kAxis, j - 1), finished.at(kAxis, j)) << j;
+  }
+  // Within the range and its slack, but for the constrained line's reach.
+  EXPECT_GT(f.cellsBroughtIntoRange, 0u);
+  for (int j = 0; j < kH; ++j)
+  {
+    for (int i = 0; i < kW; ++i)
+    {
+      const double d = i < 100 ? std::hypot(i - 100, j - 12) : std::abs(j - 12);
+      if (d > plan.patchSize + 1)
+      {
+        ASSERT_LE(finished.at(i, j), plan.highest + plan.slack) << i << ", " << j;
+        ASSERT_GE(finished.at(i, j), plan.lowest - plan.slack) << i << ", " << j;
+      }
+    }
+  }
+  // The user's heights win over the range.
+  for (int i = 100; i <= 115; ++i)
+  {
+    ASSERT_NEAR(finished.at(i, 12), kConstraint, 1e-2) << i;
+  }
+  EXPECT_FALSE(f.drained);
+
+  // Drainage everywhere, when asked: no pit is left.
+  plan.drainage = PitRemovalMethod::Fill;
+  Heightfield drained = out;
+  const FinishingReport g = finishSynthesis(drained, target, confidence, plan);
+  EXPECT_TRUE(g.drained);
+  EXPECT_EQ(g.pitsAfter, 0u);
+  EXPECT_NE(drained.z, finished.z);
+
+  // A target of another size is refused.
+  SynthesisTarget smaller = target;
+  smaller.field = terrain(kW - 1, kH, [](int, int) { return 0.0; });
+  Heightfield again = out;
+  EXPECT_THROW(finishSynthesis(again, smaller, confidence, plan), Error);
 }
