@@ -1,5 +1,6 @@
 set(TSYNTH_SYNTHESIS_SOURCES
   Synthesis/ExemplarCache.cxx
+  Synthesis/FeatureOrder.cxx
   Synthesis/Finishing.cxx
   Synthesis/Landform.cxx
   Synthesis/PatchColours.cxx

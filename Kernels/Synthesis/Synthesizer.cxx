@@ -5,6 +5,7 @@
 #include "../Core/Smoothing.h"
 #include "../Distance/DistanceField.h"
 #include "../Features/Ppa.h"
+#include "FeatureOrder.h"
 #include "Finishing.h"
 #include "Tiling.h"
 
@@ -66,22 +67,6 @@ constexpr float kFreeLandWeight = 0.05f;
 // to stop drift along a line of patches, small enough that the seams the
 // merge has to absorb stay small.
 constexpr double kTargetPull = 1.0;
-// Where sites crowd, a feature site whose centre lies within this share of a
-// patch of a site already placed is left to that patch: it carries the land
-// there already, and a second patch would only cut the same seams again.
-// Sites crowd on a DEM target's own PPA tree, whose lines lie 8-15 cells
-// apart (2579 feature patches on a 648 x 648 Appalachian target, 558 with
-// this, each cell under about 40 of them, for the same band-pass
-// correlation), and on any drawing whose lines are closer than patches draw
-// (kFinestDrawnSpacingInPatches, the fineness warning's case), such as a real
-// DEM's tree used as the sketch. Drawings with room keep every site: theirs
-// lie half a patch apart along a line and closer only at junctions, where
-// each arm is drawn on purpose. A third of a patch rather than a quarter:
-// on four DEM targets with two exemplars each, 35% fewer feature patches
-// (feature placement 35-40% quicker), the band-pass correlation at 2, 4 and
-// 8 cells within 0.04 either way (mean -0.005), seam and slope indices as
-// before, and hillshades side by side that show the same land.
-constexpr double kSiteClearanceInPatches = 1.0 / 3.0;
 // A feature patch owns a disc of this radius (in patches) round its centre ...
 constexpr double kCoreDiscInPatches = 0.125;
 // ... and its lines (the drawn one and its own) this far from the centre; so
@@ -790,7 +775,7 @@ public:
 
   void placeFeatures()
   {
-    placeFeatures(orderedSites());
+    placeFeatures(sitesInOrder());
   }
 
   void placeFeatures(const std::vector<FeatureSite>& sites)
@@ -1077,7 +1062,7 @@ public:
 
   std::vector<FeatureSite> sitesInOrder() const
   {
-    return orderedSites();
+    return featurePlacementOrder(target_, P_, o_.seed);
   }
 
   // Cells whose known heights no fill patch may change (frozen_).
@@ -1170,105 +1155,6 @@ public:
   }
 
 private:
-  // Breadth-first: each node, then the path points of its not yet visited chains.
-  std::vector<FeatureSite> orderedSites() const
-  {
-    std::vector<double> phases(target_.graph.chains.size());
-    for (std::size_t c = 0; c < phases.size(); ++c)
-    {
-      phases[c] = seededUniform(o_.seed, kStreamSites, c);
-    }
-    const std::vector<FeatureSite> all = featureSites(target_.graph, P_, 0.5 * P_, &phases);
-    std::vector<std::vector<std::size_t>> pathsOfChain(target_.graph.chains.size());
-    std::vector<std::size_t> siteOfNode(
-      target_.graph.nodes.size(), std::numeric_limits<std::size_t>::max());
-    for (std::size_t s = 0; s < all.size(); ++s)
-    {
-      if (all[s].node >= 0)
-      {
-        siteOfNode[static_cast<std::size_t>(all[s].node)] = s;
-      }
-      else if (all[s].chain >= 0)
-      {
-        pathsOfChain[static_cast<std::size_t>(all[s].chain)].push_back(s);
-      }
-    }
-    std::vector<FeatureSite> ordered;
-    std::vector<char> chainDone(target_.graph.chains.size(), 0);
-    for (int v : target_.graph.bfsOrder)
-    {
-      const std::size_t node = static_cast<std::size_t>(v);
-      if (siteOfNode[node] != std::numeric_limits<std::size_t>::max())
-      {
-        ordered.push_back(all[siteOfNode[node]]);
-      }
-      for (int c : target_.graph.nodes[node].chains)
-      {
-        if (chainDone[static_cast<std::size_t>(c)] != 0)
-        {
-          continue;
-        }
-        chainDone[static_cast<std::size_t>(c)] = 1;
-        auto paths = pathsOfChain[static_cast<std::size_t>(c)];
-        if (target_.graph.chains[static_cast<std::size_t>(c)].to == v)
-        {
-          std::reverse(paths.begin(), paths.end()); // walk away from this node
-        }
-        for (std::size_t s : paths)
-        {
-          ordered.push_back(all[s]);
-        }
-      }
-    }
-    return sitesCrowd() ? spacedOut(ordered) : ordered;
-  }
-
-  // A DEM target, or lines closer than patches draw (kSiteClearanceInPatches).
-  bool sitesCrowd() const
-  {
-    const double spacing = lineSpacing(target_);
-    return target_.detailed || (spacing > 0.0 && spacing < kFinestDrawnSpacingInPatches * P_);
-  }
-
-  // The sites in order, less each one within kSiteClearanceInPatches of one
-  // kept before it (a grid of buckets one clearance wide holds the kept ones).
-  std::vector<FeatureSite> spacedOut(const std::vector<FeatureSite>& sites) const
-  {
-    const double clearance = kSiteClearanceInPatches * P_;
-    const int columns = std::max(1, static_cast<int>(std::ceil(out_.width / clearance)) + 1);
-    const int rows = std::max(1, static_cast<int>(std::ceil(out_.height / clearance)) + 1);
-    std::vector<std::vector<Point2>> buckets(static_cast<std::size_t>(columns) * rows);
-    auto bucketOf = [&](double v, int count)
-    { return std::clamp(static_cast<int>(std::floor(v / clearance)), 0, count - 1); };
-    std::vector<FeatureSite> kept;
-    for (const FeatureSite& site : sites)
-    {
-      const int bx = bucketOf(site.centre.x, columns);
-      const int by = bucketOf(site.centre.y, rows);
-      bool near = false;
-      for (int y = std::max(0, by - 1); y <= std::min(rows - 1, by + 1) && !near; ++y)
-      {
-        for (int x = std::max(0, bx - 1); x <= std::min(columns - 1, bx + 1) && !near; ++x)
-        {
-          for (const Point2& q : buckets[static_cast<std::size_t>(y) * columns + x])
-          {
-            if (std::hypot(q.x - site.centre.x, q.y - site.centre.y) < clearance)
-            {
-              near = true;
-              break;
-            }
-          }
-        }
-      }
-      if (!near)
-      {
-        kept.push_back(site);
-        buckets[static_cast<std::size_t>(by) * columns + bx].push_back(site.centre);
-      }
-    }
-    return kept;
-  }
-
   const SynthesisTarget& target_;
   PatchMatcher* matcher_; // null once the placement is over (releasePlacement)
   const std::vector<const FeatureGraph*>& graphs_;
