@@ -1,6 +1,7 @@
 set(TSYNTH_SYNTHESIS_SOURCES
   Synthesis/ExemplarCache.cxx
   Synthesis/FeatureOrder.cxx
+  Synthesis/FillOrder.cxx
   Synthesis/Finishing.cxx
   Synthesis/Landform.cxx
   Synthesis/PatchColours.cxx

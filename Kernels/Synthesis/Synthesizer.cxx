@@ -6,6 +6,7 @@
 #include "../Distance/DistanceField.h"
 #include "../Features/Ppa.h"
 #include "FeatureOrder.h"
+#include "FillOrder.h"
 #include "Finishing.h"
 #include "Tiling.h"
 
@@ -28,7 +29,6 @@ namespace
 using Clock = std::chrono::steady_clock;
 
 constexpr float kLineHalfWidth = 3.0f; // cells each side of a sketched line
-constexpr int kMaxAttempts = 4;        // placements tried at one fill site
 // The merge spreads the seam's gradient mismatch this far, in patches: a
 // tenth, as Tasse's code does (8 cells at 80; the peer's patch_merging is
 // called with bsize / 10). Spread over a quarter (20 cells), the correction
@@ -44,14 +44,6 @@ constexpr double kShepardRadiusInPatches = 0.1;
 // land a little beyond the exemplars' extremes is plausible, kilometres are a
 // runaway.
 constexpr double kHeightSlackShare = 0.1;
-// The seed moves the fill's inner windows by up to this share of a patch (less
-// where the windows are spaced so wide that they would not overlap by
-// kMinFillOverlapInPatches).
-constexpr double kGridJitterInPatches = 0.125;
-// Windows per axis are fewer than this (it spaces the seed's draws per axis).
-constexpr std::uint64_t kMaxGridWindows = 1u << 20;
-// The data term samples the target's slope every few cells: plenty for a mean.
-constexpr int kDataTermStride = 4;
 // Candidates compared per placement are fewer than this (it spaces the
 // seed's draws of different placements apart).
 constexpr std::size_t kMaxCandidates = 4096;
@@ -807,76 +799,23 @@ public:
     }
   }
 
-  // The fill's windows: along each axis, windows flush with both edges and
-  // evenly spaced at most half a patch apart in between, each inner one moved
-  // by up to an eighth of a patch as the seed draws (consecutive windows still
-  // overlap by at least a quarter patch).
-  struct FillGrid
+  // The fill: windows over the output (fillGrid), visited as FillOrder.h's
+  // runFill says, each filled by one patch from the dense matcher.
+  void fill()
   {
-    std::vector<int> xs, ys;
-    std::size_t size() const { return xs.size() * ys.size(); }
-    int x0(std::size_t s) const { return xs[s % xs.size()]; }
-    int y0(std::size_t s) const { return ys[s / xs.size()]; }
-  };
-
-  std::vector<int> gridLine(int length, std::uint64_t axis) const
-  {
-    const int step = std::max(1, static_cast<int>(std::lround(o_.fillSpacing * P_)));
-    const double jitterInPatches =
-      std::min(kGridJitterInPatches, (1.0 - kMinFillOverlapInPatches - o_.fillSpacing) / 2.0);
-    const int span = std::max(0, length - P_);
-    const int windows = std::max(1, (span + step - 1) / step);
-    std::vector<int> v;
-    for (int k = 0; k <= windows; ++k)
+    const FillGrid g = fillGrid(out_.width, out_.height, P_, o_.fillSpacing, o_.seed);
+    FillSteps steps;
+    steps.filledShare = [this](int x0, int y0) { return filledShare(x0, y0); };
+    steps.fillWindow = [this](int x0, int y0)
     {
-      const double even = static_cast<double>(k) * span / windows;
-      const bool inner = k > 0 && k < windows;
-      const double jitter = inner
-        ? (seededUniform(
-             o_.seed, kStreamGrid, axis * kMaxGridWindows + static_cast<std::uint64_t>(k)) -
-            0.5) *
-          jitterInPatches * 2.0 * P_
-        : 0.0;
-      v.push_back(std::clamp(static_cast<int>(std::lround(even + jitter)), 0, span));
-    }
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
-    return v;
-  }
-
-  FillGrid fillGrid() const
-  {
-    FillGrid g;
-    g.xs = gridLine(out_.width, 0);
-    g.ys = gridLine(out_.height, 1);
-    return g;
-  }
-
-  // Data term: mean slope of the target in each window, scaled to 0..1.
-  std::vector<double> dataTerms(const FillGrid& g) const
-  {
-    std::vector<double> data(g.size(), 0.0);
-    const Heightfield& t = target_.field;
-    for (std::size_t s = 0; s < g.size(); ++s)
-    {
-      for (int j = g.y0(s); j < std::min(t.height - 1, g.y0(s) + P_); j += kDataTermStride)
-      {
-        for (int i = g.x0(s); i < std::min(t.width - 1, g.x0(s) + P_); i += kDataTermStride)
-        {
-          if (t.isValid(i, j) && t.isValid(i + 1, j) && t.isValid(i, j + 1))
-          {
-            data[s] += std::hypot(
-              (t.at(i + 1, j) - t.at(i, j)) / t.cellX, (t.at(i, j + 1) - t.at(i, j)) / t.cellY);
-          }
-        }
-      }
-    }
-    const double top = *std::max_element(data.begin(), data.end());
-    for (double& d : data)
-    {
-      d = top > 0 ? d / top : 0.0;
-    }
-    return data;
+      return place(
+        allowed(matcher_->matchDense(window(x0, y0), regionExemplars(x0, y0)), x0, y0, o_.fillK),
+        x0,
+        y0,
+        false);
+    };
+    steps.progress = [this](double f) { report(0.4 + 0.6 * f, "fill"); };
+    runFill(g, fillDataTerms(target_.field, g, P_), o_.fill, o_.seed, steps);
   }
 
   // Share of a window already filled (1 for a window wholly outside).
@@ -893,92 +832,6 @@ public:
       }
     }
     return cells > 0 ? static_cast<double>(known) / static_cast<double>(cells) : 1.0;
-  }
-
-  std::size_t fillWindow(int x0, int y0)
-  {
-    return place(
-      allowed(matcher_->matchDense(window(x0, y0), regionExemplars(x0, y0)), x0, y0, o_.fillK),
-      x0,
-      y0,
-      false);
-  }
-
-  // The best-first fill: a max-heap of window priorities (confidence + data
-  // term; ties in the seed's order) with version stamps, so only the windows
-  // a merge touched are re-scored and nothing is re-sorted.
-  struct HeapEntry
-  {
-    double priority;
-    double tie;
-    std::size_t site;
-    int stamp;
-    bool operator<(const HeapEntry& o) const
-    {
-      return priority != o.priority ? priority < o.priority : tie < o.tie;
-    }
-  };
-
-  void fill()
-  {
-    const FillGrid g = fillGrid();
-    const std::vector<double> data = dataTerms(g);
-    auto priorityOf = [&](std::size_t s, double& priority)
-    {
-      const double known = filledShare(g.x0(s), g.y0(s));
-      priority = known + (o_.fill == FillOrder::BestFirst ? data[s] : 0.0);
-      return known < 1.0; // still has empty cells
-    };
-    std::priority_queue<HeapEntry> heap;
-    std::vector<int> version(g.size(), 0);
-    std::vector<int> attempts(g.size(), 0);
-    std::vector<std::uint8_t> retired(g.size(), 0);
-    auto push = [&](std::size_t s)
-    {
-      double p = 0.0;
-      if (retired[s] == 0 && priorityOf(s, p))
-      {
-        heap.push({ p, seededUniform(o_.seed, kStreamFillOrder, s), s, ++version[s] });
-        return true;
-      }
-      return false;
-    };
-    std::size_t open = 0;
-    for (std::size_t s = 0; s < g.size(); ++s)
-    {
-      open += push(s) ? 1 : 0;
-    }
-    const std::size_t initial = std::max<std::size_t>(1, open);
-    std::size_t done = 0;
-    while (!heap.empty())
-    {
-      const HeapEntry e = heap.top();
-      heap.pop();
-      double now = 0.0;
-      if (e.stamp != version[e.site] || retired[e.site] != 0 || !priorityOf(e.site, now))
-      {
-        continue; // superseded by a newer score, or done
-      }
-      // A window whose empty cells no candidate can cover (they fall outside
-      // every rotated exemplar's valid area) is retired, never retried forever.
-      if (fillWindow(g.x0(e.site), g.y0(e.site)) == 0 || ++attempts[e.site] >= kMaxAttempts)
-      {
-        retired[e.site] = 1;
-      }
-      ++done;
-      // Re-score the windows this patch touched.
-      const std::size_t cx = e.site % g.xs.size();
-      const std::size_t cy = e.site / g.xs.size();
-      for (std::size_t by = cy > 2 ? cy - 2 : 0; by <= std::min(g.ys.size() - 1, cy + 2); ++by)
-      {
-        for (std::size_t bx = cx > 2 ? cx - 2 : 0; bx <= std::min(g.xs.size() - 1, cx + 2); ++bx)
-        {
-          push(by * g.xs.size() + bx);
-        }
-      }
-      report(0.4 + 0.6 * std::min(1.0, static_cast<double>(done) / static_cast<double>(initial)),
-        "fill");
-    }
   }
 
   // Frees what only the placement needs (the target's roughness tables and

@@ -11,6 +11,7 @@
 #include "../Hydrology/PitRemoval.h"
 #include "../Matching/PatchMatcher.h"
 #include "../Merging/PatchMerger.h"
+#include "FillOrder.h"
 #include "Finishing.h"
 #include "Target.h"
 
@@ -24,22 +25,6 @@
 
 namespace tsynth
 {
-
-enum class FillOrder
-{
-  BestFirst, // priority = confidence + data term, updated locally after each merge
-  Concentric // confidence only: layer by layer around what is filled
-};
-
-// The fill's windows stand this far apart, in patches: half a patch, so that
-// each overlaps what is there by at least a quarter patch on every side, and a
-// patch's seams have room to hide. The preview spaces them wider (Preview.h).
-constexpr double kDefaultFillSpacing = 0.5;
-// Consecutive windows overlap by at least this share of a patch, however they
-// are spaced and moved by the seed: room for the graph cut to find a seam.
-constexpr double kMinFillOverlapInPatches = 0.25;
-// So windows may stand at most this far apart.
-constexpr double kMaxFillSpacing = 1.0 - kMinFillOverlapInPatches;
 
 struct SynthesisOptions
 {
