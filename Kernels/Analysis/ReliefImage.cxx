@@ -1,5 +1,7 @@
 #include "ReliefImage.h"
 
+#include "../Core/Grid.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -56,9 +58,7 @@ std::vector<std::uint8_t> paint(const Heightfield& hf, Colour colour)
     {
       const std::size_t k = hf.index(i, j);
       const std::array<double, 3> c = hf.isValid(k) ? colour(k) : kNodataColour;
-      const std::size_t o = (static_cast<std::size_t>(r) * static_cast<std::size_t>(hf.width) +
-                              static_cast<std::size_t>(i)) *
-        3;
+      const std::size_t o = rowMajor(i, r, hf.width) * 3;
       for (std::size_t ch = 0; ch < 3; ++ch)
       {
         rgb[o + ch] = static_cast<std::uint8_t>(std::lround(std::clamp(c[ch], 0.0, 1.0) * 255.0));

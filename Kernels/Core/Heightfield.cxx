@@ -1,6 +1,7 @@
 #include "Heightfield.h"
 
 #include "Error.h"
+#include "Grid.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +15,7 @@ namespace tsynth
 Heightfield::Heightfield(int w, int h, float value)
   : width(w)
   , height(h)
-  , z(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), value)
+  , z(cellCount(w, h), value)
 {
 }
 

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <array>
+
+#include "Grid.h"
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -39,11 +41,7 @@ struct Heightfield
   Heightfield(int w, int h, float value = 0.0f);
 
   std::size_t size() const { return z.size(); }
-  std::size_t index(int i, int j) const
-  {
-    return static_cast<std::size_t>(j) * static_cast<std::size_t>(width) +
-      static_cast<std::size_t>(i);
-  }
+  std::size_t index(int i, int j) const { return rowMajor(i, j, width); }
   float at(int i, int j) const { return z[index(i, j)]; }
   float& at(int i, int j) { return z[index(i, j)]; }
   bool isValid(std::size_t k) const { return valid.empty() || valid[k] != 0; }

@@ -3,6 +3,7 @@
 #include "Cancellation.h"
 #include "Error.h"
 #include "Geodesy.h"
+#include "Grid.h"
 #include "Memory.h"
 #include "OutputFile.h"
 
@@ -654,8 +655,7 @@ void writePng16Codes(const std::string& target,
         code = static_cast<std::uint16_t>(
           std::clamp(std::lround(c), 0L, static_cast<long>(kLargestPng16Code)));
       }
-      codes[static_cast<std::size_t>(r) * static_cast<std::size_t>(hf.width) +
-        static_cast<std::size_t>(i)] = code;
+      codes[rowMajor(i, r, hf.width)] = code;
     }
   }
   if (mem->GetRasterBand(1)->RasterIO(GF_Write,
@@ -738,7 +738,7 @@ Heightfield readHeightfield(const std::string& path, const ReadOptions& options,
   const int h = info.height;
   checkTextRasterSize(info.driver, path, w, h);
   checkReadFits(path, w, h, kBytesPerReadCell);
-  const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  const std::size_t n = cellCount(w, h);
   std::vector<float> raw(n);
   std::vector<std::uint8_t> mask(n, 255);
   {
@@ -785,8 +785,7 @@ Heightfield readHeightfield(const std::string& path, const ReadOptions& options,
     const int j = h - 1 - r;
     for (int i = 0; i < w; ++i)
     {
-      const std::size_t src =
-        static_cast<std::size_t>(r) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
+      const std::size_t src = rowMajor(i, r, w);
       const std::size_t dst = hf.index(i, j);
       const float v = raw[src];
       if (mask[src] == 0 || !std::isfinite(v) || (sidecarNodata && v == nodataValue))
@@ -848,7 +847,7 @@ ColourImage readColourImage(const std::string& path)
   }
   // The pixels, and one 16-bit band at a time on the way.
   checkReadFits(path, img.width, img.height, img.channels + sizeof(std::uint16_t));
-  const std::size_t n = static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height);
+  const std::size_t n = cellCount(img.width, img.height);
   img.data.assign(n * static_cast<std::size_t>(img.channels), 0);
   QuietGdal quiet;
   if (ds->GetRasterCount() == 1 && first->GetColorTable() != nullptr)
@@ -916,8 +915,7 @@ bool isHeightfieldWriteExtension(const std::string& path)
 
 void writeHeightfield(const std::string& path, const Heightfield& hf)
 {
-  if (hf.width <= 0 || hf.height <= 0 ||
-    hf.size() != static_cast<std::size_t>(hf.width) * static_cast<std::size_t>(hf.height))
+  if (hf.width <= 0 || hf.height <= 0 || hf.size() != cellCount(hf.width, hf.height))
   {
     throw Error("Cannot write " + path + ": the heightfield is empty or inconsistent.");
   }
@@ -952,8 +950,7 @@ std::array<double, 6> geoTransformOf(const Heightfield& hf)
 
 void writePng16InRange(const std::string& path, const Heightfield& hf, const Png16Range& range)
 {
-  if (hf.width <= 0 || hf.height <= 0 ||
-    hf.size() != static_cast<std::size_t>(hf.width) * static_cast<std::size_t>(hf.height))
+  if (hf.width <= 0 || hf.height <= 0 || hf.size() != cellCount(hf.width, hf.height))
   {
     throw Error("Cannot write " + path + ": the heightfield is empty or inconsistent.");
   }
@@ -971,8 +968,7 @@ void writeRgbPng(const std::string& path,
   int height,
   const std::vector<std::uint8_t>& rgb)
 {
-  if (width <= 0 || height <= 0 ||
-    rgb.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3)
+  if (width <= 0 || height <= 0 || rgb.size() != cellCount(width, height) * 3)
   {
     throw Error("Cannot write " + path + ": the image is empty or inconsistent.");
   }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "Geodesy.h"
+#include "Grid.h"
 #include "Heightfield.h"
 #include "Sidecar.h"
 
@@ -111,10 +112,7 @@ struct ColourImage
   std::vector<std::uint8_t> data;
   const std::uint8_t* pixel(int column, int rowFromTop) const
   {
-    return data.data() +
-      (static_cast<std::size_t>(rowFromTop) * static_cast<std::size_t>(width) +
-        static_cast<std::size_t>(column)) *
-      static_cast<std::size_t>(channels);
+    return data.data() + rowMajor(column, rowFromTop, width) * static_cast<std::size_t>(channels);
   }
 };
 

@@ -1,6 +1,7 @@
 #include "TileExport.h"
 
 #include "Error.h"
+#include "Grid.h"
 #include "HeightfieldIO.h"
 #include "OutputFile.h"
 
@@ -497,8 +498,7 @@ TileExportReport exportTileRows(const TerrainBand& band,
       std::to_string(lastTileRow - 1) + " need the terrain's rows " + std::to_string(needFirst) +
       " to " + std::to_string(needLast) + ", which this part of it does not hold.");
   }
-  const std::size_t count =
-    static_cast<std::size_t>(lastTileRow - firstTileRow) * static_cast<std::size_t>(grid.columns);
+  const std::size_t count = cellCount(lastTileRow - firstTileRow, grid.columns);
   for (int r = firstTileRow; r < lastTileRow; ++r)
   {
     for (int c = 0; c < grid.columns; ++c)
@@ -510,8 +510,7 @@ TileExportReport exportTileRows(const TerrainBand& band,
       writeText(files.sidecar, sidecarText(frame, grid, t, tile, format));
       if (sixteenBit(format))
       {
-        report.paddedSamples += tile.size() -
-          static_cast<std::size_t>(t.validWidth) * static_cast<std::size_t>(t.validHeight);
+        report.paddedSamples += tile.size() - cellCount(t.validWidth, t.validHeight);
       }
       report.tiles.push_back(files);
       reportProgress(

@@ -11,6 +11,7 @@
 // terrain and, for the engines, the scales that reproduce the heights in metres.
 #pragma once
 
+#include "Grid.h"
 #include "Heightfield.h"
 #include "HeightfieldIO.h"
 #include "Progress.h"
@@ -52,10 +53,7 @@ struct TileGrid
   int columns = 0;
   int rows = 0;
   int step() const { return size - 1; }
-  std::size_t count() const
-  {
-    return static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows);
-  }
+  std::size_t count() const { return cellCount(columns, rows); }
 };
 
 // Throws tsynth::Error (one sentence, with the sizes that work) if `size` does

@@ -1,6 +1,7 @@
 #include "DistanceSynthesis.h"
 
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 #include "../Core/Random.h"
 #include "DistanceMemory.h"
 #include "LatticeSearch.h"
@@ -81,7 +82,7 @@ void validateOptions(const DistanceOptions& o)
 // Every generator node with its feature, costs filled from fBm where NaN.
 std::vector<std::vector<Source>> gatherSources(const DistanceInputs& in, const DistanceOptions& o)
 {
-  const std::size_t n = static_cast<std::size_t>(in.width) * static_cast<std::size_t>(in.height);
+  const std::size_t n = cellCount(in.width, in.height);
   bool needFbm = false;
   std::size_t count = 0;
   for (std::size_t f = 0; f < in.features.size(); ++f)
@@ -121,7 +122,7 @@ std::vector<std::vector<Source>> gatherSources(const DistanceInputs& in, const D
 // Region index per cell: the smallest region wins where they nest.
 std::vector<std::int32_t> regionMap(const DistanceInputs& in)
 {
-  const std::size_t n = static_cast<std::size_t>(in.width) * static_cast<std::size_t>(in.height);
+  const std::size_t n = cellCount(in.width, in.height);
   std::vector<std::int32_t> regionOf(n, kNone);
   std::vector<std::size_t> order(in.regions.size());
   for (std::size_t r = 0; r < order.size(); ++r)
@@ -174,8 +175,7 @@ Lattice buildLattice(const DistanceInputs& in, const DistanceOptions& o)
 {
   if (!in.nodeWeights.empty())
   {
-    require(in.nodeWeights.size() ==
-        static_cast<std::size_t>(in.width) * static_cast<std::size_t>(in.height),
+    require(in.nodeWeights.size() == cellCount(in.width, in.height),
       "The edge-weight image has " + std::to_string(in.nodeWeights.size()) +
         " cells but the generators' grid is " + std::to_string(in.width) + "x" +
         std::to_string(in.height) + "; give an image of the same size.");

@@ -1,6 +1,7 @@
 #include "Generators.h"
 
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 #include "../Core/Random.h"
 #include "../Features/Sketch.h"
 
@@ -23,8 +24,7 @@ constexpr double kLineSamplesPerCell = 2.0;
 
 std::size_t cellIndex(int col, int row, int width)
 {
-  return static_cast<std::size_t>(row) * static_cast<std::size_t>(width) +
-    static_cast<std::size_t>(col);
+  return rowMajor(col, row, width);
 }
 
 std::uint32_t packColour(const std::uint8_t* p)
@@ -171,7 +171,7 @@ StrokeGenerators generatorsFromStrokes(const ColourImage& strokes,
       std::to_string(h) + "; give a label image of the stroke map's size.");
   }
   StrokeGenerators out;
-  std::vector<std::uint8_t> mask(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
+  std::vector<std::uint8_t> mask(cellCount(w, h), 0);
   std::map<std::uint32_t, int> colours;
   for (int row = 0; row < h; ++row)
   {
@@ -374,7 +374,7 @@ std::vector<float> fbmCosts(int width, int height, const FbmOptions& options, st
                 "low <= high.");
   }
   const PerlinNoise noise(seed);
-  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  const std::size_t n = cellCount(width, height);
   std::vector<double> value(n);
   const double stepX = options.domain / width;
   const double stepY = options.domain / height;
@@ -438,7 +438,7 @@ std::vector<DistanceRegion> enclosedRegions(const std::vector<DistanceFeature>& 
     // The box one cell larger than the feature, so its border is outside.
     const int bw = c1 - c0 + 3;
     const int bh = r1 - r0 + 3;
-    std::vector<std::uint8_t> state(static_cast<std::size_t>(bw) * static_cast<std::size_t>(bh), 0);
+    std::vector<std::uint8_t> state(cellCount(bw, bh), 0);
     for (const GeneratorNode& node : feature.nodes)
     {
       state[cellIndex(node.cell % width - c0 + 1, node.cell / width - r0 + 1, bw)] = 1; // wall

@@ -1,6 +1,7 @@
 #include "Lattice.h"
 
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 #include "../Core/Random.h"
 
 #include <algorithm>
@@ -147,8 +148,7 @@ void Lattice::findEdgeRange()
   {
     for (int col = 0; col < width_; ++col)
     {
-      const float* w = weights(static_cast<std::size_t>(row) * static_cast<std::size_t>(width_) +
-        static_cast<std::size_t>(col));
+      const float* w = weights(rowMajor(col, row, width_));
       for (std::size_t d = 0; d < kDirectionCount; ++d)
       {
         const int c = col + kDirectionDx[d];

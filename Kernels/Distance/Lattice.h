@@ -4,6 +4,8 @@
 #pragma once
 
 #include <array>
+
+#include "../Core/Grid.h"
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -54,10 +56,7 @@ public:
 
   int width() const { return width_; }
   int height() const { return height_; }
-  std::size_t size() const
-  {
-    return static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
-  }
+  std::size_t size() const { return cellCount(width_, height_); }
   double meanWeight() const { return meanWeight_; } // divides profile slopes (eq. 3.5)
   double minWeight() const { return minWeight_; }   // smallest edge weight (axis edge)
   // The least and the greatest stored edge weight (diagonal factor applied), as

@@ -1,5 +1,6 @@
 #include "FeatureGraph.h"
 
+#include "../Core/Grid.h"
 #include "../Core/Heightfield.h"
 #include "PixelGraph.h"
 
@@ -51,18 +52,13 @@ void forEachChainCell(const FeatureChain& chain,
 
 std::vector<std::uint8_t> rasteriseChains(const FeatureGraph& graph, int width, int height)
 {
-  std::vector<std::uint8_t> cells(
-    static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0);
+  std::vector<std::uint8_t> cells(cellCount(width, height), 0);
   for (const FeatureChain& c : graph.chains)
   {
     forEachChainCell(c,
       width,
       height,
-      [&](int i, int j, std::size_t, double)
-      {
-        cells[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) +
-          static_cast<std::size_t>(i)] = 1;
-      });
+      [&](int i, int j, std::size_t, double) { cells[rowMajor(i, j, width)] = 1; });
   }
   return cells;
 }

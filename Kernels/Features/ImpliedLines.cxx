@@ -1,5 +1,6 @@
 #include "ImpliedLines.h"
 
+#include "../Core/Grid.h"
 #include "../Distance/DistanceField.h"
 #include "Sketch.h"
 
@@ -37,8 +38,7 @@ Mask grown(const Mask& m, int w, int h)
   {
     for (int i = 0; i < w; ++i)
     {
-      const std::size_t k =
-        static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
+      const std::size_t k = rowMajor(i, j, w);
       if (m[k] == 0)
       {
         continue;
@@ -47,8 +47,7 @@ Mask grown(const Mask& m, int w, int h)
       {
         for (int x = std::max(0, i - 1); x <= std::min(w - 1, i + 1); ++x)
         {
-          out[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
-            static_cast<std::size_t>(x)] = 1;
+          out[rowMajor(x, y, w)] = 1;
         }
       }
     }
@@ -82,8 +81,7 @@ Mask withoutShortPieces(const Mask& grownMask, const Mask& axis, int w, int h, d
       {
         for (int x = std::max(0, i - 1); x <= std::min(w - 1, i + 1); ++x)
         {
-          const std::size_t q =
-            static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+          const std::size_t q = rowMajor(x, y, w);
           if (grownMask[q] != 0 && seen[q] == 0)
           {
             seen[q] = 1;
@@ -116,8 +114,7 @@ FeatureGraph impliedLines(const FeatureGraph& drawn,
   implied.height = h;
   implied.cellX = drawn.cellX;
   implied.cellY = drawn.cellY;
-  const std::size_t n =
-    static_cast<std::size_t>(std::max(0, w)) * static_cast<std::size_t>(std::max(0, h));
+  const std::size_t n = cellCount(std::max(0, w), std::max(0, h));
   if (n == 0 || drawn.chains.empty() || spacing.medial.size() != n)
   {
     return implied;

@@ -1,5 +1,7 @@
 #include "PixelGraph.h"
 
+#include "../Core/Grid.h"
+
 #include <algorithm>
 #include <bitset>
 #include <limits>
@@ -18,7 +20,7 @@ constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
 PixelGraph::PixelGraph(int width, int height)
   : width_(width)
   , height_(height)
-  , links_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0)
+  , links_(cellCount(width, height), 0)
 {
 }
 

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstddef>
+
+#include "../Core/Grid.h"
 #include <cstdint>
 #include <vector>
 
@@ -24,11 +26,7 @@ public:
   int width() const { return width_; }
   int height() const { return height_; }
   std::size_t size() const { return links_.size(); }
-  std::size_t index(int i, int j) const
-  {
-    return static_cast<std::size_t>(j) * static_cast<std::size_t>(width_) +
-      static_cast<std::size_t>(i);
-  }
+  std::size_t index(int i, int j) const { return rowMajor(i, j, width_); }
   int column(std::size_t idx) const
   {
     return static_cast<int>(idx % static_cast<std::size_t>(width_));

@@ -2,6 +2,7 @@
 
 #include "../Core/Cancellation.h"
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 
 #include <boost/pending/disjoint_sets.hpp>
 
@@ -244,7 +245,7 @@ double cellNoise(const Heightfield& hf)
   {
     return 0.0;
   }
-  const std::size_t interior = static_cast<std::size_t>(w - 2) * static_cast<std::size_t>(h - 2);
+  const std::size_t interior = cellCount(w - 2, h - 2);
   const std::size_t stride =
     std::max<std::size_t>(1, (interior + kReliefSamples - 1) / kReliefSamples);
   auto block = [&](int i, int j, double& residual)

@@ -1,6 +1,7 @@
 #include "Sketch.h"
 
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 #include "PixelGraph.h"
 #include "Ppa.h"
 
@@ -19,7 +20,7 @@ namespace
 
 std::size_t pixelCount(const ColourImage& image)
 {
-  return static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+  return cellCount(image.width, image.height);
 }
 
 // Channel c of pixel k, treating 1-2 channel images as grey.
@@ -172,13 +173,11 @@ SketchFeatures strokeFeatures(const ColourImage& image, const SketchOptions& o)
   {
     for (int i = 0; i < w; ++i)
     {
-      const std::size_t k =
-        static_cast<std::size_t>(r) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
+      const std::size_t k = rowMajor(i, r, w);
       const std::uint8_t rgb[3] = {
         channel(image, k, 0), channel(image, k, 1), channel(image, k, 2)
       };
-      const std::size_t g = static_cast<std::size_t>(h - 1 - r) * static_cast<std::size_t>(w) +
-        static_cast<std::size_t>(i);
+      const std::size_t g = rowMajor(i, h - 1 - r, w);
       if (isRidgeColour(rgb))
       {
         ridge[g] = 1;
@@ -239,8 +238,7 @@ SketchFeatures greyFeatures(const ColourImage& image, const SketchOptions& o)
   {
     for (int i = 0; i < w; ++i)
     {
-      const std::size_t k =
-        static_cast<std::size_t>(r) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
+      const std::size_t k = rowMajor(i, r, w);
       const std::uint8_t v = channel(image, k, 0);
       hf.at(i, h - 1 - r) = v;
       ++histogram[v];
@@ -383,13 +381,7 @@ void thinMask(std::vector<std::uint8_t>& m, int w, int h)
   // Zhang and Suen (1984): two sub-iterations peel boundary cells that are
   // neither end points nor needed for connectivity.
   auto at = [&](int i, int j) -> int
-  {
-    return (i >= 0 && j >= 0 && i < w && j < h &&
-             m[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
-               static_cast<std::size_t>(i)] != 0)
-      ? 1
-      : 0;
-  };
+  { return (i >= 0 && j >= 0 && i < w && j < h && m[rowMajor(i, j, w)] != 0) ? 1 : 0; };
   std::vector<std::size_t> remove;
   for (bool changed = true; changed;)
   {
@@ -429,8 +421,7 @@ void thinMask(std::vector<std::uint8_t>& m, int w, int h)
                                        : (p[0] * p[2] * p[6] == 0 && p[0] * p[4] * p[6] == 0);
           if (first)
           {
-            remove.push_back(static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
-              static_cast<std::size_t>(i));
+            remove.push_back(rowMajor(i, j, w));
           }
         }
       }

@@ -1,5 +1,6 @@
 #include "StrokeSpacing.h"
 
+#include "../Core/Grid.h"
 #include "../Distance/DistanceField.h"
 
 #include <algorithm>
@@ -25,20 +26,17 @@ constexpr double kFacingRatio = 1.5;
 // have neighbouring nearest points.
 constexpr double kMinFacingCells = 3.0;
 
-class Grid
+class MetricGrid
 {
 public:
-  Grid(int w, int h, double cx, double cy)
+  MetricGrid(int w, int h, double cx, double cy)
     : w_(w)
     , h_(h)
     , cx_(cx)
     , cy_(cy)
   {
   }
-  std::size_t index(int i, int j) const
-  {
-    return static_cast<std::size_t>(j) * static_cast<std::size_t>(w_) + static_cast<std::size_t>(i);
-  }
+  std::size_t index(int i, int j) const { return rowMajor(i, j, w_); }
   int column(std::size_t k) const { return static_cast<int>(k % static_cast<std::size_t>(w_)); }
   int row(std::size_t k) const { return static_cast<int>(k / static_cast<std::size_t>(w_)); }
   bool inside(int i, int j) const { return i >= 0 && j >= 0 && i < w_ && j < h_; }
@@ -55,7 +53,7 @@ private:
 
 // Cells between strokes that face each other (see kFacingRatio).
 std::vector<std::uint8_t> medialAxis(const NearestSeeds& near,
-  const Grid& g,
+  const MetricGrid& g,
   int w,
   int h,
   double cell)
@@ -107,7 +105,7 @@ std::vector<std::uint8_t> medialAxis(const NearestSeeds& near,
 class MedialDistance
 {
 public:
-  MedialDistance(const std::vector<std::uint8_t>& strokes, const Grid& g, int w, int h)
+  MedialDistance(const std::vector<std::uint8_t>& strokes, const MetricGrid& g, int w, int h)
     : strokes_(strokes)
     , g_(g)
     , w_(w)
@@ -185,7 +183,7 @@ private:
   }
 
   const std::vector<std::uint8_t>& strokes_;
-  const Grid& g_;
+  const MetricGrid& g_;
   int w_, h_;
   double straight_[2]; // along a row, along a column
   double diagonal_;
@@ -202,7 +200,7 @@ StrokeSpacing strokeSpacing(const std::vector<std::uint8_t>& strokes,
   StrokeSpacing s;
   s.width = width;
   s.height = height;
-  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  const std::size_t n = cellCount(width, height);
   s.halfSpacing.assign(n, kInfinity);
   s.medial.assign(n, 0);
   const NearestSeeds near = nearestSeeds(strokes, width, height, cellX, cellY);
@@ -211,7 +209,7 @@ StrokeSpacing strokeSpacing(const std::vector<std::uint8_t>& strokes,
   {
     return s;
   }
-  const Grid g(width, height, cellX, cellY);
+  const MetricGrid g(width, height, cellX, cellY);
   s.medial = medialAxis(near, g, width, height, std::min(cellX, cellY));
   const std::vector<float> toMedial = MedialDistance(strokes, g, width, height).from(s.medial);
   for (std::size_t k = 0; k < n; ++k)
@@ -232,9 +230,7 @@ float strokeHalfSpacing(const StrokeSpacing& s, int i, int j)
       const int y = j + dj;
       if (x >= 0 && y >= 0 && x < s.width && y < s.height)
       {
-        best = std::min(best,
-          s.halfSpacing[static_cast<std::size_t>(y) * static_cast<std::size_t>(s.width) +
-            static_cast<std::size_t>(x)]);
+        best = std::min(best, s.halfSpacing[rowMajor(x, y, s.width)]);
       }
     }
   }

@@ -2,6 +2,7 @@
 
 #include "../Core/Cancellation.h"
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 #include "FloodKeys.h"
 #include "Flow.h"
 #include "RadixHeap.h"
@@ -57,7 +58,7 @@ class BreachFlood
 public:
   BreachFlood(const Heightfield& dem, const std::vector<std::uint8_t>* sinks, bool keepOriginal)
     : width_(dem.width + 2)
-    , z_(static_cast<std::size_t>(width_) * static_cast<std::size_t>(dem.height + 2), 0.0f)
+    , z_(cellCount(width_, dem.height + 2), 0.0f)
     , state_(z_.size(), kClosed | kBlocked)
     , from_(z_.size(), kRoot)
   {
@@ -232,11 +233,7 @@ public:
   static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 
 private:
-  std::size_t framed(int i, int j) const
-  {
-    return static_cast<std::size_t>(j + 1) * static_cast<std::size_t>(width_) +
-      static_cast<std::size_t>(i + 1);
-  }
+  std::size_t framed(int i, int j) const { return rowMajor(i + 1, j + 1, width_); }
 
   std::size_t neighbour(std::size_t p, std::size_t code) const
   {

@@ -2,6 +2,7 @@
 
 #include "../Core/Cancellation.h"
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 #include "FloodKeys.h"
 #include "RadixHeap.h"
 
@@ -90,7 +91,7 @@ class PriorityFlood
 public:
   PriorityFlood(const Heightfield& dem, const std::vector<std::uint8_t>* sinks)
     : width_(dem.width + 2)
-    , z_(static_cast<std::size_t>(width_) * static_cast<std::size_t>(dem.height + 2), 0.0f)
+    , z_(cellCount(width_, dem.height + 2), 0.0f)
     , closed_(z_.size(), 1)
   {
     for (int c = 0; c < kD8Directions; ++c)
@@ -182,11 +183,7 @@ public:
   }
 
 private:
-  std::size_t framed(int i, int j) const
-  {
-    return static_cast<std::size_t>(j + 1) * static_cast<std::size_t>(width_) +
-      static_cast<std::size_t>(i + 1);
-  }
+  std::size_t framed(int i, int j) const { return rowMajor(i + 1, j + 1, width_); }
 
   std::size_t neighbour(std::uint32_t cell, std::size_t code) const
   {
@@ -277,8 +274,7 @@ private:
 Heightfield fillDepressions(const Heightfield& dem, const std::vector<std::uint8_t>* sinks)
 {
   checkSinks(dem, sinks);
-  const std::size_t framedCells =
-    static_cast<std::size_t>(dem.width + 2) * static_cast<std::size_t>(dem.height + 2);
+  const std::size_t framedCells = cellCount(dem.width + 2, dem.height + 2);
   if (framedCells > std::numeric_limits<std::uint32_t>::max())
   {
     throw Error("The terrain is too large to fill (" + std::to_string(dem.size()) +
@@ -454,8 +450,7 @@ std::size_t downstreamOf(std::size_t k,
     throw Error("The flow direction at cell " + std::to_string(k) +
       " points off the grid; directions must come from the same grid.");
   }
-  const std::size_t n =
-    static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i);
+  const std::size_t n = rowMajor(i, j, width);
   if (valid != nullptr && (*valid)[n] == 0)
   {
     throw Error("The flow direction at cell " + std::to_string(k) +
@@ -471,8 +466,7 @@ std::vector<std::uint32_t> flowAccumulation(const std::vector<std::int8_t>& dire
   int height,
   const std::vector<std::uint8_t>* valid)
 {
-  const std::size_t n =
-    static_cast<std::size_t>(std::max(width, 0)) * static_cast<std::size_t>(std::max(height, 0));
+  const std::size_t n = cellCount(std::max(width, 0), std::max(height, 0));
   if (directions.size() != n || (valid != nullptr && valid->size() != n))
   {
     throw Error("Flow accumulation needs one direction (and one mask byte) per cell of the " +

@@ -1,6 +1,7 @@
 #include "CandidatePool.h"
 
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 #include "../Features/Ppa.h"
 #include "../Features/Profiles.h"
 
@@ -104,7 +105,7 @@ public:
   explicit FootprintCheck(const Heightfield& hf)
     : w_(hf.width)
     , h_(hf.height)
-    , sat_(static_cast<std::size_t>(hf.width + 1) * static_cast<std::size_t>(hf.height + 1), 0)
+    , sat_(cellCount(hf.width + 1, hf.height + 1), 0)
   {
     for (int j = 0; j < h_; ++j)
     {
@@ -130,11 +131,7 @@ public:
   }
 
 private:
-  std::size_t at(int i, int j) const
-  {
-    return static_cast<std::size_t>(j) * static_cast<std::size_t>(w_ + 1) +
-      static_cast<std::size_t>(i);
-  }
+  std::size_t at(int i, int j) const { return rowMajor(i, j, w_ + 1); }
   int w_;
   int h_;
   std::vector<long> sat_;
@@ -154,7 +151,7 @@ public:
   explicit BlockMeans(const Heightfield& hf)
     : w_(hf.width)
     , h_(hf.height)
-    , sum_(static_cast<std::size_t>(hf.width + 1) * static_cast<std::size_t>(hf.height + 1), 0.0)
+    , sum_(cellCount(hf.width + 1, hf.height + 1), 0.0)
     , count_(sum_.size(), 0.0)
   {
     for (int j = 0; j < h_; ++j)
@@ -194,11 +191,7 @@ public:
   }
 
 private:
-  std::size_t at(int i, int j) const
-  {
-    return static_cast<std::size_t>(j) * static_cast<std::size_t>(w_ + 1) +
-      static_cast<std::size_t>(i);
-  }
+  std::size_t at(int i, int j) const { return rowMajor(i, j, w_ + 1); }
   double rect(const std::vector<double>& t, int i0, int j0, int i1, int j1) const
   {
     return t[at(i1, j1)] - t[at(i0, j1)] - t[at(i1, j0)] + t[at(i0, j0)];

@@ -1,6 +1,7 @@
 #include "DenseSearch.h"
 
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 #include "Vectorise.h"
 
 #include <algorithm>
@@ -30,36 +31,26 @@ std::vector<std::uint8_t> windowValidity(int w,
 {
   // Counts of invalid cells up to the whole grid: 64-bit, since a grid may hold more than
   // 2^31 cells.
-  std::vector<std::int64_t> sat(
-    static_cast<std::size_t>(w + 1) * static_cast<std::size_t>(h + 1), 0);
-  auto at = [&](int i, int j)
-  {
-    return static_cast<std::size_t>(j) * static_cast<std::size_t>(w + 1) +
-      static_cast<std::size_t>(i);
-  };
+  Grid<std::int64_t> sat(w + 1, h + 1, 0);
   for (int j = 0; j < h; ++j)
   {
     std::int64_t row = 0;
     for (int i = 0; i < w; ++i)
     {
-      row += cellValid[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
-               static_cast<std::size_t>(i)] != 0
-        ? 0
-        : 1;
-      sat[at(i + 1, j + 1)] = sat[at(i + 1, j)] + row;
+      row += cellValid[rowMajor(i, j, w)] != 0 ? 0 : 1;
+      sat.at(i + 1, j + 1) = sat.at(i + 1, j) + row;
     }
   }
   const int nx = std::max(0, w - side + 1);
   const int ny = std::max(0, h - side + 1);
-  std::vector<std::uint8_t> valid(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), 0);
+  std::vector<std::uint8_t> valid(cellCount(nx, ny), 0);
   for (int y = 0; y < ny; ++y)
   {
     for (int x = 0; x < nx; ++x)
     {
       const std::int64_t bad =
-        sat[at(x + side, y + side)] - sat[at(x, y + side)] - sat[at(x + side, y)] + sat[at(x, y)];
-      valid[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) +
-        static_cast<std::size_t>(x)] = bad == 0 ? 1 : 0;
+        sat.at(x + side, y + side) - sat.at(x, y + side) - sat.at(x + side, y) + sat.at(x, y);
+      valid[rowMajor(x, y, nx)] = bad == 0 ? 1 : 0;
     }
   }
   return valid;
@@ -162,9 +153,7 @@ float offsetSsd(const CoarseTerms& q, const std::vector<float>& pixels, int stri
   float acc = 0.0f;
   for (std::size_t e = 0; e < q.size(); ++e)
   {
-    const float d = q.heights[e] -
-      pixels[static_cast<std::size_t>(y + q.row[e]) * static_cast<std::size_t>(stride) +
-        static_cast<std::size_t>(x + q.column[e])];
+    const float d = q.heights[e] - pixels[rowMajor(x + q.column[e], y + q.row[e], stride)];
     acc += q.weights[e] * d * d;
   }
   return acc;
@@ -196,9 +185,7 @@ inline __attribute__((always_inline)) void ssdRuns(const CoarseTerms& q,
   std::copy(x0s, x0s + Runs, x0);
   for (std::size_t e = 0; e < q.size(); ++e)
   {
-    const float* row = pixels.data() +
-      static_cast<std::size_t>(y + q.row[e]) * static_cast<std::size_t>(stride) +
-      static_cast<std::size_t>(q.column[e]);
+    const float* row = pixels.data() + rowMajor(q.column[e], y + q.row[e], stride);
     const float h = q.heights[e];
     const float m = q.weights[e];
     for (int n = 0; n < Runs; ++n)
@@ -281,11 +268,10 @@ std::vector<float> blockMeans(const Heightfield& image,
   int stride,
   std::vector<std::uint8_t>* valid)
 {
-  std::vector<float> means(
-    static_cast<std::size_t>(stride) * static_cast<std::size_t>(blocksY), 0.0f);
+  std::vector<float> means(cellCount(stride, blocksY), 0.0f);
   if (valid != nullptr)
   {
-    valid->assign(static_cast<std::size_t>(blocksX) * static_cast<std::size_t>(blocksY), 0);
+    valid->assign(cellCount(blocksX, blocksY), 0);
   }
   for (int b = 0; b < blocksY; ++b)
   {
@@ -307,12 +293,10 @@ std::vector<float> blockMeans(const Heightfield& image,
       }
       if (ok)
       {
-        means[static_cast<std::size_t>(b) * static_cast<std::size_t>(stride) +
-          static_cast<std::size_t>(a)] = static_cast<float>(s / (f * f));
+        means[rowMajor(a, b, stride)] = static_cast<float>(s / (f * f));
         if (valid != nullptr)
         {
-          (*valid)[static_cast<std::size_t>(b) * static_cast<std::size_t>(blocksX) +
-            static_cast<std::size_t>(a)] = 1;
+          (*valid)[rowMajor(a, b, blocksX)] = 1;
         }
       }
     }
@@ -437,8 +421,7 @@ DenseMatcher::Oriented DenseMatcher::orient(const Heightfield& ex,
   {
     for (int a = 0; a + 1 < r.coarseWidth; ++a)
     {
-      const std::size_t k = static_cast<std::size_t>(b) * static_cast<std::size_t>(r.coarseStride) +
-        static_cast<std::size_t>(a);
+      const std::size_t k = rowMajor(a, b, r.coarseStride);
       const std::size_t up = k + static_cast<std::size_t>(r.coarseStride);
       r.pairs[k] = 0.25f * (r.coarse[k] + r.coarse[k + 1] + r.coarse[up] + r.coarse[up + 1]);
     }
@@ -448,8 +431,7 @@ DenseMatcher::Oriented DenseMatcher::orient(const Heightfield& ex,
   {
     for (int a = 0; a + 3 < r.coarseWidth; ++a)
     {
-      const std::size_t k = static_cast<std::size_t>(b) * static_cast<std::size_t>(r.coarseStride) +
-        static_cast<std::size_t>(a);
+      const std::size_t k = rowMajor(a, b, r.coarseStride);
       const std::size_t down = k + 2 * static_cast<std::size_t>(r.coarseStride);
       r.quads[k] = 0.25f * (r.pairs[k] + r.pairs[k + 2] + r.pairs[down] + r.pairs[down + 2]);
     }
@@ -458,16 +440,14 @@ DenseMatcher::Oriented DenseMatcher::orient(const Heightfield& ex,
   r.offsetsX = std::max(0, r.coarseWidth - P / f + 1);
   r.offsetsY = std::max(0, r.coarseHeight - P / f + 1);
   const int groups = (r.offsetsX + 15) / 16;
-  r.groupValid.assign(static_cast<std::size_t>(groups) * static_cast<std::size_t>(r.offsetsY), 0);
+  r.groupValid.assign(cellCount(groups, r.offsetsY), 0);
   for (int y = 0; y < r.offsetsY; ++y)
   {
     for (int x = 0; x < r.offsetsX; ++x)
     {
-      if (r.coarseValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(r.offsetsX) +
-            static_cast<std::size_t>(x)] != 0)
+      if (r.coarseValid[rowMajor(x, y, r.offsetsX)] != 0)
       {
-        r.groupValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(groups) +
-          static_cast<std::size_t>(x / 16)] = 1;
+        r.groupValid[rowMajor(x / 16, y, groups)] = 1;
       }
     }
   }
@@ -487,8 +467,7 @@ void DenseMatcher::stackLandform()
   }
   for (Oriented& r : oriented_)
   {
-    const std::size_t below =
-      static_cast<std::size_t>(landformRow_) * static_cast<std::size_t>(r.coarseStride);
+    const std::size_t below = cellCount(landformRow_, r.coarseStride);
     for (std::vector<float>* image : { &r.coarse, &r.pairs, &r.quads })
     {
       image->resize(below, 0.0f);
@@ -637,8 +616,7 @@ std::vector<std::vector<float>> DenseMatcher::coarseSsd(const CoarseTerms& q,
     {
       continue; // nothing asked of it: no costs at all
     }
-    out[o].assign(
-      static_cast<std::size_t>(r.offsetsX) * static_cast<std::size_t>(r.offsetsY), kInf);
+    out[o].assign(cellCount(r.offsetsX, r.offsetsY), kInf);
     for (int y = 0; y < r.offsetsY; ++y)
     {
       tasks.push_back({ o, y });
@@ -659,8 +637,7 @@ std::vector<std::vector<float>> DenseMatcher::coarseSsd(const CoarseTerms& q,
     std::vector<int> x0s;
     for (int g = 0; g < groups; ++g)
     {
-      const std::size_t run = static_cast<std::size_t>(y) * static_cast<std::size_t>(groups) +
-        static_cast<std::size_t>(g);
+      const std::size_t run = rowMajor(g, y, groups);
       if (r.groupValid[run] != 0 && (runs == nullptr || (*runs)[o][run] != 0))
       {
         x0s.push_back(16 * g);
@@ -673,8 +650,7 @@ std::vector<std::vector<float>> DenseMatcher::coarseSsd(const CoarseTerms& q,
       const int x0 = x0s[n];
       for (int l = 0; l < 16 && x0 + l < r.offsetsX; ++l)
       {
-        const std::size_t k = static_cast<std::size_t>(y) * static_cast<std::size_t>(r.offsetsX) +
-          static_cast<std::size_t>(x0 + l);
+        const std::size_t k = rowMajor(x0 + l, y, r.offsetsX);
         costs[k] = r.coarseValid[k] != 0 ? acc[n * 16 + static_cast<std::size_t>(l)] : kInf;
       }
     }
@@ -1261,8 +1237,7 @@ std::vector<DenseMatch> DenseMatcher::refine(const DenseQuery& q,
         const float* lanes = &v[static_cast<std::size_t>((run * rows + row) * kRowLanes)];
         for (int x = xs; x < std::min(xs + kRowLanes, xb + 1); ++x)
         {
-          if (r.fullValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) +
-                static_cast<std::size_t>(x)] == 0)
+          if (r.fullValid[rowMajor(x, y, nx)] == 0)
           {
             continue;
           }
@@ -1345,8 +1320,7 @@ std::vector<DenseMatch> DenseMatcher::bruteForce(const DenseQuery& q, std::size_
         overlapRows(cells, heights, o, xs, y, 1, v);
         for (int x = xs; x < xs + kRowLanes; ++x)
         {
-          if (r.fullValid[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) +
-                static_cast<std::size_t>(x)] == 0)
+          if (r.fullValid[rowMajor(x, y, nx)] == 0)
           {
             continue;
           }

@@ -2,6 +2,7 @@
 #include "OpenClMatcher.h"
 
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 #include "Matching/OpenClSources.h"
 
 #include <CL/cl.h>
@@ -378,7 +379,7 @@ OpenClDenseScorer::OpenClDenseScorer(std::shared_ptr<OpenClDevice> device,
     b.runs.insert(b.runs.end(), o.groupValid.begin(), o.groupValid.end());
     outStart.push_back(static_cast<int>(b.outSize));
     b.outOffset.push_back(b.outSize);
-    b.outSize += static_cast<std::size_t>(o.offsetsX) * static_cast<std::size_t>(o.offsetsY);
+    b.outSize += cellCount(o.offsetsX, o.offsetsY);
     b.maxGroups = std::max(b.maxGroups, static_cast<std::size_t>((o.offsetsX + 15) / 16));
     for (int y = 0; y < o.offsetsY; ++y)
     {
@@ -443,8 +444,7 @@ std::vector<std::vector<float>> OpenClDenseScorer::coarseSsd(const CoarseTerms& 
     if (runs == nullptr ||
       std::any_of((*runs)[i].begin(), (*runs)[i].end(), [](std::uint8_t m) { return m != 0; }))
     {
-      out[i].resize(static_cast<std::size_t>(oriented[i].offsetsX) *
-        static_cast<std::size_t>(oriented[i].offsetsY));
+      out[i].resize(cellCount(oriented[i].offsetsX, oriented[i].offsetsY));
     }
   }
   if (q.empty())

@@ -1,6 +1,7 @@
 #include "SiteMatch.h"
 
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 #include "../Features/Ppa.h"
 #include "CandidatePool.h"
 #include "NoiseVariance.h"
@@ -78,8 +79,7 @@ void mapFeatureCosts(const CandidatePool& pool,
     }
     const int i = static_cast<int>(std::lround(pool.centreX[c]));
     const int j = static_cast<int>(std::lround(pool.centreY[c]));
-    float& v = map[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) +
-      static_cast<std::size_t>(i)];
+    float& v = map[rowMajor(i, j, width)];
     v = std::isnan(v) ? costs[c] : std::min(v, costs[c]);
   }
 }
@@ -114,8 +114,7 @@ void mapDenseCosts(const DenseMatcher& dense,
             const int cj = by * f + j + patch / 2;
             if (ci < width && cj < height && std::isfinite(v))
             {
-              map[static_cast<std::size_t>(cj) * static_cast<std::size_t>(width) +
-                static_cast<std::size_t>(ci)] = v;
+              map[rowMajor(ci, cj, width)] = v;
             }
           }
         }
@@ -178,8 +177,7 @@ SiteMatchResult matchAtSite(PatchMatcher& matcher,
   }
   r.warnings.insert(r.warnings.end(), matcher.warnings().begin(), matcher.warnings().end());
   const ExemplarInfo& first = matcher.pool().exemplars.front();
-  r.costMap.assign(static_cast<std::size_t>(first.width) * static_cast<std::size_t>(first.height),
-    std::numeric_limits<float>::quiet_NaN());
+  r.costMap.assign(cellCount(first.width, first.height), std::numeric_limits<float>::quiet_NaN());
   if (!featureCosts.empty())
   {
     mapFeatureCosts(matcher.pool(), featureCosts, first.width, r.costMap);

@@ -1,5 +1,7 @@
 #include "GridMaxFlow.h"
 
+#include "../Core/Grid.h"
+
 #include <algorithm>
 #include <limits>
 
@@ -16,7 +18,7 @@ void GridMaxFlow::reset(int width, int height)
   width_ = std::max(width, 0);
   height_ = std::max(height, 0);
   stride_ = width_ + 2;
-  const std::size_t n = static_cast<std::size_t>(stride_) * static_cast<std::size_t>(height_ + 2);
+  const std::size_t n = cellCount(stride_, height_ + 2);
   offset_[PlusX] = 1;
   offset_[MinusX] = -1;
   offset_[PlusY] = stride_;

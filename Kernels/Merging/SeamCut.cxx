@@ -1,5 +1,7 @@
 #include "SeamCut.h"
 
+#include "../Core/Grid.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,8 +15,7 @@ std::vector<SeamConstraint> buildSeamConstraints(int width,
   const std::uint8_t* newMask,
   const std::uint8_t* core)
 {
-  const std::size_t n =
-    static_cast<std::size_t>(std::max(width, 0)) * static_cast<std::size_t>(std::max(height, 0));
+  const std::size_t n = cellCount(std::max(width, 0), std::max(height, 0));
   std::vector<SeamConstraint> out(n, SeamConstraint::Outside);
   auto oldOnly = [&](std::size_t k) { return oldMask[k] && !newMask[k]; };
   auto newOnly = [&](std::size_t k) { return newMask[k] && !oldMask[k]; };
@@ -105,7 +106,7 @@ void SeamCut::computeWeights(int width,
   const SeamCutOptions& options,
   SeamWeights& out)
 {
-  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  const std::size_t n = cellCount(width, height);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   out.wx.assign(n, nan);
   out.wy.assign(n, nan);
@@ -180,7 +181,7 @@ const SeamCutResult& SeamCut::cut(int width,
 {
   width = std::max(width, 0);
   height = std::max(height, 0);
-  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  const std::size_t n = cellCount(width, height);
   constraints_.resize(n);
   for (std::size_t k = 0; k < n; ++k)
   {

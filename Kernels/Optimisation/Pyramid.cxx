@@ -1,5 +1,7 @@
 #include "Pyramid.h"
 
+#include "../Core/Grid.h"
+
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -41,7 +43,7 @@ Heightfield downsampleHalf(const Heightfield& fine)
   const int h = levelSide(fine.height, 1);
   const std::size_t fw = static_cast<std::size_t>(fine.width);
   // Horizontal pass at every fine row, every second column: value and weight sums.
-  std::vector<double> value(static_cast<std::size_t>(w) * static_cast<std::size_t>(fine.height));
+  std::vector<double> value(cellCount(w, fine.height));
   std::vector<double> weight(value.size());
   for (int j = 0; j < fine.height; ++j)
   {
@@ -64,8 +66,7 @@ Heightfield downsampleHalf(const Heightfield& fine)
           s += c;
         }
       }
-      const std::size_t o =
-        static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
+      const std::size_t o = rowMajor(i, j, w);
       value[o] = v;
       weight[o] = s;
     }
@@ -102,8 +103,7 @@ Heightfield downsampleHalf(const Heightfield& fine)
         {
           continue;
         }
-        const std::size_t o =
-          static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
+        const std::size_t o = rowMajor(i, y, w);
         const double c = kBinomial[static_cast<std::size_t>(t + kRadius)];
         v += c * value[o];
         s += c * weight[o];

@@ -1,5 +1,6 @@
 #include "TerrainOptimisation.h"
 
+#include "../Core/Grid.h"
 #include "../Hydrology/MultiscalePitRemoval.h"
 
 #include "../Core/Error.h"
@@ -199,8 +200,7 @@ double meanCost(const std::vector<float>& cost, int width, int height)
     double row = 0.0;
     for (int x = 0; x < width; ++x)
     {
-      row += cost[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-        static_cast<std::size_t>(x)];
+      row += cost[rowMajor(x, y, width)];
     }
     total += row;
   }

@@ -1,6 +1,7 @@
 #include "Finishing.h"
 
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 #include "../Core/Smoothing.h"
 #include "../Distance/DistanceField.h"
 #include "../Hydrology/Flow.h"
@@ -377,8 +378,7 @@ std::vector<double> meanAlongLines(const std::vector<double>& values,
     {
       for (int x = std::max(0, i - r); x <= std::min(w - 1, i + r); ++x)
       {
-        const std::size_t q =
-          static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+        const std::size_t q = rowMajor(x, y, w);
         if (line[q] != 0 && (x - i) * (x - i) + (y - j) * (y - j) <= radius * radius)
         {
           sum += values[q];

@@ -3,6 +3,7 @@
 #include "../Core/Cancellation.h"
 #include "../Core/Constants.h"
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 #include "../Core/Random.h"
 #include "../Core/Smoothing.h"
 #include "../Distance/DistanceField.h"
@@ -826,7 +827,7 @@ RasterLines rasteriseNetwork(const FeatureGraph& g,
   int h)
 {
   RasterLines r;
-  const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  const std::size_t n = cellCount(w, h);
   r.seeds.assign(n, 0);
   r.value.assign(n, kNaN);
   for (std::size_t c = 0; c < g.chains.size(); ++c)
@@ -841,8 +842,7 @@ RasterLines rasteriseNetwork(const FeatureGraph& g,
       h,
       [&](int i, int j, std::size_t k, double t)
       {
-        const std::size_t cell =
-          static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i);
+        const std::size_t cell = rowMajor(i, j, w);
         const double v = (1.0 - t) * vertexValue[ids[k - 1]] + t * vertexValue[ids[k]];
         // Where lines of the network cross, the lower value (the floor nearer
         // the outlet, or the lower crest) is kept.
@@ -990,19 +990,13 @@ namespace
 // The cells of the chains of one type (or of all types).
 std::vector<std::uint8_t> chainCells(const FeatureGraph& g, int w, int h, const FeatureType* type)
 {
-  std::vector<std::uint8_t> cells(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
+  std::vector<std::uint8_t> cells(cellCount(w, h), 0);
   for (const FeatureChain& c : g.chains)
   {
     if (type == nullptr || c.type == *type)
     {
-      forEachChainCell(c,
-        w,
-        h,
-        [&](int i, int j, std::size_t, double)
-        {
-          cells[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) +
-            static_cast<std::size_t>(i)] = 1;
-        });
+      forEachChainCell(
+        c, w, h, [&](int i, int j, std::size_t, double) { cells[rowMajor(i, j, w)] = 1; });
     }
   }
   return cells;
@@ -1101,7 +1095,7 @@ std::vector<double> lineValueField(const RasterLines& lines,
   int patchSize)
 {
   checkCancellation();
-  const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  const std::size_t n = cellCount(w, h);
   std::vector<double> field(n, 0.0);
   if (near.empty())
   {

@@ -1,6 +1,7 @@
 #include "Regions.h"
 
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +34,7 @@ void assignRegions(SynthesisOptions& o,
   int height,
   std::size_t exemplars)
 {
-  o.regionLabels.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), -1);
+  o.regionLabels.assign(cellCount(width, height), -1);
   int maxLabel = -1;
   for (int j = 0; j < height; ++j)
   {
@@ -45,8 +46,7 @@ void assignRegions(SynthesisOptions& o,
         labels.height - 1, static_cast<int>(static_cast<double>(j) * labels.height / height));
       const int label =
         labels.isValid(si, sj) ? static_cast<int>(std::lround(labels.at(si, sj))) : -1;
-      o.regionLabels[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) +
-        static_cast<std::size_t>(i)] = label;
+      o.regionLabels[rowMajor(i, j, width)] = label;
       maxLabel = std::max(maxLabel, label);
     }
   }

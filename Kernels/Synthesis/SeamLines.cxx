@@ -1,6 +1,7 @@
 #include "SeamLines.h"
 
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 
 #include <array>
 #include <cstddef>
@@ -131,8 +132,7 @@ SeamLine walk(SeamEdges& edges, const std::vector<std::uint8_t>& ends, std::size
 
 std::vector<SeamLine> seamLines(const std::vector<int>& patchId, int width, int height)
 {
-  if (width < 0 || height < 0 ||
-    patchId.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
+  if (width < 0 || height < 0 || patchId.size() != cellCount(width, height))
   {
     throw Error("seamLines: " + std::to_string(patchId.size()) + " patch ids for a " +
       std::to_string(width) + " x " + std::to_string(height) + " grid.");

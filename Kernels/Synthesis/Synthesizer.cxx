@@ -1,6 +1,7 @@
 #include "Synthesizer.h"
 
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 #include "../Core/Random.h"
 #include "../Core/Smoothing.h"
 #include "../Distance/DistanceField.h"
@@ -975,9 +976,7 @@ public:
     {
       for (int i = 0; i < t.regionWidth; ++i)
       {
-        const std::size_t from =
-          static_cast<std::size_t>(j) * static_cast<std::size_t>(t.regionWidth) +
-          static_cast<std::size_t>(i);
+        const std::size_t from = rowMajor(i, j, t.regionWidth);
         const std::size_t to = out_.index(t.regionX0 + i, t.regionY0 + j);
         if (tile.kept[from] == 0)
         {
@@ -1068,9 +1067,7 @@ SynthesisOptions tileOptions(const SynthesisOptions& o,
     for (int j = 0; j < t.regionHeight; ++j)
     {
       const auto row = o.regionLabels.begin() +
-        static_cast<std::ptrdiff_t>(
-          static_cast<std::size_t>(t.regionY0 + j) * static_cast<std::size_t>(outputWidth) +
-          static_cast<std::size_t>(t.regionX0));
+        static_cast<std::ptrdiff_t>(rowMajor(t.regionX0, t.regionY0 + j, outputWidth));
       to.regionLabels.insert(to.regionLabels.end(), row, row + t.regionWidth);
     }
   }

@@ -1,6 +1,7 @@
 #include "Tiling.h"
 
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 
 #include <algorithm>
 #include <string>
@@ -20,7 +21,7 @@ std::vector<T> regionCells(const std::vector<T>& all, int width, const Synthesis
     return {};
   }
   std::vector<T> part;
-  part.reserve(static_cast<std::size_t>(t.regionWidth) * static_cast<std::size_t>(t.regionHeight));
+  part.reserve(cellCount(t.regionWidth, t.regionHeight));
   for (int j = 0; j < t.regionHeight; ++j)
   {
     const auto row = all.begin() +
@@ -66,8 +67,7 @@ std::vector<SynthesisTile> tileSchedule(int width, int height, int tileSize, int
         t.column = c;
         t.row = r;
         t.colour = colour;
-        t.index = static_cast<std::size_t>(r) * static_cast<std::size_t>(columns) +
-          static_cast<std::size_t>(c);
+        t.index = rowMajor(c, r, columns);
         t.x0 = c * tileSize;
         t.y0 = r * tileSize;
         t.width = std::min(tileSize, width - t.x0);
@@ -92,8 +92,7 @@ std::vector<std::uint8_t> innerBorder(const SynthesisTile& t, int width, int hei
   const bool south = t.regionY0 > 0;
   const bool east = t.regionX0 + t.regionWidth < width;
   const bool north = t.regionY0 + t.regionHeight < height;
-  std::vector<std::uint8_t> border(
-    static_cast<std::size_t>(t.regionWidth) * static_cast<std::size_t>(t.regionHeight), 0);
+  std::vector<std::uint8_t> border(cellCount(t.regionWidth, t.regionHeight), 0);
   for (int j = 0; j < t.regionHeight; ++j)
   {
     for (int i = 0; i < t.regionWidth; ++i)
@@ -103,8 +102,7 @@ std::vector<std::uint8_t> innerBorder(const SynthesisTile& t, int width, int hei
       const bool own = x >= t.x0 && x < t.x0 + t.width && y >= t.y0 && y < t.y0 + t.height;
       const bool edge = (west && i < m) || (east && i >= t.regionWidth - m) || (south && j < m) ||
         (north && j >= t.regionHeight - m);
-      border[static_cast<std::size_t>(j) * static_cast<std::size_t>(t.regionWidth) +
-        static_cast<std::size_t>(i)] = edge && !own ? 1 : 0;
+      border[rowMajor(i, j, t.regionWidth)] = edge && !own ? 1 : 0;
     }
   }
   return border;

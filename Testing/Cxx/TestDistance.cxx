@@ -28,7 +28,7 @@ namespace
 // ---------------------------------------------------------------------------
 // Distance fields
 
-struct Grid
+struct SeedGrid
 {
   int width;
   int height;
@@ -36,7 +36,7 @@ struct Grid
   double cellY;
 };
 
-std::vector<std::uint8_t> randomSeeds(const Grid& g, double density, unsigned seed)
+std::vector<std::uint8_t> randomSeeds(const SeedGrid& g, double density, unsigned seed)
 {
   std::mt19937 rng(seed);
   std::bernoulli_distribution pick(density);
@@ -49,7 +49,7 @@ std::vector<std::uint8_t> randomSeeds(const Grid& g, double density, unsigned se
 }
 
 // Squared metric distance between cells a and b (exact in double for these sizes).
-double squaredMetres(const Grid& g, std::size_t a, std::size_t b)
+double squaredMetres(const SeedGrid& g, std::size_t a, std::size_t b)
 {
   const std::size_t w = static_cast<std::size_t>(g.width);
   const double dx = (static_cast<double>(a % w) - static_cast<double>(b % w)) * g.cellX;
@@ -65,7 +65,7 @@ struct BruteForce
   std::vector<std::int32_t> nearest;
 };
 
-BruteForce bruteForce(const std::vector<std::uint8_t>& seeds, const Grid& g)
+BruteForce bruteForce(const std::vector<std::uint8_t>& seeds, const SeedGrid& g)
 {
   const std::size_t n = seeds.size();
   const std::size_t w = static_cast<std::size_t>(g.width);
@@ -94,7 +94,7 @@ BruteForce bruteForce(const std::vector<std::uint8_t>& seeds, const Grid& g)
   return b;
 }
 
-void expectMatchesBruteForce(const Grid& g, double density, unsigned seed)
+void expectMatchesBruteForce(const SeedGrid& g, double density, unsigned seed)
 {
   const std::vector<std::uint8_t> seeds = randomSeeds(g, density, seed);
   const NearestSeeds fast = nearestSeeds(seeds, g.width, g.height, g.cellX, g.cellY);
@@ -127,7 +127,7 @@ void expectMatchesBruteForce(const Grid& g, double density, unsigned seed)
 
 TEST(DistanceField, EqualsBruteForceOnRandomSeeds)
 {
-  const std::vector<Grid> grids = { { 37, 23, 1.0, 1.0 },
+  const std::vector<SeedGrid> grids = { { 37, 23, 1.0, 1.0 },
     { 41, 29, 30.0, 90.0 },
     { 29, 41, 90.0, 30.0 },
     { 64, 1, 30.0, 90.0 },
@@ -136,7 +136,7 @@ TEST(DistanceField, EqualsBruteForceOnRandomSeeds)
   // From a lone seed to a seed in every third cell.
   const std::array<double, 4> densities = { 0.002, 0.02, 0.1, 0.35 };
   unsigned seed = 1;
-  for (const Grid& g : grids)
+  for (const SeedGrid& g : grids)
   {
     for (double density : densities)
     {
@@ -185,7 +185,7 @@ TEST(DistanceField, NoSeedsAndBadInput)
   EXPECT_THROW(distanceTransform(std::vector<std::uint8_t>(5, 1), 2, 2), Error);
 
   // distanceTransform is the unit-cell distance of nearestSeeds.
-  const Grid g{ 19, 13, 1.0, 1.0 };
+  const SeedGrid g{ 19, 13, 1.0, 1.0 };
   const std::vector<std::uint8_t> seeds = randomSeeds(g, 0.05, 99);
   EXPECT_EQ(
     distanceTransform(seeds, g.width, g.height), nearestSeeds(seeds, g.width, g.height).distance);
