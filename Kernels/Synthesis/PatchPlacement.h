@@ -47,10 +47,14 @@ public:
   // kHeightSlackShare of its span each way.
   void boundHeights(const std::vector<const Heightfield*>& exemplars);
 
+  // The exemplars' typical roughness per noise level, which a drawn target's
+  // queries ask of the fill (DenseMatcher::typicalNoise).
   void setTypicalNoise(const std::array<float, kNoiseLevels>& t);
 
+  // The feature patches, one per site in FeatureOrder.h's order.
   void placeFeatures();
 
+  // ... at these sites, in this order (a tile's share: sitesOf).
   void placeFeatures(const std::vector<FeatureSite>& sites);
 
   // The fill: windows over the output (fillGrid), visited as FillOrder.h's
@@ -63,8 +67,11 @@ public:
   // 4096 from five exemplars the finishing is where memory peaks.
   void releasePlacement();
 
+  // The result: cells no patch filled take the target's heights (with a
+  // warning), then Finishing.h's finishSynthesis. Call once, last.
   SynthesisResult finish();
 
+  // Progress through the options' report (and a stop, Core/Progress.h).
   void report(double fraction, const char* stage) const;
 
   // Tiled synthesis (Tiling.h), on the state of the whole output: the feature
@@ -73,6 +80,7 @@ public:
   std::vector<FeatureSite> sitesOf(const SynthesisTile& t,
     const std::vector<FeatureSite>& all) const;
 
+  // Every feature site of the target in placement order (FeatureOrder.h).
   std::vector<FeatureSite> sitesInOrder() const;
 
   // Cells whose known heights no fill patch may change (frozen_).
