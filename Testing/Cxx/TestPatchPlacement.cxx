@@ -4,11 +4,9 @@
 // covers every cell, frozen known cells keep their heights, and the steps in
 // turn make the untiled synthesis bit for bit.
 #include "Core/Grid.h"
-#include "Core/HeightfieldIO.h"
 #include "Synthesis/PatchPlacement.h"
-#include "Synthesis/Setup.h"
 #include "Synthesis/Synthesizer.h"
-#include "TestData.h"
+#include "YOverColorado.h"
 
 #include <gtest/gtest.h>
 
@@ -21,32 +19,15 @@ using namespace tsynth;
 namespace
 {
 
-constexpr int kSize = 256;
-constexpr int kPatch = 32;
-
-const SynthesisSetup& yOverColorado()
-{
-  static const SynthesisSetup setup = []
-  {
-    SetupInputs in;
-    in.exemplars.push_back(readHeightfield(test::realDem("colorado.png")));
-    in.sketch =
-      readColourImage((test::bundledData() / "sketches" / "strokes_y_ridges.png").string());
-    in.grid.width = kSize;
-    in.grid.height = kSize;
-    in.patchSize = kPatch;
-    in.openClMatcher = false;
-    return prepareSynthesis(in);
-  }();
-  return setup;
-}
+constexpr int kSize = test::kYSize;
+constexpr int kPatch = test::kYPatch;
 
 SynthesisOptions options()
 {
   SynthesisOptions o;
   o.patchSize = kPatch;
   o.backend = Backend::Cpu;
-  o.pool = yOverColorado().pool;
+  o.pool = test::yOverColoradoSetup().pool;
   o.seed = 5;
   return o;
 }
@@ -62,7 +43,7 @@ double filledShare(const TileOutcome& o)
 
 TEST(PatchPlacement, FeaturesThenFillThenFinishAreTheSynthesis)
 {
-  const SynthesisSetup& setup = yOverColorado();
+  const SynthesisSetup& setup = test::yOverColoradoSetup();
   const SynthesisOptions o = options();
   const std::vector<const FeatureGraph*> graphs = setup.graphPointers();
   auto matcher = makeSynthesisMatcher(setup.exemplarPointers(), graphs, o);
@@ -116,7 +97,7 @@ TEST(PatchPlacement, FeaturesThenFillThenFinishAreTheSynthesis)
 
 TEST(PatchPlacement, FrozenKnownCellsKeepTheirHeightsThroughTheFill)
 {
-  const SynthesisSetup& setup = yOverColorado();
+  const SynthesisSetup& setup = test::yOverColoradoSetup();
   const SynthesisOptions o = options();
   const std::vector<const FeatureGraph*> graphs = setup.graphPointers();
   auto matcher = makeSynthesisMatcher(setup.exemplarPointers(), graphs, o);

@@ -8,6 +8,7 @@
 #include "Synthesis/Synthesizer.h"
 #include "Synthesis/Tiling.h"
 #include "TestData.h"
+#include "YOverColorado.h"
 
 #include <gtest/gtest.h>
 
@@ -32,31 +33,12 @@ bool overlap(const SynthesisTile& a, const SynthesisTile& b)
     a.regionY0 < b.regionY0 + b.regionHeight && b.regionY0 < a.regionY0 + a.regionHeight;
 }
 
-// The set-up of a 256 x 256 terrain at patch 32 from the bundled Colorado DEM
-// and the Y of ridges, made once.
-const SynthesisSetup& yOverColoradoSetup()
-{
-  static const SynthesisSetup setup = []
-  {
-    SetupInputs in;
-    in.exemplars.push_back(readHeightfield(test::realDem("colorado.png")));
-    in.sketch =
-      readColourImage((test::bundledData() / "sketches" / "strokes_y_ridges.png").string());
-    in.grid.width = 256;
-    in.grid.height = 256;
-    in.patchSize = 32;
-    in.openClMatcher = false;
-    return prepareSynthesis(in);
-  }();
-  return setup;
-}
-
 // That terrain in tiles of `tile` cells (0: one piece).
 SynthesisResult yOverColorado(int tile)
 {
-  const SynthesisSetup& setup = yOverColoradoSetup();
+  const SynthesisSetup& setup = test::yOverColoradoSetup();
   SynthesisOptions o;
-  o.patchSize = 32;
+  o.patchSize = test::kYPatch;
   o.backend = Backend::Cpu;
   o.pool = setup.pool;
   o.tileSize = tile;
@@ -108,7 +90,7 @@ std::vector<SynthesisResult> yOverColoradoOnRanks(int tile,
   int failingRank = -1,
   std::vector<std::string>* failures = nullptr)
 {
-  const SynthesisSetup& setup = yOverColoradoSetup();
+  const SynthesisSetup& setup = test::yOverColoradoSetup();
   Ranks world(ranks);
   std::vector<SynthesisResult> results(static_cast<std::size_t>(ranks));
   std::vector<std::thread> threads;
@@ -118,7 +100,7 @@ std::vector<SynthesisResult> yOverColoradoOnRanks(int tile,
       [&, r]
       {
         SynthesisOptions o;
-        o.patchSize = 32;
+        o.patchSize = test::kYPatch;
         o.backend = Backend::Cpu;
         o.pool = setup.pool;
         o.tileSize = tile;
