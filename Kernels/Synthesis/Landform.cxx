@@ -813,12 +813,78 @@ ValleyFloors valleyFloors(const LineNetwork& net,
 }
 
 // Per-cell values of a network's vertices along its rasterised chains: seeds
-// mask and the value at each seed, interpolated between chain points.
+// mask and the value at each seed, interpolated between chain points; and per
+// seed the piece of chain nearest its centre, so distances can be taken to the
+// drawn line itself rather than to the staircase of its cells (exactLineDistances).
 struct RasterLines
 {
   std::vector<std::uint8_t> seeds;
   std::vector<float> value;
+  std::vector<std::int32_t> piece;         // per cell: into `pieces`; -1 off the lines
+  std::vector<std::pair<int, int>> pieces; // (chain, segment k: points k - 1 to k)
 };
+
+// The distance (metres) from cell (i, j)'s centre to the segment from a to b.
+double segmentDistance(double i,
+  double j,
+  const Point2& a,
+  const Point2& b,
+  double cellX,
+  double cellY)
+{
+  const double ux = (b.x - a.x) * cellX;
+  const double uy = (b.y - a.y) * cellY;
+  const double px = (i - a.x) * cellX;
+  const double py = (j - a.y) * cellY;
+  const double length2 = ux * ux + uy * uy;
+  const double t = length2 > 0.0 ? std::clamp((px * ux + py * uy) / length2, 0.0, 1.0) : 0.0;
+  return std::hypot(px - t * ux, py - t * uy);
+}
+
+// The distance from each cell off the lines to the drawn line through its
+// nearest seed: to that seed's piece of chain and the pieces either side of
+// it, not to the seed's centre (the line's own cells stay at 0, so its crest
+// or floor values hold there exactly). Taken to cell centres, the distance rippled by up to half a
+// cell along every slanted line, with the staircase of its cells; on the steep
+// flanks next to a crest or floor the landform rippled with it, and the
+// finishing copied the corrugation onto the terrain (stripes across the
+// flanks, a dotted line along the floor, in a hillshade).
+void exactLineDistances(NearestSeeds& near,
+  const RasterLines& lines,
+  const FeatureGraph& g,
+  double cellX,
+  double cellY)
+{
+  if (near.empty())
+  {
+    return;
+  }
+  const int w = near.width;
+  for (std::size_t k = 0; k < near.distance.size(); ++k)
+  {
+    const std::int32_t piece = lines.piece[static_cast<std::size_t>(near.nearest[k])];
+    if (piece < 0 || lines.seeds[k] != 0)
+    {
+      continue;
+    }
+    const auto [c, s] = lines.pieces[static_cast<std::size_t>(piece)];
+    const std::vector<Point2>& points = g.chains[static_cast<std::size_t>(c)].points;
+    const double i = static_cast<double>(k % static_cast<std::size_t>(w));
+    const double j = static_cast<double>(k / static_cast<std::size_t>(w));
+    // The nearest seed lies up to sqrt(2 d) cells along the line from the
+    // foot of the perpendicular (a seed half a cell nearer the line beats one
+    // opposite the cell): the pieces that far either side are searched.
+    const double cells = near.distance[k] / std::min(cellX, cellY);
+    const int reach = 1 + static_cast<int>(std::ceil(std::sqrt(2.0 * cells)));
+    const int last = static_cast<int>(points.size()) - 1;
+    double d = kInfinity;
+    for (int m = std::max(1, s - reach); m <= std::min(s + reach, last); ++m)
+    {
+      d = std::min(d, segmentDistance(i, j, points[m - 1], points[m], cellX, cellY));
+    }
+    near.distance[k] = static_cast<float>(d);
+  }
+}
 
 RasterLines rasteriseNetwork(const FeatureGraph& g,
   const LineNetwork& net,
@@ -830,6 +896,8 @@ RasterLines rasteriseNetwork(const FeatureGraph& g,
   const std::size_t n = cellCount(w, h);
   r.seeds.assign(n, 0);
   r.value.assign(n, kNaN);
+  r.piece.assign(n, -1);
+  std::vector<double> pieceDistance(n, kInfinity); // cells from the centre, to keep the nearest
   for (std::size_t c = 0; c < g.chains.size(); ++c)
   {
     const std::vector<std::size_t>& ids = net.chainVertices(c);
@@ -837,6 +905,7 @@ RasterLines rasteriseNetwork(const FeatureGraph& g,
     {
       continue;
     }
+    const std::vector<Point2>& points = g.chains[c].points;
     forEachChainCell(g.chains[c],
       w,
       h,
@@ -851,6 +920,17 @@ RasterLines rasteriseNetwork(const FeatureGraph& g,
           r.value[cell] = static_cast<float>(v);
         }
         r.seeds[cell] = 1;
+        const double d = segmentDistance(i, j, points[k - 1], points[k], 1.0, 1.0);
+        if (d < pieceDistance[cell])
+        {
+          pieceDistance[cell] = d;
+          if (r.pieces.empty() ||
+            r.pieces.back() != std::pair<int, int>(static_cast<int>(c), static_cast<int>(k)))
+          {
+            r.pieces.emplace_back(static_cast<int>(c), static_cast<int>(k));
+          }
+          r.piece[cell] = static_cast<std::int32_t>(r.pieces.size() - 1);
+        }
       });
   }
   return r;
@@ -1159,6 +1239,8 @@ void releaseLineValues(RasterLines& lines, NearestSeeds& near, bool nearestToo =
 {
   std::vector<float>().swap(lines.value);
   std::vector<std::uint8_t>().swap(lines.seeds);
+  std::vector<std::int32_t>().swap(lines.piece);
+  std::vector<std::pair<int, int>>().swap(lines.pieces);
   if (nearestToo)
   {
     std::vector<std::int32_t>().swap(near.nearest);
@@ -1276,6 +1358,7 @@ LandformField landformField(const FeatureGraph& sketch,
   // kind at once they set the peak of a large target's set-up.
   RasterLines troughCells = rasteriseNetwork(graph, troughs, troughFloor, w, h);
   NearestSeeds nearTrough = nearestSeeds(troughCells.seeds, w, h, cellX, cellY);
+  exactLineDistances(nearTrough, troughCells, graph, cellX, cellY);
   const bool anyTrough = !nearTrough.empty();
   const std::vector<double> troughAt =
     lineValueField(troughCells, nearTrough, w, h, cell, o.patchSize);
@@ -1296,6 +1379,7 @@ LandformField landformField(const FeatureGraph& sketch,
   RasterLines ridgeCells = rasteriseNetwork(graph, ridges, crest, w, h);
   checkCancellation();
   NearestSeeds nearRidge = nearestSeeds(ridgeCells.seeds, w, h, cellX, cellY);
+  exactLineDistances(nearRidge, ridgeCells, graph, cellX, cellY);
   const bool anyRidge = !nearRidge.empty();
   const std::vector<double> crestAt =
     lineValueField(ridgeCells, nearRidge, w, h, cell, o.patchSize);
@@ -1306,6 +1390,7 @@ LandformField landformField(const FeatureGraph& sketch,
   const RasterLines flow = rasteriseNetwork(graph, valleys, floors.downstream, w, h);
   checkCancellation();
   NearestSeeds nearValley = nearestSeeds(valleyCells.seeds, w, h, cellX, cellY);
+  exactLineDistances(nearValley, valleyCells, graph, cellX, cellY);
   const bool anyValley = !nearValley.empty();
   checkCancellation();
   const std::vector<double> floorAt =
