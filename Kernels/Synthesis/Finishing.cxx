@@ -63,8 +63,14 @@ constexpr double kPitRemovalCoarsestInPatches = 0.25;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Rounds of drainage smoothing, each at half the radius of the one before.
 constexpr int kSmoothingRounds = 3;
-// The cuts that make the lines exact are widened this many cells each side.
-constexpr double kCutWideningCells = 4.0;
+// The cuts that make the lines exact are widened this many cells each side:
+// in full over kCutFloorCells (every 8-neighbour of a line cell), so the cut
+// is a floor a few cells wide and not a slot one cell wide (which, following
+// the staircase of a slanted line's cells, showed as a dotted line along the
+// floor in a hillshade), then fading out smoothly.
+constexpr double kCutWideningCells = 5.0;
+constexpr double kCutFloorCells = 1.5;
+constexpr double kFloorCrossFall = 2.0;
 constexpr std::array<int, 8> kDx{ 1, 1, 0, -1, -1, -1, 0, 1 };
 constexpr std::array<int, 8> kDy{ 0, 1, 1, 1, 0, -1, -1, -1 };
 
@@ -180,10 +186,15 @@ void widenCuts(Heightfield& out,
     const double cut = static_cast<double>(before.z[at]) - out.z[at];
     if (cut > 0.0)
     {
-      const double t = 1.0 - near.distance[c] / radius;
-      const double lowered = out.z[c] - cut * t * t;
-      out.z[c] =
-        static_cast<float>(std::max(lowered, std::min<double>(out.z[c], out.z[at] + depth)));
+      const double u =
+        std::clamp((near.distance[c] - kCutFloorCells) / (radius - kCutFloorCells), 0.0, 1.0);
+      const double lowered = out.z[c] - cut * (1.0 - u * u * (3.0 - 2.0 * u));
+      // The floor falls towards the line across it, more steeply than the
+      // line falls along (kFloorCrossFall channel depths per cell): level
+      // with the line's own fall, D8 ran water down the floor beside the line
+      // as well as down the line.
+      const double floor = out.z[at] + depth * (1.0 + kFloorCrossFall * near.distance[c]);
+      out.z[c] = static_cast<float>(std::max(lowered, std::min<double>(out.z[c], floor)));
     }
   }
 }
