@@ -61,6 +61,15 @@ constexpr double kLineOffsetReachInPatches = 0.25;
 // farther from the drawn one than the best-aligned candidate are passed over:
 // a crest a few cells beside the stroke reads as a second line.
 constexpr float kLineOffsetSlack = 2.0f;
+// Of the feature candidates that lay their line that well, the seam decides
+// among the best few by the matcher's cost only: each costs a graph cut, the
+// largest share of a feature placement. On 8 DEM targets (the densest feature
+// sets; sweep_dem_targets.py), all of them (6.8 on average) against the best
+// 4: feature placement 1.74 -> 1.15 s, seam index 0.887 -> 0.891, slope
+// distance 0.132 -> 0.134, band-pass correlation and fidelity within 0.007;
+// side by side, the hillshades show the same land. The seam's pick was among
+// the best 4 in 68% of placements on a Norway target.
+constexpr int kMostFeatureSeamTrials = 4;
 // Overlap this small (a share of the window) says too little about a patch's
 // height: the target decides its vertical offset instead.
 constexpr double kMinOverlapForOffset = 0.05;
@@ -516,6 +525,18 @@ float PatchPlacement::bestAlignment(const std::vector<Trial>& trials)
   return aligned;
 }
 
+void PatchPlacement::keepBestAligned(std::vector<Trial>& trials, float aligned)
+{
+  int kept = 0;
+  for (Trial& t : trials)
+  {
+    if (eligible(t, aligned) && ++kept > kMostFeatureSeamTrials)
+    {
+      t.lineOffset = std::numeric_limits<float>::infinity();
+    }
+  }
+}
+
 bool PatchPlacement::eligible(const Trial& t, float aligned)
 {
   return !std::isfinite(aligned) || t.lineOffset <= aligned + kLineOffsetSlack;
@@ -626,6 +647,10 @@ std::size_t PatchPlacement::place(const std::vector<PatchCandidate>& candidates,
     }
   }
   const float aligned = bestAlignment(trials);
+  if (feature)
+  {
+    keepBestAligned(trials, aligned);
+  }
   auto tryCandidate = [&](std::size_t c, PatchMerger& merger)
   {
     Trial& t = trials[c];
@@ -643,6 +668,8 @@ std::size_t PatchPlacement::place(const std::vector<PatchCandidate>& candidates,
   }
   double seam = 0.0;
   const std::size_t chosen = choose(candidates, trials, aligned, seam);
+  const auto seamTrials = static_cast<int>(std::count_if(
+    trials.begin(), trials.end(), [&](const Trial& t) { return eligible(t, aligned); }));
   Trial& t = trials[chosen];
   if (!eligible(t, aligned))
   {
@@ -658,6 +685,7 @@ std::size_t PatchPlacement::place(const std::vector<PatchCandidate>& candidates,
     mergers_[0].merge(out_, filled_, t.patch, x0, y0, feature ? &t.core : nullptr, mo, &t.dry);
   result_.anchoredMerges += r.anchored ? 1 : 0;
   record(candidates[chosen], t, r, x0, y0, seam);
+  result_.placements.back().seamTrials = std::max(1, seamTrials);
   return r.newCells;
 }
 

@@ -188,6 +188,11 @@ private:
   // one; the others need no merge's dry run.
   static bool eligible(const Trial& t, float aligned);
 
+  // Leaves eligible only the first kMostFeatureSeamTrials eligible feature
+  // trials (the candidates come best first by the matcher's cost): the others
+  // are marked as laying no line (an infinite line offset).
+  static void keepBestAligned(std::vector<Trial>& trials, float aligned);
+
   // The candidate to place: the lowest seam cost (plus the repetition penalty,
   // near-ties by the seed), among feature candidates only those that lay their
   // own line within kLineOffsetSlack cells of the best-aligned one.

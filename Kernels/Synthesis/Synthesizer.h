@@ -109,6 +109,8 @@ struct Placement
   // its centre, to the sketched lines of that kind: how well the patch lays its
   // real ridge or valley on the stroke (NaN: no such line in reach).
   float lineOffset = std::numeric_limits<float>::quiet_NaN();
+  // Candidates whose seam was cut in a dry run before choosing this one.
+  int seamTrials = 0;
 };
 
 // What the final steps changed, for reports.
