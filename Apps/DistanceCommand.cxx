@@ -268,15 +268,6 @@ DistanceArguments parseDistanceArguments(std::vector<std::string> args)
   return a;
 }
 
-std::vector<MonotoneProfile> readProfiles(const std::string& path)
-{
-  if (hasExtension(path, ".csv") || hasExtension(path, ".txt"))
-  {
-    return readProfileCsv(path);
-  }
-  return { profileFromImage(readColourImage(path)) };
-}
-
 DistanceTerrain synthesise(DistanceArguments& a)
 {
   std::vector<std::string> warnings;

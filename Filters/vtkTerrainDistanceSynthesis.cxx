@@ -39,16 +39,6 @@ std::string lowerCase(std::string s)
   return s;
 }
 
-bool endsWith(const std::string& s, const char* tail)
-{
-  const std::string t(tail);
-  if (s.size() < t.size())
-  {
-    return false;
-  }
-  return lowerCase(s.substr(s.size() - t.size())) == t;
-}
-
 // A numeric column by name, whatever its case (ParaView's CSV reader keeps the header's).
 vtkDataArray* column(vtkTable* table, const char* name)
 {
@@ -190,11 +180,7 @@ int vtkTerrainDistanceSynthesis::RequestData(vtkInformation*,
       }
       else if (!this->ProfileFileName.empty())
       {
-        sources.profiles =
-          endsWith(this->ProfileFileName, ".csv") || endsWith(this->ProfileFileName, ".txt")
-          ? tsynth::readProfileCsv(this->ProfileFileName)
-          : std::vector<tsynth::MonotoneProfile>{ tsynth::profileFromImage(
-              tsynth::readColourImage(this->ProfileFileName)) };
+        sources.profiles = tsynth::readProfiles(this->ProfileFileName);
       }
       sources.assignment = this->ProfileAssignment == BY_FEATURE
         ? tsynth::ProfileAssignment::ByFeature

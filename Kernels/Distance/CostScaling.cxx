@@ -1,6 +1,7 @@
 #include "CostScaling.h"
 
 #include "../Core/Error.h"
+#include "../Core/HeightfieldIO.h"
 
 #include <algorithm>
 #include <cmath>
@@ -283,6 +284,15 @@ MonotoneProfile profileFromImage(const ColourImage& image)
     throw Error("The profile image's curve does not fall from left to right.");
   }
   return fitted;
+}
+
+std::vector<MonotoneProfile> readProfiles(const std::string& path)
+{
+  if (hasExtension(path, ".csv") || hasExtension(path, ".txt"))
+  {
+    return readProfileCsv(path);
+  }
+  return { profileFromImage(readColourImage(path)) };
 }
 
 } // namespace tsynth

@@ -93,4 +93,9 @@ std::vector<MonotoneProfile> readProfileCsv(const std::string& path);
 // than two columns are drawn or the curve does not fall.
 MonotoneProfile profileFromImage(const ColourImage& image);
 
+// The profiles in a file, for tsynth distance --profile and the Distance
+// Synthesis filter's ProfileFileName: a .csv or .txt (any case) of rows
+// (readProfileCsv), else an image of one hand-drawn curve (profileFromImage).
+std::vector<MonotoneProfile> readProfiles(const std::string& path);
+
 } // namespace tsynth

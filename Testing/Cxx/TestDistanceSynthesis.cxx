@@ -322,6 +322,19 @@ TEST(DistanceSynthesis, ProfileFromADrawnImage)
   EXPECT_DOUBLE_EQ(p(4.0), 8.0);
 }
 
+TEST(DistanceSynthesis, ProfileFilesAreReadByTheirExtension)
+{
+  // Rows in a .CSV or .txt in any case; anything else is an image, and a
+  // table that is not one is refused by the image reader, not read as rows.
+  for (const char* name : { "upper.CSV", "rows.txt" })
+  {
+    const std::vector<MonotoneProfile> p = readProfiles(writeTemp(name, "0,10\n5,4\n10,0\n"));
+    ASSERT_EQ(p.size(), 1u) << name;
+    EXPECT_DOUBLE_EQ(p[0](5.0), 4.0) << name;
+  }
+  EXPECT_THROW(readProfiles(writeTemp("rows.png", "0,10\n5,4\n10,0\n")), Error);
+}
+
 // ---------------------------------------------------------------------------
 // Regions, ridges, generators
 
