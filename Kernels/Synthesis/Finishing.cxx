@@ -70,6 +70,8 @@ constexpr int kSmoothingRounds = 3;
 // floor in a hillshade), then fading out smoothly.
 constexpr double kCutWideningCells = 5.0;
 constexpr double kCutFloorCells = 1.5;
+// The widened floor rises away from the line by this many channel depths
+// per cell (widenCuts).
 constexpr double kFloorCrossFall = 2.0;
 constexpr std::array<int, 8> kDx{ 1, 1, 0, -1, -1, -1, 0, 1 };
 constexpr std::array<int, 8> kDy{ 0, 1, 1, 1, 0, -1, -1, -1 };
@@ -166,9 +168,10 @@ void cutChannel(Heightfield& out,
 }
 
 // Cells beside the lines take part of the cut their nearest line cell took
-// after the smoothing (`before`: the terrain then): the full cut at the line,
-// fading to none `radius` cells away, never down to less than `depth` above
-// that line cell, so the line stays the lowest and water keeps to it.
+// after the smoothing (`before`: the terrain then): the whole cut within
+// kCutFloorCells of it, fading to none `radius` cells away, never down below
+// a floor `depth` above that line cell and rising away from it, so the line
+// stays the lowest and water keeps to it.
 void widenCuts(Heightfield& out,
   const Heightfield& before,
   const std::vector<std::uint8_t>& line,

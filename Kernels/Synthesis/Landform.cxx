@@ -844,20 +844,21 @@ double segmentDistance2(double i,
   return dx * dx + dy * dy;
 }
 
-// Pieces searched either side of the nearest seed's at most: 8 pieces (cells)
-// are exact out to 24 cells from the line, and farther out a nearest seed
-// more pieces along leaves the distance under a tenth of a cell long at 50
-// cells, where the cross-sections change slowly.
+// The pieces searched either side of the nearest seed's, at most. Up to 24
+// cells from the line, 8 pieces (cells) take in the foot of the perpendicular,
+// so the distance is exact; at 50 cells, a foot that lies farther along makes
+// it less than a tenth of a cell too long, where the cross-sections change
+// slowly.
 constexpr int kMostPiecesSearched = 8;
 
 // The distance from each cell off the lines to the drawn line through its
 // nearest seed: to that seed's piece of chain and the pieces either side of
-// it, not to the seed's centre (the line's own cells stay at 0, so its crest
-// or floor values hold there exactly). Taken to cell centres, the distance rippled by up to half a
-// cell along every slanted line, with the staircase of its cells; on the steep
-// flanks next to a crest or floor the landform rippled with it, and the
-// finishing copied the corrugation onto the terrain (stripes across the
-// flanks, a dotted line along the floor, in a hillshade).
+// it, not to the seed's centre. The line's own cells stay at 0, so its crest
+// or floor values hold there exactly. Taken to cell centres, the distance
+// rippled by up to half a cell along every slanted line, with the staircase
+// of its cells; on the steep flanks next to a crest or floor the landform
+// rippled with it, and the finishing copied the corrugation onto the terrain
+// (stripes across the flanks, a dotted line along the floor, in a hillshade).
 void exactLineDistances(NearestSeeds& near,
   const RasterLines& lines,
   const FeatureGraph& g,
