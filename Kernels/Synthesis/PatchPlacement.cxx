@@ -61,14 +61,19 @@ constexpr double kLineOffsetReachInPatches = 0.25;
 // farther from the drawn one than the best-aligned candidate are passed over:
 // a crest a few cells beside the stroke reads as a second line.
 constexpr float kLineOffsetSlack = 2.0f;
-// Of the feature candidates that lay their line that well, the seam decides
-// among the best few by the matcher's cost only: each costs a graph cut, the
-// largest share of a feature placement. On 8 DEM targets (the densest feature
-// sets; sweep_dem_targets.py), all of them (6.8 on average) against the best
-// 4: feature placement 1.74 -> 1.15 s, seam index 0.887 -> 0.891, slope
-// distance 0.132 -> 0.134, band-pass correlation and fidelity within 0.007;
-// side by side, the hillshades show the same land. The seam's pick was among
-// the best 4 in 68% of placements on a Norway target.
+// Where feature sites crowd (a DEM target's own tree, lines closer than
+// patches draw: featureSitesCrowd), the seam decides among the best few of the
+// feature candidates that lay their line that well, by the matcher's cost:
+// each costs a graph cut, the largest share of a feature placement, and each
+// cell lies under several feature patches, the later ones over the earlier.
+// On 8 DEM targets (sweep_dem_targets.py), all of them (6.8 on average)
+// against the best 4: feature placement 1.74 -> 1.15 s, seam index 0.887 ->
+// 0.891, slope distance 0.132 -> 0.134, band-pass correlation and fidelity
+// within 0.007; side by side, the hillshades show the same land. The seam's
+// pick was among the best 4 in 68% of placements on a Norway target. Drawings
+// with room keep every aligned candidate (14 of 16 on the Y): there each
+// feature patch's seam shows, and the best 4 raised the seam index of
+// letters and a spiral at 40-cell patches from 1.07 and 1.09 to 1.14 and 1.20.
 constexpr int kMostFeatureSeamTrials = 4;
 // Overlap this small (a share of the window) says too little about a patch's
 // height: the target decides its vertical offset instead.
@@ -86,6 +91,7 @@ PatchPlacement::PatchPlacement(const SynthesisTarget& target,
   , graphs_(graphs)
   , o_(o)
   , P_(o.patchSize)
+  , crowded_(featureSitesCrowd(target, o.patchSize))
   , out_(known != nullptr ? *known
                           : Heightfield(target.field.width,
                               target.field.height,
@@ -647,7 +653,7 @@ std::size_t PatchPlacement::place(const std::vector<PatchCandidate>& candidates,
     }
   }
   const float aligned = bestAlignment(trials);
-  if (feature)
+  if (feature && crowded_)
   {
     keepBestAligned(trials, aligned);
   }

@@ -190,7 +190,7 @@ private:
 
   // Leaves eligible only the first kMostFeatureSeamTrials eligible feature
   // trials (the candidates come best first by the matcher's cost): the others
-  // are marked as laying no line (an infinite line offset).
+  // are marked as laying no line (an infinite line offset). Where sites crowd.
   static void keepBestAligned(std::vector<Trial>& trials, float aligned);
 
   // The candidate to place: the lowest seam cost (plus the repetition penalty,
@@ -222,6 +222,10 @@ private:
   std::vector<float> toRidge_, toValley_; // cells to the sketched ridges, valleys
   const SynthesisOptions& o_;
   int P_;
+  // Feature sites crowd (featureSitesCrowd): a DEM target's own tree, or lines
+  // closer than patches draw. The seam is then cut for the best few aligned
+  // candidates only (keepBestAligned).
+  bool crowded_;
   Heightfield out_;
   std::vector<std::uint8_t> filled_;
   std::vector<std::uint8_t> line_;
