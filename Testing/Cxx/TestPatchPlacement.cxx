@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <numeric>
 #include <vector>
 
@@ -34,6 +35,28 @@ SynthesisOptions options()
   return o;
 }
 
+// A placement over a set-up, with what it keeps references to (its options,
+// graphs and matcher) held beside it for as long as it lives.
+struct Placing
+{
+  explicit Placing(const SynthesisSetup& setup, const Heightfield* known = nullptr)
+    : o(options())
+    , graphs(setup.graphPointers())
+    , matcher(makeSynthesisMatcher(setup.exemplarPointers(), graphs, o))
+    , p(setup.target, matcher.get(), graphs, o, known)
+  {
+    p.boundHeights(setup.exemplarPointers());
+    p.setTypicalNoise(matcher->dense().typicalNoise());
+  }
+  Placing(const Placing&) = delete;
+  Placing& operator=(const Placing&) = delete;
+
+  const SynthesisOptions o;
+  const std::vector<const FeatureGraph*> graphs;
+  const std::unique_ptr<PatchMatcher> matcher;
+  PatchPlacement p;
+};
+
 // Cells filled, in share of all.
 double filledShare(const TileOutcome& o)
 {
@@ -46,12 +69,8 @@ double filledShare(const TileOutcome& o)
 TEST(PatchPlacement, FeaturesThenFillThenFinishAreTheSynthesis)
 {
   const SynthesisSetup& setup = test::yOverColoradoSetup();
-  const SynthesisOptions o = options();
-  const std::vector<const FeatureGraph*> graphs = setup.graphPointers();
-  auto matcher = makeSynthesisMatcher(setup.exemplarPointers(), graphs, o);
-  PatchPlacement p(setup.target, matcher.get(), graphs, o);
-  p.boundHeights(setup.exemplarPointers());
-  p.setTypicalNoise(matcher->dense().typicalNoise());
+  Placing placing(setup);
+  PatchPlacement& p = placing.p;
 
   p.placeFeatures();
   const TileOutcome features = p.outcome(0, {});
@@ -91,7 +110,7 @@ TEST(PatchPlacement, FeaturesThenFillThenFinishAreTheSynthesis)
 
   p.releasePlacement();
   const SynthesisResult steps = p.finish();
-  const SynthesisResult whole = synthesize(setup, o);
+  const SynthesisResult whole = synthesize(setup, placing.o);
   EXPECT_EQ(steps.terrain.z, whole.terrain.z);
   EXPECT_EQ(steps.patchId, whole.patchId);
   EXPECT_EQ(steps.placements.size(), whole.placements.size());
@@ -103,15 +122,10 @@ namespace
 // The seam trials of each feature placement of a target.
 std::vector<int> featureSeamTrials(const SynthesisSetup& setup)
 {
-  const SynthesisOptions o = options();
-  const std::vector<const FeatureGraph*> graphs = setup.graphPointers();
-  auto matcher = makeSynthesisMatcher(setup.exemplarPointers(), graphs, o);
-  PatchPlacement p(setup.target, matcher.get(), graphs, o);
-  p.boundHeights(setup.exemplarPointers());
-  p.setTypicalNoise(matcher->dense().typicalNoise());
-  p.placeFeatures();
+  Placing placing(setup);
+  placing.p.placeFeatures();
   std::vector<int> trials;
-  for (const Placement& placed : p.outcome(0, {}).placements)
+  for (const Placement& placed : placing.p.outcome(0, {}).placements)
   {
     trials.push_back(placed.seamTrials);
   }
@@ -153,9 +167,6 @@ TEST(PatchPlacement, WhereFeatureSitesCrowdTheSeamIsCutForTheBestFewAlignedCandi
 TEST(PatchPlacement, FrozenKnownCellsKeepTheirHeightsThroughTheFill)
 {
   const SynthesisSetup& setup = test::yOverColoradoSetup();
-  const SynthesisOptions o = options();
-  const std::vector<const FeatureGraph*> graphs = setup.graphPointers();
-  auto matcher = makeSynthesisMatcher(setup.exemplarPointers(), graphs, o);
   // A known block in the middle, at 1 km: the neighbours' cells a tile continues.
   constexpr int kLow = 96;
   constexpr int kHigh = 160;
@@ -172,9 +183,8 @@ TEST(PatchPlacement, FrozenKnownCellsKeepTheirHeightsThroughTheFill)
       frozen[known.index(i, j)] = 1;
     }
   }
-  PatchPlacement p(setup.target, matcher.get(), graphs, o, &known);
-  p.boundHeights(setup.exemplarPointers());
-  p.setTypicalNoise(matcher->dense().typicalNoise());
+  Placing placing(setup, &known);
+  PatchPlacement& p = placing.p;
   p.freeze(frozen);
   p.fill();
   const TileOutcome out = p.outcome(0, {});
