@@ -7,7 +7,7 @@ of the legible share, the slope distance, the seam index and the valleys' draina
 how many of the runs A beats B (lower slope distance and seam index, higher legibility and drainage).
 
     /usr/bin/python3 Testing/Benchmarks/sweep_seeds.py --tsynth build/bin/tsynth \\
-        [--a A_TSYNTH] [--b B_TSYNTH] [--data Data] [--seeds 0 1 ... 10]
+        [--a A_TSYNTH] [--b B_TSYNTH] [--data Data] [--seeds 0 1 ... 10] [--by-sketch]
 
 A defaults to --tsynth. About 2.5 minutes per build on two cores. Against the previous landing
 (4230cf3): legible 0.556 vs 0.300 (A better on 43 of 44), slope 0.043 vs 0.056 (35), seam 0.898 vs
@@ -78,6 +78,8 @@ def main():
     parser.add_argument("--b", help="the tsynth it is compared with, run for run")
     parser.add_argument("--data", default=os.path.join(here, "..", "..", "Data"), help="the bundled Data/")
     parser.add_argument("--seeds", type=int, nargs="+", default=list(range(11)))
+    parser.add_argument("--by-sketch", action="store_true",
+                        help="also print each figure's means per sketch and exemplar")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory(prefix="tsynth-sweep-") as tmp:
         a = sweep(args.a or args.tsynth, args.tsynth, args.data, args.seeds, tmp, "A")
@@ -92,6 +94,23 @@ def main():
             better = sum(1 for x, y in pairs if (x > y if higher else x < y))
             line += " %8.3f %d of %d" % (mean(r[name] for r in b.values()), better, len(pairs))
         print(line)
+    if args.by_sketch:
+        print_by_sketch(a, b)
+
+
+def print_by_sketch(a, b):
+    """The means of each figure per sketch and exemplar (A, then B where swept)."""
+    print("%-28s %-20s %s" % ("sketch", "exemplar", "  ".join("%-15s" % name for name in FIGURES)))
+    for sketch in SKETCHES:
+        for exemplar in EXEMPLARS:
+            cells = []
+            for name in FIGURES:
+                keys = [k for k in a if k[0] == sketch and k[1] == exemplar]
+                cell = "%.3f" % mean(a[k][name] for k in keys)
+                if b is not None:
+                    cell += " %.3f" % mean(b[k][name] for k in keys)
+                cells.append("%-15s" % cell)
+            print("%-28s %-20s %s" % (sketch, exemplar, "  ".join(cells)))
 
 
 if __name__ == "__main__":
