@@ -222,9 +222,13 @@ nlohmann::json legibilityJson(const Legibility& l)
       { "samples", k.samples },
       { "median_prominence_m", k.prominence },
       { "median_threshold_m", k.threshold },
-      { "median_half_width_cells", k.halfWidth } };
+      { "median_half_width_cells", k.halfWidth },
+      { "flank_agreement", k.flankAgreement } };
   };
-  return { { "legible_share", l.share }, { "ridge", kind(l.ridge) }, { "valley", kind(l.valley) } };
+  return { { "legible_share", l.share },
+    { "flank_agreement", l.flankAgreement },
+    { "ridge", kind(l.ridge) },
+    { "valley", kind(l.valley) } };
 }
 
 nlohmann::json correlationJson(const std::vector<BandCorrelation>& bands)
@@ -258,7 +262,8 @@ void printLegibility(const char* name, const Legibility& l)
 {
   std::cout << std::left << std::setw(22) << name << " legible: " << figure(l.share, 2)
             << " of the stroke length (ridges " << figure(l.ridge.share, 2) << ", valleys "
-            << figure(l.valley.share, 2) << ")\n";
+            << figure(l.valley.share, 2) << "); flanks agree " << figure(l.flankAgreement, 2)
+            << "\n";
 }
 
 void printCorrelation(const char* name, const std::vector<BandCorrelation>& bands)

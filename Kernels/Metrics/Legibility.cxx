@@ -4,6 +4,7 @@
 #include "../Core/Smoothing.h"
 #include "../Features/ChainPath.h"
 #include "../Features/CrossSections.h"
+#include "../Features/Profiles.h"
 #include "../Features/StrokeSpacing.h"
 
 #include <algorithm>
@@ -35,9 +36,17 @@ double median(std::vector<double> v)
   return v[mid];
 }
 
+// The flanks' shading is read from this many cells out from the line (closer,
+// the cells are the crest or floor itself, which slopes along the line) ...
+constexpr int kFlankNearestCells = 2;
+// ... to this share of the half width: the landform's own flank; farther out
+// the land turns towards the next line or is the land around.
+constexpr double kFlankReachInHalfWidths = 1.0 / 3.0;
+
 struct Sample
 {
   double prominence = 0.0;
+  double flanks = StrokeLegibility::kNaN; // StrokeLegibility::flankAgreement of this section
   double threshold = 0.0;
   double halfWidth = 0.0;
   double along = 0.0;   // cells along its chain
@@ -131,10 +140,50 @@ public:
     out.prominence = sectionProminence(z, ridge ? 1.0 : -1.0, o_.reading);
     out.threshold = o_.margin * std::max(land_.at(h), around_.at(h));
     out.halfWidth = h;
+    out.flanks = flanks(p, n, h, ridge);
     return true;
   }
 
 private:
+  // The mean, over the flank cells either side of p across n, of the cosine
+  // between the land's gradient there and the way the landform's flank rises
+  // (a floor's: outwards) or falls (a crest's); NaN where none can be read.
+  double flanks(const Point2& p, const Point2& n, double h, bool ridge) const
+  {
+    const int reach =
+      std::max(kFlankNearestCells, static_cast<int>(std::floor(kFlankReachInHalfWidths * h)));
+    const double cx = terrain_.cellX;
+    const double cy = terrain_.cellY;
+    double sum = 0.0;
+    int count = 0;
+    for (const int side : { -1, 1 })
+    {
+      const double outX = side * n.x * cx; // outwards on this side, metres
+      const double outY = side * n.y * cy;
+      const double out = std::hypot(outX, outY);
+      for (int k = kFlankNearestCells; k <= reach; ++k)
+      {
+        const double x = p.x + side * k * n.x;
+        const double y = p.y + side * k * n.y;
+        const double east = sampleBilinear(terrain_, x + 1.0, y);
+        const double west = sampleBilinear(terrain_, x - 1.0, y);
+        const double north = sampleBilinear(terrain_, x, y + 1.0);
+        const double south = sampleBilinear(terrain_, x, y - 1.0);
+        const double gx = (east - west) / (2.0 * cx);
+        const double gy = (north - south) / (2.0 * cy);
+        const double g = std::hypot(gx, gy);
+        if (!(g > 0.0) || !(out > 0.0)) // NaN (off the grid, nodata) or flat: no shading
+        {
+          continue;
+        }
+        const double rising = (gx * outX + gy * outY) / (g * out);
+        sum += ridge ? -rising : rising;
+        ++count;
+      }
+    }
+    return count > 0 ? sum / count : StrokeLegibility::kNaN;
+  }
+
   // How far the section can reach both ways from p along n inside the grid.
   double roomInside(const Point2& p, const Point2& n) const
   {
@@ -176,10 +225,39 @@ StrokeLegibility summarise(const std::vector<Sample>& samples)
     width.push_back(s.halfWidth);
   }
   r.share = static_cast<double>(legible) / static_cast<double>(samples.size());
+  double flankSum = 0.0;
+  std::size_t flankCount = 0;
+  for (const Sample& s : samples)
+  {
+    if (!std::isnan(s.flanks))
+    {
+      flankSum += s.flanks;
+      ++flankCount;
+    }
+  }
+  if (flankCount > 0)
+  {
+    r.flankAgreement = flankSum / static_cast<double>(flankCount);
+  }
   r.prominence = median(prominence);
   r.threshold = median(threshold);
   r.halfWidth = median(width);
   return r;
+}
+
+// The mean of two kinds' figures weighed by their samples, a kind without a
+// figure (NaN) left out.
+double meanOfBoth(double a, double aSamples, double b, double bSamples)
+{
+  if (std::isnan(a))
+  {
+    return b;
+  }
+  if (std::isnan(b))
+  {
+    return a;
+  }
+  return (a * aSamples + b * bSamples) / (aSamples + bSamples);
 }
 
 double pearson(const std::vector<float>& a, const std::vector<float>& b)
@@ -335,6 +413,10 @@ Legibility LegibilityMeter::measure(const Heightfield& terrain) const
     const double v = valley.empty() ? 0.0 : l.valley.share * static_cast<double>(valley.size());
     l.share = (r + v) / static_cast<double>(all);
   }
+  l.flankAgreement = meanOfBoth(l.ridge.flankAgreement,
+    static_cast<double>(ridge.size()),
+    l.valley.flankAgreement,
+    static_cast<double>(valley.size()));
   return l;
 }
 

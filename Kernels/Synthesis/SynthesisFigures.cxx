@@ -85,6 +85,7 @@ void addLandforms(std::vector<FigureRow>& rows, const LandformMeasures& m)
 void addLegibility(std::vector<FigureRow>& rows, const std::string& at, const Legibility& l)
 {
   rows.push_back({ at + ".legible_share", l.share });
+  rows.push_back({ at + ".flank_agreement", l.flankAgreement });
   for (const auto& [kind, k] :
     { std::pair{ ".ridge", &l.ridge }, std::pair{ ".valley", &l.valley } })
   {
@@ -93,6 +94,7 @@ void addLegibility(std::vector<FigureRow>& rows, const std::string& at, const Le
     rows.push_back({ at + kind + ".median_prominence_m", k->prominence });
     rows.push_back({ at + kind + ".median_threshold_m", k->threshold });
     rows.push_back({ at + kind + ".median_half_width_cells", k->halfWidth });
+    rows.push_back({ at + kind + ".flank_agreement", k->flankAgreement });
   }
 }
 

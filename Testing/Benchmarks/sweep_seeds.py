@@ -3,8 +3,9 @@
 The bundled stroke sketches (the Y of ridges and the valley meander) with Colorado and Mont Blanc,
 seeds 0-10 by default: 44 terrains per build, all at default settings, each measured by this build's
 `tsynth evaluate` (so a build without the newer measures is judged by the same ones). Prints the means
-of the legible share, the slope distance, the seam index and the valleys' drainage per build, and on
-how many of the runs A beats B (lower slope distance and seam index, higher legibility and drainage).
+of the legible share, the flank agreement, the slope distance, the seam index and the valleys'
+drainage per build, and on how many of the runs A beats B (lower slope distance and seam index,
+higher legibility, flank agreement and drainage).
 
     /usr/bin/python3 Testing/Benchmarks/sweep_seeds.py --tsynth build/bin/tsynth \\
         [--a A_TSYNTH] [--b B_TSYNTH] [--data Data] [--seeds 0 1 ... 10] [--by-sketch]
@@ -27,6 +28,7 @@ EXEMPLARS = ("colorado.png", "alps-montblanc.png")
 # figure: (where in evaluate's "terrain" JSON, True when higher is better)
 FIGURES = {
     "legible": (("legibility", "legible_share"), True),
+    "flanks": (("legibility", "flank_agreement"), True),
     "slope": (("slope_distance",), False),
     "seam": (("seam_index",), False),
     "drainage": (("landforms", "valley_drainage"), True),

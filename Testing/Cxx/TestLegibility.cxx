@@ -341,6 +341,55 @@ TEST(Legibility, AGaussianRidgeOnTheStrokeIsLegibleAndTheLandBesideItIsNot)
   EXPECT_EQ(meter.measure(ridged).ridge.prominence, good.ridge.prominence);
 }
 
+TEST(Legibility, FlanksAgreeWithTheLineUnlessSpursAndGulliesCrossIt)
+{
+  // The 600 m ridge along row 80: its flanks fall away from the line
+  // everywhere (agreement near 1); read as a valley they rise towards it (near
+  // -1); the bare land agrees no more than chance. (The land is calm: its
+  // slopes, unlike its relief, rival the ridge's at 15 m a wave.)
+  const int w = 200, h = 160;
+  const Heightfield land = rough(w, h, 2.0, 3);
+  const LandRelief relief({ &land });
+  const auto ridgeWith = [&](double corrugation)
+  {
+    return surface(w,
+      h,
+      [&](int i, int j)
+      {
+        const double across = std::exp(-0.5 * std::pow((j - 80) / 10.0, 2));
+        return land.at(i, j) + (600.0 + corrugation * std::sin(2.0 * kPi * i / 16.0)) * across;
+      });
+  };
+  const FeatureGraph asRidge = lines(w, h, { { { 20, 80 }, { 180, 80 } } }, FeatureType::Ridge);
+  const FeatureGraph asValley = lines(w, h, { { { 20, 80 }, { 180, 80 } } }, FeatureType::Valley);
+  const Legibility clean = evaluateLegibility(ridgeWith(0.0), asRidge, relief);
+  EXPECT_GT(clean.ridge.flankAgreement, 0.95);
+  EXPECT_EQ(clean.flankAgreement, clean.ridge.flankAgreement);
+  EXPECT_LT(evaluateLegibility(ridgeWith(0.0), asValley, relief).valley.flankAgreement, -0.95);
+  // Along one line the land's waves may lean one way by chance (-0.21 to
+  // -0.01 over these four; 0.77 and 1.00 with the ridge).
+  double bareMean = 0.0;
+  for (std::uint64_t seed : { 3, 4, 5, 6 })
+  {
+    const double bare =
+      evaluateLegibility(rough(w, h, 2.0, seed), asRidge, relief).ridge.flankAgreement;
+    EXPECT_LT(std::abs(bare), 0.3) << seed;
+    bareMean += bare / 4.0;
+  }
+  EXPECT_LT(std::abs(bareMean), 0.15);
+  // Spurs and gullies 16 cells apart across it, 300 m: every cross-section
+  // still stands out (the line is legible at its own scale), but its flanks
+  // slope along the line as much as away from it, as over Mont Blanc a drawn
+  // ring's did where patches' spurs crossed it.
+  const Legibility crossed = evaluateLegibility(ridgeWith(300.0), asRidge, relief);
+  std::printf("flank agreement: clean %.2f, crossed by spurs %.2f (legible %.2f)\n",
+    clean.ridge.flankAgreement,
+    crossed.ridge.flankAgreement,
+    crossed.ridge.share);
+  EXPECT_GT(crossed.ridge.share, 0.9);
+  EXPECT_LT(crossed.ridge.flankAgreement, 0.7);
+}
+
 TEST(Legibility, AStrokeMustStandOutOfTheTerrainsOwnLandToo)
 {
   // The same ridge, once over land like the exemplars' and once over land
