@@ -57,7 +57,23 @@ def isolated():
     return c
 
 
-SKETCHES = (valley_network, letters, rings, herringbone, carved_letters, isolated)
+def dashes():
+    """Short strokes 30-120 pixels long, well under a patch and a little over: three ridges, three
+    valleys, a V of valleys and a ridge beside a valley."""
+    c = Canvas(SIZE, SIZE)
+    c.polyline([(40, 100), (70, 100)], RIDGE)
+    c.polyline([(150, 80), (200, 120)], RIDGE)
+    c.polyline([(300, 60), (400, 120)], RIDGE)
+    c.polyline([(50, 330), (75, 360)], VALLEY)
+    c.polyline([(160, 300), (160, 360)], VALLEY)
+    c.polyline([(300, 380), (400, 330)], VALLEY)
+    c.polyline([(420, 200), (460, 260), (490, 200)], VALLEY)
+    c.polyline([(80, 200), (180, 230)], RIDGE)
+    c.polyline([(90, 240), (190, 270)], VALLEY)
+    return c
+
+
+SKETCHES = (valley_network, letters, rings, herringbone, carved_letters, isolated, dashes)
 
 if __name__ == "__main__":
     out = sys.argv[1] if len(sys.argv) > 1 else "."

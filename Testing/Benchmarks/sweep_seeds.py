@@ -9,6 +9,11 @@ higher legibility, flank agreement and drainage).
 
     /usr/bin/python3 Testing/Benchmarks/sweep_seeds.py --tsynth build/bin/tsynth \\
         [--a A_TSYNTH] [--b B_TSYNTH] [--data Data] [--seeds 0 1 ... 10] [--by-sketch]
+        [--sketches SKETCH ...] [--exemplars DEM ...]
+
+--sketches and --exemplars sweep other drawings (say those of Examples/legibility/draw_sketches.py,
+whose isolated strokes and dashes the short-stroke experiments of the tenth session's note used, with
+../shared/data/dems/colorado.png and alps-montblanc.png) instead of the bundled ones.
 
 A defaults to --tsynth. About 2.5 minutes per build on two cores. Against the previous landing
 (4230cf3): legible 0.556 vs 0.300 (A better on 43 of 44), slope 0.043 vs 0.056 (35), seam 0.898 vs
@@ -49,13 +54,11 @@ def figure(terrain, path):
     return value
 
 
-def sweep(synth, measure, data, seeds, tmp, label):
+def sweep(synth, measure, cases, seeds, tmp, label):
     """{(sketch, exemplar, seed): {figure: value}} for every run of one build."""
     out = {}
-    for sketch in SKETCHES:
-        for exemplar in EXEMPLARS:
-            dem = os.path.join(data, "dems", exemplar)
-            drawn = os.path.join(data, "sketches", sketch)
+    for sketch, drawn in cases[0]:
+        for exemplar, dem in cases[1]:
             for seed in seeds:
                 terrain = os.path.join(tmp, "%s_%s_%s_%d.tif" % (label, sketch, exemplar, seed))
                 run([synth, "synth", "--exemplar", dem, "--sketch", drawn, "--seed", str(seed), "-o", terrain,
@@ -80,15 +83,22 @@ def main():
     parser.add_argument("--b", help="the tsynth it is compared with, run for run")
     parser.add_argument("--data", default=os.path.join(here, "..", "..", "Data"), help="the bundled Data/")
     parser.add_argument("--seeds", type=int, nargs="+", default=list(range(11)))
+    parser.add_argument("--sketches", nargs="+", help="sketch files to sweep instead of the bundled two")
+    parser.add_argument("--exemplars", nargs="+", help="exemplar DEMs to sweep instead of Colorado and Mont Blanc")
     parser.add_argument("--by-sketch", action="store_true",
                         help="also print each figure's means per sketch and exemplar")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory(prefix="tsynth-sweep-") as tmp:
-        a = sweep(args.a or args.tsynth, args.tsynth, args.data, args.seeds, tmp, "A")
-        b = sweep(args.b, args.tsynth, args.data, args.seeds, tmp, "B") if args.b else None
+        sketches = [(os.path.basename(p), p) for p in args.sketches] if args.sketches else \
+            [(s, os.path.join(args.data, "sketches", s)) for s in SKETCHES]
+        exemplars = [(os.path.basename(p), p) for p in args.exemplars] if args.exemplars else \
+            [(e, os.path.join(args.data, "dems", e)) for e in EXEMPLARS]
+        cases = (sketches, exemplars)
+        a = sweep(args.a or args.tsynth, args.tsynth, cases, args.seeds, tmp, "A")
+        b = sweep(args.b, args.tsynth, cases, args.seeds, tmp, "B") if args.b else None
     print("%d runs per build (%d seeds x %d sketches x %d exemplars)" % (
-        len(a), len(args.seeds), len(SKETCHES), len(EXEMPLARS)))
-    print("%-9s %8s %8s %s" % ("figure", "A mean", "B mean", "A better"))
+        len(a), len(args.seeds), len(sketches), len(exemplars)))
+    print("%-9s %8s" % ("figure", "A mean") + (" %8s %s" % ("B mean", "A better") if b is not None else ""))
     for name, (_, higher) in FIGURES.items():
         line = "%-9s %8.3f" % (name, mean(r[name] for r in a.values()))
         if b is not None:
@@ -97,14 +107,14 @@ def main():
             line += " %8.3f %d of %d" % (mean(r[name] for r in b.values()), better, len(pairs))
         print(line)
     if args.by_sketch:
-        print_by_sketch(a, b)
+        print_by_sketch(a, b, [s for s, _ in sketches], [e for e, _ in exemplars])
 
 
-def print_by_sketch(a, b):
+def print_by_sketch(a, b, sketches, exemplars):
     """The means of each figure per sketch and exemplar (A, then B where swept)."""
     print("%-28s %-20s %s" % ("sketch", "exemplar", "  ".join("%-15s" % name for name in FIGURES)))
-    for sketch in SKETCHES:
-        for exemplar in EXEMPLARS:
+    for sketch in sketches:
+        for exemplar in exemplars:
             cells = []
             for name in FIGURES:
                 keys = [k for k in a if k[0] == sketch and k[1] == exemplar]
