@@ -39,7 +39,7 @@ struct FeatureSite
 
 // End and branch nodes of a graph plus path points along its chains every
 // `spacing` cells (0: a quarter patch, dense enough for candidates; placement
-// uses half a patch), not closer than a quarter patch to a chain's ends, each
+// uses kSiteSpacingInPatches), not closer than a quarter patch to a chain's ends, each
 // with arms where its chains cross the circle of half a patch. `phases`, when
 // given, shifts each chain's first path point by that share (0..1) of the spacing.
 std::vector<FeatureSite> featureSites(const FeatureGraph& graph,

@@ -12,8 +12,6 @@ namespace tsynth
 namespace
 {
 
-// Placement sites stand half a patch apart along a chain.
-constexpr double kSiteSpacingInPatches = 0.5;
 constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
 
 } // namespace

@@ -67,8 +67,8 @@ TEST(FeatureOrder, BreadthFirstFromTheForkEachArmWalkedAwayFromIt)
   EXPECT_EQ(sites.front().node, t.graph.bfsOrder.front());
   EXPECT_NEAR(sites.front().centre.x, 128.0, 1.0);
   EXPECT_NEAR(sites.front().centre.y, 120.0, 1.0);
-  // Each chain's path points come together, half a patch apart, moving away
-  // from the fork.
+  // Each chain's path points come together, kSiteSpacingInPatches apart,
+  // moving away from the fork.
   for (std::size_t c = 0; c < t.graph.chains.size(); ++c)
   {
     std::vector<Point2> along;
@@ -82,7 +82,8 @@ TEST(FeatureOrder, BreadthFirstFromTheForkEachArmWalkedAwayFromIt)
     ASSERT_GE(along.size(), 3u) << c;
     for (std::size_t k = 1; k < along.size(); ++k)
     {
-      EXPECT_NEAR(distance(along[k - 1], along[k]), 0.5 * kPatch, 1.5) << c << ", " << k;
+      EXPECT_NEAR(distance(along[k - 1], along[k]), kSiteSpacingInPatches * kPatch, 1.5)
+        << c << ", " << k;
       EXPECT_GT(
         distance(along[k], sites.front().centre), distance(along[k - 1], sites.front().centre))
         << c << ", " << k;
@@ -95,7 +96,8 @@ TEST(FeatureOrder, BreadthFirstFromTheForkEachArmWalkedAwayFromIt)
   {
     phases[c] = seededUniform(7, kStreamSites, c);
   }
-  const std::vector<FeatureSite> all = featureSites(t.graph, kPatch, 0.5 * kPatch, &phases);
+  const std::vector<FeatureSite> all =
+    featureSites(t.graph, kPatch, kSiteSpacingInPatches * kPatch, &phases);
   ASSERT_EQ(sites.size(), all.size());
   for (const FeatureSite& s : all)
   {
