@@ -125,6 +125,10 @@ PatchPlacement::PatchPlacement(const SynthesisTarget& target,
     mergers_.clear();
     return;
   }
+  for (const FeatureGraph* g : graphs)
+  {
+    linePoints_.emplace_back(*g, kLineOffsetReachInPatches * P_);
+  }
   // Cells within a few cells of the sketched lines: feature patches own them,
   // fill patches may not take them once they are filled.
   const std::vector<float> d = distanceTransform(
@@ -151,7 +155,7 @@ PatchPlacement::OwnLine PatchPlacement::ownLine(const PatchCandidate& c) const
   OwnLine own;
   const CandidatePool& pool = matcher_->pool();
   if (!c.feature || c.poolIndex >= pool.size() ||
-    static_cast<std::size_t>(c.exemplar) >= graphs_.size())
+    static_cast<std::size_t>(c.exemplar) >= linePoints_.size())
   {
     return own;
   }
@@ -159,26 +163,22 @@ PatchPlacement::OwnLine PatchPlacement::ownLine(const PatchCandidate& c) const
   const Variant v = variant(c.variant);
   const double det = v.m[0] * v.m[3] - v.m[1] * v.m[2];
   const double reach = kLineOffsetReachInPatches * P_;
-  for (const FeatureChain& chain : graphs_[static_cast<std::size_t>(c.exemplar)]->chains)
-  {
-    if (static_cast<int>(chain.type) != own.type)
-    {
-      continue;
-    }
-    for (const Point2& q : chain.points)
+  const FeatureType type = own.type > 0 ? FeatureType::Ridge : FeatureType::Valley;
+  linePoints_[static_cast<std::size_t>(c.exemplar)].forEachNear(type,
+    c.centreX,
+    c.centreY,
+    reach,
+    [&](const Point2& q)
     {
       const double dx = q.x - c.centreX;
       const double dy = q.y - c.centreY;
-      // The square first: the graph's points are mostly far away, and hypot
-      // of every one was 7% of a DEM target's synthesis.
-      if (std::abs(dx) <= reach && std::abs(dy) <= reach && std::hypot(dx, dy) <= reach)
+      if (std::hypot(dx, dy) <= reach)
       {
         // Source offset = m (u, v): the placed offset is m^-1 times the source one.
         own.cells.push_back(
           { (v.m[3] * dx - v.m[1] * dy) / det, (-v.m[2] * dx + v.m[0] * dy) / det });
       }
-    }
-  }
+    });
   return own;
 }
 

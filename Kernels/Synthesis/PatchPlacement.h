@@ -11,6 +11,7 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Features/ChainPointGrid.h"
 #include "../Features/FeatureGraph.h"
 #include "../Matching/CandidatePool.h"
 #include "../Matching/DenseSearch.h"
@@ -219,6 +220,8 @@ private:
   const SynthesisTarget& target_;
   PatchMatcher* matcher_; // null once the placement is over (releasePlacement)
   const std::vector<const FeatureGraph*>& graphs_;
+  // Per exemplar, its graph's chain points by kind, for ownLine.
+  std::vector<ChainPointGrid> linePoints_;
   std::vector<float> toRidge_, toValley_; // cells to the sketched ridges, valleys
   const SynthesisOptions& o_;
   int P_;
