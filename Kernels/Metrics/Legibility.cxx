@@ -217,27 +217,23 @@ StrokeLegibility summarise(const std::vector<Sample>& samples)
   }
   std::vector<double> prominence, threshold, width;
   std::size_t legible = 0;
+  double flankSum = 0.0;
   for (const Sample& s : samples)
   {
     legible += s.legible ? 1 : 0;
     prominence.push_back(s.prominence);
     threshold.push_back(s.threshold);
     width.push_back(s.halfWidth);
-  }
-  r.share = static_cast<double>(legible) / static_cast<double>(samples.size());
-  double flankSum = 0.0;
-  std::size_t flankCount = 0;
-  for (const Sample& s : samples)
-  {
     if (!std::isnan(s.flanks))
     {
       flankSum += s.flanks;
-      ++flankCount;
+      ++r.flankSamples;
     }
   }
-  if (flankCount > 0)
+  r.share = static_cast<double>(legible) / static_cast<double>(samples.size());
+  if (r.flankSamples > 0)
   {
-    r.flankAgreement = flankSum / static_cast<double>(flankCount);
+    r.flankAgreement = flankSum / static_cast<double>(r.flankSamples);
   }
   r.prominence = median(prominence);
   r.threshold = median(threshold);
@@ -245,19 +241,18 @@ StrokeLegibility summarise(const std::vector<Sample>& samples)
   return r;
 }
 
-// The mean of two kinds' figures weighed by their samples, a kind without a
-// figure (NaN) left out.
-double meanOfBoth(double a, double aSamples, double b, double bSamples)
+// The flank agreement of both kinds: the mean over every sample that had
+// flank cells to read, of either kind.
+double flankAgreementOfBoth(const StrokeLegibility& ridge, const StrokeLegibility& valley)
 {
-  if (std::isnan(a))
+  const std::size_t both = ridge.flankSamples + valley.flankSamples;
+  if (both == 0)
   {
-    return b;
+    return StrokeLegibility::kNaN;
   }
-  if (std::isnan(b))
-  {
-    return a;
-  }
-  return (a * aSamples + b * bSamples) / (aSamples + bSamples);
+  auto sum = [](const StrokeLegibility& k)
+  { return k.flankSamples > 0 ? k.flankAgreement * static_cast<double>(k.flankSamples) : 0.0; };
+  return (sum(ridge) + sum(valley)) / static_cast<double>(both);
 }
 
 double pearson(const std::vector<float>& a, const std::vector<float>& b)
@@ -413,10 +408,7 @@ Legibility LegibilityMeter::measure(const Heightfield& terrain) const
     const double v = valley.empty() ? 0.0 : l.valley.share * static_cast<double>(valley.size());
     l.share = (r + v) / static_cast<double>(all);
   }
-  l.flankAgreement = meanOfBoth(l.ridge.flankAgreement,
-    static_cast<double>(ridge.size()),
-    l.valley.flankAgreement,
-    static_cast<double>(valley.size()));
+  l.flankAgreement = flankAgreementOfBoth(l.ridge, l.valley);
   return l;
 }
 

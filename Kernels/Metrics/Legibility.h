@@ -66,6 +66,7 @@ struct StrokeLegibility
   // and 0.61 in Tasse's, whose ring a person reads at once and ours not
   // (flanks 0.71 against 0.80).
   double flankAgreement = kNaN;
+  std::size_t flankSamples = 0; // samples with flank cells to read, behind flankAgreement
 };
 
 struct Legibility

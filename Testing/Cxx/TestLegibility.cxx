@@ -390,6 +390,33 @@ TEST(Legibility, FlanksAgreeWithTheLineUnlessSpursAndGulliesCrossIt)
   EXPECT_LT(crossed.ridge.flankAgreement, 0.7);
 }
 
+TEST(Legibility, BothKindsFlankAgreementIsTheMeanOverEverySampleWithFlanksToRead)
+{
+  // A clean ridge on its stroke (agreement 1 all along), and a valley stroke
+  // drawn along a bump for its western half (-1 there) that runs on over dead
+  // flat land (no shading: no flanks to read). The total is the mean of the
+  // samples that had flanks, about (160 - 80) / 240 = 0.33, not the kinds'
+  // means weighed by all their samples (about 0).
+  const int w = 200, h = 160;
+  const auto bump = [](int j, int row) { return std::max(0.0, 1.0 - std::abs(j - row) / 20.0); };
+  const Heightfield terrain = surface(w,
+    h,
+    [&](int i, int j) { return 600.0 * bump(j, 40) + (i < 100 ? 400.0 * bump(j, 120) : 0.0); });
+  const Heightfield flat = surface(w, h, [](int, int) { return 0.0; });
+  const LandRelief relief({ &flat });
+  FeatureGraph sketch =
+    lines(w, h, { { { 20, 40 }, { 180, 40 } }, { { 20, 120 }, { 180, 120 } } }, FeatureType::Ridge);
+  sketch.chains[1].type = FeatureType::Valley;
+  const Legibility l = evaluateLegibility(terrain, sketch, relief);
+  EXPECT_GT(l.ridge.flankAgreement, 0.95);
+  EXPECT_LT(l.valley.flankAgreement, -0.95);
+  EXPECT_EQ(l.ridge.flankSamples, l.ridge.samples);
+  EXPECT_NEAR(static_cast<double>(l.valley.flankSamples),
+    0.5 * static_cast<double>(l.valley.samples),
+    0.1 * static_cast<double>(l.valley.samples));
+  EXPECT_NEAR(l.flankAgreement, 1.0 / 3.0, 0.08);
+}
+
 TEST(Legibility, AStrokeMustStandOutOfTheTerrainsOwnLandToo)
 {
   // The same ridge, once over land like the exemplars' and once over land
