@@ -11,6 +11,8 @@
  * Arms, X and Y (metres in the exemplar), Angle0..3 (placed arm directions,
  * degrees), Noise0..2 (band-pass variances, m^2). Field data: PatchSize,
  * HeightScale. Tasse's thesis, 3.4 (candidates, rotations, mirrors, noise).
+ *
+ * Kernel: Kernels/Matching/CandidatePool.h (buildCandidatePool).
  */
 #pragma once
 

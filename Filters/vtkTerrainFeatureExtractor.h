@@ -10,6 +10,8 @@
  * The algorithm is Chang's profile-recognition and target-connection (PPA)
  * with Kruskal's maximum spanning forest replacing polygon breaking (Zhou et
  * al. 2007; Tasse's thesis, algorithm 3.2).
+ *
+ * Kernel: Kernels/Features/Ppa.h (extractFeatures).
  */
 #pragma once
 

@@ -20,6 +20,8 @@
  * terrain is never changed. Output: the terrain with the merged heights and
  * point arrays Filled, SeamMask (1 on seam cells), PatchId (PatchIdValue where
  * the patch was taken); field data CutCost, CutEdges, NormalisedCutCost.
+ *
+ * Kernel: Kernels/Merging/PatchMerger.h (PatchMerger::merge).
  */
 #pragma once
 

@@ -7,6 +7,8 @@
  * Output: the input plus point arrays "Hillshade" (0 dark .. 1 lit; active
  * scalars) and "Slope" (degrees). Cells marked invalid in "Valid" get NaN and
  * never influence their neighbours.
+ *
+ * Kernel: Kernels/Analysis/Hillshade.h (computeHillshade).
  */
 #pragma once
 

@@ -16,6 +16,9 @@
  * Variant, X, Y in the exemplar's metres, Cost, Feature). Output 1: a cost map
  * over the first exemplar (MatchCost: the lowest cost of any variant centred on
  * each cell; NaN where there is no candidate), to see where good matches lie.
+ *
+ * Kernel: Kernels/Matching/SiteMatch.h (matchAtSite, over
+ * Kernels/Matching/PatchMatcher.h).
  */
 #pragma once
 

@@ -14,6 +14,9 @@
  * multigrid V-cycle, on any mask shape; nodata cells are left out. Output: the
  * destination with the solved "Elevation" and field data Iterations,
  * RelativeResidual.
+ *
+ * Kernel: Kernels/Merging/PoissonEditing.h (seamlessClone, over the solver of
+ * Kernels/Merging/Poisson.h).
  */
 #pragma once
 

@@ -9,6 +9,9 @@
  * Vertical units, cell size and normalised ranges come from a NAME.json sidecar
  * beside the file, from the file itself, or from the properties below, which
  * override both.
+ *
+ * Kernel: Kernels/Core/HeightfieldIO.h (readHeightfield); .vti through
+ * Filters/TerrainFileIO.h.
  */
 #pragma once
 

@@ -13,6 +13,9 @@
  * Optional input port 1: a reference image whose grid (origin, spacing, extent)
  * the poly-lines are laid on. Outputs as vtkTerrainFeatureExtractor: the tree
  * (port 0) and its control points (port 1).
+ *
+ * Kernel: Kernels/Features/Sketch.h (sketchFeatures for images,
+ * polylineFeatures for poly-lines).
  */
 #pragma once
 

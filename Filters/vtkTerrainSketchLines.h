@@ -10,6 +10,9 @@
  * point array "Elevation" (metres; NaN where the line has no
  * height): none, each point's z coordinate (then set to 0), or one constant
  * height. Several marked sources are combined with Append Geometry.
+ *
+ * Kernel: none: it only sets the arrays, which Filters/FeatureGraphConversion.h
+ * (polyDataToPolylines) reads for the synthesis.
  */
 #pragma once
 

@@ -13,6 +13,9 @@
  * Stroke and grey maps: point scalars "Sketch" (unsigned char, the file's 1 to 4 channels).
  * A DEM used as the target: point scalars "Elevation" (float, metres; NaN and "Valid" 0 where
  * the file has nodata), as the Terrain Reader reads it.
+ *
+ * Kernel: Kernels/Core/HeightfieldIO.h (readColourImage); .vti through
+ * Filters/TerrainFileIO.h.
  */
 #pragma once
 

@@ -1,4 +1,5 @@
 // Hillshade and slope of a heightfield, cell-size aware, nodata-safe.
+// In ParaView: vtkTerrainHillshade (Terrain Hillshade), in Filters/.
 #pragma once
 
 #include "../Core/Heightfield.h"

@@ -1,4 +1,6 @@
 // Reading and writing heightfields through GDAL (GeoTIFF, PNG, SRTM .hgt, ESRI ASCII, ...).
+// In ParaView: vtkTerrainReader and vtkTerrainSketchReader (Terrain Reader, Terrain Sketch
+// Reader), in Filters/.
 #pragma once
 
 #include "Geodesy.h"

@@ -9,6 +9,7 @@
 //   of 2^k + 1 samples a side, all sharing one height scale.
 // Every tile has a NAME.json sidecar giving its height range, its place in the
 // terrain and, for the engines, the scales that reproduce the heights in metres.
+// In ParaView: vtkTerrainTileWriter (Terrain Tile Writer), in Filters/.
 #pragma once
 
 #include "Grid.h"

@@ -31,6 +31,7 @@
 //   as the thesis says), and w_s divides by the image's mean weight;
 // - generators costing c_s or more are dropped with a warning (s < 1, §3.5);
 //   negative costs are allowed (the thesis's crater rings use them).
+// In ParaView: vtkTerrainDistanceSynthesis (Terrain Distance Synthesis), in Filters/.
 #pragma once
 
 #include "../Core/Heightfield.h"

@@ -1,6 +1,7 @@
 // Profile recognition and target connection (Chang et al. 1998, as used by Zhou
 // et al. 2007 and Tasse's thesis): ridge (or valley) lines of a heightfield as
 // a forest, with Kruskal's maximum spanning forest in place of polygon breaking.
+// In ParaView: vtkTerrainFeatureExtractor (Terrain Feature Extractor), in Filters/.
 #pragma once
 
 #include "../Core/Heightfield.h"

@@ -1,6 +1,7 @@
 // A user's sketch turned into feature graphs: grey sketch maps (through PPA),
 // stroke maps (red ridges, blue valleys, thinned to centre lines) and
 // poly-lines (used as drawn).
+// In ParaView: vtkTerrainSketchFeatures (Terrain Sketch Features), in Filters/.
 #pragma once
 
 #include "../Core/Heightfield.h"

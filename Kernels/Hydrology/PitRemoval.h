@@ -5,6 +5,7 @@
 // Sinks are as in Flow.h: border cells, cells next to nodata, and cells of an
 // optional user mask (lakes and sinkholes to keep). After any method every
 // valid non-sink cell drains to a sink (drainsEverywhere holds).
+// In ParaView: vtkTerrainPitRemoval (Terrain Pit Removal), in Filters/.
 #pragma once
 
 #include "../Core/Heightfield.h"

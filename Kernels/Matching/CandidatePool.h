@@ -1,9 +1,10 @@
 // Feature candidates: every feature site of the exemplars (end and branch nodes,
-// and path points every half patch along chains) in all 10 variants, with the
+// and path points every quarter patch along chains) in all 10 variants, with the
 // descriptors the matcher compares: arm angles, height profiles along and across
 // each arm, multi-resolution noise variance and a 16 x 16 summary of the patch.
 // Stored as flat arrays (one entry per candidate variant) so the CPU loop and
 // the OpenCL kernel read them the same way.
+// In ParaView: vtkTerrainCandidateBuilder (Terrain Candidate Builder), in Filters/.
 #pragma once
 
 #include "../Core/Heightfield.h"

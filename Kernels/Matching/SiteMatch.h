@@ -3,6 +3,7 @@
 // feature match at the nearest target feature site (the synthesis' feature
 // placements) or as a dense match (its fill placements), and a map of the
 // lowest cost of a candidate centred on each cell of the first exemplar.
+// In ParaView: vtkTerrainPatchMatcher (Terrain Patch Matcher), in Filters/.
 #pragma once
 
 #include "../Core/Heightfield.h"

@@ -1,5 +1,6 @@
 // Merging a placed patch into the terrain being synthesised: graph-cut seam,
 // then one of the seam-removal methods of Zhou et al. 2007 and Tasse's thesis.
+// In ParaView: vtkTerrainGraphCutMerger (Terrain Graph Cut Merger), in Filters/.
 #pragma once
 
 #include "../Core/Heightfield.h"

@@ -3,6 +3,7 @@
 // seamless cloning of a source into a destination, and integration of a slope
 // field inside a mask. Both keep the destination outside the mask and solve
 // inside it with the masked multigrid-preconditioned CG solver (Poisson.h).
+// In ParaView: vtkTerrainPoissonSolver (Terrain Poisson Solver), in Filters/.
 #pragma once
 
 #include "../Core/Heightfield.h"

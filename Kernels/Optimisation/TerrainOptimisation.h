@@ -5,6 +5,7 @@
 // by PatchMatch (M-step), and the terrain as the average of the overlapping
 // source patches blended with the guide (E-step); optional pit removal after
 // each E-step on every level but the finest.
+// In ParaView: vtkTerrainOptimisation (Terrain Optimisation), in Filters/.
 #pragma once
 
 #include "../Core/Heightfield.h"

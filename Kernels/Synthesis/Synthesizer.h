@@ -2,6 +2,7 @@
 // thesis): feature patches placed breadth-first along the target's feature
 // tree, then best-first non-feature filling, every patch chosen among the
 // matcher's top k by its graph-cut seam cost and merged in the gradient domain.
+// In ParaView: vtkTerrainSynthesis (Terrain Synthesis), in Filters/.
 #pragma once
 
 #include "../Core/Heightfield.h"
