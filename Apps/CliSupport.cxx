@@ -8,6 +8,7 @@
 #include "Core/Memory.h"
 #include "Core/OutputFile.h"
 #include "Core/PatchSize.h"
+#include "Synthesis/SynthesisRequest.h"
 
 #include <vtkNew.h>
 #include <vtkPolyData.h>
@@ -74,14 +75,42 @@ Handler installHandler(int sig, Handler handler)
 
 } // namespace
 
+namespace
+{
+
+void replaceAll(std::string& text, const std::string& key, const std::string& value)
+{
+  for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at))
+  {
+    text.replace(at, key.size(), value);
+    at += value.size();
+  }
+}
+
+std::string defaultText(const OptionRow& row)
+{
+  if (row.type == OptionType::Choice)
+  {
+    return row.choices.wordOf(static_cast<int>(row.defaultValue), row.property);
+  }
+  return numberText(row.defaultValue);
+}
+
+} // namespace
+
 std::string withPatchDefault(std::string help)
 {
-  const std::string key = "%PATCH%";
-  const std::string value = std::to_string(kDefaultSynthesisPatch);
-  for (std::size_t at = help.find(key); at != std::string::npos; at = help.find(key, at))
+  replaceAll(help, "%PATCH%", std::to_string(kDefaultSynthesisPatch));
+  return withOptionRows(help, synthesisOptionRows());
+}
+
+std::string withOptionRows(std::string help, const std::vector<OptionRow>& rows)
+{
+  for (const OptionRow& row : rows)
   {
-    help.replace(at, key.size(), value);
-    at += value.size();
+    replaceAll(help, "%DEFAULT:" + row.property + "%", defaultText(row));
+    replaceAll(help, "%RANGE:" + row.property + "%", row.rangeText());
+    replaceAll(help, "%WORDS:" + row.property + "%", row.choices.list());
   }
   return help;
 }
@@ -184,6 +213,40 @@ GridRequest parseSize(const std::string& text, GridRequest grid)
   return grid;
 }
 
+std::optional<double> takeRowNumber(CommandLine& cl, const OptionRow& row)
+{
+  const std::optional<double> value = cl.takeNumber(row.flag);
+  if (value)
+  {
+    try
+    {
+      row.checkValue(*value, row.flag);
+    }
+    catch (const Error& e)
+    {
+      throw UsageError(e.what());
+    }
+  }
+  return value;
+}
+
+std::optional<int> takeRowChoice(CommandLine& cl, const OptionRow& row)
+{
+  const std::optional<std::string> word = cl.take(row.flag);
+  if (!word)
+  {
+    return std::nullopt;
+  }
+  try
+  {
+    return row.choices.valueOf(*word, row.flag);
+  }
+  catch (const Error& e)
+  {
+    throw UsageError(e.what());
+  }
+}
+
 double takeMemoryBudget(CommandLine& cl)
 {
   const std::optional<double> budget = cl.takeNumber(kMemoryOption);
@@ -191,9 +254,10 @@ double takeMemoryBudget(CommandLine& cl)
   {
     return 0.0;
   }
-  if (!(*budget > 0.0))
+  if (!(*budget > 0.0 && *budget <= kMaxMemoryBudgetGB))
   {
-    throw UsageError(std::string(kMemoryOption) + " expects a positive number of GB.");
+    throw UsageError(std::string(kMemoryOption) + " expects a positive number of GB, at most " +
+      std::to_string(static_cast<long long>(kMaxMemoryBudgetGB)) + ".");
   }
   return *budget * kBytesPerGB;
 }

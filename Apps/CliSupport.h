@@ -6,6 +6,7 @@
 
 #include "Core/Cancellation.h"
 #include "Core/HeightfieldIO.h"
+#include "Core/OptionTable.h"
 #include "Core/OutputFile.h"
 #include "Synthesis/Setup.h"
 
@@ -20,8 +21,12 @@ namespace tsynth::cli
 {
 
 // A help text with every %PATCH% replaced by the synthesis patch's default
-// (Core/PatchSize.h), so the help cannot drift from it.
+// (Core/PatchSize.h), and %DEFAULT:P%, %RANGE:P% and %WORDS:P% by the default,
+// the range and the words of the synthesis option whose property is P
+// (Synthesis/SynthesisRequest.h), so the help cannot drift from them.
 std::string withPatchDefault(std::string help);
+// The same for another algorithm's table.
+std::string withOptionRows(std::string help, const std::vector<OptionRow>& rows);
 
 // True if the arguments ask for --help (or -h).
 bool wantsHelp(const std::vector<std::string>& args);
@@ -110,8 +115,14 @@ bool stopRequested();
 // 128 + the stop signal an InterruptGuard received (130 for Ctrl-C).
 int interruptedExit();
 
+// An option of an algorithm's table (Core/OptionTable.h) under its row's flag: a number
+// checked against the row's range, or one of the row's words as its value. UsageError, naming
+// the range or the words, for anything else.
+std::optional<double> takeRowNumber(CommandLine& cl, const OptionRow& row);
+std::optional<int> takeRowChoice(CommandLine& cl, const OptionRow& row);
+
 // --max-memory GB, in bytes (0 if not given: the kernels' default budget, 80% of
-// this machine's memory); UsageError unless a positive finite number.
+// this machine's memory); UsageError unless a positive number up to kMaxMemoryBudgetGB.
 double takeMemoryBudget(CommandLine& cl);
 // The option's name, as the kernels' refusals name it.
 constexpr const char* kMemoryOption = "--max-memory";

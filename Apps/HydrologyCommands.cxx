@@ -25,20 +25,23 @@ namespace
 {
 
 const char* const kPitsHelp =
-  R"(Usage: tsynth pits DEM -o OUT [--method fill|breach|hybrid] [options]
+  R"(Usage: tsynth pits DEM -o OUT [--method M] [options]
 
 Removes depressions so that water from every cell runs downhill to an outlet: the border,
 a cell next to nodata, or a sink you keep (--sinks). Prints the pits before and after and
 what changed.
 
   -o, --output OUT       corrected DEM: .tif, .png (+ sidecar) or .vti
-  --method M             breach (default): carve a one-cell channel from each pit to lower
-                         ground, never raising a cell (Soille 2004; Scott & Dodgson 2021's
-                         choice); fill: raise each depression to its spill level with a tiny
-                         gradient (Barnes et al. 2014); hybrid: breach where the channel stays
-                         within --max-depth and --max-length, fill the rest (Lindsay 2016)
-  --max-depth M          hybrid: deepest cut a breach may make, metres (default %DEPTH%)
-  --max-length N         hybrid: longest channel a breach may cut, cells (default %LENGTH%)
+  --method M             %WORDS:Method% (default %DEFAULT:Method%). Breach: carve a one-cell
+                         channel from each pit to lower ground, never raising a cell (Soille
+                         2004; Scott & Dodgson 2021's choice); fill: raise each depression to
+                         its spill level with a tiny gradient (Barnes et al. 2014); hybrid:
+                         breach where the channel stays within --max-depth and --max-length,
+                         fill the rest (Lindsay 2016)
+  --max-depth M          hybrid: deepest cut a breach may make, metres, %RANGE:MaxBreachDepth%
+                         (default %DEFAULT:MaxBreachDepth%)
+  --max-length N         hybrid: longest channel a breach may cut, cells,
+                         %RANGE:MaxBreachLength% (default %DEFAULT:MaxBreachLength%)
   --sinks MASK           a raster of the DEM's size, non-zero where water may stay (lakes)
   --flow ACC.tif         also write the D8 flow accumulation (cells draining through each cell)
   --streams S.tif        also write the stream network: 1 where at least --stream-area drains
@@ -98,28 +101,18 @@ PitsArguments parsePitsArguments(std::vector<std::string> args)
   CommandLine cl(std::move(args));
   PitsArguments a;
   a.output = cl.take("--output", "-o").value_or("");
-  if (const auto method = cl.take("--method"))
+  const std::vector<OptionRow>& rows = pitRemovalOptionRows();
+  if (const auto method = takeRowChoice(cl, optionRow(rows, "Method")))
   {
-    try
-    {
-      a.options.method = parsePitRemovalMethod(*method);
-    }
-    catch (const Error& e)
-    {
-      throw UsageError(e.what());
-    }
+    a.options.method = static_cast<PitRemovalMethod>(*method);
   }
-  if (const auto depth = cl.takeNumber("--max-depth"))
+  if (const auto depth = takeRowNumber(cl, optionRow(rows, "MaxBreachDepth")))
   {
-    if (!(*depth > 0.0))
-    {
-      throw UsageError("--max-depth expects a positive number of metres.");
-    }
     a.options.maxBreachDepth = *depth;
   }
-  if (const auto length = takeCount(cl, "--max-length", 1, kMaxOutputSide))
+  if (const auto length = takeRowNumber(cl, optionRow(rows, "MaxBreachLength")))
   {
-    a.options.maxBreachLength = *length;
+    a.options.maxBreachLength = static_cast<int>(*length);
   }
   a.sinks = cl.take("--sinks");
   a.flow = cl.take("--flow");
@@ -228,13 +221,7 @@ int runPits(std::vector<std::string> args)
 {
   if (wantsHelp(args))
   {
-    std::string help = kPitsHelp;
-    const PitRemovalOptions defaults;
-    std::ostringstream depth;
-    depth << defaults.maxBreachDepth;
-    help.replace(help.find("%DEPTH%"), 7, depth.str());
-    help.replace(help.find("%LENGTH%"), 8, std::to_string(defaults.maxBreachLength));
-    std::cout << help << kReadOptionsHelp;
+    std::cout << withOptionRows(kPitsHelp, pitRemovalOptionRows()) << kReadOptionsHelp;
     return 0;
   }
   PitsArguments a = parsePitsArguments(std::move(args));

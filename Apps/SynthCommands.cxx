@@ -22,6 +22,7 @@
 #include "Synthesis/Regions.h"
 #include "Synthesis/Setup.h"
 #include "Synthesis/SynthesisFigures.h"
+#include "Synthesis/SynthesisRequest.h"
 #include "Synthesis/Synthesizer.h"
 #include "Synthesis/Tiling.h"
 
@@ -67,15 +68,17 @@ writes them: its output works directly as a sketch of the same DEM.
   --size WxH             output size in cells (default: the sketch's pixels; for poly-lines
                          the grid they were found on, else half a patch past their reach)
   --cell M               output cell size in metres (default: the first exemplar's)
-  --patch N              patch size in cells (default %PATCH%)
-  --backend B            auto (default: OpenCL on a GPU or accelerator, else the CPU), opencl
-                         or cpu: same result, different speed
-  --merge M              new (default), poisson, shepard or cut
-  --fill F               best-first (default) or concentric
-  --drainage M           make every cell drain at the end: breach (cut valleys out of closed
-                         basins), fill (raise them to lakes) or hybrid (tsynth pits), on blocks
-                         of a quarter patch down to 2 cells so the changes are broad and seams
-                         stay hidden, the last few-cell pits filled (default: off)
+  --patch N              patch size in cells, a multiple of 4 %RANGE:PatchSize% (default
+                         %DEFAULT:PatchSize%)
+  --backend B            %WORDS:Backend%: same result, different speed (default
+                         %DEFAULT:Backend%: OpenCL on a GPU or accelerator, else the CPU)
+  --merge M              %WORDS:MergeMode% (default %DEFAULT:MergeMode%)
+  --fill F               %WORDS:FillOrder% (default %DEFAULT:FillOrder%)
+  --drainage M           %WORDS:Drainage% (default %DEFAULT:Drainage%): make every cell
+                         drain at the end. Breach cuts valleys out of closed basins, fill
+                         raises them to lakes, hybrid does either (tsynth pits), on blocks
+                         of a quarter patch down to 2 cells so the changes are broad and
+                         seams stay hidden; the last few-cell pits are filled
   --seed N               another seed gives another terrain; the same seed the same terrain
   --preview PREVIEW      first write a quick coarse look at the same terrain: cells 4 times
                          coarser a side (twice for patches under 64), patches as many times
@@ -94,11 +97,12 @@ writes them: its output works directly as a sketch of the same DEM.
                          finish the whole terrain at once: the placement's memory follows the
                          tile, and the same tile grid gives the same terrain whoever runs it
                          (default: one piece)
-  --repetition P         seam-cost penalty for reusing a nearby source (default 0.5; 0 = off)
+  --repetition P         seam-cost penalty for reusing a nearby source, %RANGE:Repetition%
+                         (default %DEFAULT:Repetition%; 0 = off)
   --landform-relief F    sketched ridges and valleys get F times the relief they are given
                          to stand out of the exemplars' own land (the exemplars' major ones',
-                         raised on rugged land; default 1; 0.1 to 5: above 1 bolder, below
-                         softer)
+                         raised on rugged land; default %DEFAULT:LandformRelief%;
+                         %RANGE:LandformRelief%: above 1 bolder, below softer)
   --max-memory GB        refuse a synthesis estimated to need more (default: 80% of the
                          machine's memory)
   --cache DIR            keep what is computed from the exemplars alone (their ridges and
@@ -299,11 +303,7 @@ struct SynthArguments
   std::optional<std::string> debugDir;
   std::optional<std::string> regions;
   std::vector<std::string> regionMaps;
-  GridRequest grid;
-  double memoryBudget = 0.0; // bytes; 0: the set-up's default
-  double landformRelief = 1.0;
-  std::string cacheDirectory; // empty: no exemplar cache
-  SynthesisOptions options;
+  SynthesisRequest request; // every option of the synthesis itself
   bool progress = true;
 };
 
@@ -394,17 +394,12 @@ void checkPaths(const SynthArguments& a)
   files.check();
 }
 
-// --patch, --backend, --merge, --fill, --seed, --no-vertical-offset, --repetition.
-SynthesisOptions takeSynthesisOptions(CommandLine& cl)
+// --patch, --backend, --merge, --fill, --seed, --drainage, --no-vertical-offset, --tile-size,
+// --repetition.
+void takeSynthesisOptions(CommandLine& cl, SynthesisOptions& o)
 {
-  SynthesisOptions o;
-  if (const auto patch = cl.takeNumber("--patch"))
+  if (const auto patch = takeRowNumber(cl, synthesisOption("PatchSize")))
   {
-    if (*patch != std::floor(*patch) || *patch < kMinSynthesisPatch || *patch > kMaxSynthesisPatch)
-    {
-      throw UsageError("--patch expects a whole number from " + std::to_string(kMinSynthesisPatch) +
-        " to " + std::to_string(kMaxSynthesisPatch) + ".");
-    }
     o.patchSize = static_cast<int>(*patch);
     try
     {
@@ -415,50 +410,25 @@ SynthesisOptions takeSynthesisOptions(CommandLine& cl)
       throw UsageError(e.what());
     }
   }
-  if (const auto backend = cl.take("--backend"))
+  if (const auto backend = takeRowChoice(cl, synthesisOption("Backend")))
   {
-    try
-    {
-      o.backend = parseBackend(*backend);
-    }
-    catch (const Error&)
-    {
-      throw UsageError("--backend must be auto, opencl or cpu.");
-    }
+    o.backend = static_cast<Backend>(*backend);
   }
-  if (const auto merge = cl.take("--merge"))
+  if (const auto merge = takeRowChoice(cl, synthesisOption("MergeMode")))
   {
-    try
-    {
-      o.merge = parseMergeMode(*merge);
-    }
-    catch (const Error&)
-    {
-      throw UsageError("--merge must be new, poisson, shepard or cut.");
-    }
+    o.merge = static_cast<MergeMode>(*merge);
   }
-  if (const auto fill = cl.take("--fill"))
+  if (const auto fill = takeRowChoice(cl, synthesisOption("FillOrder")))
   {
-    if (*fill != "best-first" && *fill != "concentric")
-    {
-      throw UsageError("--fill must be best-first or concentric.");
-    }
-    o.fill = *fill == "concentric" ? FillOrder::Concentric : FillOrder::BestFirst;
+    o.fill = static_cast<FillOrder>(*fill);
   }
   if (const auto seed = cl.take("--seed"))
   {
     o.seed = parseSeed(*seed);
   }
-  if (const auto drainage = cl.take("--drainage"))
+  if (const auto drainage = takeRowChoice(cl, synthesisOption("Drainage")))
   {
-    try
-    {
-      o.drainage = parsePitRemovalMethod(*drainage);
-    }
-    catch (const Error&)
-    {
-      throw UsageError("--drainage must be fill, breach or hybrid.");
-    }
+    o.drainage = drainageOf(*drainage);
   }
   o.verticalOffset = !cl.takeFlag("--no-vertical-offset");
   if (const auto tile = takeCount(cl, "--tile-size", 1, kMaxOutputSide))
@@ -473,41 +443,49 @@ SynthesisOptions takeSynthesisOptions(CommandLine& cl)
     }
     o.tileSize = *tile;
   }
-  if (const auto repetition = cl.takeNumber("--repetition"))
+  if (const auto repetition = takeRowNumber(cl, synthesisOption("Repetition")))
   {
-    if (*repetition < 0.0)
-    {
-      throw UsageError("--repetition must not be negative.");
-    }
     o.repetitionPenalty = *repetition;
   }
-  return o;
 }
 
-// --size, --cell and --max-memory.
-void takeGridOptions(CommandLine& cl, SynthArguments& a)
+// --size, --cell, --landform-relief and --max-memory.
+void takeGridOptions(CommandLine& cl, SynthesisRequest& r)
 {
   if (const auto size = cl.take("--size"))
   {
-    a.grid = parseSize(*size, a.grid);
+    r.grid = parseSize(*size, r.grid);
   }
-  if (const auto cell = cl.takeNumber("--cell"))
+  if (const auto cell = cl.takeNumber("--cell")) // the filter's 0 is the option left out
   {
     if (!(*cell > 0.0) || !std::isfinite(*cell))
     {
       throw UsageError("--cell expects a positive number of metres.");
     }
-    a.grid.cellX = a.grid.cellY = *cell;
+    r.grid.cellX = r.grid.cellY = *cell;
   }
-  if (const auto relief = cl.takeNumber("--landform-relief"))
+  if (const auto relief = takeRowNumber(cl, synthesisOption("LandformRelief")))
   {
-    if (!(*relief >= kMinLandformRelief && *relief <= kMaxLandformRelief))
-    {
-      throw UsageError("--landform-relief expects a factor from 0.1 to 5.");
-    }
-    a.landformRelief = *relief;
+    r.landformRelief = *relief;
   }
-  a.memoryBudget = takeMemoryBudget(cl);
+  r.memoryBudgetGB = takeMemoryBudget(cl) / kBytesPerGB;
+}
+
+// --cache DIR and --no-cache.
+void takeCacheOptions(CommandLine& cl, SynthesisRequest& r)
+{
+  const std::optional<std::string> cache = cl.take("--cache");
+  const bool noCache = cl.takeFlag("--no-cache");
+  if (cache && noCache)
+  {
+    throw UsageError("--cache and --no-cache contradict each other: give one.");
+  }
+  if (cache && cache->empty())
+  {
+    throw UsageError("--cache expects a directory.");
+  }
+  r.useExemplarCache = !noCache;
+  r.cacheDirectory = cache.value_or("");
 }
 
 SynthArguments parseSynthArguments(std::vector<std::string> args)
@@ -523,25 +501,15 @@ SynthArguments parseSynthArguments(std::vector<std::string> args)
   a.preview = cl.take("--preview");
   a.debugDir = cl.take("--debug-dir");
   a.progress = !cl.takeFlag("--no-progress");
-  const std::optional<std::string> cache = cl.take("--cache");
-  const bool noCache = cl.takeFlag("--no-cache");
-  if (cache && noCache)
-  {
-    throw UsageError("--cache and --no-cache contradict each other: give one.");
-  }
-  if (cache && cache->empty())
-  {
-    throw UsageError("--cache expects a directory.");
-  }
-  a.cacheDirectory = noCache ? "" : cache.value_or(defaultExemplarCacheDirectory());
-  a.options = takeSynthesisOptions(cl);
-  takeGridOptions(cl, a);
+  takeCacheOptions(cl, a.request);
+  takeSynthesisOptions(cl, a.request.options);
+  takeGridOptions(cl, a.request);
   if (!cl.positionals().empty())
   {
     throw UsageError("Unexpected argument \"" + cl.positionals()[0] + "\".");
   }
   checkPaths(a);
-  if (a.preview && a.options.patchSize < kMinPreviewedPatch)
+  if (a.preview && a.request.options.patchSize < kMinPreviewedPatch)
   {
     throw UsageError("--preview needs a --patch of at least " + std::to_string(kMinPreviewedPatch) +
       " cells (its coarser level halves it at least).");
@@ -552,29 +520,22 @@ SynthArguments parseSynthArguments(std::vector<std::string> args)
 // The files read into the set-up's inputs (warnings printed as they come).
 SetupInputs readSynthInputs(const SynthArguments& a)
 {
-  SetupInputs in;
+  std::vector<Heightfield> exemplars;
   for (const std::string& path : a.exemplars)
   {
     RasterInfo info;
-    in.exemplars.push_back(readTerrainFile(path, {}, &info));
-    in.exemplarNames.push_back(path);
+    exemplars.push_back(readTerrainFile(path, {}, &info));
     printWarnings(info.warnings);
   }
   std::vector<std::string> warnings;
-  in.sketch = readSketchInput(a.sketch, warnings);
+  SketchInput sketch = readSketchInput(a.sketch, warnings);
   printWarnings(warnings);
-  in.grid = a.grid;
-  in.patchSize = a.options.patchSize;
-  in.seed = a.options.seed;
-  in.landformRelief = a.landformRelief;
-  in.cacheDirectory = a.cacheDirectory;
-  in.memoryBudget = a.memoryBudget;
-  in.openClMatcher = matchesOnOpenCl(a.options.backend);
-  in.names.size = "--size";
-  in.names.cell = "--cell";
-  in.names.patch = "--patch";
-  in.names.memory = kMemoryOption;
-  return in;
+  SetupOptionNames names;
+  names.size = "--size";
+  names.cell = "--cell";
+  names.patch = "--patch";
+  names.memory = kMemoryOption;
+  return setupInputs(a.request, std::move(exemplars), a.exemplars, std::move(sketch), names);
 }
 
 // The options with the style regions (--regions) laid on the grid.
@@ -582,7 +543,7 @@ SynthesisOptions optionsOnGrid(const SynthArguments& a,
   const OutputGrid& grid,
   std::size_t exemplars)
 {
-  SynthesisOptions o = a.options;
+  SynthesisOptions o = a.request.options;
   if (a.regions)
   {
     ReadOptions plain;
@@ -748,7 +709,7 @@ void writeReport(const std::string& path,
     { "cells_brought_into_range", r.finishing.cellsBroughtIntoRange } };
   if (r.finishing.drained)
   {
-    finishing["drainage"] = { { "method", pitRemovalMethodName(*a.options.drainage) },
+    finishing["drainage"] = { { "method", pitRemovalMethodName(*a.request.options.drainage) },
       { "pits_before", r.finishing.pitsBefore },
       { "pits_after", r.finishing.pitsAfter },
       { "largest_raise_m", r.finishing.largestDrainageRaise },
@@ -763,9 +724,9 @@ void writeReport(const std::string& path,
     { "sketch_kind", setup.sketchKind },
     { "exemplars", setup.exemplars.size() },
     { "backend", r.backend },
-    { "patch_size", a.options.patchSize },
-    { "merge", mergeModeName(a.options.merge) },
-    { "seed", a.options.seed },
+    { "patch_size", a.request.options.patchSize },
+    { "merge", mergeModeName(a.request.options.merge) },
+    { "seed", a.request.options.seed },
     { "memory_estimate_gb", setup.memoryEstimate / kBytesPerGB },
     { "exemplar_cache",
       { { "directory", setup.cache.directory },
@@ -941,7 +902,7 @@ int runSynth(std::vector<std::string> args)
   writeTerrainFile(a.output, r.terrain);
   run.write = since(t1);
   t1 = std::chrono::steady_clock::now();
-  const SynthesisFigures figures = measureSynthesis(setup, r, a.options.patchSize);
+  const SynthesisFigures figures = measureSynthesis(setup, r, a.request.options.patchSize);
   run.measure = since(t1);
   printSummary(setup, r, figures, run, a.output);
   if (a.report)

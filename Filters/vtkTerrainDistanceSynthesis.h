@@ -16,6 +16,7 @@
  */
 #pragma once
 
+#include "Core/Memory.h"
 #include "TerrainSynthesisFiltersModule.h"
 
 #include <vtkImageAlgorithm.h>
@@ -130,7 +131,7 @@ public:
   /// A synthesis estimated to need more memory than this (GB) is refused before
   /// it starts, with the estimate; 0 (default) allows 80% of the machine's
   /// physical memory (tsynth::distanceMemoryEstimate).
-  vtkSetClampMacro(MemoryBudget, double, 0.0, 1.0e6);
+  vtkSetClampMacro(MemoryBudget, double, 0.0, tsynth::kMaxMemoryBudgetGB);
   vtkGetMacro(MemoryBudget, double);
   ///@}
 

@@ -12,6 +12,7 @@
  */
 #pragma once
 
+#include "Core/Memory.h"
 #include "TerrainSynthesisFiltersModule.h"
 
 #include <vtkImageAlgorithm.h>
@@ -101,7 +102,7 @@ public:
   /// An optimisation estimated to need more memory than this (GB) is refused
   /// before it starts, with the estimate; 0 (default) allows 80% of the
   /// machine's physical memory (tsynth::optimisationMemoryEstimate).
-  vtkSetClampMacro(MemoryBudget, double, 0.0, 1.0e6);
+  vtkSetClampMacro(MemoryBudget, double, 0.0, tsynth::kMaxMemoryBudgetGB);
   vtkGetMacro(MemoryBudget, double);
   ///@}
 

@@ -49,9 +49,13 @@ void addArray(vtkImageData* image, const char* name, const std::vector<Value>& v
 vtkTerrainPitRemoval::vtkTerrainPitRemoval()
 {
   this->SetNumberOfInputPorts(2);
-  const tsynth::PitRemovalOptions defaults;
-  this->MaxBreachDepth = defaults.maxBreachDepth;
-  this->MaxBreachLength = defaults.maxBreachLength;
+  // The defaults of the options table (tsynth::pitRemovalOptionRows).
+  const auto initial = [](const char* property)
+  { return tsynth::optionRow(tsynth::pitRemovalOptionRows(), property).defaultValue; };
+  this->Method = static_cast<int>(initial("Method"));
+  this->MaxBreachDepth = initial("MaxBreachDepth");
+  this->MaxBreachLength = static_cast<int>(initial("MaxBreachLength"));
+  this->MemoryBudget = initial("MemoryBudget");
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
   this->SetInputArrayToProcess(kSinksArrayIndex,

@@ -18,6 +18,8 @@
  */
 #pragma once
 
+#include "Core/Memory.h"
+#include "Hydrology/BreachLimits.h"
 #include "TerrainSynthesisFiltersModule.h"
 
 #include <vtkImageAlgorithm.h>
@@ -44,13 +46,16 @@ public:
 
   ///@{
   /// Hybrid only: deepest cut in metres a breach may make (beyond it the pit is filled).
-  vtkSetClampMacro(MaxBreachDepth, double, 1.0e-3, 1.0e6);
+  vtkSetClampMacro(MaxBreachDepth,
+    double,
+    tsynth::kMinBreachDepthLimit,
+    tsynth::kMaxBreachDepthLimit);
   vtkGetMacro(MaxBreachDepth, double);
   ///@}
 
   ///@{
   /// Hybrid only: longest channel in cells a breach may cut.
-  vtkSetClampMacro(MaxBreachLength, int, 1, 1000000);
+  vtkSetClampMacro(MaxBreachLength, int, 1, tsynth::kMaxBreachLengthLimit);
   vtkGetMacro(MaxBreachLength, int);
   ///@}
 
@@ -64,7 +69,7 @@ public:
   /// A removal (with its flow routing) estimated to need more memory than this
   /// (GB) is refused before it starts, with the estimate; 0 (default) allows 80%
   /// of the machine's physical memory (tsynth::pitRemovalMemoryEstimate).
-  vtkSetClampMacro(MemoryBudget, double, 0.0, 1.0e6);
+  vtkSetClampMacro(MemoryBudget, double, 0.0, tsynth::kMaxMemoryBudgetGB);
   vtkGetMacro(MemoryBudget, double);
   ///@}
 
@@ -79,11 +84,12 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int Method = BREACH;
+  // The options table's defaults (tsynth::pitRemovalOptionRows), set in the constructor.
+  int Method;
   double MaxBreachDepth;
   int MaxBreachLength;
   int StreamThreshold = 0;
-  double MemoryBudget = 0.0; // GB
+  double MemoryBudget; // GB
 
 private:
   vtkTerrainPitRemoval(const vtkTerrainPitRemoval&) = delete;

@@ -17,6 +17,7 @@
 #include "Synthesis/SeamLines.h"
 #include "Synthesis/Setup.h"
 #include "Synthesis/SynthesisFigures.h"
+#include "Synthesis/SynthesisRequest.h"
 #include "Synthesis/Synthesizer.h"
 
 #include <vtkAlgorithmOutput.h>
@@ -51,6 +52,13 @@
 
 vtkStandardNewMacro(vtkTerrainSynthesis);
 
+// The enumerations scripts set (vtkTerrainSynthesis.NEW) number the kernels' words alike.
+static_assert(vtkTerrainSynthesis::CPU == static_cast<int>(tsynth::Backend::Cpu));
+static_assert(vtkTerrainSynthesis::NEW == static_cast<int>(tsynth::MergeMode::New));
+static_assert(vtkTerrainSynthesis::CONCENTRIC == static_cast<int>(tsynth::FillOrder::Concentric));
+static_assert(
+  vtkTerrainSynthesis::DRAIN_BY_HYBRID == static_cast<int>(tsynth::PitRemovalMethod::Hybrid) + 1);
+
 namespace
 {
 constexpr int kExemplarHeights = 0; // SetInputArrayToProcess index of the exemplars' heights
@@ -69,9 +77,22 @@ vtkTerrainSynthesis::vtkTerrainSynthesis()
 {
   this->SetInputArrayToProcess(
     kExemplarHeights, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
-  const tsynth::SynthesisOptions defaults;
-  this->VerticalOffset = defaults.verticalOffset;
-  this->Repetition = defaults.repetitionPenalty;
+  const auto initial = [](const char* property)
+  { return tsynth::synthesisOption(property).defaultValue; };
+  this->PatchSize = static_cast<int>(initial("PatchSize"));
+  this->Backend = static_cast<int>(initial("Backend"));
+  this->MergeMode = static_cast<int>(initial("MergeMode"));
+  this->FillOrder = static_cast<int>(initial("FillOrder"));
+  this->Drainage = static_cast<int>(initial("Drainage"));
+  this->VerticalOffset = initial("VerticalOffset") != 0.0;
+  this->Repetition = initial("Repetition");
+  this->TileSize = static_cast<int>(initial("TileSize"));
+  this->OutputSize[0] = this->OutputSize[1] = static_cast<int>(initial("OutputSize"));
+  this->CellSize = initial("CellSize");
+  this->Seed = static_cast<vtkIdType>(initial("Seed"));
+  this->MemoryBudget = initial("MemoryBudget");
+  this->LandformRelief = initial("LandformRelief");
+  this->UseExemplarCache = initial("UseExemplarCache") != 0.0;
   this->SetNumberOfInputPorts(3);
   this->SetNumberOfOutputPorts(kOutputPorts);
 }
@@ -282,9 +303,11 @@ tsynth::GridRequest gridRequest(vtkTerrainSynthesis* filter)
   return request;
 }
 
-tsynth::SynthesisOptions synthesisOptions(vtkTerrainSynthesis* filter)
+// The request the properties make: every option of the synthesis, read once.
+tsynth::SynthesisRequest synthesisRequest(vtkTerrainSynthesis* filter)
 {
-  tsynth::SynthesisOptions o;
+  tsynth::SynthesisRequest r;
+  tsynth::SynthesisOptions& o = r.options;
   o.patchSize = filter->GetPatchSize();
   o.backend = tsynth::backendFromProperty(filter->GetBackend());
   o.merge = tsynth::mergeModeFromProperty(filter->GetMergeMode());
@@ -296,7 +319,12 @@ tsynth::SynthesisOptions synthesisOptions(vtkTerrainSynthesis* filter)
   o.seed = static_cast<std::uint64_t>(filter->GetSeed());
   o.progress = [filter](double f, const std::string&)
   { filter->UpdateProgress(kSetupProgress + kSynthesisProgress * f); };
-  return o;
+  r.grid = gridRequest(filter);
+  r.landformRelief = filter->GetLandformRelief();
+  r.memoryBudgetGB = filter->GetMemoryBudget();
+  r.useExemplarCache = filter->GetUseExemplarCache();
+  r.cacheDirectory = filter->GetExemplarCacheDirectory();
+  return r;
 }
 
 // The seams as poly-lines along the borders between patches (tsynth::seamLines), in metres on
@@ -445,9 +473,10 @@ int vtkTerrainSynthesis::RequestInformation(vtkInformationVector** inputVector,
 namespace
 {
 
-// The set-up's inputs from the filter's inputs and properties; the exemplars' origins
+// The set-up's inputs from the filter's inputs and its request; the exemplars' origins
 // and warnings stay in `ex` for the placement table.
 tsynth::SetupInputs setupInputs(vtkTerrainSynthesis* filter,
+  const tsynth::SynthesisRequest& request,
   vtkInformationVector** inputVector,
   tsynth::ExemplarInputs& ex)
 {
@@ -455,30 +484,21 @@ tsynth::SetupInputs setupInputs(vtkTerrainSynthesis* filter,
   ex = tsynth::gatherExemplarImages(inputVector[0],
     tsynth::exemplarHeightsNamed(
       filter->GetInputArrayInformation(kExemplarHeights), inputVector[0]));
-  tsynth::SetupInputs in;
-  in.exemplars = std::move(ex.heights); // the placement table needs only ex's origins
-  in.sketch = tsynth::sketchInput(vtkDataObject::GetData(inputVector[1], 0), ex.warnings);
-  in.grid = gridRequest(filter);
-  in.patchSize = filter->GetPatchSize();
-  in.seed = static_cast<std::uint64_t>(filter->GetSeed());
-  in.landformRelief = filter->GetLandformRelief();
-  in.cacheDirectory = !filter->GetUseExemplarCache() ? std::string()
-    : filter->GetExemplarCacheDirectory().empty()    ? tsynth::defaultExemplarCacheDirectory()
-                                                     : filter->GetExemplarCacheDirectory();
-  in.memoryBudget = filter->GetMemoryBudget() * tsynth::kBytesPerGB;
-  in.openClMatcher = tsynth::matchesOnOpenCl(tsynth::backendFromProperty(filter->GetBackend()));
-  in.names = propertyNames();
-  return in;
+  tsynth::SketchInput sketch =
+    tsynth::sketchInput(vtkDataObject::GetData(inputVector[1], 0), ex.warnings);
+  // The placement table needs only ex's origins.
+  return tsynth::setupInputs(
+    request, std::move(ex.heights), {}, std::move(sketch), propertyNames());
 }
 
-// The options, with the style regions (port 2) laid on the terrain's grid.
-tsynth::SynthesisOptions optionsOnGrid(vtkTerrainSynthesis* filter,
+// The request's options, with the style regions (port 2) laid on the terrain's grid.
+tsynth::SynthesisOptions optionsOnGrid(const tsynth::SynthesisRequest& request,
   vtkInformationVector** inputVector,
   const std::vector<std::string>& regionMaps,
   const tsynth::OutputGrid& grid,
   std::size_t exemplars)
 {
-  tsynth::SynthesisOptions o = synthesisOptions(filter);
+  tsynth::SynthesisOptions o = request.options;
   if (inputVector[2]->GetNumberOfInformationObjects() > 0)
   {
     const tsynth::Heightfield labels =
@@ -751,10 +771,11 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
 void vtkTerrainSynthesis::SynthesiseOrCut(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  const tsynth::SynthesisRequest request = synthesisRequest(this);
   tsynth::ExemplarInputs ex;
-  tsynth::SetupInputs in = setupInputs(this, inputVector, ex);
+  tsynth::SetupInputs in = setupInputs(this, request, inputVector, ex);
   tsynth::SynthesisOptions o = optionsOnGrid(
-    this, inputVector, this->RegionMaps, tsynth::plannedGrid(in), in.exemplars.size());
+    request, inputVector, this->RegionMaps, tsynth::plannedGrid(in), in.exemplars.size());
   const std::uint64_t key = wholeOutputsKey(in, o, ex, this->DebugOutputs);
   if (this->WholeOutputs != nullptr && this->WholeOutputs->key == key)
   {
@@ -805,11 +826,12 @@ void showPreview(const vtkTerrainSynthesis::vtkRefinement& r, vtkInformationVect
 void vtkTerrainSynthesis::PreviewOrRefined(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  const tsynth::SynthesisRequest request = synthesisRequest(this);
   tsynth::ExemplarInputs ex;
-  tsynth::SetupInputs in = setupInputs(this, inputVector, ex);
+  tsynth::SetupInputs in = setupInputs(this, request, inputVector, ex);
   const tsynth::PreviewPlan plan = tsynth::planPreview(in);
   tsynth::SynthesisOptions o =
-    optionsOnGrid(this, inputVector, this->RegionMaps, plan.full, in.exemplars.size());
+    optionsOnGrid(request, inputVector, this->RegionMaps, plan.full, in.exemplars.size());
   const std::uint64_t key = tsynth::synthesisRequestKey(in, o);
   if (vtkRefinement* r = this->Refinement; r != nullptr && r->key == key)
   {

@@ -35,7 +35,9 @@
  */
 #pragma once
 
+#include "Core/Memory.h"
 #include "Core/PatchSize.h"
+#include "Synthesis/OptionLimits.h"
 #include "TerrainSynthesisFiltersModule.h"
 
 #include <vtkAlgorithm.h>
@@ -104,7 +106,7 @@ public:
   vtkBooleanMacro(VerticalOffset, bool);
   /// Seam-cost penalty for taking a source within half a patch of an earlier
   /// placement's (default 0.5; 0 off): discourages visible repeats.
-  vtkSetClampMacro(Repetition, double, 0.0, 100.0);
+  vtkSetClampMacro(Repetition, double, 0.0, tsynth::kMaxRepetitionPenalty);
   vtkGetMacro(Repetition, double);
   /// Tiled synthesis (Kernels/Synthesis/Tiling.h): square tiles of this many
   /// cells, at least two patches (smaller is refused), each synthesised with a
@@ -117,7 +119,7 @@ public:
   vtkSetVector2Macro(OutputSize, int);
   vtkGetVector2Macro(OutputSize, int);
   /// Output cell size in metres; 0 (default) takes the first exemplar's.
-  vtkSetClampMacro(CellSize, double, 0.0, 1.0e6);
+  vtkSetClampMacro(CellSize, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(CellSize, double);
   /// Seeds every arbitrary choice: another seed gives another terrain, the same
   /// seed the same terrain (default 0).
@@ -125,11 +127,11 @@ public:
   vtkGetMacro(Seed, vtkIdType);
   /// Sketched ridges and valleys get this times the relief of the exemplars'
   /// own major ones (1: like them; above 1 for bolder landforms).
-  vtkSetClampMacro(LandformRelief, double, 0.1, 5.0);
+  vtkSetClampMacro(LandformRelief, double, tsynth::kMinLandformRelief, tsynth::kMaxLandformRelief);
   vtkGetMacro(LandformRelief, double);
   /// A synthesis estimated to need more memory than this (GB) is refused before
   /// it starts; 0 (default) allows 80% of the machine's physical memory.
-  vtkSetClampMacro(MemoryBudget, double, 0.0, 1.0e6);
+  vtkSetClampMacro(MemoryBudget, double, 0.0, tsynth::kMaxMemoryBudgetGB);
   vtkGetMacro(MemoryBudget, double);
   /// Keep what is computed from the exemplars alone (their ridges and valleys,
   /// landform statistics and candidate pool) on disk, keyed by their content, so
@@ -216,23 +218,25 @@ protected:
   // it, else a synthesis (whose whole outputs are kept if the outputs hold only a piece).
   void SynthesiseOrCut(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 
-  int PatchSize = tsynth::kDefaultSynthesisPatch;
-  int Backend = AUTO;
-  int MergeMode = NEW;
-  int FillOrder = BEST_FIRST;
-  int Drainage = NO_DRAINAGE;
+  // The synthesis options' defaults are the options table's (tsynth::synthesisOptionRows), set
+  // in the constructor.
+  int PatchSize;
+  int Backend;
+  int MergeMode;
+  int FillOrder;
+  int Drainage;
   bool VerticalOffset;
   double Repetition;
-  int TileSize = 0;
-  int OutputSize[2] = { 0, 0 };
-  double CellSize = 0.0;
-  vtkIdType Seed = 0;
-  double MemoryBudget = 0.0;
-  double LandformRelief = 1.0;
+  int TileSize;
+  int OutputSize[2];
+  double CellSize;
+  vtkIdType Seed;
+  double MemoryBudget;
+  double LandformRelief;
   bool DebugOutputs = false;
   bool PreviewFirst = false;
   std::string OutputLevel = "none";
-  bool UseExemplarCache = true;
+  bool UseExemplarCache;
   std::string ExemplarCacheDirectory;
   std::string BackendUsed;
   std::vector<std::string> RegionMaps;

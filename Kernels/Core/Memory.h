@@ -9,6 +9,8 @@ namespace tsynth
 
 // Bytes in a gigabyte, as memory options (--max-memory, MemoryBudget) count them.
 constexpr double kBytesPerGB = 1.0e9;
+// The largest memory budget the front ends take, in GB: more is a typing error.
+constexpr double kMaxMemoryBudgetGB = 1.0e6;
 
 // This machine's physical memory, in bytes.
 double physicalMemory();

@@ -31,29 +31,44 @@ constexpr double kFlowBytesPerCell = 8.0;
 
 std::string pitRemovalMethodName(PitRemovalMethod method)
 {
-  switch (method)
+  return choicesOf(kPitRemovalMethodWords).wordOf(static_cast<int>(method), "Pit removal method");
+}
+
+const std::vector<OptionRow>& pitRemovalOptionRows()
+{
+  static const std::vector<OptionRow> rows = []
   {
-    case PitRemovalMethod::Fill:
-      return "fill";
-    case PitRemovalMethod::Breach:
-      return "breach";
-    case PitRemovalMethod::Hybrid:
-      return "hybrid";
-  }
-  return "breach";
+    const PitRemovalOptions d;
+    using T = OptionType;
+    return std::vector<OptionRow>{
+      choiceRow("Method",
+        "--method",
+        static_cast<int>(d.method),
+        choicesOf(kPitRemovalMethodWords),
+        { "Fill", "Breach", "Hybrid" }),
+      numberRow("MaxBreachDepth",
+        "--max-depth",
+        T::Real,
+        d.maxBreachDepth,
+        kMinBreachDepthLimit,
+        kMaxBreachDepthLimit),
+      numberRow(
+        "MaxBreachLength", "--max-length", T::Integer, d.maxBreachLength, 1, kMaxBreachLengthLimit),
+      numberRow("MemoryBudget",
+        "--max-memory",
+        T::Real,
+        d.memoryBudget / kBytesPerGB,
+        0.0,
+        kMaxMemoryBudgetGB),
+    };
+  }();
+  return rows;
 }
 
 PitRemovalMethod parsePitRemovalMethod(const std::string& name)
 {
-  for (PitRemovalMethod m :
-    { PitRemovalMethod::Fill, PitRemovalMethod::Breach, PitRemovalMethod::Hybrid })
-  {
-    if (name == pitRemovalMethodName(m))
-    {
-      return m;
-    }
-  }
-  throw Error("Unknown pit removal method \"" + name + "\": use fill, breach or hybrid.");
+  return static_cast<PitRemovalMethod>(
+    choicesOf(kPitRemovalMethodWords).valueOf(name, "The pit removal method"));
 }
 
 namespace

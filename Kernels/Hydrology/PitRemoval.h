@@ -9,9 +9,12 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/OptionTable.h"
+#include "BreachLimits.h"
 
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -26,8 +29,11 @@ enum class PitRemovalMethod
   Hybrid  // selective breaching (Lindsay 2016): breach within the limits, fill the rest
 };
 
-// "fill", "breach", "hybrid"; parsePitRemovalMethod throws tsynth::Error naming
-// the accepted words for anything else.
+// The methods' words, by value (Core/OptionTable.h); parsePitRemovalMethod
+// throws tsynth::Error naming them for anything else.
+inline constexpr const char* kPitRemovalMethodWords[] = { "fill", "breach", "hybrid" };
+static_assert(
+  std::size(kPitRemovalMethodWords) == static_cast<std::size_t>(PitRemovalMethod::Hybrid) + 1);
 std::string pitRemovalMethodName(PitRemovalMethod method);
 PitRemovalMethod parsePitRemovalMethod(const std::string& name);
 
@@ -50,6 +56,13 @@ struct PitRemovalOptions
   double memoryBudget = 0.0;
   std::string memoryOption = "the memory budget";
 };
+
+// The limits a front end takes for maxBreachDepth and maxBreachLength: BreachLimits.h.
+
+// The options `tsynth pits` and the Terrain Pit Removal filter share (Core/OptionTable.h): the
+// method, the hybrid's limits and the memory budget (in GB), their defaults a default
+// PitRemovalOptions'.
+const std::vector<OptionRow>& pitRemovalOptionRows();
 
 // Peak memory in bytes of removing the pits of a width x height DEM as `tsynth
 // pits` and the Terrain Pit Removal filter run it: the DEM read (its values and

@@ -133,19 +133,7 @@ public:
 
 Backend parseBackend(const std::string& text)
 {
-  if (text == "auto")
-  {
-    return Backend::Auto;
-  }
-  if (text == "opencl")
-  {
-    return Backend::OpenCL;
-  }
-  if (text == "cpu")
-  {
-    return Backend::Cpu;
-  }
-  throw Error("The backend must be auto, opencl or cpu, not \"" + text + "\".");
+  return static_cast<Backend>(choicesOf(kBackendWords).valueOf(text, "The backend"));
 }
 
 bool openClHasAccelerator()

@@ -8,6 +8,10 @@
 #include "DenseSearch.h"
 #include "FeatureCost.h"
 
+#include "../Core/OptionTable.h"
+
+#include <cstddef>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,7 +28,11 @@ enum class Backend
   Cpu
 };
 
-// Parses "auto", "opencl" or "cpu"; throws tsynth::Error otherwise.
+// The backends' words, by value (Core/OptionTable.h).
+inline constexpr const char* kBackendWords[] = { "auto", "opencl", "cpu" };
+static_assert(std::size(kBackendWords) == static_cast<std::size_t>(Backend::Cpu) + 1);
+
+// One of kBackendWords; throws tsynth::Error naming them otherwise.
 Backend parseBackend(const std::string& text);
 
 // Whether an OpenCL platform offers a GPU or an accelerator (false when none

@@ -11,31 +11,12 @@ namespace tsynth
 
 MergeMode parseMergeMode(const std::string& name)
 {
-  if (name == "cut")
-    return MergeMode::Cut;
-  if (name == "poisson")
-    return MergeMode::Poisson;
-  if (name == "shepard")
-    return MergeMode::Shepard;
-  if (name == "new")
-    return MergeMode::New;
-  throw Error("Unknown merge mode '" + name + "': use new, poisson, shepard or cut.");
+  return static_cast<MergeMode>(choicesOf(kMergeModeWords).valueOf(name, "The merge mode"));
 }
 
 const char* mergeModeName(MergeMode mode)
 {
-  switch (mode)
-  {
-    case MergeMode::Cut:
-      return "cut";
-    case MergeMode::Poisson:
-      return "poisson";
-    case MergeMode::Shepard:
-      return "shepard";
-    case MergeMode::New:
-      break;
-  }
-  return "new";
+  return choicesOf(kMergeModeWords).wordOf(static_cast<int>(mode), "Merge mode");
 }
 
 namespace

@@ -4,10 +4,13 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/OptionTable.h"
 #include "Poisson.h"
 #include "SeamCut.h"
 
+#include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -23,7 +26,11 @@ enum class MergeMode
   New      // Tasse: gradient mismatch spread by Shepard, then Poisson (default)
 };
 
-// "cut", "poisson", "shepard", "new"; throws tsynth::Error otherwise.
+// The merge modes' words, by value (Core/OptionTable.h).
+inline constexpr const char* kMergeModeWords[] = { "cut", "poisson", "shepard", "new" };
+static_assert(std::size(kMergeModeWords) == static_cast<std::size_t>(MergeMode::New) + 1);
+
+// One of kMergeModeWords; throws tsynth::Error naming them otherwise.
 MergeMode parseMergeMode(const std::string& name);
 const char* mergeModeName(MergeMode mode);
 

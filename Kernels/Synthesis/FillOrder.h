@@ -4,10 +4,12 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/OptionTable.h"
 
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <iterator>
 #include <vector>
 
 namespace tsynth
@@ -18,6 +20,10 @@ enum class FillOrder
   BestFirst, // priority = confidence + data term, updated locally after each merge
   Concentric // confidence only: layer by layer around what is filled
 };
+
+// The fill orders' words, by value (Core/OptionTable.h).
+inline constexpr const char* kFillOrderWords[] = { "best-first", "concentric" };
+static_assert(std::size(kFillOrderWords) == static_cast<std::size_t>(FillOrder::Concentric) + 1);
 
 // The fill's windows stand this far apart, in patches: half a patch, so that
 // each overlaps what is there by at least a quarter patch on every side, and a

@@ -529,6 +529,8 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
   checkPatchSize(in.patchSize, in.names.patch);
   reuseFreedWorkMemory(); // the filters' synthesis too, not only tsynth's
   SynthesisSetup s;
+  s.patchSize = in.patchSize;
+  s.seed = in.seed;
   s.grid = plannedGrid(in);
   checkMemory(in, s.grid, s);
   AnalysedSketch sketch = analyseSketch(in.sketch, s.grid, in.patchSize, in.rasterSketchPatch);
@@ -675,6 +677,14 @@ std::uint64_t synthesisRequestKey(const SetupInputs& in, const SynthesisOptions&
 
 SynthesisResult synthesize(const SynthesisSetup& setup, SynthesisOptions options)
 {
+  if (options.patchSize != setup.patchSize || options.seed != setup.seed)
+  {
+    throw Error("The synthesis was asked for " + std::to_string(options.patchSize) +
+      "-cell patches and seed " + std::to_string(options.seed) +
+      ", but its set-up was prepared for " + std::to_string(setup.patchSize) +
+      "-cell patches and seed " + std::to_string(setup.seed) +
+      ": prepare it again from the same request.");
+  }
   options.pool = setup.pool;
   return synthesize(setup.target, setup.exemplarPointers(), setup.graphPointers(), options);
 }

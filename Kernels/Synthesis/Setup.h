@@ -13,6 +13,7 @@
 #include "../Features/FeatureGraph.h"
 #include "../Features/Sketch.h"
 #include "ExemplarCache.h"
+#include "OptionLimits.h"
 #include "Synthesizer.h"
 #include "Target.h"
 
@@ -150,9 +151,7 @@ AnalysedSketch analyseSketch(const SketchInput& sketch,
   int patchSize,
   int rasterPatch = 0);
 
-// The landform relief a user may ask for, in multiples of the exemplars' own.
-constexpr double kMinLandformRelief = 0.1;
-constexpr double kMaxLandformRelief = 5.0;
+// The landform relief's bounds and default: OptionLimits.h.
 
 struct SetupInputs
 {
@@ -168,7 +167,7 @@ struct SetupInputs
   // Sketched ridges and valleys get this times the relief they are given to
   // stand out of the exemplars' own land (the exemplars' major ones', raised
   // on rugged land: LandformFieldOptions::standOut); a DEM target keeps its own.
-  double landformRelief = 1.0;
+  double landformRelief = kDefaultLandformRelief;
   // The patch size a raster sketch is analysed at, in its own pixels; 0: patchSize. A
   // preview (Preview.h) gives the whole synthesis' patch, so that both follow the same lines.
   int rasterSketchPatch = 0;
@@ -188,6 +187,10 @@ struct SynthesisSetup
   SynthesisTarget target;                    // on the output grid
   LandformStatistics landform;               // the exemplars' cross-sections the target uses
   OutputGrid grid;
+  // What the pool and the target were prepared for: synthesize(setup, options)
+  // refuses options that ask for another patch size or seed.
+  int patchSize = 0;
+  std::uint64_t seed = 0;
   std::string sketchKind;      // as AnalysedSketch::kind
   double memoryEstimate = 0.0; // bytes
   double memoryBudget = 0.0;   // bytes, the one applied
@@ -226,7 +229,9 @@ OutputGrid plannedGrid(const SetupInputs& inputs);
 // pool, the memory budget or the cache. Equal keys: the same terrain.
 std::uint64_t synthesisRequestKey(const SetupInputs& inputs, const SynthesisOptions& options);
 
-// synthesize() on what the set-up prepared, with its candidate pool.
+// synthesize() on what the set-up prepared, with its candidate pool. Throws
+// tsynth::Error if the options' patch size or seed is not the set-up's (the
+// pool, the target's valley outlets and the seed's streams would disagree).
 SynthesisResult synthesize(const SynthesisSetup& setup, SynthesisOptions options);
 
 } // namespace tsynth

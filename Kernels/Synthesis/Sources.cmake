@@ -11,6 +11,7 @@ set(TSYNTH_SYNTHESIS_SOURCES
   Synthesis/SeamLines.cxx
   Synthesis/Setup.cxx
   Synthesis/SynthesisFigures.cxx
+  Synthesis/SynthesisRequest.cxx
   Synthesis/Synthesizer.cxx
   Synthesis/Target.cxx
   Synthesis/Tiling.cxx)

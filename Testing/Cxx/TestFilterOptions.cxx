@@ -1,22 +1,36 @@
-// The filters' options agree with the kernels' one table of them: each
-// PatchSize's default and clamp in C++, and its default_values and
-// IntRangeDomain in the plugin XML a ParaView user sees.
+// The filters' options agree with the kernels' one table of them
+// (Synthesis/SynthesisRequest.h, Core/PatchSize.h): each default and clamp in
+// C++, and each default_values, range domain and enumeration in the plugin XML a
+// ParaView user sees.
+#include "PropertyEnums.h"
 #include "vtkTerrainCandidateBuilder.h"
 #include "vtkTerrainOptimisation.h"
 #include "vtkTerrainPatchMatcher.h"
+#include "vtkTerrainPitRemoval.h"
 #include "vtkTerrainSketchFeatures.h"
 #include "vtkTerrainSynthesis.h"
 
+#include "Core/Error.h"
 #include "Core/PatchSize.h"
+#include "Hydrology/PitRemoval.h"
 #include "Optimisation/TerrainOptimisation.h"
+#include "Synthesis/SynthesisRequest.h"
 
 #include <vtkNew.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <functional>
+#include <map>
+#include <regex>
+#include <set>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace
 {
@@ -119,4 +133,262 @@ TEST(FilterOptions, TheOptimisationPatchSizeIsItsKernelsOne)
     "vtkTerrainOptimisation");
   expectSame(
     xmlProperty("TerrainOptimisation.xml", "PatchSize"), kernel, "TerrainOptimisation.xml");
+}
+
+namespace
+{
+
+// A property of a plugin XML as ParaView reads it: its defaults, its range domain, whether it
+// is a check box, and its enumeration's entries.
+struct XmlDeclared
+{
+  std::vector<double> defaults;
+  std::vector<double> mins; // empty: no bound
+  std::vector<double> maxs;
+  bool boolean = false;
+  std::vector<std::pair<int, std::string>> entries;
+};
+
+std::vector<double> numbersIn(const std::string& text)
+{
+  std::vector<double> values;
+  std::istringstream in(text);
+  for (double v = 0.0; in >> v;)
+  {
+    values.push_back(v);
+  }
+  return values;
+}
+
+// The quoted attribute `name` of the first element matching `element` in `text`, or "".
+std::string attributeOf(const std::string& text, const std::string& element, const char* name)
+{
+  std::smatch tag;
+  if (!std::regex_search(text, tag, std::regex("<" + element + "\\b[^>]*>")))
+  {
+    return "";
+  }
+  const std::string opening = tag.str();
+  std::smatch value;
+  if (!std::regex_search(opening, value, std::regex(std::string("\\b") + name + "=\"([^\"]*)\"")))
+  {
+    return "";
+  }
+  return value[1].str();
+}
+
+XmlDeclared declaredIn(const std::string& xmlFile, const std::string& property)
+{
+  std::ifstream in(std::string(TSYNTH_PLUGIN_XML_DIR) + "/" + xmlFile);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string xml = buffer.str();
+  std::smatch element;
+  const std::regex pattern("<(Int|Double)VectorProperty\\s+name=\"" + property +
+    "\"[\\s\\S]*?</(Int|Double)VectorProperty>");
+  if (!std::regex_search(xml, element, pattern))
+  {
+    ADD_FAILURE() << xmlFile << " declares no " << property;
+    return {};
+  }
+  const std::string text = element.str();
+  XmlDeclared d;
+  d.defaults = numbersIn(attributeOf(text, "(Int|Double)VectorProperty", "default_values"));
+  d.mins = numbersIn(attributeOf(text, "(Int|Double)RangeDomain", "min"));
+  d.maxs = numbersIn(attributeOf(text, "(Int|Double)RangeDomain", "max"));
+  d.boolean = text.find("<BooleanDomain") != std::string::npos;
+  const std::regex entry("<Entry\\s+value=\"(-?[0-9]+)\"\\s+text=\"([^\"]*)\"");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), entry);
+       it != std::sregex_iterator();
+       ++it)
+  {
+    d.entries.emplace_back(std::stoi((*it)[1].str()), (*it)[2].str());
+  }
+  return d;
+}
+
+// Each of `values` is `expected`; none at all when `expected` is unbounded.
+void expectBound(const std::vector<double>& values, double expected, const std::string& what)
+{
+  if (std::isinf(expected))
+  {
+    EXPECT_TRUE(values.empty()) << what << " should have no bound";
+    return;
+  }
+  ASSERT_FALSE(values.empty()) << what << " has no bound";
+  for (double v : values)
+  {
+    EXPECT_EQ(v, expected) << what;
+  }
+}
+
+// The plugin XML declares `row`'s property as the table does.
+void expectDeclaredAsRow(const std::string& xmlFile, const tsynth::OptionRow& row)
+{
+  SCOPED_TRACE(xmlFile + ": " + row.property);
+  const XmlDeclared d = declaredIn(xmlFile, row.property);
+  expectBound(d.defaults, row.defaultValue, "default_values");
+  switch (row.type)
+  {
+    case tsynth::OptionType::Switch:
+      EXPECT_TRUE(d.boolean) << "a check box";
+      break;
+    case tsynth::OptionType::Choice:
+      ASSERT_EQ(d.entries.size(), row.labels.size());
+      for (std::size_t i = 0; i < row.labels.size(); ++i)
+      {
+        EXPECT_EQ(d.entries[i].first, static_cast<int>(i));
+        EXPECT_EQ(d.entries[i].second, row.labels[i]);
+      }
+      break;
+    default:
+      expectBound(d.mins, row.min, "the range's min");
+      expectBound(d.maxs, row.max, "the range's max");
+  }
+}
+
+// A filter's C++ side of each option: its value, and a setter.
+template<class Filter>
+struct FilterProperty
+{
+  std::function<double(Filter*)> get;
+  std::function<void(Filter*, double)> set;
+};
+
+// A new filter holds every row's default, and its setters keep a value inside the row's range,
+// except the properties `checkedWhenRun` (refused when the filter runs, never clamped).
+template<class Filter>
+void expectDefaultsAndClamps(const std::vector<tsynth::OptionRow>& rows,
+  const std::map<std::string, FilterProperty<Filter>>& properties,
+  const std::set<std::string>& checkedWhenRun)
+{
+  for (const tsynth::OptionRow& row : rows)
+  {
+    SCOPED_TRACE(row.property);
+    const auto p = properties.find(row.property);
+    ASSERT_NE(p, properties.end()) << "the filter has no such property";
+    vtkNew<Filter> filter;
+    EXPECT_EQ(p->second.get(filter), row.defaultValue);
+    if (row.type == tsynth::OptionType::Switch || checkedWhenRun.count(row.property) > 0)
+    {
+      continue;
+    }
+    p->second.set(filter, row.min - 1.0);
+    EXPECT_EQ(p->second.get(filter), row.min);
+    if (!std::isinf(row.max))
+    {
+      p->second.set(filter, row.max + 1.0);
+      EXPECT_EQ(p->second.get(filter), row.max);
+    }
+  }
+}
+
+std::map<std::string, FilterProperty<vtkTerrainSynthesis>> synthesisFilterProperties()
+{
+  using F = vtkTerrainSynthesis*;
+  return {
+    { "PatchSize",
+      { [](F f) { return f->GetPatchSize(); },
+        [](F f, double v) { f->SetPatchSize(static_cast<int>(v)); } } },
+    { "OutputSize",
+      { [](F f)
+        { return f->GetOutputSize()[0] == f->GetOutputSize()[1] ? f->GetOutputSize()[0] : -1; },
+        [](F f, double v) { f->SetOutputSize(static_cast<int>(v), static_cast<int>(v)); } } },
+    { "CellSize",
+      { [](F f) { return f->GetCellSize(); }, [](F f, double v) { f->SetCellSize(v); } } },
+    { "Seed",
+      { [](F f) { return static_cast<double>(f->GetSeed()); },
+        [](F f, double v) { f->SetSeed(static_cast<vtkIdType>(v)); } } },
+    { "LandformRelief",
+      { [](F f) { return f->GetLandformRelief(); },
+        [](F f, double v) { f->SetLandformRelief(v); } } },
+    { "MemoryBudget",
+      { [](F f) { return f->GetMemoryBudget(); }, [](F f, double v) { f->SetMemoryBudget(v); } } },
+    { "Backend",
+      { [](F f) { return f->GetBackend(); },
+        [](F f, double v) { f->SetBackend(static_cast<int>(v)); } } },
+    { "MergeMode",
+      { [](F f) { return f->GetMergeMode(); },
+        [](F f, double v) { f->SetMergeMode(static_cast<int>(v)); } } },
+    { "FillOrder",
+      { [](F f) { return f->GetFillOrder(); },
+        [](F f, double v) { f->SetFillOrder(static_cast<int>(v)); } } },
+    { "Drainage",
+      { [](F f) { return f->GetDrainage(); },
+        [](F f, double v) { f->SetDrainage(static_cast<int>(v)); } } },
+    { "VerticalOffset",
+      { [](F f) { return f->GetVerticalOffset() ? 1.0 : 0.0; },
+        [](F f, double v) { f->SetVerticalOffset(v != 0.0); } } },
+    { "Repetition",
+      { [](F f) { return f->GetRepetition(); }, [](F f, double v) { f->SetRepetition(v); } } },
+    { "TileSize",
+      { [](F f) { return f->GetTileSize(); },
+        [](F f, double v) { f->SetTileSize(static_cast<int>(v)); } } },
+    { "UseExemplarCache",
+      { [](F f) { return f->GetUseExemplarCache() ? 1.0 : 0.0; },
+        [](F f, double v) { f->SetUseExemplarCache(v != 0.0); } } },
+  };
+}
+
+} // namespace
+
+TEST(FilterOptions, TheSynthesisXmlDeclaresEveryOptionAsTheTableDoes)
+{
+  for (const tsynth::OptionRow& row : tsynth::synthesisOptionRows())
+  {
+    expectDeclaredAsRow("TerrainSynthesis.xml", row);
+  }
+  // The stage filters that take the same option offer the same choices.
+  expectDeclaredAsRow("TerrainPatchMatcher.xml", tsynth::synthesisOption("Backend"));
+  tsynth::OptionRow mode = tsynth::synthesisOption("MergeMode");
+  mode.property = "Mode";
+  expectDeclaredAsRow("TerrainGraphCutMerger.xml", mode);
+}
+
+TEST(FilterOptions, TheSynthesisFilterStartsAtTheTablesDefaultsAndKeepsToItsRanges)
+{
+  // A size typed wrong fails the request when the filter runs.
+  expectDefaultsAndClamps<vtkTerrainSynthesis>(
+    tsynth::synthesisOptionRows(), synthesisFilterProperties(), { "PatchSize", "OutputSize" });
+}
+
+TEST(FilterOptions, APropertyValueWithoutAWordFailsRatherThanPickingOne)
+{
+  EXPECT_EQ(tsynth::mergeModeFromProperty(2), tsynth::MergeMode::Shepard);
+  EXPECT_THROW(tsynth::mergeModeFromProperty(4), tsynth::Error);
+  EXPECT_EQ(tsynth::pitRemovalMethodFromProperty(2), tsynth::PitRemovalMethod::Hybrid);
+  EXPECT_THROW(tsynth::pitRemovalMethodFromProperty(3), tsynth::Error); // was taken as breach
+  EXPECT_THROW(tsynth::backendFromProperty(-1), tsynth::Error);
+  EXPECT_FALSE(tsynth::drainageFromProperty(0).has_value());
+  EXPECT_THROW(tsynth::drainageFromProperty(-1), tsynth::Error); // was taken as off
+}
+
+TEST(FilterOptions, ThePitRemovalFilterAndItsXmlAreItsTables)
+{
+  const std::vector<tsynth::OptionRow>& rows = tsynth::pitRemovalOptionRows();
+  for (const tsynth::OptionRow& row : rows)
+  {
+    expectDeclaredAsRow("TerrainPitRemoval.xml", row);
+  }
+  // The synthesis' Drainage offers the same methods after Off.
+  const tsynth::OptionRow& drainage = tsynth::synthesisOption("Drainage");
+  const tsynth::OptionRow& method = tsynth::optionRow(rows, "Method");
+  ASSERT_EQ(drainage.labels.size(), method.labels.size() + 1);
+  EXPECT_TRUE(std::equal(method.labels.begin(), method.labels.end(), drainage.labels.begin() + 1));
+
+  using F = vtkTerrainPitRemoval*;
+  const std::map<std::string, FilterProperty<vtkTerrainPitRemoval>> properties = {
+    { "Method",
+      { [](F f) { return f->GetMethod(); },
+        [](F f, double v) { f->SetMethod(static_cast<int>(v)); } } },
+    { "MaxBreachDepth",
+      { [](F f) { return f->GetMaxBreachDepth(); },
+        [](F f, double v) { f->SetMaxBreachDepth(v); } } },
+    { "MaxBreachLength",
+      { [](F f) { return f->GetMaxBreachLength(); },
+        [](F f, double v) { f->SetMaxBreachLength(static_cast<int>(v)); } } },
+    { "MemoryBudget",
+      { [](F f) { return f->GetMemoryBudget(); }, [](F f, double v) { f->SetMemoryBudget(v); } } },
+  };
+  expectDefaultsAndClamps<vtkTerrainPitRemoval>(rows, properties, {});
 }

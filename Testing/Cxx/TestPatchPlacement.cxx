@@ -31,7 +31,8 @@ SynthesisOptions options()
   o.patchSize = kPatch;
   o.backend = Backend::Cpu;
   o.pool = test::yOverColoradoSetup().pool;
-  o.seed = 5;
+  o.seed = test::yOverColoradoSetup().seed; // the one its target was made with
+
   return o;
 }
 

@@ -176,8 +176,22 @@ TEST(Setup, PrepareConvertsMetresResamplesExemplarsAndBuildsTheTarget)
   in.sketch = sketchOf({ line({ { 600, 3000 }, { 5400, 3000 } }) });
   in.grid.cellX = in.grid.cellY = 30.0;
   in.patchSize = kPatch;
+  in.seed = 5;
   const SynthesisSetup s = prepareSynthesis(std::move(in));
   EXPECT_EQ(s.sketchKind, "poly-lines");
+  // What it was prepared for, which the synthesis must then be asked for.
+  EXPECT_EQ(s.patchSize, kPatch);
+  EXPECT_EQ(s.seed, 5u);
+  SynthesisOptions other;
+  other.patchSize = kPatch + kPatchSizeStep;
+  other.seed = 5;
+  EXPECT_EQ(errorOf([&] { synthesize(s, other); }),
+    "The synthesis was asked for " + std::to_string(kPatch + kPatchSizeStep) +
+      "-cell patches and seed 5, but its set-up was prepared for " + std::to_string(kPatch) +
+      "-cell patches and seed 5: prepare it again from the same request.");
+  other.patchSize = kPatch;
+  other.seed = 6;
+  EXPECT_NE(errorOf([&] { synthesize(s, other); }), "");
   EXPECT_EQ(s.grid.width, 181 + kPatch / 2);
   EXPECT_EQ(s.grid.height, 101 + kPatch / 2);
   EXPECT_EQ(s.target.field.width, 181 + kPatch / 2);

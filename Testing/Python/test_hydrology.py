@@ -210,10 +210,10 @@ class PitsCommandTest(unittest.TestCase):
         empty = os.path.join(self.tmp.name, "empty.vti")
         write_vti(empty, np.zeros((10, 12), dtype=np.float32), np.zeros((10, 12), dtype=np.uint8))
         cases = [
-            (["--method", "carve"], 2, "use fill, breach or hybrid"),
+            (["--method", "carve"], 2, '--method must be fill, breach or hybrid, not "carve".'),
             (["--sinks", small], 1, "give a mask of the DEM's size"),
-            (["--max-depth", "-3"], 2, "--max-depth expects a positive number"),
-            (["--max-length", "0"], 2, "--max-length expects a whole number"),
+            (["--max-depth", "-3"], 2, "--max-depth expects a number from 0.001 to 1000000, not -3."),
+            (["--max-length", "0"], 2, "--max-length expects a whole number from 1 to 1000000, not 0."),
             (["--flow", "/nonexistent/acc.tif"], 1, "folder /nonexistent does not exist"),
             (["--stream-area", "1"], 2, "with --streams"),
         ]

@@ -1,0 +1,130 @@
+#include "SynthesisRequest.h"
+
+#include "../Core/Memory.h"
+#include "../Core/PatchSize.h"
+#include "ExemplarCache.h"
+
+#include <utility>
+
+namespace tsynth
+{
+
+SetupInputs setupInputs(const SynthesisRequest& request,
+  std::vector<Heightfield> exemplars,
+  std::vector<std::string> exemplarNames,
+  SketchInput sketch,
+  SetupOptionNames optionNames)
+{
+  SetupInputs in;
+  in.exemplars = std::move(exemplars);
+  in.exemplarNames = std::move(exemplarNames);
+  in.sketch = std::move(sketch);
+  in.grid = request.grid;
+  in.patchSize = request.options.patchSize;
+  in.seed = request.options.seed;
+  in.landformRelief = request.landformRelief;
+  in.memoryBudget = request.memoryBudgetGB * kBytesPerGB;
+  in.openClMatcher = matchesOnOpenCl(request.options.backend);
+  in.cacheDirectory = !request.useExemplarCache ? std::string()
+    : request.cacheDirectory.empty()            ? defaultExemplarCacheDirectory()
+                                                : request.cacheDirectory;
+  in.names = std::move(optionNames);
+  return in;
+}
+
+Choices drainageChoices()
+{
+  // Static: rows and callers keep pointers to the words.
+  static const std::vector<const char*> words = []
+  {
+    std::vector<const char*> w{ "off" };
+    w.insert(w.end(), std::begin(kPitRemovalMethodWords), std::end(kPitRemovalMethodWords));
+    return w;
+  }();
+  return { words.data(), words.size() };
+}
+
+std::optional<PitRemovalMethod> drainageOf(int value)
+{
+  drainageChoices().wordOf(value, "Drainage"); // throws for a value without a word
+  if (value == 0)
+  {
+    return std::nullopt;
+  }
+  return static_cast<PitRemovalMethod>(value - 1);
+}
+
+int drainageValue(const std::optional<PitRemovalMethod>& drainage)
+{
+  return drainage ? static_cast<int>(*drainage) + 1 : 0;
+}
+
+namespace
+{
+
+// "Off", then the Terrain Pit Removal filter's methods.
+std::vector<std::string> drainageLabels()
+{
+  std::vector<std::string> labels{ "Off" };
+  const std::vector<std::string>& methods = optionRow(pitRemovalOptionRows(), "Method").labels;
+  labels.insert(labels.end(), methods.begin(), methods.end());
+  return labels;
+}
+
+std::vector<OptionRow> makeRows()
+{
+  const SynthesisRequest d;
+  const SynthesisOptions& o = d.options;
+  using T = OptionType;
+  return {
+    numberRow(
+      "PatchSize", "--patch", T::Integer, o.patchSize, kMinSynthesisPatch, kMaxSynthesisPatch),
+    numberRow("OutputSize", "--size", T::Integer, d.grid.width, 0, kMaxOutputSide),
+    numberRow("CellSize", "--cell", T::Real, d.grid.cellX, 0.0, kUnbounded),
+    numberRow("Seed", "--seed", T::Integer, static_cast<double>(o.seed), 0.0, kUnbounded),
+    numberRow("LandformRelief",
+      "--landform-relief",
+      T::Real,
+      d.landformRelief,
+      kMinLandformRelief,
+      kMaxLandformRelief),
+    numberRow("MemoryBudget", "--max-memory", T::Real, d.memoryBudgetGB, 0.0, kMaxMemoryBudgetGB),
+    choiceRow("Backend",
+      "--backend",
+      static_cast<int>(o.backend),
+      choicesOf(kBackendWords),
+      { "Auto", "OpenCL", "CPU" }),
+    choiceRow("MergeMode",
+      "--merge",
+      static_cast<int>(o.merge),
+      choicesOf(kMergeModeWords),
+      { "Cut", "Poisson", "Shepard", "New (Shepard gradients + Poisson)" }),
+    choiceRow("FillOrder",
+      "--fill",
+      static_cast<int>(o.fill),
+      choicesOf(kFillOrderWords),
+      { "Best-first", "Concentric" }),
+    choiceRow(
+      "Drainage", "--drainage", drainageValue(o.drainage), drainageChoices(), drainageLabels()),
+    switchRow("VerticalOffset", "--no-vertical-offset", o.verticalOffset),
+    numberRow(
+      "Repetition", "--repetition", T::Real, o.repetitionPenalty, 0.0, kMaxRepetitionPenalty),
+    numberRow("TileSize", "--tile-size", T::Integer, o.tileSize, 0.0, kUnbounded),
+    switchRow("UseExemplarCache", "--no-cache", d.useExemplarCache),
+  };
+}
+
+} // namespace
+
+const std::vector<OptionRow>& synthesisOptionRows()
+{
+  static const std::vector<OptionRow> rows = makeRows();
+  return rows;
+}
+
+const OptionRow& synthesisOption(const std::string& property)
+{
+  return optionRow(synthesisOptionRows(), property);
+}
+
+} // namespace tsynth
