@@ -40,8 +40,8 @@ what changed.
                          fill the rest (Lindsay 2016)
   --max-depth M          hybrid: deepest cut a breach may make, metres, %RANGE:MaxBreachDepth%
                          (default %DEFAULT:MaxBreachDepth%)
-  --max-length N         hybrid: longest channel a breach may cut, cells,
-                         %RANGE:MaxBreachLength% (default %DEFAULT:MaxBreachLength%)
+  --max-length N         hybrid: longest channel a breach may cut, cells, %RANGE:MaxBreachLength%
+                         (default %DEFAULT:MaxBreachLength%)
   --sinks MASK           a raster of the DEM's size, non-zero where water may stay (lakes)
   --flow ACC.tif         also write the D8 flow accumulation (cells draining through each cell)
   --streams S.tif        also write the stream network: 1 where at least --stream-area drains

@@ -40,15 +40,16 @@ are brought onto the source's heights, strokes become its landforms.
   --guide GUIDE          what the terrain should follow
   -o, --output OUT       .tif (GeoTIFF float32), .png (16-bit + sidecar) or .vti
   --size WxH             output size in cells (default: the guide's pixels)
-  --patch N              patch size in cells, odd, 3 to %MAXPATCH% (default %PATCH%)
-  --levels L             pyramid levels above the output (default: %LEVELS%)
-  --alpha A              guide weight at the coarsest level, 0 to 1 (default %ALPHA%)
-  --iterations N         E/M iterations per level (default %MU%, the paper's)
-  --search-iterations N  PatchMatch passes per M-step (default %PM%)
+  --patch N              patch size in cells, odd, %RANGE:PatchSize% (default %DEFAULT:PatchSize%)
+  --levels L             pyramid levels above the output, %RANGE:Levels% (default: as many
+                         as the source allows)
+  --alpha A              guide weight at the coarsest level, %RANGE:Alpha% (default %DEFAULT:Alpha%)
+  --iterations N         E/M iterations per level, %RANGE:IterationsPerLevel% (default %DEFAULT:IterationsPerLevel%, the paper's)
+  --search-iterations N  PatchMatch passes per M-step, %RANGE:SearchIterations% (default %DEFAULT:SearchIterations%)
   --rotations            also use the source's patches turned by 90, 180 and 270 degrees
   --reflections          also use them mirrored
-  --pits M               pit removal on the coarser levels: breach (default, the paper's),
-                         fill, hybrid or none
+  --pits M               pit removal on the coarser levels: %WORDS:PitRemoval%
+                         (default %DEFAULT:PitRemoval%, the paper's)
   --drain                also make the output itself drain (beyond the paper, which leaves
                          the finest level alone): the --pits method on blocks from the coarsest
                          level's scale down to 2 cells, the last few-cell pits filled
@@ -57,11 +58,6 @@ are brought onto the source's heights, strokes become its landforms.
                          of the machine's memory)
   --no-progress          no progress bar on the terminal
 )";
-
-// Bounds of the counts a user may ask for: beyond them a run would take days or
-// the pyramid would have no cells left; they catch typing errors.
-constexpr int kMaxLevels = 16;
-constexpr int kMaxIterations = 100;
 
 struct OptimiseArguments
 {
@@ -73,68 +69,37 @@ struct OptimiseArguments
   bool progress = true;
 };
 
-std::string helpText()
-{
-  const OptimisationOptions d;
-  std::string help = kOptimiseHelp;
-  auto put = [&](const std::string& key, const std::string& value)
-  {
-    const std::size_t at = help.find(key);
-    if (at != std::string::npos)
-    {
-      help.replace(at, key.size(), value);
-    }
-  };
-  std::ostringstream alpha;
-  alpha << d.alpha;
-  put("%MAXPATCH%", std::to_string(kMaxPatchSize));
-  put("%PATCH%", std::to_string(d.patchSize));
-  put("%LEVELS%", d.levels > 0 ? std::to_string(d.levels) : "as many as the source allows");
-  put("%ALPHA%", alpha.str());
-  put("%MU%", std::to_string(d.iterationsPerLevel));
-  put("%PM%", std::to_string(d.patchMatchIterations));
-  return help;
-}
-
 void takeOptimisationOptions(CommandLine& cl, OptimisationOptions& o)
 {
-  if (const auto patch = takeCount(cl, "--patch", 1, kMaxPatchSize))
+  const std::vector<OptionRow>& rows = optimisationOptionRows();
+  if (const auto patch = takeRowNumber(cl, optionRow(rows, "PatchSize")))
   {
-    o.patchSize = *patch; // odd and range checked by the kernel, with its sentence
+    o.patchSize = static_cast<int>(*patch); // odd checked by the kernel, with its sentence
   }
-  if (const auto levels = takeCount(cl, "--levels", 0, kMaxLevels))
+  if (const auto levels = takeRowNumber(cl, optionRow(rows, "Levels")))
   {
-    o.levels = *levels;
+    o.levels = static_cast<int>(*levels);
   }
-  if (const auto alpha = cl.takeNumber("--alpha"))
+  if (const auto alpha = takeRowNumber(cl, optionRow(rows, "Alpha")))
   {
     o.alpha = *alpha;
   }
-  if (const auto mu = takeCount(cl, "--iterations", 1, kMaxIterations))
+  if (const auto mu = takeRowNumber(cl, optionRow(rows, "IterationsPerLevel")))
   {
-    o.iterationsPerLevel = *mu;
+    o.iterationsPerLevel = static_cast<int>(*mu);
   }
-  if (const auto pm = takeCount(cl, "--search-iterations", 1, kMaxIterations))
+  if (const auto pm = takeRowNumber(cl, optionRow(rows, "SearchIterations")))
   {
-    o.patchMatchIterations = *pm;
+    o.patchMatchIterations = static_cast<int>(*pm);
   }
   o.rotations = cl.takeFlag("--rotations");
   o.drainOutput = cl.takeFlag("--drain");
   o.reflections = cl.takeFlag("--reflections");
-  if (const auto pits = cl.take("--pits"))
+  if (const auto pits = takeRowChoice(cl, optionRow(rows, "PitRemoval")))
   {
-    o.removePits = *pits != "none";
-    if (o.removePits)
-    {
-      try
-      {
-        o.pitRemoval.method = parsePitRemovalMethod(*pits);
-      }
-      catch (const Error&)
-      {
-        throw UsageError("--pits must be breach, fill, hybrid or none.");
-      }
-    }
+    const std::optional<PitRemovalMethod> method = offOrMethod(*pits);
+    o.removePits = method.has_value();
+    o.pitRemoval.method = method.value_or(o.pitRemoval.method);
   }
   if (const auto seed = cl.take("--seed"))
   {
@@ -233,7 +198,7 @@ int runOptimise(std::vector<std::string> args)
 {
   if (wantsHelp(args))
   {
-    std::cout << helpText() << kReadOptionsHelp;
+    std::cout << withOptionRows(kOptimiseHelp, optimisationOptionRows()) << kReadOptionsHelp;
     return 0;
   }
   OptimiseArguments a = parseOptimiseArguments(std::move(args));

@@ -68,8 +68,7 @@ writes them: its output works directly as a sketch of the same DEM.
   --size WxH             output size in cells (default: the sketch's pixels; for poly-lines
                          the grid they were found on, else half a patch past their reach)
   --cell M               output cell size in metres (default: the first exemplar's)
-  --patch N              patch size in cells, a multiple of 4 %RANGE:PatchSize% (default
-                         %DEFAULT:PatchSize%)
+  --patch N              patch size in cells, a multiple of 4 %RANGE:PatchSize% (default %DEFAULT:PatchSize%)
   --backend B            %WORDS:Backend%: same result, different speed (default
                          %DEFAULT:Backend%: OpenCL on a GPU or accelerator, else the CPU)
   --merge M              %WORDS:MergeMode% (default %DEFAULT:MergeMode%)
@@ -428,7 +427,7 @@ void takeSynthesisOptions(CommandLine& cl, SynthesisOptions& o)
   }
   if (const auto drainage = takeRowChoice(cl, synthesisOption("Drainage")))
   {
-    o.drainage = drainageOf(*drainage);
+    o.drainage = offOrMethod(*drainage);
   }
   o.verticalOffset = !cl.takeFlag("--no-vertical-offset");
   if (const auto tile = takeCount(cl, "--tile-size", 1, kMaxOutputSide))

@@ -30,7 +30,7 @@ PitRemovalMethod pitRemovalMethodFromProperty(int value)
 
 std::optional<PitRemovalMethod> drainageFromProperty(int value)
 {
-  return drainageOf(value);
+  return offOrMethod(value);
 }
 
 } // namespace tsynth

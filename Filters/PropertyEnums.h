@@ -25,7 +25,8 @@ FillOrder fillOrderFromProperty(int value);
 // 0 fill, 1 breach, 2 hybrid (Terrain Pit Removal's Method).
 PitRemovalMethod pitRemovalMethodFromProperty(int value);
 
-// 0 off, 1 fill, 2 breach, 3 hybrid (Terrain Synthesis' Drainage).
+// 0 off, 1 fill, 2 breach, 3 hybrid (Terrain Synthesis' Drainage, Terrain Optimisation's
+// PitRemoval).
 std::optional<PitRemovalMethod> drainageFromProperty(int value);
 
 } // namespace tsynth

@@ -79,16 +79,21 @@ vtkTerrainOptimisation::vtkTerrainOptimisation()
   this->SetNumberOfInputPorts(2);
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
-  const tsynth::OptimisationOptions defaults;
-  this->PatchSize = defaults.patchSize;
-  this->Levels = defaults.levels;
-  this->Alpha = defaults.alpha;
-  this->IterationsPerLevel = defaults.iterationsPerLevel;
-  this->SearchIterations = defaults.patchMatchIterations;
-  this->Rotations = defaults.rotations;
-  this->Reflections = defaults.reflections;
-  this->PitRemoval = defaults.removePits ? BREACH : NO_PIT_REMOVAL;
-  this->DrainOutput = defaults.drainOutput;
+  // The defaults of the options table (tsynth::optimisationOptionRows).
+  const auto initial = [](const char* property)
+  { return tsynth::optionRow(tsynth::optimisationOptionRows(), property).defaultValue; };
+  this->PatchSize = static_cast<int>(initial("PatchSize"));
+  this->Levels = static_cast<int>(initial("Levels"));
+  this->Alpha = initial("Alpha");
+  this->IterationsPerLevel = static_cast<int>(initial("IterationsPerLevel"));
+  this->SearchIterations = static_cast<int>(initial("SearchIterations"));
+  this->Rotations = initial("Rotations") != 0.0;
+  this->Reflections = initial("Reflections") != 0.0;
+  this->PitRemoval = static_cast<int>(initial("PitRemoval"));
+  this->DrainOutput = initial("DrainOutput") != 0.0;
+  this->OutputSize[0] = this->OutputSize[1] = static_cast<int>(initial("OutputSize"));
+  this->Seed = static_cast<vtkIdType>(initial("Seed"));
+  this->MemoryBudget = initial("MemoryBudget");
 }
 
 int vtkTerrainOptimisation::FillInputPortInformation(int port, vtkInformation* info)

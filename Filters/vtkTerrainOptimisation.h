@@ -13,6 +13,7 @@
 #pragma once
 
 #include "Core/Memory.h"
+#include "Optimisation/OptimisationLimits.h"
 #include "TerrainSynthesisFiltersModule.h"
 
 #include <vtkImageAlgorithm.h>
@@ -41,7 +42,7 @@ public:
 
   ///@{
   /// Pyramid levels above the output; 0: as many as the source allows.
-  vtkSetClampMacro(Levels, int, 0, 16);
+  vtkSetClampMacro(Levels, int, 0, tsynth::kMaxOptimisationLevels);
   vtkGetMacro(Levels, int);
   ///@}
 
@@ -53,13 +54,13 @@ public:
 
   ///@{
   /// E/M iterations per level (the paper's mu).
-  vtkSetClampMacro(IterationsPerLevel, int, 1, 100);
+  vtkSetClampMacro(IterationsPerLevel, int, 1, tsynth::kMaxOptimisationIterations);
   vtkGetMacro(IterationsPerLevel, int);
   ///@}
 
   ///@{
   /// PatchMatch passes (propagation and random search) per M-step.
-  vtkSetClampMacro(SearchIterations, int, 1, 100);
+  vtkSetClampMacro(SearchIterations, int, 1, tsynth::kMaxOptimisationIterations);
   vtkGetMacro(SearchIterations, int);
   ///@}
 
@@ -118,6 +119,7 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  // The options table's defaults (tsynth::optimisationOptionRows), set in the constructor.
   int PatchSize;
   int Levels;
   double Alpha;
@@ -127,9 +129,9 @@ protected:
   bool Reflections;
   int PitRemoval;
   bool DrainOutput;
-  int OutputSize[2] = { 0, 0 };
-  vtkIdType Seed = 0;
-  double MemoryBudget = 0.0; // GB
+  int OutputSize[2];
+  vtkIdType Seed;
+  double MemoryBudget; // GB
 
 private:
   vtkTerrainOptimisation(const vtkTerrainOptimisation&) = delete;

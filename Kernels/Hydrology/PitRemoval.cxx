@@ -65,6 +65,41 @@ const std::vector<OptionRow>& pitRemovalOptionRows()
   return rows;
 }
 
+Choices offOrMethodChoices()
+{
+  // Static: rows and callers keep pointers to the words.
+  static const std::vector<const char*> words = []
+  {
+    std::vector<const char*> w{ "off" };
+    w.insert(w.end(), std::begin(kPitRemovalMethodWords), std::end(kPitRemovalMethodWords));
+    return w;
+  }();
+  return { words.data(), words.size() };
+}
+
+std::vector<std::string> offOrMethodLabels()
+{
+  std::vector<std::string> labels{ "Off" };
+  const std::vector<std::string>& methods = optionRow(pitRemovalOptionRows(), "Method").labels;
+  labels.insert(labels.end(), methods.begin(), methods.end());
+  return labels;
+}
+
+std::optional<PitRemovalMethod> offOrMethod(int value)
+{
+  offOrMethodChoices().wordOf(value, "Pit removal"); // throws for a value without a word
+  if (value == 0)
+  {
+    return std::nullopt;
+  }
+  return static_cast<PitRemovalMethod>(value - 1);
+}
+
+int offOrMethodValue(const std::optional<PitRemovalMethod>& method)
+{
+  return method ? static_cast<int>(*method) + 1 : 0;
+}
+
 PitRemovalMethod parsePitRemovalMethod(const std::string& name)
 {
   return static_cast<PitRemovalMethod>(

@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,15 @@ struct PitRemovalOptions
 // method, the hybrid's limits and the memory budget (in GB), their defaults a default
 // PitRemovalOptions'.
 const std::vector<OptionRow>& pitRemovalOptionRows();
+
+// A pit removal that may be off, as the synthesis' Drainage and the optimisation's PitRemoval
+// offer it: "off", then kPitRemovalMethodWords (ParaView: "Off", then the Method's labels).
+Choices offOrMethodChoices();
+std::vector<std::string> offOrMethodLabels();
+// Its value (0: off) as a method, and back. offOrMethod throws tsynth::Error for a value
+// without a word.
+std::optional<PitRemovalMethod> offOrMethod(int value);
+int offOrMethodValue(const std::optional<PitRemovalMethod>& method);
 
 // Peak memory in bytes of removing the pits of a width x height DEM as `tsynth
 // pits` and the Terrain Pit Removal filter run it: the DEM read (its values and

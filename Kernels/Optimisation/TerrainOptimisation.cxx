@@ -7,11 +7,13 @@
 #include "../Core/Memory.h"
 #include "../Core/Resample.h"
 #include "../Hydrology/Flow.h"
+#include "../Synthesis/Setup.h"
 #include "PatchMatch.h"
 #include "Pyramid.h"
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <string>
 
 namespace tsynth
@@ -472,6 +474,48 @@ OptimisationResult optimiseTerrain(const Heightfield& source,
   }
   run.progress.report(1.0);
   return result;
+}
+
+const std::vector<OptionRow>& optimisationOptionRows()
+{
+  static const std::vector<OptionRow> rows = []
+  {
+    const OptimisationOptions d;
+    using T = OptionType;
+    const std::optional<PitRemovalMethod> pits =
+      d.removePits ? std::optional<PitRemovalMethod>(d.pitRemoval.method) : std::nullopt;
+    return std::vector<OptionRow>{
+      numberRow("PatchSize", "--patch", T::Integer, d.patchSize, kMinPatchSize, kMaxPatchSize),
+      numberRow("Levels", "--levels", T::Integer, d.levels, 0, kMaxOptimisationLevels),
+      numberRow("Alpha", "--alpha", T::Real, d.alpha, 0.0, 1.0),
+      numberRow("IterationsPerLevel",
+        "--iterations",
+        T::Integer,
+        d.iterationsPerLevel,
+        1,
+        kMaxOptimisationIterations),
+      numberRow("SearchIterations",
+        "--search-iterations",
+        T::Integer,
+        d.patchMatchIterations,
+        1,
+        kMaxOptimisationIterations),
+      switchRow("Rotations", "--rotations", d.rotations),
+      switchRow("Reflections", "--reflections", d.reflections),
+      choiceRow(
+        "PitRemoval", "--pits", offOrMethodValue(pits), offOrMethodChoices(), offOrMethodLabels()),
+      switchRow("DrainOutput", "--drain", d.drainOutput),
+      numberRow("Seed", "--seed", T::Integer, static_cast<double>(d.seed), 0.0, kUnbounded),
+      numberRow("OutputSize", "--size", T::Integer, 0, 0, kMaxOutputSide),
+      numberRow("MemoryBudget",
+        "--max-memory",
+        T::Real,
+        d.memoryBudget / kBytesPerGB,
+        0.0,
+        kMaxMemoryBudgetGB),
+    };
+  }();
+  return rows;
 }
 
 } // namespace tsynth

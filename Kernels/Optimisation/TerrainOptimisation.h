@@ -9,8 +9,10 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/OptionTable.h"
 #include "../Core/Progress.h"
 #include "../Hydrology/PitRemoval.h"
+#include "OptimisationLimits.h"
 
 #include <cstdint>
 #include <functional>
@@ -99,6 +101,12 @@ struct OptimisationOptions
   std::string memoryOption = "the memory budget";
   std::string sizeOption = "the output size";
 };
+
+// The options `tsynth optimise` and the Terrain Optimisation filter share (Core/OptionTable.h),
+// their defaults a default OptimisationOptions': patch size, levels, alpha, iterations, search
+// iterations, rotations, reflections, pit removal (off or a method), drain output, seed, output
+// size and memory budget (GB).
+const std::vector<OptionRow>& optimisationOptionRows();
 
 // Peak memory in bytes of an optimisation of a width x height output from a
 // source of sourceCells cells (at the output's cell size), as `tsynth optimise`

@@ -32,44 +32,8 @@ SetupInputs setupInputs(const SynthesisRequest& request,
   return in;
 }
 
-Choices drainageChoices()
-{
-  // Static: rows and callers keep pointers to the words.
-  static const std::vector<const char*> words = []
-  {
-    std::vector<const char*> w{ "off" };
-    w.insert(w.end(), std::begin(kPitRemovalMethodWords), std::end(kPitRemovalMethodWords));
-    return w;
-  }();
-  return { words.data(), words.size() };
-}
-
-std::optional<PitRemovalMethod> drainageOf(int value)
-{
-  drainageChoices().wordOf(value, "Drainage"); // throws for a value without a word
-  if (value == 0)
-  {
-    return std::nullopt;
-  }
-  return static_cast<PitRemovalMethod>(value - 1);
-}
-
-int drainageValue(const std::optional<PitRemovalMethod>& drainage)
-{
-  return drainage ? static_cast<int>(*drainage) + 1 : 0;
-}
-
 namespace
 {
-
-// "Off", then the Terrain Pit Removal filter's methods.
-std::vector<std::string> drainageLabels()
-{
-  std::vector<std::string> labels{ "Off" };
-  const std::vector<std::string>& methods = optionRow(pitRemovalOptionRows(), "Method").labels;
-  labels.insert(labels.end(), methods.begin(), methods.end());
-  return labels;
-}
 
 std::vector<OptionRow> makeRows()
 {
@@ -104,8 +68,11 @@ std::vector<OptionRow> makeRows()
       static_cast<int>(o.fill),
       choicesOf(kFillOrderWords),
       { "Best-first", "Concentric" }),
-    choiceRow(
-      "Drainage", "--drainage", drainageValue(o.drainage), drainageChoices(), drainageLabels()),
+    choiceRow("Drainage",
+      "--drainage",
+      offOrMethodValue(o.drainage),
+      offOrMethodChoices(),
+      offOrMethodLabels()),
     switchRow("VerticalOffset", "--no-vertical-offset", o.verticalOffset),
     numberRow(
       "Repetition", "--repetition", T::Real, o.repetitionPenalty, 0.0, kMaxRepetitionPenalty),

@@ -52,10 +52,6 @@ SetupInputs setupInputs(const SynthesisRequest& request,
 const std::vector<OptionRow>& synthesisOptionRows();
 const OptionRow& synthesisOption(const std::string& property);
 
-// Drainage's words: "off", then kPitRemovalMethodWords.
-Choices drainageChoices();
-// Drainage's property value as the synthesis option (0: off), and back.
-std::optional<PitRemovalMethod> drainageOf(int value);
-int drainageValue(const std::optional<PitRemovalMethod>& drainage);
+// Drainage's words and values: offOrMethodChoices (Hydrology/PitRemoval.h).
 
 } // namespace tsynth

@@ -392,3 +392,46 @@ TEST(FilterOptions, ThePitRemovalFilterAndItsXmlAreItsTables)
   };
   expectDefaultsAndClamps<vtkTerrainPitRemoval>(rows, properties, {});
 }
+
+TEST(FilterOptions, TheOptimisationFilterAndItsXmlAreItsTables)
+{
+  const std::vector<tsynth::OptionRow>& rows = tsynth::optimisationOptionRows();
+  for (const tsynth::OptionRow& row : rows)
+  {
+    expectDeclaredAsRow("TerrainOptimisation.xml", row);
+  }
+  using F = vtkTerrainOptimisation*;
+  auto count = [](int (vtkTerrainOptimisation::*get)(), void (vtkTerrainOptimisation::*set)(int))
+  {
+    return FilterProperty<vtkTerrainOptimisation>{ [get](F f) { return (f->*get)(); },
+      [set](F f, double v) { (f->*set)(static_cast<int>(v)); } };
+  };
+  auto onOff = [](bool (vtkTerrainOptimisation::*get)(), void (vtkTerrainOptimisation::*set)(bool))
+  {
+    return FilterProperty<vtkTerrainOptimisation>{ [get](F f) { return (f->*get)() ? 1.0 : 0.0; },
+      [set](F f, double v) { (f->*set)(v != 0.0); } };
+  };
+  using O = vtkTerrainOptimisation;
+  const std::map<std::string, FilterProperty<vtkTerrainOptimisation>> properties = {
+    { "PatchSize", count(&O::GetPatchSize, &O::SetPatchSize) },
+    { "Levels", count(&O::GetLevels, &O::SetLevels) },
+    { "Alpha", { [](F f) { return f->GetAlpha(); }, [](F f, double v) { f->SetAlpha(v); } } },
+    { "IterationsPerLevel", count(&O::GetIterationsPerLevel, &O::SetIterationsPerLevel) },
+    { "SearchIterations", count(&O::GetSearchIterations, &O::SetSearchIterations) },
+    { "Rotations", onOff(&O::GetRotations, &O::SetRotations) },
+    { "Reflections", onOff(&O::GetReflections, &O::SetReflections) },
+    { "PitRemoval", count(&O::GetPitRemoval, &O::SetPitRemoval) },
+    { "DrainOutput", onOff(&O::GetDrainOutput, &O::SetDrainOutput) },
+    { "Seed",
+      { [](F f) { return static_cast<double>(f->GetSeed()); },
+        [](F f, double v) { f->SetSeed(static_cast<vtkIdType>(v)); } } },
+    { "OutputSize",
+      { [](F f)
+        { return f->GetOutputSize()[0] == f->GetOutputSize()[1] ? f->GetOutputSize()[0] : -1; },
+        [](F f, double v) { f->SetOutputSize(static_cast<int>(v), static_cast<int>(v)); } } },
+    { "MemoryBudget",
+      { [](F f) { return f->GetMemoryBudget(); }, [](F f, double v) { f->SetMemoryBudget(v); } } },
+  };
+  // Sizes typed wrong fail the request when the filter runs (the patch must also be odd).
+  expectDefaultsAndClamps<vtkTerrainOptimisation>(rows, properties, { "PatchSize", "OutputSize" });
+}

@@ -576,3 +576,20 @@ TEST(PitRemoval, BreachAndHybridAreDeterministic)
   EXPECT_TRUE(
     sameBits(breachOrFillDepressions(dem, 5.0, 20), breachOrFillDepressions(dem, 5.0, 20)));
 }
+
+TEST(PitRemoval, AnOptionalMethodIsOffThenTheMethods)
+{
+  EXPECT_EQ(offOrMethodChoices().list(), "off, fill, breach or hybrid");
+  const std::vector<std::string> labels{ "Off", "Fill", "Breach", "Hybrid" };
+  EXPECT_EQ(offOrMethodLabels(), labels);
+  EXPECT_FALSE(offOrMethod(0).has_value());
+  EXPECT_EQ(offOrMethod(1), PitRemovalMethod::Fill);
+  EXPECT_EQ(offOrMethod(2), PitRemovalMethod::Breach);
+  EXPECT_EQ(offOrMethod(3), PitRemovalMethod::Hybrid);
+  EXPECT_THROW(offOrMethod(4), Error);
+  EXPECT_THROW(offOrMethod(-1), Error);
+  for (int value = 0; value <= 3; ++value)
+  {
+    EXPECT_EQ(offOrMethodValue(offOrMethod(value)), value);
+  }
+}

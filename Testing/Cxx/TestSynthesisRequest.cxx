@@ -96,19 +96,4 @@ TEST(SynthesisRequest, EveryChoiceHasALabelPerWordAndItsRangeIsItsWords)
   EXPECT_EQ(choices, 4); // backend, merge, fill order, drainage
 }
 
-TEST(SynthesisRequest, DrainageIsOffThenThePitRemovalMethods)
-{
-  EXPECT_EQ(drainageChoices().list(), "off, fill, breach or hybrid");
-  EXPECT_FALSE(drainageOf(0).has_value());
-  EXPECT_EQ(drainageOf(1), PitRemovalMethod::Fill);
-  EXPECT_EQ(drainageOf(2), PitRemovalMethod::Breach);
-  EXPECT_EQ(drainageOf(3), PitRemovalMethod::Hybrid);
-  EXPECT_THROW(drainageOf(4), Error);
-  EXPECT_THROW(drainageOf(-1), Error);
-  for (int value = 0; value <= 3; ++value)
-  {
-    EXPECT_EQ(drainageValue(drainageOf(value)), value);
-  }
-}
-
 } // namespace tsynth

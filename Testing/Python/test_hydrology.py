@@ -444,8 +444,9 @@ class OptimiseTest(unittest.TestCase):
         base = ["optimise", "--exemplar", self.colorado, "-o", out, "--no-progress"]
         cases = [
             (["--guide", self.lambda_grey, "--patch", "8"], 1, "odd"),
-            (["--guide", self.lambda_grey, "--alpha", "1.5"], 1, "alpha"),
-            (["--guide", self.lambda_grey, "--pits", "drain"], 2, "--pits must be"),
+            (["--guide", self.lambda_grey, "--alpha", "1.5"], 2, "--alpha expects a number from 0 to 1, not 1.5."),
+            (["--guide", self.lambda_grey, "--pits", "drain"], 2,
+             '--pits must be off, fill, breach or hybrid, not "drain".'),
             (["--guide", "/nonexistent/guide.png"], 1, "/nonexistent/guide.png"),
             (["--guide", tiny], 1, "output of 20 x 20 cells, smaller than the 80 cells"),
             (["--guide", self.lambda_grey, "--levels", "9"], 1, "use fewer levels"),
