@@ -1,6 +1,7 @@
 #include "OptionTable.h"
 
 #include "Error.h"
+#include "Memory.h"
 
 #include <cmath>
 #include <iomanip>
@@ -112,6 +113,16 @@ OptionRow choiceRow(const char* property,
 OptionRow switchRow(const char* property, const char* flag, bool defaultValue)
 {
   return numberRow(property, flag, OptionType::Switch, defaultValue ? 1.0 : 0.0, 0.0, 1.0);
+}
+
+OptionRow memoryBudgetRow(double defaultBytes)
+{
+  return numberRow("MemoryBudget",
+    "--max-memory",
+    OptionType::Real,
+    defaultBytes / kBytesPerGB,
+    0.0,
+    kMaxMemoryBudgetGB);
 }
 
 const OptionRow& optionRow(const std::vector<OptionRow>& rows, const std::string& property)

@@ -91,6 +91,8 @@ OptionRow choiceRow(const char* property,
   const Choices& words,
   std::vector<std::string> labels);
 OptionRow switchRow(const char* property, const char* flag, bool defaultValue);
+// Every front end's memory budget: MemoryBudget in GB, --max-memory, 0 to kMaxMemoryBudgetGB.
+OptionRow memoryBudgetRow(double defaultBytes);
 
 // The row of `property`; throws tsynth::Error if there is none (a programming error).
 const OptionRow& optionRow(const std::vector<OptionRow>& rows, const std::string& property);

@@ -54,12 +54,7 @@ const std::vector<OptionRow>& pitRemovalOptionRows()
         kMaxBreachDepthLimit),
       numberRow(
         "MaxBreachLength", "--max-length", T::Integer, d.maxBreachLength, 1, kMaxBreachLengthLimit),
-      numberRow("MemoryBudget",
-        "--max-memory",
-        T::Real,
-        d.memoryBudget / kBytesPerGB,
-        0.0,
-        kMaxMemoryBudgetGB),
+      memoryBudgetRow(d.memoryBudget),
     };
   }();
   return rows;

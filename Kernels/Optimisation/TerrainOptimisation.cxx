@@ -507,12 +507,7 @@ const std::vector<OptionRow>& optimisationOptionRows()
       switchRow("DrainOutput", "--drain", d.drainOutput),
       numberRow("Seed", "--seed", T::Integer, static_cast<double>(d.seed), 0.0, kUnbounded),
       numberRow("OutputSize", "--size", T::Integer, 0, 0, kMaxOutputSide),
-      numberRow("MemoryBudget",
-        "--max-memory",
-        T::Real,
-        d.memoryBudget / kBytesPerGB,
-        0.0,
-        kMaxMemoryBudgetGB),
+      memoryBudgetRow(d.memoryBudget),
     };
   }();
   return rows;

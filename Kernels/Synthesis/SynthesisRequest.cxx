@@ -52,7 +52,7 @@ std::vector<OptionRow> makeRows()
       d.landformRelief,
       kMinLandformRelief,
       kMaxLandformRelief),
-    numberRow("MemoryBudget", "--max-memory", T::Real, d.memoryBudgetGB, 0.0, kMaxMemoryBudgetGB),
+    memoryBudgetRow(d.memoryBudgetGB * kBytesPerGB),
     choiceRow("Backend",
       "--backend",
       static_cast<int>(o.backend),
