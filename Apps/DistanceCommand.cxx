@@ -27,7 +27,6 @@ namespace
 {
 
 // The thesis's default resolution, for poly-lines without --size.
-constexpr int kDefaultLineGrid = 512;
 
 std::string helpText()
 {
@@ -58,7 +57,8 @@ Inputs
   --edge-range LO,HI     grey 0..max mapped to these weights (default )"
     << e.edgeLow << "," << e.edgeHigh << R"()
   -o, --output OUT       .tif (GeoTIFF float32), .png (16-bit + sidecar) or .vti
-  --size WxH             grid of poly-lines, cells (default 512x512; images: their pixels)
+  --size WxH             grid of poly-lines, cells (default )"
+    << kDefaultDistanceGrid << "x" << kDefaultDistanceGrid << R"(; images: their pixels)
   --cell M               metres per cell (default )"
     << d.cellSize << R"()
   --height-scale M       metres per cost unit (default )"
@@ -146,60 +146,59 @@ std::pair<double, double> parseRange(const std::string& text, const char* option
   return { *lo, *hi };
 }
 
-void takeNumber(CommandLine& cl, const char* name, double& target)
+// The option of the table's row `property` into `target`, checked against the row's range.
+template<class T>
+void takeOption(CommandLine& cl, const char* property, T& target)
 {
-  if (const auto v = cl.takeNumber(name))
+  if (const auto v = takeRowNumber(cl, optionRow(distanceOptionRows(), property)))
   {
-    target = *v;
+    target = static_cast<T>(*v);
   }
 }
 
 void takeLatticeOptions(CommandLine& cl, DistanceOptions& o)
 {
-  takeNumber(cl, "--mu", o.meanWeight);
-  takeNumber(cl, "--r", o.roughness);
+  takeOption(cl, "MeanWeight", o.meanWeight);
+  takeOption(cl, "Roughness", o.roughness);
   o.sqrt2Diagonals = !cl.takeFlag("--chessboard");
-  takeNumber(cl, "--s", o.seaLevelScale);
-  takeNumber(cl, "--b", o.blendBias);
-  takeNumber(cl, "--eps-s", o.seaLevelEpsilon);
-  takeNumber(cl, "--p-f", o.approximateFraction);
-  takeNumber(cl, "--min-ts", o.minScaling);
-  takeNumber(cl, "--profile-scale", o.profileScale);
-  takeNumber(cl, "--cell", o.cellSize);
-  takeNumber(cl, "--height-scale", o.heightScale);
-  if (const auto bins = takeCount(cl, "--bins", 2, 1 << 20))
-  {
-    o.profileBins = *bins;
-  }
+  takeOption(cl, "SeaLevelScale", o.seaLevelScale);
+  takeOption(cl, "BlendBias", o.blendBias);
+  takeOption(cl, "SeaLevelEpsilon", o.seaLevelEpsilon);
+  takeOption(cl, "ApproximateFraction", o.approximateFraction);
+  takeOption(cl, "MinScaling", o.minScaling);
+  takeOption(cl, "ProfileScale", o.profileScale);
+  takeOption(cl, "CellSize", o.cellSize);
+  takeOption(cl, "HeightScale", o.heightScale);
+  takeOption(cl, "ProfileBins", o.profileBins);
   o.approximateOnly = cl.takeFlag("--approximate");
 }
 
 void takeCostOptions(CommandLine& cl, DistanceOptions& o)
 {
-  takeNumber(cl, "--fbm-h", o.fbm.h);
-  takeNumber(cl, "--lacunarity", o.fbm.lacunarity);
-  takeNumber(cl, "--domain", o.fbm.domain);
-  takeNumber(cl, "--fbm-scale", o.fbm.scale);
-  if (const auto octaves = takeCount(cl, "--octaves", 1, 32))
-  {
-    o.fbm.octaves = *octaves;
-  }
+  takeOption(cl, "FbmH", o.fbm.h);
+  takeOption(cl, "FbmLacunarity", o.fbm.lacunarity);
+  takeOption(cl, "FbmDomain", o.fbm.domain);
+  takeOption(cl, "FbmScale", o.fbm.scale);
+  takeOption(cl, "FbmOctaves", o.fbm.octaves);
   if (const auto range = cl.take("--fbm-range"))
   {
     std::tie(o.fbm.low, o.fbm.high) = parseRange(*range, "--fbm-range");
-  }
-  if (const auto ridges = takeCount(cl, "--ridges", 0, 100000000))
-  {
-    o.ridgeCount = *ridges;
-  }
-  takeNumber(cl, "--ridge-fraction", o.ridgeFraction);
-  if (const auto mode = cl.take("--ridge-cost"))
-  {
-    if (*mode != "rise" && *mode != "cost")
+    const OptionRow& row = optionRow(distanceOptionRows(), "FbmRange");
+    try
     {
-      throw UsageError("--ridge-cost expects rise or cost.");
+      row.checkValue(o.fbm.low, row.flag);
+      row.checkValue(o.fbm.high, row.flag);
     }
-    o.ridgeCost = *mode == "rise" ? RidgeCost::ScaledRise : RidgeCost::ScaledCost;
+    catch (const Error& e)
+    {
+      throw UsageError(e.what());
+    }
+  }
+  takeOption(cl, "RidgeCount", o.ridgeCount);
+  takeOption(cl, "RidgeFraction", o.ridgeFraction);
+  if (const auto mode = takeRowChoice(cl, optionRow(distanceOptionRows(), "RidgeCost")))
+  {
+    o.ridgeCost = static_cast<RidgeCost>(*mode);
   }
   if (const auto seed = cl.take("--seed"))
   {
@@ -219,17 +218,18 @@ DistanceArguments parseDistanceArguments(std::vector<std::string> args)
   a.size = cl.take("--size");
   if (const auto assign = cl.take("--assign"))
   {
-    if (*assign != "colour" && *assign != "color" && *assign != "feature")
+    const OptionRow& row = optionRow(distanceOptionRows(), "ProfileAssignment");
+    try
     {
-      throw UsageError("--assign expects colour or feature.");
+      a.sources.assignment = static_cast<ProfileAssignment>(
+        row.choices.valueOf(*assign == "color" ? "colour" : *assign, row.flag));
     }
-    a.sources.assignment =
-      *assign == "feature" ? ProfileAssignment::ByFeature : ProfileAssignment::ByColour;
+    catch (const Error& e)
+    {
+      throw UsageError(e.what());
+    }
   }
-  if (const auto region = takeCount(cl, "--region-profile", 0, 1 << 20))
-  {
-    a.sources.regionProfile = *region;
-  }
+  takeOption(cl, "RegionProfile", a.sources.regionProfile);
   if (const auto range = cl.take("--edge-range"))
   {
     std::tie(a.sources.edgeLow, a.sources.edgeHigh) = parseRange(*range, "--edge-range");
@@ -282,8 +282,8 @@ DistanceTerrain synthesise(DistanceArguments& a)
   if (hasExtension(a.generators, ".vtp"))
   {
     GridRequest grid;
-    grid.width = kDefaultLineGrid;
-    grid.height = kDefaultLineGrid;
+    grid.width = kDefaultDistanceGrid;
+    grid.height = kDefaultDistanceGrid;
     grid = a.size ? parseSize(*a.size, grid) : grid;
     vtkNew<vtkPolyData> data;
     readPolyDataFile(a.generators, data);

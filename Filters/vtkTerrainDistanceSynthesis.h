@@ -17,6 +17,7 @@
 #pragma once
 
 #include "Core/Memory.h"
+#include "Distance/DistanceLimits.h"
 #include "TerrainSynthesisFiltersModule.h"
 
 #include <vtkImageAlgorithm.h>
@@ -48,9 +49,9 @@ public:
   ///@}
   ///@{
   /// Metres per cell, and metres per cost unit.
-  vtkSetClampMacro(CellSize, double, 1e-9, VTK_DOUBLE_MAX);
+  vtkSetClampMacro(CellSize, double, tsynth::kLeastPositiveSetting, VTK_DOUBLE_MAX);
   vtkGetMacro(CellSize, double);
-  vtkSetClampMacro(HeightScale, double, 1e-9, VTK_DOUBLE_MAX);
+  vtkSetClampMacro(HeightScale, double, tsynth::kLeastPositiveSetting, VTK_DOUBLE_MAX);
   vtkGetMacro(HeightScale, double);
   ///@}
   ///@{
@@ -60,9 +61,9 @@ public:
   ///@}
   ///@{
   /// The lattice: mean weight mu_w, deviation r (< mu_w, checked when run), sqrt(2) diagonals.
-  vtkSetClampMacro(MeanWeight, double, 0.001, 100.0);
+  vtkSetClampMacro(MeanWeight, double, tsynth::kLeastPositiveSetting, tsynth::kMaxMeanWeight);
   vtkGetMacro(MeanWeight, double);
-  vtkSetClampMacro(Roughness, double, 0.0, 100.0);
+  vtkSetClampMacro(Roughness, double, 0.0, tsynth::kMaxMeanWeight);
   vtkGetMacro(Roughness, double);
   vtkSetMacro(Sqrt2Diagonals, bool);
   vtkGetMacro(Sqrt2Diagonals, bool);
@@ -70,9 +71,9 @@ public:
   ///@}
   ///@{
   /// Sea level scale s and blending bias b.
-  vtkSetClampMacro(SeaLevelScale, double, 0.0, 10.0);
+  vtkSetClampMacro(SeaLevelScale, double, 0.0, tsynth::kMaxSeaLevelScale);
   vtkGetMacro(SeaLevelScale, double);
-  vtkSetClampMacro(BlendBias, double, 0.0, 64.0);
+  vtkSetClampMacro(BlendBias, double, 0.0, tsynth::kMaxBlendBias);
   vtkGetMacro(BlendBias, double);
   ///@}
   ///@{
@@ -81,16 +82,16 @@ public:
   vtkGetMacro(SeaLevelEpsilon, double);
   vtkSetClampMacro(ApproximateFraction, double, 0.0, 1.0);
   vtkGetMacro(ApproximateFraction, double);
-  vtkSetClampMacro(MinScaling, double, 1e-12, VTK_DOUBLE_MAX);
+  vtkSetClampMacro(MinScaling, double, tsynth::kLeastMinScaling, VTK_DOUBLE_MAX);
   vtkGetMacro(MinScaling, double);
   ///@}
   ///@{
   /// Profiles: a CSV or image file when input 1 is not connected; scale, bins, assignment, region.
   vtkSetMacro(ProfileFileName, std::string);
   vtkGetMacro(ProfileFileName, std::string);
-  vtkSetClampMacro(ProfileScale, double, 1e-9, VTK_DOUBLE_MAX);
+  vtkSetClampMacro(ProfileScale, double, tsynth::kLeastPositiveSetting, VTK_DOUBLE_MAX);
   vtkGetMacro(ProfileScale, double);
-  vtkSetClampMacro(ProfileBins, int, 2, 1 << 20);
+  vtkSetClampMacro(ProfileBins, int, 2, tsynth::kMaxProfileBins);
   vtkGetMacro(ProfileBins, int);
   vtkSetClampMacro(ProfileAssignment, int, BY_COLOUR, BY_FEATURE);
   vtkGetMacro(ProfileAssignment, int);
@@ -99,13 +100,13 @@ public:
   ///@}
   ///@{
   /// fBm generator costs: H, lacunarity, octaves, domain, scale and range (eq. 4.1).
-  vtkSetClampMacro(FbmH, double, 0.0, 10.0);
+  vtkSetClampMacro(FbmH, double, 0.0, tsynth::kMaxFbmH);
   vtkGetMacro(FbmH, double);
-  vtkSetClampMacro(FbmLacunarity, double, 1.0, VTK_DOUBLE_MAX);
+  vtkSetClampMacro(FbmLacunarity, double, tsynth::kLeastLacunarity, VTK_DOUBLE_MAX);
   vtkGetMacro(FbmLacunarity, double);
-  vtkSetClampMacro(FbmOctaves, int, 1, 32);
+  vtkSetClampMacro(FbmOctaves, int, 1, tsynth::kMaxFbmOctaves);
   vtkGetMacro(FbmOctaves, int);
-  vtkSetClampMacro(FbmDomain, double, 1e-9, VTK_DOUBLE_MAX);
+  vtkSetClampMacro(FbmDomain, double, tsynth::kLeastPositiveSetting, VTK_DOUBLE_MAX);
   vtkGetMacro(FbmDomain, double);
   vtkSetClampMacro(FbmScale, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(FbmScale, double);
@@ -114,9 +115,9 @@ public:
   ///@}
   ///@{
   /// Dendritic ridges: count, cost fraction and rule.
-  vtkSetClampMacro(RidgeCount, int, 0, 100000);
+  vtkSetClampMacro(RidgeCount, int, 0, tsynth::kMaxRidgeCount);
   vtkGetMacro(RidgeCount, int);
-  vtkSetClampMacro(RidgeFraction, double, 0.001, 1.0);
+  vtkSetClampMacro(RidgeFraction, double, tsynth::kLeastPositiveSetting, 1.0);
   vtkGetMacro(RidgeFraction, double);
   vtkSetClampMacro(RidgeCost, int, SCALED_RISE, SCALED_COST);
   vtkGetMacro(RidgeCost, int);
@@ -147,7 +148,7 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int OutputSize[2] = { 512, 512 }; // the thesis's resolution
+  int OutputSize[2] = { tsynth::kDefaultDistanceGrid, tsynth::kDefaultDistanceGrid };
   double CellSize;
   double HeightScale;
   vtkIdType Seed;

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -61,7 +62,9 @@ struct OptionRow
   std::string flag;     // the tsynth option that sets the same thing ("" none)
   OptionType type = OptionType::Real;
   double defaultValue = 0.0; // as the property holds it (a Choice: the value)
-  double min = -kUnbounded;  // the property's range; +-kUnbounded: none that side
+  // A pair's second default (LO,HI options); none: every element takes defaultValue.
+  std::optional<double> secondDefault;
+  double min = -kUnbounded; // the property's range; +-kUnbounded: none that side
   double max = kUnbounded;
   Choices choices;                 // a Choice's tsynth words, by value
   std::vector<std::string> labels; // a Choice's entries in ParaView, by value

@@ -35,8 +35,10 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/OptionTable.h"
 #include "../Core/Progress.h"
 #include "CostScaling.h"
+#include "DistanceLimits.h"
 #include "Generators.h"
 #include "Lattice.h"
 #include "Profile.h"
@@ -44,6 +46,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -57,6 +60,9 @@ enum class RidgeCost
   ScaledRise, // c_g + f (C_a - c_g): the ridge leaves its peak at the peak's height
   ScaledCost  // f C_a, the thesis read literally: ridges rise above their own peak near it
 };
+// The ridge costs' words, by value (Core/OptionTable.h).
+inline constexpr const char* kRidgeCostWords[] = { "rise", "cost" };
+static_assert(std::size(kRidgeCostWords) == static_cast<std::size_t>(RidgeCost::ScaledCost) + 1);
 
 // The priority queue of the searches; all give the same bits (for the one
 // exception, exact double ties, see LatticeSearch.h).

@@ -8,7 +8,9 @@
 #include "../Core/HeightfieldIO.h"
 #include "../Features/FeatureGraph.h"
 
+#include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -48,6 +50,10 @@ enum class ProfileAssignment
             // count)
   ByFeature // feature id mod profile count (the thesis's p_id = f_id mod 3)
 };
+// The assignments' words, by value (Core/OptionTable.h).
+inline constexpr const char* kProfileAssignmentWords[] = { "colour", "feature" };
+static_assert(
+  std::size(kProfileAssignmentWords) == static_cast<std::size_t>(ProfileAssignment::ByFeature) + 1);
 
 struct StrokeGenerators
 {

@@ -4,6 +4,7 @@
 // ParaView user sees.
 #include "PropertyEnums.h"
 #include "vtkTerrainCandidateBuilder.h"
+#include "vtkTerrainDistanceSynthesis.h"
 #include "vtkTerrainOptimisation.h"
 #include "vtkTerrainPatchMatcher.h"
 #include "vtkTerrainPitRemoval.h"
@@ -12,6 +13,7 @@
 
 #include "Core/Error.h"
 #include "Core/PatchSize.h"
+#include "Distance/DistanceSources.h"
 #include "Hydrology/PitRemoval.h"
 #include "Optimisation/TerrainOptimisation.h"
 #include "Synthesis/SynthesisRequest.h"
@@ -227,7 +229,14 @@ void expectDeclaredAsRow(const std::string& xmlFile, const tsynth::OptionRow& ro
 {
   SCOPED_TRACE(xmlFile + ": " + row.property);
   const XmlDeclared d = declaredIn(xmlFile, row.property);
-  expectBound(d.defaults, row.defaultValue, "default_values");
+  if (row.secondDefault)
+  {
+    EXPECT_EQ(d.defaults, std::vector<double>({ row.defaultValue, *row.secondDefault }));
+  }
+  else
+  {
+    expectBound(d.defaults, row.defaultValue, "default_values");
+  }
   switch (row.type)
   {
     case tsynth::OptionType::Switch:
@@ -254,6 +263,27 @@ struct FilterProperty
   std::function<double(Filter*)> get;
   std::function<void(Filter*, double)> set;
 };
+
+// A property read and set as an int, a bool or a double.
+template<class Filter>
+FilterProperty<Filter> countProperty(int (Filter::*get)(), void (Filter::*set)(int))
+{
+  return { [get](Filter* f) { return (f->*get)(); },
+    [set](Filter* f, double v) { (f->*set)(static_cast<int>(v)); } };
+}
+
+template<class Filter>
+FilterProperty<Filter> onOffProperty(bool (Filter::*get)(), void (Filter::*set)(bool))
+{
+  return { [get](Filter* f) { return (f->*get)() ? 1.0 : 0.0; },
+    [set](Filter* f, double v) { (f->*set)(v != 0.0); } };
+}
+
+template<class Filter>
+FilterProperty<Filter> realProperty(double (Filter::*get)(), void (Filter::*set)(double))
+{
+  return { [get](Filter* f) { return (f->*get)(); }, [set](Filter* f, double v) { (f->*set)(v); } };
+}
 
 // A new filter holds every row's default, and its setters keep a value inside the row's range,
 // except the properties `checkedWhenRun` (refused when the filter runs, never clamped).
@@ -401,27 +431,17 @@ TEST(FilterOptions, TheOptimisationFilterAndItsXmlAreItsTables)
     expectDeclaredAsRow("TerrainOptimisation.xml", row);
   }
   using F = vtkTerrainOptimisation*;
-  auto count = [](int (vtkTerrainOptimisation::*get)(), void (vtkTerrainOptimisation::*set)(int))
-  {
-    return FilterProperty<vtkTerrainOptimisation>{ [get](F f) { return (f->*get)(); },
-      [set](F f, double v) { (f->*set)(static_cast<int>(v)); } };
-  };
-  auto onOff = [](bool (vtkTerrainOptimisation::*get)(), void (vtkTerrainOptimisation::*set)(bool))
-  {
-    return FilterProperty<vtkTerrainOptimisation>{ [get](F f) { return (f->*get)() ? 1.0 : 0.0; },
-      [set](F f, double v) { (f->*set)(v != 0.0); } };
-  };
   using O = vtkTerrainOptimisation;
   const std::map<std::string, FilterProperty<vtkTerrainOptimisation>> properties = {
-    { "PatchSize", count(&O::GetPatchSize, &O::SetPatchSize) },
-    { "Levels", count(&O::GetLevels, &O::SetLevels) },
+    { "PatchSize", countProperty(&O::GetPatchSize, &O::SetPatchSize) },
+    { "Levels", countProperty(&O::GetLevels, &O::SetLevels) },
     { "Alpha", { [](F f) { return f->GetAlpha(); }, [](F f, double v) { f->SetAlpha(v); } } },
-    { "IterationsPerLevel", count(&O::GetIterationsPerLevel, &O::SetIterationsPerLevel) },
-    { "SearchIterations", count(&O::GetSearchIterations, &O::SetSearchIterations) },
-    { "Rotations", onOff(&O::GetRotations, &O::SetRotations) },
-    { "Reflections", onOff(&O::GetReflections, &O::SetReflections) },
-    { "PitRemoval", count(&O::GetPitRemoval, &O::SetPitRemoval) },
-    { "DrainOutput", onOff(&O::GetDrainOutput, &O::SetDrainOutput) },
+    { "IterationsPerLevel", countProperty(&O::GetIterationsPerLevel, &O::SetIterationsPerLevel) },
+    { "SearchIterations", countProperty(&O::GetSearchIterations, &O::SetSearchIterations) },
+    { "Rotations", onOffProperty(&O::GetRotations, &O::SetRotations) },
+    { "Reflections", onOffProperty(&O::GetReflections, &O::SetReflections) },
+    { "PitRemoval", countProperty(&O::GetPitRemoval, &O::SetPitRemoval) },
+    { "DrainOutput", onOffProperty(&O::GetDrainOutput, &O::SetDrainOutput) },
     { "Seed",
       { [](F f) { return static_cast<double>(f->GetSeed()); },
         [](F f, double v) { f->SetSeed(static_cast<vtkIdType>(v)); } } },
@@ -434,4 +454,56 @@ TEST(FilterOptions, TheOptimisationFilterAndItsXmlAreItsTables)
   };
   // Sizes typed wrong fail the request when the filter runs (the patch must also be odd).
   expectDefaultsAndClamps<vtkTerrainOptimisation>(rows, properties, { "PatchSize", "OutputSize" });
+}
+
+TEST(FilterOptions, TheDistanceSynthesisFilterAndItsXmlAreItsTables)
+{
+  const std::vector<tsynth::OptionRow>& rows = tsynth::distanceOptionRows();
+  for (const tsynth::OptionRow& row : rows)
+  {
+    expectDeclaredAsRow("TerrainDistanceSynthesis.xml", row);
+  }
+  using D = vtkTerrainDistanceSynthesis;
+  using F = D*;
+  const std::map<std::string, FilterProperty<D>> properties = {
+    { "OutputSize",
+      { [](F f)
+        { return f->GetOutputSize()[0] == f->GetOutputSize()[1] ? f->GetOutputSize()[0] : -1; },
+        [](F f, double v) { f->SetOutputSize(static_cast<int>(v), static_cast<int>(v)); } } },
+    { "CellSize", realProperty(&D::GetCellSize, &D::SetCellSize) },
+    { "HeightScale", realProperty(&D::GetHeightScale, &D::SetHeightScale) },
+    { "Seed",
+      { [](F f) { return static_cast<double>(f->GetSeed()); },
+        [](F f, double v) { f->SetSeed(static_cast<vtkIdType>(v)); } } },
+    { "MeanWeight", realProperty(&D::GetMeanWeight, &D::SetMeanWeight) },
+    { "Roughness", realProperty(&D::GetRoughness, &D::SetRoughness) },
+    { "Sqrt2Diagonals", onOffProperty(&D::GetSqrt2Diagonals, &D::SetSqrt2Diagonals) },
+    { "SeaLevelScale", realProperty(&D::GetSeaLevelScale, &D::SetSeaLevelScale) },
+    { "BlendBias", realProperty(&D::GetBlendBias, &D::SetBlendBias) },
+    { "ProfileScale", realProperty(&D::GetProfileScale, &D::SetProfileScale) },
+    { "ProfileAssignment", countProperty(&D::GetProfileAssignment, &D::SetProfileAssignment) },
+    { "RegionProfile", countProperty(&D::GetRegionProfile, &D::SetRegionProfile) },
+    { "ProfileBins", countProperty(&D::GetProfileBins, &D::SetProfileBins) },
+    { "FbmH", realProperty(&D::GetFbmH, &D::SetFbmH) },
+    { "FbmLacunarity", realProperty(&D::GetFbmLacunarity, &D::SetFbmLacunarity) },
+    { "FbmOctaves", countProperty(&D::GetFbmOctaves, &D::SetFbmOctaves) },
+    { "FbmDomain", realProperty(&D::GetFbmDomain, &D::SetFbmDomain) },
+    { "FbmScale", realProperty(&D::GetFbmScale, &D::SetFbmScale) },
+    { "FbmRange",
+      { [](F f) { return f->GetFbmRange()[0]; },
+        [](F f, double v) { f->SetFbmRange(v, f->GetFbmRange()[1]); } } },
+    { "RidgeCount", countProperty(&D::GetRidgeCount, &D::SetRidgeCount) },
+    { "RidgeFraction", realProperty(&D::GetRidgeFraction, &D::SetRidgeFraction) },
+    { "RidgeCost", countProperty(&D::GetRidgeCost, &D::SetRidgeCost) },
+    { "SeaLevelEpsilon", realProperty(&D::GetSeaLevelEpsilon, &D::SetSeaLevelEpsilon) },
+    { "ApproximateFraction", realProperty(&D::GetApproximateFraction, &D::SetApproximateFraction) },
+    { "MinScaling", realProperty(&D::GetMinScaling, &D::SetMinScaling) },
+    { "ApproximateOnly", onOffProperty(&D::GetApproximateOnly, &D::SetApproximateOnly) },
+    { "MemoryBudget", realProperty(&D::GetMemoryBudget, &D::SetMemoryBudget) },
+  };
+  // Sizes, and the fBm range's ends (whose order only the kernel can judge), are checked when
+  // the filter runs.
+  expectDefaultsAndClamps<D>(rows, properties, { "OutputSize", "FbmRange" });
+  vtkNew<D> filter;
+  EXPECT_EQ(filter->GetFbmRange()[1], *tsynth::optionRow(rows, "FbmRange").secondDefault);
 }
