@@ -35,6 +35,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <unistd.h>
 #include <vector>
 
@@ -395,52 +396,24 @@ tsynth::PpaOptions takePpaOptions(CommandLine& cl, int patch)
 {
   tsynth::PpaOptions ppa;
   ppa.controlRadius = 0.5 * patch;
-  ppa.halfProfileLength = takeCount(cl, "--profile-length", 1, 100).value_or(ppa.halfProfileLength);
-  ppa.endReductions = takeCount(cl, "--end-reductions", 0, 1000).value_or(ppa.endReductions);
-  ppa.minBranchLength = takeCount(cl, "--min-branch", 0, 100000).value_or(ppa.minBranchLength);
-  ppa.minTreeSize = takeCount(cl, "--min-tree", 0, 100000000).value_or(ppa.minTreeSize);
-  if (auto v = cl.takeNumber("--relative-dip"))
+  const std::vector<tsynth::OptionRow>& rows = tsynth::ppaOptionRows();
+  const auto take = [&](const char* property, auto& target)
   {
-    if (*v < 0.0 || *v > 1.0)
+    if (const auto v = takeRowNumber(cl, tsynth::optionRow(rows, property)))
     {
-      throw UsageError("--relative-dip expects a fraction from 0 to 1.");
+      target = static_cast<std::remove_reference_t<decltype(target)>>(*v);
     }
-    ppa.relativeDip = *v;
-  }
-  if (auto v = cl.takeNumber("--min-dip"))
-  {
-    if (*v < 0.0)
-    {
-      throw UsageError("--min-dip must not be negative.");
-    }
-    ppa.minDip = *v;
-  }
-  if (auto v = cl.takeNumber("--smooth"))
-  {
-    if (*v < 0.0)
-    {
-      throw UsageError("--smooth must not be negative.");
-    }
-    ppa.presmoothSigma = *v;
-  }
-  if (auto v = cl.takeNumber("--significance"))
-  {
-    if (*v < 0.0 || *v > 1.0)
-    {
-      throw UsageError("--significance expects a fraction of the relief from 0 to 1.");
-    }
-    ppa.significance = *v;
-  }
-  if (auto v = cl.takeNumber("--significance-noise"))
-  {
-    if (*v < 0.0)
-    {
-      throw UsageError("--significance-noise must not be negative.");
-    }
-    ppa.significanceNoise = *v;
-  }
-  ppa.significanceRadius =
-    takeCount(cl, "--significance-radius", 1, 1000).value_or(ppa.significanceRadius);
+  };
+  take("HalfProfileLength", ppa.halfProfileLength);
+  take("EndReductions", ppa.endReductions);
+  take("MinimumBranchLength", ppa.minBranchLength);
+  take("MinimumTreeSize", ppa.minTreeSize);
+  take("RelativeDip", ppa.relativeDip);
+  take("MinimumDip", ppa.minDip);
+  take("PresmoothSigma", ppa.presmoothSigma);
+  take("Significance", ppa.significance);
+  take("SignificanceNoise", ppa.significanceNoise);
+  take("SignificanceRadius", ppa.significanceRadius);
   return ppa;
 }
 

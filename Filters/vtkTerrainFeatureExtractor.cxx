@@ -23,6 +23,21 @@ vtkTerrainFeatureExtractor::vtkTerrainFeatureExtractor()
   this->SetNumberOfOutputPorts(2);
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
+  // The defaults of the options table (tsynth::ppaOptionRows).
+  const auto initial = [](const char* property)
+  { return tsynth::optionRow(tsynth::ppaOptionRows(), property).defaultValue; };
+  this->HalfProfileLength = static_cast<int>(initial("HalfProfileLength"));
+  this->MinimumDip = initial("MinimumDip");
+  this->RelativeDip = initial("RelativeDip");
+  this->Significance = initial("Significance");
+  this->SignificanceNoise = initial("SignificanceNoise");
+  this->SignificanceRadius = static_cast<int>(initial("SignificanceRadius"));
+  this->PresmoothSigma = initial("PresmoothSigma");
+  this->EndReductions = static_cast<int>(initial("EndReductions"));
+  this->MinimumBranchLength = static_cast<int>(initial("MinimumBranchLength"));
+  this->MinimumTreeSize = static_cast<int>(initial("MinimumTreeSize"));
+  this->SmoothingPasses = static_cast<int>(initial("SmoothingPasses"));
+  this->ControlRadius = initial("ControlRadius");
 }
 
 int vtkTerrainFeatureExtractor::FillInputPortInformation(int, vtkInformation* info)

@@ -15,6 +15,7 @@
  */
 #pragma once
 
+#include "Features/PpaLimits.h"
 #include "TerrainSynthesisFiltersModule.h"
 
 #include <vtkPolyDataAlgorithm.h>
@@ -41,13 +42,13 @@ public:
 
   ///@{
   /// Profile half-length in cells (default 3).
-  vtkSetClampMacro(HalfProfileLength, int, 1, 100);
+  vtkSetClampMacro(HalfProfileLength, int, 1, tsynth::kMaxHalfProfileLength);
   vtkGetMacro(HalfProfileLength, int);
   ///@}
 
   ///@{
   /// Minimum dip on both sides, in height units (default 0).
-  vtkSetClampMacro(MinimumDip, double, 0.0, 1.0e6);
+  vtkSetClampMacro(MinimumDip, double, 0.0, tsynth::kMaxMinimumDip);
   vtkGetMacro(MinimumDip, double);
   ///@}
 
@@ -71,49 +72,49 @@ public:
   ///@{
   /// Floor of the significance drop in sigmas of the heightfield's cell-scale
   /// noise (default 4, 0 = no floor).
-  vtkSetClampMacro(SignificanceNoise, double, 0.0, 100.0);
+  vtkSetClampMacro(SignificanceNoise, double, 0.0, tsynth::kMaxSignificanceNoise);
   vtkGetMacro(SignificanceNoise, double);
   ///@}
 
   ///@{
   /// Cells searched on each side for the significance drop (default 20).
-  vtkSetClampMacro(SignificanceRadius, int, 1, 1000);
+  vtkSetClampMacro(SignificanceRadius, int, 1, tsynth::kMaxSignificanceRadius);
   vtkGetMacro(SignificanceRadius, int);
   ///@}
 
   ///@{
   /// Gaussian pre-smoothing in cells (default 0: none).
-  vtkSetClampMacro(PresmoothSigma, double, 0.0, 100.0);
+  vtkSetClampMacro(PresmoothSigma, double, 0.0, tsynth::kMaxPresmoothSigma);
   vtkGetMacro(PresmoothSigma, double);
   ///@}
 
   ///@{
   /// End-segment removals (default 3).
-  vtkSetClampMacro(EndReductions, int, 0, 1000);
+  vtkSetClampMacro(EndReductions, int, 0, tsynth::kMaxEndReductions);
   vtkGetMacro(EndReductions, int);
   ///@}
 
   ///@{
   /// Dangling branches shorter than this many cells are removed (default 15).
-  vtkSetClampMacro(MinimumBranchLength, int, 0, 100000);
+  vtkSetClampMacro(MinimumBranchLength, int, 0, tsynth::kMaxBranchLength);
   vtkGetMacro(MinimumBranchLength, int);
   ///@}
 
   ///@{
   /// Trees with fewer cells are removed (default 30).
-  vtkSetClampMacro(MinimumTreeSize, int, 0, 100000000);
+  vtkSetClampMacro(MinimumTreeSize, int, 0, tsynth::kMaxTreeSize);
   vtkGetMacro(MinimumTreeSize, int);
   ///@}
 
   ///@{
   /// Chain smoothing passes (default 2).
-  vtkSetClampMacro(SmoothingPasses, int, 0, 100);
+  vtkSetClampMacro(SmoothingPasses, int, 0, tsynth::kMaxSmoothingPasses);
   vtkGetMacro(SmoothingPasses, int);
   ///@}
 
   ///@{
   /// Control-point circle radius in cells: half the patch size (default 40).
-  vtkSetClampMacro(ControlRadius, double, 1.0, 10000.0);
+  vtkSetClampMacro(ControlRadius, double, 1.0, tsynth::kMaxControlRadius);
   vtkGetMacro(ControlRadius, double);
   ///@}
 
@@ -125,18 +126,19 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int Features = RIDGES_AND_VALLEYS;
-  int HalfProfileLength = 3;
-  double MinimumDip = 0.0;
-  double RelativeDip = 0.1;
-  double Significance = 0.02;
-  double SignificanceNoise = 4.0;
-  int SignificanceRadius = 20;
-  double PresmoothSigma = 0.0;
-  int EndReductions = 3;
-  int MinimumBranchLength = 15;
-  int MinimumTreeSize = 30;
-  int SmoothingPasses = 2;
-  double ControlRadius = 40.0;
+  // The options table's defaults (tsynth::ppaOptionRows), set in the constructor.
+  int HalfProfileLength;
+  double MinimumDip;
+  double RelativeDip;
+  double Significance;
+  double SignificanceNoise;
+  int SignificanceRadius;
+  double PresmoothSigma;
+  int EndReductions;
+  int MinimumBranchLength;
+  int MinimumTreeSize;
+  int SmoothingPasses;
+  double ControlRadius;
 
 private:
   vtkTerrainFeatureExtractor(const vtkTerrainFeatureExtractor&) = delete;

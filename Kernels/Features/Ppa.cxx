@@ -598,4 +598,45 @@ FeatureGraph ridgesAndValleys(const Heightfield& hf, const PpaOptions& options)
   return g;
 }
 
+const std::vector<OptionRow>& ppaOptionRows()
+{
+  static const std::vector<OptionRow> rows = []
+  {
+    const PpaOptions d;
+    using T = OptionType;
+    return std::vector<OptionRow>{
+      numberRow("HalfProfileLength",
+        "--profile-length",
+        T::Integer,
+        d.halfProfileLength,
+        1,
+        kMaxHalfProfileLength),
+      numberRow("MinimumDip", "--min-dip", T::Real, d.minDip, 0.0, kMaxMinimumDip),
+      numberRow("RelativeDip", "--relative-dip", T::Real, d.relativeDip, 0.0, 1.0),
+      numberRow("Significance", "--significance", T::Real, d.significance, 0.0, 1.0),
+      numberRow("SignificanceNoise",
+        "--significance-noise",
+        T::Real,
+        d.significanceNoise,
+        0.0,
+        kMaxSignificanceNoise),
+      numberRow("SignificanceRadius",
+        "--significance-radius",
+        T::Integer,
+        d.significanceRadius,
+        1,
+        kMaxSignificanceRadius),
+      numberRow("PresmoothSigma", "--smooth", T::Real, d.presmoothSigma, 0.0, kMaxPresmoothSigma),
+      numberRow(
+        "EndReductions", "--end-reductions", T::Integer, d.endReductions, 0, kMaxEndReductions),
+      numberRow(
+        "MinimumBranchLength", "--min-branch", T::Integer, d.minBranchLength, 0, kMaxBranchLength),
+      numberRow("MinimumTreeSize", "--min-tree", T::Integer, d.minTreeSize, 0, kMaxTreeSize),
+      numberRow("SmoothingPasses", "", T::Integer, d.smoothingPasses, 0, kMaxSmoothingPasses),
+      numberRow("ControlRadius", "", T::Real, d.controlRadius, 1.0, kMaxControlRadius),
+    };
+  }();
+  return rows;
+}
+
 } // namespace tsynth

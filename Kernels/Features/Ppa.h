@@ -5,8 +5,10 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/OptionTable.h"
 #include "FeatureGraph.h"
 #include "PixelGraph.h"
+#include "PpaLimits.h"
 
 #include <string>
 #include <vector>
@@ -166,5 +168,11 @@ FeatureGraph ridgesAndValleys(const Heightfield& hf, const PpaOptions& options);
 
 // Gaussian smoothing of valid cells (invalid neighbours get no weight).
 Heightfield gaussianSmooth(const Heightfield& hf, double sigma);
+
+// The PPA options tsynth features and the Terrain Feature Extractor filter share
+// (Core/OptionTable.h), their defaults a default PpaOptions'. SmoothingPasses and
+// ControlRadius are the filter's alone: tsynth features smooths as the default
+// does and takes the control radius from --patch (half of it).
+const std::vector<OptionRow>& ppaOptionRows();
 
 } // namespace tsynth

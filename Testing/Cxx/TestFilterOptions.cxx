@@ -5,6 +5,7 @@
 #include "PropertyEnums.h"
 #include "vtkTerrainCandidateBuilder.h"
 #include "vtkTerrainDistanceSynthesis.h"
+#include "vtkTerrainFeatureExtractor.h"
 #include "vtkTerrainOptimisation.h"
 #include "vtkTerrainPatchMatcher.h"
 #include "vtkTerrainPitRemoval.h"
@@ -14,6 +15,7 @@
 #include "Core/Error.h"
 #include "Core/PatchSize.h"
 #include "Distance/DistanceSources.h"
+#include "Features/Ppa.h"
 #include "Hydrology/PitRemoval.h"
 #include "Optimisation/TerrainOptimisation.h"
 #include "Synthesis/SynthesisRequest.h"
@@ -506,4 +508,30 @@ TEST(FilterOptions, TheDistanceSynthesisFilterAndItsXmlAreItsTables)
   expectDefaultsAndClamps<D>(rows, properties, { "OutputSize", "FbmRange" });
   vtkNew<D> filter;
   EXPECT_EQ(filter->GetFbmRange()[1], *tsynth::optionRow(rows, "FbmRange").secondDefault);
+}
+
+TEST(FilterOptions, TheFeatureExtractorAndItsXmlArePpasTable)
+{
+  const std::vector<tsynth::OptionRow>& rows = tsynth::ppaOptionRows();
+  for (const tsynth::OptionRow& row : rows)
+  {
+    expectDeclaredAsRow("TerrainFeatureExtractor.xml", row);
+  }
+  using E = vtkTerrainFeatureExtractor;
+  const std::map<std::string, FilterProperty<E>> properties = {
+    { "HalfProfileLength", countProperty(&E::GetHalfProfileLength, &E::SetHalfProfileLength) },
+    { "MinimumDip", realProperty(&E::GetMinimumDip, &E::SetMinimumDip) },
+    { "RelativeDip", realProperty(&E::GetRelativeDip, &E::SetRelativeDip) },
+    { "Significance", realProperty(&E::GetSignificance, &E::SetSignificance) },
+    { "SignificanceNoise", realProperty(&E::GetSignificanceNoise, &E::SetSignificanceNoise) },
+    { "SignificanceRadius", countProperty(&E::GetSignificanceRadius, &E::SetSignificanceRadius) },
+    { "PresmoothSigma", realProperty(&E::GetPresmoothSigma, &E::SetPresmoothSigma) },
+    { "EndReductions", countProperty(&E::GetEndReductions, &E::SetEndReductions) },
+    { "MinimumBranchLength",
+      countProperty(&E::GetMinimumBranchLength, &E::SetMinimumBranchLength) },
+    { "MinimumTreeSize", countProperty(&E::GetMinimumTreeSize, &E::SetMinimumTreeSize) },
+    { "SmoothingPasses", countProperty(&E::GetSmoothingPasses, &E::SetSmoothingPasses) },
+    { "ControlRadius", realProperty(&E::GetControlRadius, &E::SetControlRadius) },
+  };
+  expectDefaultsAndClamps<E>(rows, properties, {});
 }

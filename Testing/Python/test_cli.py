@@ -329,9 +329,10 @@ class CliTest(unittest.TestCase):
         self.assert_clean_failure(tsynth("features", dem, "-o", self.path("v.vtp"), "--min-branch", "2.5"),
                                   2, "whole number")
         self.assert_clean_failure(tsynth("features", dem, "-o", self.path("v.vtp"), "--significance", "2"),
-                                  2, "fraction of the relief")
+                                  2, "--significance expects a number from 0 to 1, not 2.")
         self.assert_clean_failure(tsynth("features", dem, "-o", self.path("v.vtp"),
-                                         "--significance-noise", "-1"), 2, "negative")
+                                         "--significance-noise", "-1"), 2,
+                                  "--significance-noise expects a number from 0 to 100, not -1.")
         self.assert_clean_failure(tsynth("features", dem, "-o", self.path("v.vtp"),
                                          "--significance-radius", "0"), 2, "whole number")
 
