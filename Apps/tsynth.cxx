@@ -92,9 +92,10 @@ without one tsynth re-runs itself under xvfb-run).
   -o, --output PNG       the picture to write (.png)
   --3d                   oblique 3D view
   --grey                 the hillshade alone, in grey (the map only)
-  --exaggeration F       vertical exaggeration (default 1 for the map, 2 for --3d)
-  --altitude DEG         sun elevation for the map (default 45)
-  --azimuth DEG          single light from this direction, clockwise from north
+  --exaggeration F       vertical exaggeration, from 0.001 to 1000 (default 1 for the map,
+                         2 for --3d)
+  --altitude DEG         sun elevation for the map, from 0 to 90 (default 45)
+  --azimuth DEG          single light from this direction, clockwise from north, 0 to 360
   --size WxH             3D picture size in pixels (default 1600x1000)
 )";
 
@@ -312,9 +313,10 @@ int runRender(std::vector<std::string> args, int argc, char** argv)
   const std::optional<std::string> output = cl.take("--output", "-o");
   const bool threeD = cl.takeFlag("--3d");
   const bool grey = cl.takeFlag("--grey");
-  const std::optional<double> exaggeration = cl.takeNumber("--exaggeration");
-  const std::optional<double> altitude = cl.takeNumber("--altitude");
-  const std::optional<double> azimuth = cl.takeNumber("--azimuth");
+  const std::vector<tsynth::OptionRow>& rows = tsynth::hillshadeOptionRows();
+  const std::optional<double> exaggeration = takeRowNumber(cl, tsynth::optionRow(rows, "ZFactor"));
+  const std::optional<double> altitude = takeRowNumber(cl, tsynth::optionRow(rows, "Altitude"));
+  const std::optional<double> azimuth = takeRowNumber(cl, tsynth::optionRow(rows, "Azimuth"));
   const std::optional<std::string> size = cl.take("--size");
   const tsynth::ReadOptions options = takeReadOptions(cl);
   const std::string path = oneInput(cl, "render");
@@ -325,14 +327,6 @@ int runRender(std::vector<std::string> args, int argc, char** argv)
   if (!hasExtension(*output, ".png"))
   {
     throw UsageError("The picture must be a .png file, not " + *output + ".");
-  }
-  if (exaggeration && !(*exaggeration > 0.0))
-  {
-    throw UsageError("--exaggeration must be positive.");
-  }
-  if (altitude && (*altitude < 0.0 || *altitude > 90.0))
-  {
-    throw UsageError("--altitude must be between 0 and 90 degrees.");
   }
   if (size && !threeD)
   {
@@ -374,8 +368,8 @@ int runRender(std::vector<std::string> args, int argc, char** argv)
   else
   {
     tsynth::HillshadeOptions shading;
-    shading.zFactor = exaggeration.value_or(1.0);
-    shading.altitudeDeg = altitude.value_or(45.0);
+    shading.zFactor = exaggeration.value_or(shading.zFactor);
+    shading.altitudeDeg = altitude.value_or(shading.altitudeDeg);
     if (azimuth)
     {
       shading.multidirectional = false;

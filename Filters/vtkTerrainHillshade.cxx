@@ -23,6 +23,13 @@ vtkTerrainHillshade::vtkTerrainHillshade()
 {
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
+  // The defaults of the options table (tsynth::hillshadeOptionRows).
+  const auto initial = [](const char* property)
+  { return tsynth::optionRow(tsynth::hillshadeOptionRows(), property).defaultValue; };
+  this->Altitude = initial("Altitude");
+  this->Azimuth = initial("Azimuth");
+  this->Multidirectional = initial("Multidirectional") != 0.0;
+  this->ZFactor = initial("ZFactor");
 }
 
 int vtkTerrainHillshade::RequestData(vtkInformation*,

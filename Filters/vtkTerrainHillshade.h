@@ -12,6 +12,7 @@
  */
 #pragma once
 
+#include "Analysis/HillshadeLimits.h"
 #include "TerrainSynthesisFiltersModule.h"
 
 #include <vtkImageAlgorithm.h>
@@ -25,14 +26,14 @@ public:
 
   ///@{
   /// Sun elevation above the horizon in degrees (default 45).
-  vtkSetClampMacro(Altitude, double, 0.0, 90.0);
+  vtkSetClampMacro(Altitude, double, 0.0, tsynth::kMaxSunAltitudeDeg);
   vtkGetMacro(Altitude, double);
   ///@}
 
   ///@{
   /// Direction the light comes from, degrees clockwise from north (default 315);
   /// used when Multidirectional is off.
-  vtkSetClampMacro(Azimuth, double, 0.0, 360.0);
+  vtkSetClampMacro(Azimuth, double, 0.0, tsynth::kFullTurnDeg);
   vtkGetMacro(Azimuth, double);
   ///@}
 
@@ -45,7 +46,7 @@ public:
 
   ///@{
   /// Vertical exaggeration applied before shading (default 1).
-  vtkSetClampMacro(ZFactor, double, 0.001, 1000.0);
+  vtkSetClampMacro(ZFactor, double, tsynth::kMinZFactor, tsynth::kMaxZFactor);
   vtkGetMacro(ZFactor, double);
   ///@}
 
@@ -55,10 +56,11 @@ protected:
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  double Altitude = 45.0;
-  double Azimuth = 315.0;
-  bool Multidirectional = true;
-  double ZFactor = 1.0;
+  // The options table's defaults (tsynth::hillshadeOptionRows), set in the constructor.
+  double Altitude;
+  double Azimuth;
+  bool Multidirectional;
+  double ZFactor;
 
 private:
   vtkTerrainHillshade(const vtkTerrainHillshade&) = delete;

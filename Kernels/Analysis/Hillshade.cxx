@@ -118,4 +118,20 @@ ShadedRelief computeHillshade(const Heightfield& hf, const HillshadeOptions& opt
   return out;
 }
 
+const std::vector<OptionRow>& hillshadeOptionRows()
+{
+  static const std::vector<OptionRow> rows = []
+  {
+    const HillshadeOptions d;
+    using T = OptionType;
+    return std::vector<OptionRow>{
+      numberRow("Altitude", "--altitude", T::Real, d.altitudeDeg, 0.0, kMaxSunAltitudeDeg),
+      numberRow("Azimuth", "--azimuth", T::Real, d.azimuthDeg, 0.0, kFullTurnDeg),
+      switchRow("Multidirectional", "", d.multidirectional),
+      numberRow("ZFactor", "--exaggeration", T::Real, d.zFactor, kMinZFactor, kMaxZFactor),
+    };
+  }();
+  return rows;
+}
+
 } // namespace tsynth

@@ -3,6 +3,8 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/OptionTable.h"
+#include "HillshadeLimits.h"
 
 #include <vector>
 
@@ -29,5 +31,10 @@ struct ShadedRelief
 // neighbour outside the grid or invalid is extrapolated from the opposite one
 // (or the centre), so nodata never enters the result.
 ShadedRelief computeHillshade(const Heightfield& hf, const HillshadeOptions& options = {});
+
+// The options tsynth render (its map) and the Terrain Hillshade filter share
+// (Core/OptionTable.h), their defaults a default HillshadeOptions'. tsynth render
+// turns Multidirectional off when given an --azimuth, and --exaggeration is its ZFactor.
+const std::vector<OptionRow>& hillshadeOptionRows();
 
 } // namespace tsynth

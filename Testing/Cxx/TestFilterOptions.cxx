@@ -6,12 +6,14 @@
 #include "vtkTerrainCandidateBuilder.h"
 #include "vtkTerrainDistanceSynthesis.h"
 #include "vtkTerrainFeatureExtractor.h"
+#include "vtkTerrainHillshade.h"
 #include "vtkTerrainOptimisation.h"
 #include "vtkTerrainPatchMatcher.h"
 #include "vtkTerrainPitRemoval.h"
 #include "vtkTerrainSketchFeatures.h"
 #include "vtkTerrainSynthesis.h"
 
+#include "Analysis/Hillshade.h"
 #include "Core/Error.h"
 #include "Core/PatchSize.h"
 #include "Distance/DistanceSources.h"
@@ -534,4 +536,21 @@ TEST(FilterOptions, TheFeatureExtractorAndItsXmlArePpasTable)
     { "ControlRadius", realProperty(&E::GetControlRadius, &E::SetControlRadius) },
   };
   expectDefaultsAndClamps<E>(rows, properties, {});
+}
+
+TEST(FilterOptions, TheHillshadeFilterAndItsXmlAreItsTable)
+{
+  const std::vector<tsynth::OptionRow>& rows = tsynth::hillshadeOptionRows();
+  for (const tsynth::OptionRow& row : rows)
+  {
+    expectDeclaredAsRow("TerrainHillshade.xml", row);
+  }
+  using H = vtkTerrainHillshade;
+  const std::map<std::string, FilterProperty<H>> properties = {
+    { "Altitude", realProperty(&H::GetAltitude, &H::SetAltitude) },
+    { "Azimuth", realProperty(&H::GetAzimuth, &H::SetAzimuth) },
+    { "Multidirectional", onOffProperty(&H::GetMultidirectional, &H::SetMultidirectional) },
+    { "ZFactor", realProperty(&H::GetZFactor, &H::SetZFactor) },
+  };
+  expectDefaultsAndClamps<H>(rows, properties, {});
 }
