@@ -41,6 +41,17 @@ vtkTerrainPatchMatcher::vtkTerrainPatchMatcher()
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
   this->SetKnownArray(kDefaultKnownArray);
+  // The defaults of the options table (tsynth::matcherOptionRows): the synthesis' own.
+  const auto initial = [](const char* property)
+  { return tsynth::optionRow(tsynth::matcherOptionRows(), property).defaultValue; };
+  this->Backend = static_cast<int>(initial("Backend"));
+  this->PatchSize = static_cast<int>(initial("PatchSize"));
+  this->K = static_cast<int>(initial("K"));
+  this->FeatureWeight = initial("FeatureWeight");
+  this->AngleWeight = initial("AngleWeight");
+  this->NoiseWeight = initial("NoiseWeight");
+  this->OverlapWeight = initial("OverlapWeight");
+  this->VerticalOffset = initial("VerticalOffset") != 0.0;
 }
 
 vtkTerrainPatchMatcher::~vtkTerrainPatchMatcher()

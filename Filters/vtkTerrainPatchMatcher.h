@@ -23,6 +23,7 @@
 #pragma once
 
 #include "Core/PatchSize.h"
+#include "Matching/MatcherLimits.h"
 #include "TerrainSynthesisFiltersModule.h"
 
 #include <vtkAlgorithm.h>
@@ -59,7 +60,7 @@ public:
   vtkSetMacro(PatchSize, int);
   vtkGetMacro(PatchSize, int);
   /// Candidates kept per exemplar (default 8).
-  vtkSetClampMacro(K, int, 1, 1000);
+  vtkSetClampMacro(K, int, 1, tsynth::kMaxCandidatesKept);
   vtkGetMacro(K, int);
   /// Where in the target to match, metres in the target's frame.
   vtkSetVector2Macro(Site, double);
@@ -67,13 +68,13 @@ public:
   ///@{
   /// Cost weights a_f, a_a, a_n, a_o (defaults 5, 2, 0.001, 1), 0 to 1e6: a negative
   /// weight would reward a mismatch.
-  vtkSetClampMacro(FeatureWeight, double, 0.0, 1.0e6);
+  vtkSetClampMacro(FeatureWeight, double, 0.0, tsynth::kMaxMatchWeight);
   vtkGetMacro(FeatureWeight, double);
-  vtkSetClampMacro(AngleWeight, double, 0.0, 1.0e6);
+  vtkSetClampMacro(AngleWeight, double, 0.0, tsynth::kMaxMatchWeight);
   vtkGetMacro(AngleWeight, double);
-  vtkSetClampMacro(NoiseWeight, double, 0.0, 1.0e6);
+  vtkSetClampMacro(NoiseWeight, double, 0.0, tsynth::kMaxMatchWeight);
   vtkGetMacro(NoiseWeight, double);
-  vtkSetClampMacro(OverlapWeight, double, 0.0, 1.0e6);
+  vtkSetClampMacro(OverlapWeight, double, 0.0, tsynth::kMaxMatchWeight);
   vtkGetMacro(OverlapWeight, double);
   ///@}
   /// Compare overlaps up to a vertical offset (default off).
@@ -109,15 +110,16 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
 
   int Mode = FEATURE;
-  int Backend = AUTO;
-  int PatchSize = tsynth::kDefaultSynthesisPatch;
-  int K = 8;
+  // The options table's defaults (tsynth::matcherOptionRows), set in the constructor.
+  int Backend;
+  int PatchSize;
+  int K;
   double Site[2] = { 0.0, 0.0 };
-  double FeatureWeight = 5.0;
-  double AngleWeight = 2.0;
-  double NoiseWeight = 0.001;
-  double OverlapWeight = 1.0;
-  bool VerticalOffset = false;
+  double FeatureWeight;
+  double AngleWeight;
+  double NoiseWeight;
+  double OverlapWeight;
+  bool VerticalOffset;
   char* KnownArray = nullptr;
   std::string BackendUsed;
 

@@ -138,4 +138,29 @@ std::vector<PatchCandidate> PatchMatcher::matchDense(const DenseQuery& window,
   return out;
 }
 
+const std::vector<OptionRow>& matcherOptionRows()
+{
+  static const std::vector<OptionRow> rows = []
+  {
+    const MatcherOptions d;
+    const MatchWeights& w = d.weights;
+    using T = OptionType;
+    return std::vector<OptionRow>{
+      numberRow("PatchSize", "", T::Integer, d.patchSize, kMinSynthesisPatch, kMaxSynthesisPatch),
+      numberRow("K", "", T::Integer, static_cast<double>(d.k), 1, kMaxCandidatesKept),
+      choiceRow("Backend",
+        "",
+        static_cast<int>(d.backend),
+        choicesOf(kBackendWords),
+        { "Auto", "OpenCL", "CPU" }),
+      numberRow("FeatureWeight", "", T::Real, w.feature, 0.0, kMaxMatchWeight),
+      numberRow("AngleWeight", "", T::Real, w.angle, 0.0, kMaxMatchWeight),
+      numberRow("NoiseWeight", "", T::Real, w.noise, 0.0, kMaxMatchWeight),
+      numberRow("OverlapWeight", "", T::Real, w.overlap, 0.0, kMaxMatchWeight),
+      switchRow("VerticalOffset", "", w.verticalOffset),
+    };
+  }();
+  return rows;
+}
+
 } // namespace tsynth

@@ -6,6 +6,7 @@
 #include "CandidatePool.h"
 #include "DenseSearch.h"
 #include "FeatureCost.h"
+#include "MatcherLimits.h"
 #include "OpenClMatcher.h"
 
 #include <memory>
@@ -85,5 +86,10 @@ private:
   std::unique_ptr<OpenClFeatureScorer> featureScorer_;
   std::unique_ptr<OpenClDenseScorer> denseScorer_;
 };
+
+// The Patch Matcher filter's options (Core/OptionTable.h), their defaults a default
+// MatcherOptions': the patch size, the candidates kept (K), the backend, and the cost weights
+// the synthesis matches with. No tsynth command runs the matcher alone.
+const std::vector<OptionRow>& matcherOptionRows();
 
 } // namespace tsynth

@@ -19,6 +19,7 @@
 #include "Distance/DistanceSources.h"
 #include "Features/Ppa.h"
 #include "Hydrology/PitRemoval.h"
+#include "Matching/PatchMatcher.h"
 #include "Optimisation/TerrainOptimisation.h"
 #include "Synthesis/SynthesisRequest.h"
 
@@ -553,4 +554,28 @@ TEST(FilterOptions, TheHillshadeFilterAndItsXmlAreItsTable)
     { "ZFactor", realProperty(&H::GetZFactor, &H::SetZFactor) },
   };
   expectDefaultsAndClamps<H>(rows, properties, {});
+}
+
+TEST(FilterOptions, ThePatchMatcherAndItsXmlAreTheMatchersTable)
+{
+  const std::vector<tsynth::OptionRow>& rows = tsynth::matcherOptionRows();
+  for (const tsynth::OptionRow& row : rows)
+  {
+    expectDeclaredAsRow("TerrainPatchMatcher.xml", row);
+  }
+  // It matches with the synthesis' own weights (its noise weight was Tasse's 0.001 until the
+  // table was its default).
+  EXPECT_EQ(tsynth::optionRow(rows, "NoiseWeight").defaultValue, tsynth::MatchWeights{}.noise);
+  using M = vtkTerrainPatchMatcher;
+  const std::map<std::string, FilterProperty<M>> properties = {
+    { "PatchSize", countProperty(&M::GetPatchSize, &M::SetPatchSize) },
+    { "K", countProperty(&M::GetK, &M::SetK) },
+    { "Backend", countProperty(&M::GetBackend, &M::SetBackend) },
+    { "FeatureWeight", realProperty(&M::GetFeatureWeight, &M::SetFeatureWeight) },
+    { "AngleWeight", realProperty(&M::GetAngleWeight, &M::SetAngleWeight) },
+    { "NoiseWeight", realProperty(&M::GetNoiseWeight, &M::SetNoiseWeight) },
+    { "OverlapWeight", realProperty(&M::GetOverlapWeight, &M::SetOverlapWeight) },
+    { "VerticalOffset", onOffProperty(&M::GetVerticalOffset, &M::SetVerticalOffset) },
+  };
+  expectDefaultsAndClamps<M>(rows, properties, { "PatchSize" });
 }
