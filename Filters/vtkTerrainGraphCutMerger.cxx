@@ -33,6 +33,9 @@ vtkTerrainGraphCutMerger::vtkTerrainGraphCutMerger()
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
   this->SetInputArrayToProcess(
     1, 1, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
+  const tsynth::OptionRow& mode = tsynth::optionRow(tsynth::mergeOptionRows(), "Mode");
+  this->Mode = static_cast<int>(mode.defaultValue);
+  this->ShepardRadius = tsynth::optionRow(tsynth::mergeOptionRows(), "ShepardRadius").defaultValue;
 }
 
 int vtkTerrainGraphCutMerger::FillInputPortInformation(int, vtkInformation* info)

@@ -25,6 +25,7 @@
  */
 #pragma once
 
+#include "Merging/MergeLimits.h"
 #include "TerrainSynthesisFiltersModule.h"
 
 #include <vtkImageAlgorithm.h>
@@ -55,7 +56,7 @@ public:
   vtkSetVector2Macro(PatchCell, int);
   vtkGetVector2Macro(PatchCell, int);
   /// Shepard radius of influence in cells (default 20).
-  vtkSetClampMacro(ShepardRadius, double, 1.0, 10000.0);
+  vtkSetClampMacro(ShepardRadius, double, tsynth::kMinShepardRadius, tsynth::kMaxShepardRadius);
   vtkGetMacro(ShepardRadius, double);
   /// Value written to PatchId where the patch is taken (default 1); at least 1, since
   /// 0 marks cells no merge has taken.
@@ -74,10 +75,12 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int Mode = NEW;
+  // Mode and ShepardRadius: the options table's defaults (tsynth::mergeOptionRows), set in the
+  // constructor.
+  int Mode;
   bool UsePatchOrigin = true;
   int PatchCell[2] = { 0, 0 };
-  double ShepardRadius = 20.0;
+  double ShepardRadius;
   int PatchIdValue = 1;
 
 private:

@@ -669,4 +669,26 @@ MergeResult PatchMerger::merge(Heightfield& terrain,
   return result;
 }
 
+const std::vector<OptionRow>& mergeOptionRows()
+{
+  static const std::vector<OptionRow> rows = []
+  {
+    const MergeOptions d;
+    return std::vector<OptionRow>{
+      choiceRow("Mode",
+        "",
+        static_cast<int>(d.mode),
+        choicesOf(kMergeModeWords),
+        { "Cut", "Poisson", "Shepard", "New (Shepard gradients + Poisson)" }),
+      numberRow("ShepardRadius",
+        "",
+        OptionType::Real,
+        d.shepardRadius,
+        kMinShepardRadius,
+        kMaxShepardRadius),
+    };
+  }();
+  return rows;
+}
+
 } // namespace tsynth

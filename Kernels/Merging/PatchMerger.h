@@ -5,6 +5,7 @@
 
 #include "../Core/Heightfield.h"
 #include "../Core/OptionTable.h"
+#include "MergeLimits.h"
 #include "Poisson.h"
 #include "SeamCut.h"
 
@@ -170,5 +171,10 @@ private:
   std::vector<float> weight_;
   std::vector<double> bandValue_;
 };
+
+// The Graph-Cut Merger filter's options (Core/OptionTable.h), their defaults a default
+// MergeOptions': the mode (the synthesis' Merge Mode words and labels) and the Shepard radius.
+// No tsynth command merges one patch alone.
+const std::vector<OptionRow>& mergeOptionRows();
 
 } // namespace tsynth

@@ -62,7 +62,7 @@ std::vector<OptionRow> makeRows()
       "--merge",
       static_cast<int>(o.merge),
       choicesOf(kMergeModeWords),
-      { "Cut", "Poisson", "Shepard", "New (Shepard gradients + Poisson)" }),
+      optionRow(mergeOptionRows(), "Mode").labels),
     choiceRow("FillOrder",
       "--fill",
       static_cast<int>(o.fill),

@@ -6,6 +6,7 @@
 #include "vtkTerrainCandidateBuilder.h"
 #include "vtkTerrainDistanceSynthesis.h"
 #include "vtkTerrainFeatureExtractor.h"
+#include "vtkTerrainGraphCutMerger.h"
 #include "vtkTerrainHillshade.h"
 #include "vtkTerrainOptimisation.h"
 #include "vtkTerrainPatchMatcher.h"
@@ -375,9 +376,10 @@ TEST(FilterOptions, TheSynthesisXmlDeclaresEveryOptionAsTheTableDoes)
   }
   // The stage filters that take the same option offer the same choices.
   expectDeclaredAsRow("TerrainPatchMatcher.xml", tsynth::synthesisOption("Backend"));
-  tsynth::OptionRow mode = tsynth::synthesisOption("MergeMode");
-  mode.property = "Mode";
-  expectDeclaredAsRow("TerrainGraphCutMerger.xml", mode);
+  for (const tsynth::OptionRow& row : tsynth::mergeOptionRows())
+  {
+    expectDeclaredAsRow("TerrainGraphCutMerger.xml", row);
+  }
 }
 
 TEST(FilterOptions, TheSynthesisFilterStartsAtTheTablesDefaultsAndKeepsToItsRanges)
@@ -578,4 +580,17 @@ TEST(FilterOptions, ThePatchMatcherAndItsXmlAreTheMatchersTable)
     { "VerticalOffset", onOffProperty(&M::GetVerticalOffset, &M::SetVerticalOffset) },
   };
   expectDefaultsAndClamps<M>(rows, properties, { "PatchSize" });
+}
+
+TEST(FilterOptions, TheGraphCutMergerStartsAtTheMergersTable)
+{
+  using G = vtkTerrainGraphCutMerger;
+  const std::map<std::string, FilterProperty<G>> properties = {
+    { "Mode", countProperty(&G::GetMode, &G::SetMode) },
+    { "ShepardRadius", realProperty(&G::GetShepardRadius, &G::SetShepardRadius) },
+  };
+  expectDefaultsAndClamps<G>(tsynth::mergeOptionRows(), properties, {});
+  // The synthesis offers the same modes under the same labels.
+  EXPECT_EQ(tsynth::synthesisOption("MergeMode").labels,
+    tsynth::optionRow(tsynth::mergeOptionRows(), "Mode").labels);
 }
