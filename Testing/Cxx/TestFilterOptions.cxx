@@ -33,7 +33,6 @@
 #include <fstream>
 #include <functional>
 #include <map>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -168,21 +167,40 @@ std::vector<double> numbersIn(const std::string& text)
   return values;
 }
 
-// The quoted attribute `name` of the first element matching `element` in `text`, or "".
-std::string attributeOf(const std::string& text, const std::string& element, const char* name)
+// The opening tag (up to its '>') of the first element of `text` whose name ends in `suffix`
+// ("RangeDomain": IntRangeDomain or DoubleRangeDomain), or "". Plain string search: GCC 12's
+// <regex> trips -Wmaybe-uninitialized in the sanitized build.
+std::string openingTag(const std::string& text, const std::string& suffix)
 {
-  std::smatch tag;
-  if (!std::regex_search(text, tag, std::regex("<" + element + "\\b[^>]*>")))
+  for (std::size_t at = text.find('<'); at != std::string::npos; at = text.find('<', at + 1))
   {
-    return "";
+    const std::size_t nameEnd = text.find_first_of(" \t\n/>", at);
+    const std::string name = text.substr(at + 1, nameEnd - at - 1);
+    if (name.size() >= suffix.size() &&
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+    {
+      return text.substr(at, text.find('>', at) - at + 1);
+    }
   }
-  const std::string opening = tag.str();
-  std::smatch value;
-  if (!std::regex_search(opening, value, std::regex(std::string("\\b") + name + "=\"([^\"]*)\"")))
+  return "";
+}
+
+// The quoted value of attribute `name` in an opening tag, or "".
+std::string attributeOf(const std::string& tag, const std::string& name)
+{
+  const std::string key = " " + name + "=\"";
+  std::size_t at = tag.find(key);
+  if (at == std::string::npos)
   {
-    return "";
+    const std::string wrapped = "\n" + name + "=\"";
+    at = tag.find(wrapped);
+    if (at == std::string::npos)
+    {
+      return "";
+    }
   }
-  return value[1].str();
+  const std::size_t first = at + key.size();
+  return tag.substr(first, tag.find('"', first) - first);
 }
 
 XmlDeclared declaredIn(const std::string& xmlFile, const std::string& property)
@@ -191,26 +209,29 @@ XmlDeclared declaredIn(const std::string& xmlFile, const std::string& property)
   std::stringstream buffer;
   buffer << in.rdbuf();
   const std::string xml = buffer.str();
-  std::smatch element;
-  const std::regex pattern("<(Int|Double)VectorProperty\\s+name=\"" + property +
-    "\"[\\s\\S]*?</(Int|Double)VectorProperty>");
-  if (!std::regex_search(xml, element, pattern))
+  std::size_t begin = std::string::npos;
+  for (const char* type : { "<IntVectorProperty name=\"", "<DoubleVectorProperty name=\"" })
+  {
+    begin = std::min(begin, xml.find(type + property + "\""));
+  }
+  if (begin == std::string::npos)
   {
     ADD_FAILURE() << xmlFile << " declares no " << property;
     return {};
   }
-  const std::string text = element.str();
+  const std::size_t end = xml.find("VectorProperty>", begin); // its closing tag
+  const std::string text = xml.substr(begin, end - begin);
   XmlDeclared d;
-  d.defaults = numbersIn(attributeOf(text, "(Int|Double)VectorProperty", "default_values"));
-  d.mins = numbersIn(attributeOf(text, "(Int|Double)RangeDomain", "min"));
-  d.maxs = numbersIn(attributeOf(text, "(Int|Double)RangeDomain", "max"));
+  d.defaults = numbersIn(attributeOf(openingTag(text, "VectorProperty"), "default_values"));
+  const std::string range = openingTag(text, "RangeDomain");
+  d.mins = numbersIn(attributeOf(range, "min"));
+  d.maxs = numbersIn(attributeOf(range, "max"));
   d.boolean = text.find("<BooleanDomain") != std::string::npos;
-  const std::regex entry("<Entry\\s+value=\"(-?[0-9]+)\"\\s+text=\"([^\"]*)\"");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), entry);
-       it != std::sregex_iterator();
-       ++it)
+  for (std::size_t at = text.find("<Entry "); at != std::string::npos;
+       at = text.find("<Entry ", at + 1))
   {
-    d.entries.emplace_back(std::stoi((*it)[1].str()), (*it)[2].str());
+    const std::string entry = text.substr(at, text.find('>', at) - at + 1);
+    d.entries.emplace_back(std::stoi(attributeOf(entry, "value")), attributeOf(entry, "text"));
   }
   return d;
 }
