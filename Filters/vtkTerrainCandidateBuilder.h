@@ -6,11 +6,12 @@
  * Input port 1 (optional): their feature trees (vtkTerrainFeatureExtractor
  * output), in the same order; without them ridges and valleys are extracted
  * with the default settings. Output: a vtkTable with one row per candidate
- * variant (each feature site in 8 rotations by 45 degrees and 2 mirrors):
- * Exemplar, Site, Variant, Kind (1 end, 2 branch, 0 path point), FeatureType,
- * Arms, X and Y (metres in the exemplar), Angle0..3 (placed arm directions,
- * degrees), Noise0..2 (band-pass variances, m^2). Field data: PatchSize,
- * HeightScale. Tasse's thesis, 3.4 (candidates, rotations, mirrors, noise).
+ * variant (each feature site in 8 rotations by 45 degrees and 2 mirrors): the
+ * whole pool, exactly, in the columns Filters/CandidatePoolTable.h lists
+ * (Exemplar, Site, Variant, Kind, FeatureType, Arms, X and Y in metres,
+ * Angle0..3 in degrees, and the descriptors the matcher compares), so that the
+ * Terrain Patch Matcher can take it as its Candidate Pool instead of building
+ * the pool again. Tasse's thesis, 3.4 (candidates, rotations, mirrors, noise).
  *
  * Kernel: Kernels/Matching/CandidatePool.h (buildCandidatePool).
  */

@@ -1,5 +1,6 @@
 #include "vtkTerrainPatchMatcher.h"
 
+#include "CandidatePoolTable.h"
 #include "MatchingInputs.h"
 #include "PipelineRequests.h"
 #include "PropertyEnums.h"
@@ -24,17 +25,19 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 
 vtkStandardNewMacro(vtkTerrainPatchMatcher);
 
 namespace
 {
 constexpr int kExemplarHeights = 1; // SetInputArrayToProcess index of the exemplars' heights
+constexpr int kPoolPort = 3;        // the Candidate Builder's table
 } // namespace
 
 vtkTerrainPatchMatcher::vtkTerrainPatchMatcher()
 {
-  this->SetNumberOfInputPorts(3);
+  this->SetNumberOfInputPorts(4);
   this->SetNumberOfOutputPorts(2);
   this->SetInputArrayToProcess(
     kExemplarHeights, 1, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
@@ -64,6 +67,12 @@ int vtkTerrainPatchMatcher::FillInputPortInformation(int port, vtkInformation* i
   if (port == 0)
   {
     info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+    return 1;
+  }
+  if (port == kPoolPort)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkTable");
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
     return 1;
   }
   info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
@@ -144,10 +153,13 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
           known[c] = k->GetComponent(static_cast<vtkIdType>(c), 0) != 0.0 ? 1 : 0;
         }
       }
-      const tsynth::ExemplarInputs in = tsynth::gatherExemplars(inputVector[1],
-        inputVector[2],
-        tsynth::exemplarHeightsNamed(
-          this->GetInputArrayInformation(kExemplarHeights), inputVector[1]));
+      vtkTable* poolTable = vtkTable::GetData(inputVector[kPoolPort], 0);
+      const tsynth::ExemplarHeights heights = tsynth::exemplarHeightsNamed(
+        this->GetInputArrayInformation(kExemplarHeights), inputVector[1]);
+      // A given pool holds what the feature trees would be read for.
+      const tsynth::ExemplarInputs in = poolTable != nullptr
+        ? tsynth::gatherExemplarImages(inputVector[1], heights)
+        : tsynth::gatherExemplars(inputVector[1], inputVector[2], heights);
       this->UpdateProgress(0.2);
       tsynth::MatcherOptions o;
       o.patchSize = this->PatchSize;
@@ -158,6 +170,11 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
       o.weights.noise = this->NoiseWeight;
       o.weights.overlap = this->OverlapWeight;
       o.weights.verticalOffset = this->VerticalOffset;
+      if (poolTable != nullptr)
+      {
+        o.pool = std::make_shared<const tsynth::CandidatePool>(
+          tsynth::readPoolTable(poolTable, in, this->PatchSize));
+      }
       tsynth::PatchMatcher matcher(in.heightPointers(), in.graphPointers(), o);
       this->BackendUsed = matcher.backendName();
       this->UpdateProgress(0.6);

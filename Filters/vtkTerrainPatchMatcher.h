@@ -5,7 +5,11 @@
  * Input port 0: the target heightfield ("Elevation"; an optional point array,
  * KnownArray, "Known" by default, is non-zero on cells already synthesised, whose
  * heights the overlap term compares; without it every cell counts as known). Input port 1: one or
- * more exemplar heightfields; port 2 (optional): their feature trees.
+ * more exemplar heightfields; port 2 (optional): their feature trees; port 3
+ * (optional): their candidate pool, the Terrain Candidate Builder's table
+ * (vtkTerrainCandidateBuilder), read back exactly instead of building the pool
+ * again, so the builder and the matcher chain; it must have been built from the
+ * same exemplars at the same patch size, and then the feature trees are not read.
  * Feature mode takes the target's feature site (PPA ridges and valleys, end and
  * branch nodes and path points) nearest to (SiteX, SiteY) and scores every
  * candidate variant with c = a_f c_f + a_a c_a + a_n c_n + a_o c_o (Tasse's
@@ -66,8 +70,8 @@ public:
   vtkSetVector2Macro(Site, double);
   vtkGetVector2Macro(Site, double);
   ///@{
-  /// Cost weights a_f, a_a, a_n, a_o (defaults 5, 2, 0.001, 1), 0 to 1e6: a negative
-  /// weight would reward a mismatch.
+  /// Cost weights a_f, a_a, a_n, a_o (defaults: the synthesis' own, from
+  /// tsynth::matcherOptionRows), 0 to 1e6: a negative weight would reward a mismatch.
   vtkSetClampMacro(FeatureWeight, double, 0.0, tsynth::kMaxMatchWeight);
   vtkGetMacro(FeatureWeight, double);
   vtkSetClampMacro(AngleWeight, double, 0.0, tsynth::kMaxMatchWeight);
@@ -77,7 +81,7 @@ public:
   vtkSetClampMacro(OverlapWeight, double, 0.0, tsynth::kMaxMatchWeight);
   vtkGetMacro(OverlapWeight, double);
   ///@}
-  /// Compare overlaps up to a vertical offset (default off).
+  /// Compare overlaps up to a vertical offset (default: the synthesis' own).
   vtkSetMacro(VerticalOffset, bool);
   vtkGetMacro(VerticalOffset, bool);
   vtkBooleanMacro(VerticalOffset, bool);
@@ -88,6 +92,11 @@ public:
   /// Per-port clearing, for ParaView's multiple-input properties.
   void RemoveAllExemplars() { this->RemoveAllInputConnections(1); }
   void RemoveAllFeatureTrees() { this->RemoveAllInputConnections(2); }
+  /// The Candidate Builder's table for port 3 (optional; nullptr: none).
+  void SetCandidatePoolConnection(vtkAlgorithmOutput* output)
+  {
+    this->SetInputConnection(3, output);
+  }
 
   /// The target's point array marking known cells (default "Known"; empty: every cell is
   /// known; a name the target lacks is an error unless it is the default).

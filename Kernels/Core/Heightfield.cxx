@@ -1,5 +1,6 @@
 #include "Heightfield.h"
 
+#include "ContentHash.h"
 #include "Error.h"
 #include "Grid.h"
 
@@ -17,6 +18,16 @@ Heightfield::Heightfield(int w, int h, float value)
   , height(h)
   , z(cellCount(w, h), value)
 {
+}
+
+void hashHeightfield(ContentHasher& h, const Heightfield& f)
+{
+  h.value(f.width);
+  h.value(f.height);
+  h.value(f.cellX);
+  h.value(f.cellY);
+  h.values(f.z);
+  h.values(f.valid);
 }
 
 std::size_t Heightfield::validCount() const

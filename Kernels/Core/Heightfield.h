@@ -52,6 +52,12 @@ struct Heightfield
   std::size_t validCount() const;
 };
 
+class ContentHasher;
+
+// Feeds a heightfield's grid, cell size, heights and nodata mask to a content
+// hash (ContentHash.h): a key for what was computed from it.
+void hashHeightfield(ContentHasher& h, const Heightfield& f);
+
 struct HeightRange
 {
   float min = 0.0f;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <string>
 
 namespace tsynth
 {
@@ -447,6 +448,129 @@ CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplar
     pool.exemplars.push_back(info);
   }
   return pool;
+}
+
+namespace
+{
+
+// Whether every value of a pool's array is finite.
+bool allFinite(const std::vector<float>& values)
+{
+  return std::all_of(values.begin(), values.end(), [](float v) { return std::isfinite(v); });
+}
+
+// The pool's arrays hold `perCandidate` values for each of its n candidates.
+void checkLength(std::size_t size, std::size_t n, std::size_t perCandidate, const char* what)
+{
+  if (size != n * perCandidate)
+  {
+    throw Error("The candidate pool's " + std::string(what) + " hold " + std::to_string(size) +
+      " values for " + std::to_string(n) + " candidates, not " + std::to_string(perCandidate) +
+      " each: it is not a whole pool.");
+  }
+}
+
+// Candidate c's own values lie in their ranges, its centre on its exemplar.
+void checkCandidate(const CandidatePool& pool, std::size_t c)
+{
+  const auto e = static_cast<std::size_t>(pool.exemplar[c]);
+  const ExemplarInfo& info = pool.exemplars[e];
+  const bool inRange = pool.variant[c] >= 0 && pool.variant[c] < kVariantCount &&
+    pool.arms[c] >= 0 && pool.arms[c] <= kMaxArms &&
+    (pool.type[c] == static_cast<int>(FeatureType::Ridge) ||
+      pool.type[c] == static_cast<int>(FeatureType::Valley)) &&
+    pool.kind[c] >= static_cast<int>(NodeKind::Path) &&
+    pool.kind[c] <= static_cast<int>(NodeKind::Branch);
+  const bool onExemplar = pool.centreX[c] >= 0.0f && pool.centreX[c] <= info.width - 1 &&
+    pool.centreY[c] >= 0.0f && pool.centreY[c] <= info.height - 1;
+  if (!inRange || !onExemplar)
+  {
+    throw Error("Candidate " + std::to_string(c) +
+      " of the candidate pool has a variant, arm "
+      "count, feature type, kind or centre no pool builder makes: it was not built here.");
+  }
+}
+
+} // namespace
+
+void checkGivenPool(const CandidatePool& pool,
+  const std::vector<const Heightfield*>& exemplars,
+  int patchSize)
+{
+  if (pool.patchSize != patchSize)
+  {
+    throw Error("The candidate pool was built for patches of " + std::to_string(pool.patchSize) +
+      " cells, not " + std::to_string(patchSize) + ": build it with the patch size it is used at.");
+  }
+  if (pool.exemplars.size() != exemplars.size())
+  {
+    throw Error("The candidate pool was built from " + std::to_string(pool.exemplars.size()) +
+      " exemplars, but " + std::to_string(exemplars.size()) +
+      " are given: build it from the same exemplars.");
+  }
+  for (std::size_t e = 0; e < exemplars.size(); ++e)
+  {
+    const ExemplarInfo& info = pool.exemplars[e];
+    if (info.width != exemplars[e]->width || info.height != exemplars[e]->height)
+    {
+      throw Error("Exemplar " + std::to_string(e) + " of the candidate pool was " +
+        std::to_string(info.width) + " x " + std::to_string(info.height) +
+        " cells, but the one "
+        "given is " +
+        std::to_string(exemplars[e]->width) + " x " + std::to_string(exemplars[e]->height) +
+        ": build the pool from the same exemplars.");
+    }
+  }
+  const std::size_t n = pool.size();
+  for (const std::vector<int>* column :
+    { &pool.exemplar, &pool.site, &pool.kind, &pool.type, &pool.arms })
+  {
+    checkLength(column->size(), n, 1, "columns");
+  }
+  checkLength(pool.centreX.size(), n, 1, "centres");
+  checkLength(pool.centreY.size(), n, 1, "centres");
+  checkLength(pool.angles.size(), n, kMaxArms, "arm angles");
+  checkLength(pool.along.size(), n, kMaxArms * kAlongSamples, "profiles along the arms");
+  checkLength(pool.across.size(), n, kMaxArms * kAcrossSamples, "profiles across the arms");
+  checkLength(pool.noise.size(), n, kNoiseLevels, "noise variances");
+  checkLength(pool.descriptor.size(), n, kDescriptorSize, "overlap summaries");
+  checkLength(pool.landform.size(), n, kLandformStride, "landform samples");
+  if (!(std::isfinite(pool.heightScale) && pool.heightScale > 0.0) || !allFinite(pool.centreX) ||
+    !allFinite(pool.centreY) || !allFinite(pool.angles) || !allFinite(pool.along) ||
+    !allFinite(pool.across) || !allFinite(pool.noise) || !allFinite(pool.descriptor) ||
+    !allFinite(pool.landform))
+  {
+    throw Error("The candidate pool holds values that are not finite numbers: it was not built "
+                "here, or was changed since.");
+  }
+  // Each exemplar's candidates in one run, in exemplar order, as the builder
+  // lays them and the matcher's per-exemplar searches read them.
+  for (std::size_t e = 0; e < exemplars.size(); ++e)
+  {
+    const ExemplarInfo& info = pool.exemplars[e];
+    const bool inside = info.firstCandidate <= n && info.candidateCount <= n - info.firstCandidate;
+    const bool follows = e == 0 ? info.firstCandidate == 0
+                                : info.firstCandidate ==
+        pool.exemplars[e - 1].firstCandidate + pool.exemplars[e - 1].candidateCount;
+    const auto first = pool.exemplar.begin() + static_cast<std::ptrdiff_t>(info.firstCandidate);
+    if (!inside || !follows ||
+      !std::all_of(first,
+        first + static_cast<std::ptrdiff_t>(info.candidateCount),
+        [e](int x) { return x == static_cast<int>(e); }))
+    {
+      throw Error("The candidate pool's candidates of exemplar " + std::to_string(e) +
+        " are not where its exemplar list says: it is not a whole pool.");
+    }
+  }
+  const ExemplarInfo& last = pool.exemplars.empty() ? ExemplarInfo{} : pool.exemplars.back();
+  if (last.firstCandidate + last.candidateCount != n)
+  {
+    throw Error("The candidate pool has candidates of no exemplar: it is not a whole pool.");
+  }
+  for (std::size_t c = 0; c < n; ++c)
+  {
+    checkCandidate(pool, c);
+  }
 }
 
 void mergePools(CandidatePool& a, const CandidatePool& b)

@@ -102,6 +102,17 @@ CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplar
   const PoolOptions& options = {},
   const std::vector<std::string>& names = {});
 
+// Refuses a pool handed in from outside (the table the Candidate Builder
+// writes, read back by the Patch Matcher) that does not fit these exemplars at
+// this patch size, or whose arrays do not hold together: another patch size,
+// exemplar count or exemplar size, arrays of the wrong length, candidates out
+// of their exemplar or out of order, values that are not finite. Throws
+// tsynth::Error with one sentence saying what disagrees. (Whether the heights
+// are the same ones is for the caller to check: the pool does not keep them.)
+void checkGivenPool(const CandidatePool& pool,
+  const std::vector<const Heightfield*>& exemplars,
+  int patchSize);
+
 // Adds b's candidates after a's (exemplar indices shifted); heightScale pooled.
 void mergePools(CandidatePool& a, const CandidatePool& b);
 

@@ -577,16 +577,6 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
 namespace
 {
 
-void hashHeightfield(ContentHasher& h, const Heightfield& f)
-{
-  h.value(f.width);
-  h.value(f.height);
-  h.value(f.cellX);
-  h.value(f.cellY);
-  h.values(f.z);
-  h.values(f.valid);
-}
-
 void hashSketch(ContentHasher& h, const SketchInput& sketch)
 {
   h.value(sketch.index());

@@ -392,6 +392,45 @@ class PluginTest(unittest.TestCase):
             self.assertGreater(int(np.isfinite(values).sum()), 100)
             self.assertAlmostEqual(float(np.nanmin(values)), cost, delta=max(1e-6, 1e-3 * abs(cost)) + 1e-3)
 
+    def test_patch_matcher_takes_the_candidate_builders_table(self):
+        # The two stages chained: the matcher given the builder's table matches exactly as
+        # the matcher that builds its own pool; emptying the property builds it again.
+        reader = simple.TerrainReader(FileName=self.alps)
+        builder = simple.TerrainCandidateBuilder(Input=[reader], PatchSize=64)
+        site = [300 * 92.74, 320 * 92.74]
+        options = dict(Input=reader, Exemplars=[reader], Mode=0, Site=site, PatchSize=64, K=4,
+                       Backend=2)
+        own = simple.TerrainPatchMatcher(**options)
+        chained = simple.TerrainPatchMatcher(CandidatePool=builder, **options)
+
+        def costs(matcher):
+            matcher.UpdatePipeline()
+            table = sm.Fetch(matcher, arg1=None, arg2=None, idx=0)
+            return [vtk_to_numpy(table.GetColumnByName(c)).copy()
+                    for c in ("Variant", "X", "Y", "Cost")]
+
+        expected = costs(own)
+        self.assertGreaterEqual(len(expected[3]), 4)
+        for a, b in zip(expected, costs(chained)):
+            np.testing.assert_array_equal(a, b)
+        # A pool of another patch size is refused, with the sizes named.
+        from vtkmodules.vtkCommonCore import vtkCommand
+        from vtkmodules.util.misc import calldata_type
+        from vtkmodules.util.vtkConstants import VTK_STRING
+        builder.PatchSize = 80
+        errors = []
+
+        @calldata_type(VTK_STRING)
+        def on_error(_caller, _event, text):
+            errors.append(text)
+
+        chained.GetClientSideObject().AddObserver(vtkCommand.ErrorEvent, on_error)
+        chained.UpdatePipeline()
+        self.assertTrue(any("built for patches of 80 cells, not 64" in e for e in errors), errors)
+        chained.CandidatePool = None
+        for a, b in zip(expected, costs(chained)):
+            np.testing.assert_array_equal(a, b)
+
     def test_patch_matcher_with_two_exemplars_and_the_cpu_backend(self):
         alps = simple.TerrainReader(FileName=self.alps)
         colorado = simple.TerrainReader(FileName=os.path.join(PATHS.bundled_data, "dems", "colorado.png"))
