@@ -421,6 +421,16 @@ void requireValidHeights(const Heightfield& hf)
   }
 }
 
+std::vector<std::uint8_t> filledCells(vtkImageData* image, const Heightfield& heights)
+{
+  std::vector<std::uint8_t> filled = pointFlags(image, "Filled", 1);
+  for (std::size_t k = 0; k < filled.size(); ++k)
+  {
+    filled[k] = filled[k] != 0 && heights.isValid(k) ? 1 : 0;
+  }
+  return filled;
+}
+
 std::vector<std::uint8_t> pointFlags(vtkImageData* image, const char* name, std::uint8_t fallback)
 {
   const auto n = static_cast<std::size_t>(image->GetNumberOfPoints());

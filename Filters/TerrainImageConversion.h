@@ -74,6 +74,10 @@ void requireValidHeights(const Heightfield& hf);
 // if its length is not the image's point count.
 std::vector<std::uint8_t> pointFlags(vtkImageData* image, const char* name, std::uint8_t fallback);
 
+// The cells of a terrain so far that patches wrote: its "Filled" point array where non-zero (every
+// cell when it has none), and valid in `heights` (the image's, imageToHeightfield's).
+std::vector<std::uint8_t> filledCells(vtkImageData* image, const Heightfield& heights);
+
 // An image's pixels (pixelValues) as a sketch image (top row first): unsigned-char scalars
 // with 1-4 components as they are, other types scaled onto 0..255 (one channel).
 ColourImage imageToColourImage(vtkImageData* image);

@@ -83,11 +83,7 @@ int vtkTerrainGraphCutMerger::RequestData(vtkInformation*,
         tsynth::imageToHeightfield(terrainImage, this->GetInputArrayToProcess(0, inputVector));
       const tsynth::Heightfield patch = tsynth::imageToHeightfield(
         patchImage, tsynth::selectedArrayOn(this->GetInputArrayInformation(1), patchImage));
-      std::vector<std::uint8_t> filled = tsynth::pointFlags(terrainImage, "Filled", 1);
-      for (std::size_t k = 0; k < filled.size(); ++k)
-      {
-        filled[k] = filled[k] != 0 && terrain.isValid(k) ? 1 : 0;
-      }
+      std::vector<std::uint8_t> filled = tsynth::filledCells(terrainImage, terrain);
       const std::vector<std::uint8_t> core = tsynth::pointFlags(patchImage, "Core", 0);
       int x0 = this->PatchCell[0];
       int y0 = this->PatchCell[1];

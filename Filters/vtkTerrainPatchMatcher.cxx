@@ -12,6 +12,7 @@
 
 #include <vtkDataObject.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
@@ -197,7 +198,7 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
 
       // Table of matches.
       vtkNew<vtkIntArray> rank, exemplar, variantColumn, feature;
-      vtkNew<vtkDoubleArray> x, y;
+      vtkNew<vtkDoubleArray> x, y, cellX, cellY;
       vtkNew<vtkFloatArray> cost;
       rank->SetName("Rank");
       exemplar->SetName("Exemplar");
@@ -205,6 +206,8 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
       feature->SetName("Feature");
       x->SetName("X");
       y->SetName("Y");
+      cellX->SetName("CellX");
+      cellY->SetName("CellY");
       cost->SetName("Cost");
       for (std::size_t r = 0; r < found.size(); ++r)
       {
@@ -215,6 +218,8 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
         feature->InsertNextValue(found[r].feature ? 1 : 0);
         x->InsertNextValue(in.originX[e] + found[r].centreX * in.heights[e].cellX);
         y->InsertNextValue(in.originY[e] + found[r].centreY * in.heights[e].cellY);
+        cellX->InsertNextValue(found[r].centreX);
+        cellY->InsertNextValue(found[r].centreY);
         cost->InsertNextValue(found[r].cost);
       }
       table->AddColumn(rank);
@@ -224,6 +229,18 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
       table->AddColumn(y);
       table->AddColumn(cost);
       table->AddColumn(feature);
+      table->AddColumn(cellX);
+      table->AddColumn(cellY);
+      // Where the patch goes: the lower-left target cell of the window matched.
+      vtkNew<vtkIntArray> window;
+      window->SetName("PatchCell");
+      window->InsertNextValue(tsynth::windowCorner(match.centreX, this->PatchSize));
+      window->InsertNextValue(tsynth::windowCorner(match.centreY, this->PatchSize));
+      table->GetFieldData()->AddArray(window);
+      vtkNew<vtkIntArray> patchSize;
+      patchSize->SetName("PatchSize");
+      patchSize->InsertNextValue(this->PatchSize);
+      table->GetFieldData()->AddArray(patchSize);
 
       // Cost map over the first exemplar: lowest cost of a candidate centred on each cell.
       const tsynth::Heightfield& first = in.heights.front();

@@ -17,7 +17,10 @@
  * every variant by masked SSD (coarse-to-fine). Both run on OpenCL (any device,
  * PoCL on a CPU) or on the CPU reference; Auto falls back to the CPU with a
  * warning. Output 0: a table of the K best per exemplar (Rank, Exemplar,
- * Variant, X, Y in the exemplar's metres, Cost, Feature). Output 1: a cost map
+ * Variant, X, Y in the exemplar's metres, Cost, Feature, CellX, CellY: the
+ * centre in the exemplar's cells, exactly; field data PatchCell, the target
+ * cell the window's lower-left corner lies on, and PatchSize): what the Terrain
+ * Patch Extractor cuts a patch from. Output 1: a cost map
  * over the first exemplar (MatchCost: the lowest cost of any variant centred on
  * each cell; NaN where there is no candidate), to see where good matches lie.
  *

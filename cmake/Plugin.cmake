@@ -15,6 +15,7 @@ set(tsynth_plugin_xmls
   Plugin/TerrainSketchLines.xml
   Plugin/TerrainCandidateBuilder.xml
   Plugin/TerrainPatchMatcher.xml
+  Plugin/TerrainPatchExtractor.xml
   Plugin/TerrainGraphCutMerger.xml
   Plugin/TerrainPoissonSolver.xml
   Plugin/TerrainPitRemoval.xml

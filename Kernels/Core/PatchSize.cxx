@@ -1,5 +1,7 @@
 #include "PatchSize.h"
 
+#include <cmath>
+
 #include "Error.h"
 
 namespace tsynth
@@ -23,6 +25,11 @@ void checkPatchSizeInRange(int patchSize, const std::string& name)
     throw Error(name + " must be from " + std::to_string(kMinSynthesisPatch) + " to " +
       std::to_string(kMaxSynthesisPatch) + " cells, not " + std::to_string(patchSize) + ".");
   }
+}
+
+int windowCorner(double centre, int patchSize)
+{
+  return static_cast<int>(std::lround(centre)) - patchSize / 2;
 }
 
 } // namespace tsynth

@@ -21,6 +21,10 @@ constexpr int kPatchSizeStep = 4;
 // size outside those taken. Front ends refuse such a size; none is ever rounded or clamped.
 void checkPatchSize(int patchSize, const std::string& name);
 
+// The lower-left cell of the patch-sized window centred on `centre` (cells),
+// on either axis: where a patch matched there is placed.
+int windowCorner(double centre, int patchSize);
+
 // The same for the stage filters that take any size in the range (the candidate builder and the
 // matcher: a size off the step is searched exhaustively, slower, same ranking).
 void checkPatchSizeInRange(int patchSize, const std::string& name);

@@ -25,8 +25,8 @@ DenseQuery windowAround(const Heightfield& target,
   DenseQuery q;
   q.heights.assign(static_cast<std::size_t>(size * size), 0.0f);
   q.known.assign(static_cast<std::size_t>(size * size), 0);
-  const int x0 = static_cast<int>(std::lround(cx)) - size / 2;
-  const int y0 = static_cast<int>(std::lround(cy)) - size / 2;
+  const int x0 = windowCorner(cx, size);
+  const int y0 = windowCorner(cy, size);
   for (int j = 0; j < size; ++j)
   {
     for (int i = 0; i < size; ++i)

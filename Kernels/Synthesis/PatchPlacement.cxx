@@ -9,6 +9,7 @@
 #include "FeatureOrder.h"
 #include "FillOrder.h"
 #include "Finishing.h"
+#include "PatchExtraction.h"
 
 #include <algorithm>
 #include <cmath>
@@ -47,16 +48,6 @@ constexpr double kNearTie = 0.1;
 // weakly, near the exemplars' level: otherwise patch after patch, each fitted
 // to the last, the land would wander off by kilometres.
 constexpr float kFreeLandWeight = 0.05f;
-// A patch's height leans towards the target on its empty part with this
-// weight per cell (times the confidence) against 1 per overlapping cell: enough
-// to stop drift along a line of patches, small enough that the seams the
-// merge has to absorb stay small.
-constexpr double kTargetPull = 1.0;
-// A feature patch owns a disc of this radius (in patches) round its centre ...
-constexpr double kCoreDiscInPatches = 0.125;
-// ... and its lines (the drawn one and its own) this far from the centre; so
-// far Placement::lineOffset looks at them.
-constexpr double kLineOffsetReachInPatches = 0.25;
 // Feature candidates laying their own line more than this many cells (median)
 // farther from the drawn one than the best-aligned candidate are passed over:
 // a crest a few cells beside the stroke reads as a second line.
@@ -75,9 +66,6 @@ constexpr float kLineOffsetSlack = 2.0f;
 // feature patch's seam shows, and the best 4 raised the seam index of
 // letters and a spiral at 40-cell patches from 1.07 and 1.09 to 1.14 and 1.20.
 constexpr int kMostFeatureSeamTrials = 4;
-// Overlap this small (a share of the window) says too little about a patch's
-// height: the target decides its vertical offset instead.
-constexpr double kMinOverlapForOffset = 0.05;
 
 } // namespace
 
@@ -254,85 +242,21 @@ Heightfield PatchPlacement::extract(const PatchCandidate& c) const
 {
   for (const DenseMatcher::Oriented& r : matcher_->dense().oriented())
   {
-    if (r.exemplar != c.exemplar || r.variant != c.variant)
+    if (r.exemplar == c.exemplar && r.variant == c.variant)
     {
-      continue;
+      const auto& ex = matcher_->pool().exemplars[static_cast<std::size_t>(c.exemplar)];
+      Heightfield patch = extractPatch(r.full, r.centreX, r.centreY, ex.width, ex.height, c, P_);
+      patch.cellX = out_.cellX;
+      patch.cellY = out_.cellY;
+      return patch;
     }
-    const Variant v = variant(c.variant);
-    const auto& ex = matcher_->pool().exemplars[static_cast<std::size_t>(c.exemplar)];
-    const double dx = c.centreX - 0.5 * (ex.width - 1);
-    const double dy = c.centreY - 0.5 * (ex.height - 1);
-    const double det = v.m[0] * v.m[3] - v.m[1] * v.m[2];
-    const double px = r.centreX + (v.m[3] * dx - v.m[1] * dy) / det;
-    const double py = r.centreY + (-v.m[2] * dx + v.m[0] * dy) / det;
-    const int x0 = static_cast<int>(std::lround(px)) - P_ / 2;
-    const int y0 = static_cast<int>(std::lround(py)) - P_ / 2;
-    Heightfield patch(P_, P_, std::numeric_limits<float>::quiet_NaN());
-    patch.cellX = out_.cellX;
-    patch.cellY = out_.cellY;
-    patch.valid.assign(patch.size(), 0);
-    for (int j = 0; j < P_; ++j)
-    {
-      for (int i = 0; i < P_; ++i)
-      {
-        const int x = x0 + i;
-        const int y = y0 + j;
-        if (x >= 0 && y >= 0 && x < r.full.width && y < r.full.height && r.full.isValid(x, y))
-        {
-          patch.at(i, j) = r.full.at(x, y);
-          patch.valid[patch.index(i, j)] = 1;
-        }
-      }
-    }
-    normaliseMask(patch);
-    return patch;
   }
   throw Error("Internal error: no oriented exemplar for a candidate.");
 }
 
 float PatchPlacement::fitOffset(const Heightfield& patch, int x0, int y0) const
 {
-  // Least squares over the overlap (weight 1 per cell) and, on the empty
-  // part, the low-passed target (weight kTargetPull times its confidence):
-  // the patch continues what is there, leaning back towards the target.
-  double sum = 0.0;
-  double weight = 0.0;
-  double sTarget = 0.0;
-  double nTarget = 0.0;
-  for (int j = 0; j < P_; ++j)
-  {
-    for (int i = 0; i < P_; ++i)
-    {
-      const int x = x0 + i;
-      const int y = y0 + j;
-      if (!patch.isValid(i, j) || x < 0 || y < 0 || x >= out_.width || y >= out_.height)
-      {
-        continue;
-      }
-      const std::size_t c = out_.index(x, y);
-      if (filled_[c] != 0)
-      {
-        sum += static_cast<double>(out_.z[c]) - patch.at(i, j);
-        weight += 1.0;
-      }
-      else if (lowTarget_.isValid(c))
-      {
-        const double w = kTargetPull * confidence_[c];
-        sum += w * (static_cast<double>(lowTarget_.z[c]) - patch.at(i, j));
-        weight += w;
-      }
-      if (lowTarget_.isValid(c))
-      {
-        sTarget += static_cast<double>(lowTarget_.z[c]) - patch.at(i, j);
-        nTarget += 1.0;
-      }
-    }
-  }
-  if (weight >= kMinOverlapForOffset * P_ * P_)
-  {
-    return static_cast<float>(sum / weight);
-  }
-  return nTarget > 0 ? static_cast<float>(sTarget / nTarget) : 0.0f;
+  return fitPatchOffset(patch, x0, y0, { out_, filled_, lowTarget_, confidence_ });
 }
 
 void PatchPlacement::protectLines(Heightfield& patch, int x0, int y0) const
@@ -445,28 +369,7 @@ void PatchPlacement::recordSource(std::size_t placement)
 
 std::vector<std::uint8_t> PatchPlacement::strokeCore(int x0, int y0) const
 {
-  std::vector<std::uint8_t> core(static_cast<std::size_t>(P_ * P_), 0);
-  for (int j = 0; j < P_; ++j)
-  {
-    for (int i = 0; i < P_; ++i)
-    {
-      const int x = x0 + i;
-      const int y = y0 + j;
-      const bool onLine =
-        x >= 0 && y >= 0 && x < out_.width && y < out_.height && line_[out_.index(x, y)] != 0;
-      // Within the disc, or on the line within its reach; the square test
-      // spares hypot for the many cells outside both.
-      const double limit = onLine ? std::max(kCoreDiscInPatches, kLineOffsetReachInPatches) * P_
-                                  : kCoreDiscInPatches * P_;
-      const double di = i - 0.5 * (P_ - 1);
-      const double dj = j - 0.5 * (P_ - 1);
-      if (std::abs(di) <= limit && std::abs(dj) <= limit && std::hypot(di, dj) <= limit)
-      {
-        core[static_cast<std::size_t>(j * P_ + i)] = 1;
-      }
-    }
-  }
-  return core;
+  return featureCore(line_, out_.width, out_.height, x0, y0, P_);
 }
 
 void PatchPlacement::alignTrial(const PatchCandidate& candidate, int x0, int y0, Trial& t) const
@@ -733,8 +636,8 @@ void PatchPlacement::placeFeatures(const std::vector<FeatureSite>& sites)
   for (std::size_t s = 0; s < sites.size(); ++s)
   {
     const FeatureSite& site = sites[s];
-    const int x0 = static_cast<int>(std::lround(site.centre.x)) - P_ / 2;
-    const int y0 = static_cast<int>(std::lround(site.centre.y)) - P_ / 2;
+    const int x0 = windowCorner(site.centre.x, P_);
+    const int y0 = windowCorner(site.centre.y, P_);
     FeatureQuery q =
       makeFeatureQuery(site, target_.field, noise_, &out_, &filled_, P_, &lowTarget_, &confidence_);
     if (!target_.detailed)

@@ -5,6 +5,7 @@ set(TSYNTH_SYNTHESIS_SOURCES
   Synthesis/Finishing.cxx
   Synthesis/Landform.cxx
   Synthesis/PatchColours.cxx
+  Synthesis/PatchExtraction.cxx
   Synthesis/PatchPlacement.cxx
   Synthesis/Preview.cxx
   Synthesis/Regions.cxx

@@ -19,7 +19,7 @@ from vtkmodules.util.misc import calldata_type  # noqa: E402
 from vtkmodules.util.numpy_support import numpy_to_vtk  # noqa: E402
 from vtkmodules.util.vtkConstants import VTK_STRING  # noqa: E402
 from vtkmodules.vtkCommonCore import vtkCommand, vtkPoints  # noqa: E402
-from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkPolyData, vtkPolyLine  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkPolyData, vtkPolyLine, vtkTable  # noqa: E402
 from vtkmodules.vtkIOImage import vtkPNGReader  # noqa: E402
 
 
@@ -228,6 +228,11 @@ class BadFilterInputTest(unittest.TestCase):
             # Matcher, merger, Poisson: arrays of the wrong length
             ("matcher-short-known", lambda: self.matcher(image(z, arrays={"Known": np.ones(10, np.uint8)})),
              r"Known array has 10 values for %d points" % n),
+            ("extractor-no-matches", lambda: self.extractor(image(z), vtkTable()),
+             r"Rank 0 asks for a match past the 0 the matcher found"),
+            ("extractor-exemplar-other-cells",
+             lambda: self.extractor(image(z), self.matches(image(z)), exemplar=image(z, spacing=(30.0, 30.0))),
+             r"Exemplar 0 has other cells than the terrain: resample it"),
             ("merger-short-filled", lambda: self.merger(image(z, arrays={"Filled": np.ones(5, np.uint8)})),
              r"Filled array has 5 values for %d points" % n),
             ("merger-patch-far-away", lambda: self.merger(image(z), patch_origin=(1e300, 0.0)),
@@ -266,6 +271,19 @@ class BadFilterInputTest(unittest.TestCase):
         m.SetInputConnection(0, self.port(target))
         m.AddInputConnection(1, self.port(image(relief())))
         return m
+
+    def matches(self, target):
+        """The matcher's table for this target against relief(), as the extractor takes it."""
+        m = self.matcher(target)
+        m.Update()
+        return m.GetOutputDataObject(0)
+
+    def extractor(self, terrain, matches, exemplar=None):
+        e = self.make("vtkTerrainPatchExtractor")
+        e.SetInputData(0, terrain)
+        e.AddInputDataObject(1, exemplar if exemplar is not None else image(relief()))
+        e.SetInputData(2, matches)
+        return e
 
     def merger(self, terrain, patch_origin=None):
         m = self.make("vtkTerrainGraphCutMerger")

@@ -431,6 +431,37 @@ class PluginTest(unittest.TestCase):
         for a, b in zip(expected, costs(chained)):
             np.testing.assert_array_equal(a, b)
 
+    def test_matcher_extractor_and_merger_chain(self):
+        # Builder -> Matcher -> Extractor -> Merger in ParaView's proxies: the self-match at a
+        # site of the exemplar's own ridges, cut and merged back, leaves the terrain as it was.
+        reader = simple.TerrainReader(FileName=self.alps)
+        builder = simple.TerrainCandidateBuilder(Input=[reader], PatchSize=64)
+        builder.UpdatePipeline()
+        pool = sm.Fetch(builder)
+        site = [pool.GetColumnByName("X").GetValue(300), pool.GetColumnByName("Y").GetValue(300)]
+        matcher = simple.TerrainPatchMatcher(Input=reader, Exemplars=[reader], CandidatePool=builder,
+                                             Mode=0, Site=site, PatchSize=64, K=4, Backend=2)
+        extractor = simple.TerrainPatchExtractor(Input=reader, Exemplars=[reader],
+                                                 Matches=simple.OutputPort(matcher, 0))
+        merger = simple.TerrainGraphCutMerger(Input=reader, Patch=extractor)
+        merger.UpdatePipeline()
+        patch = sm.Fetch(extractor)
+        self.assertEqual(patch.GetDimensions(), (64, 64, 1))
+        matches = sm.Fetch(matcher, arg1=None, arg2=None, idx=0)
+        cell = matches.GetFieldData().GetArray("PatchCell")
+        self.assertAlmostEqual(patch.GetOrigin()[0], cell.GetValue(0) * 92.74, delta=0.5)
+        self.assertAlmostEqual(patch.GetOrigin()[1], cell.GetValue(1) * 92.74, delta=0.5)
+        self.assertEqual(patch.GetFieldData().GetArray("VerticalOffset").GetValue(0), 0.0)
+        self.assertGreater(int(point_array(patch, "Core").sum()), 50)
+        z, _ = dem_array(self.alps)
+        merged = point_array(sm.Fetch(merger), "Elevation").reshape(z.shape)
+        self.assertLess(float(np.abs(merged - z).max()), 1e-3)
+        # The second best, shifted onto the terrain's level, is cut too.
+        extractor.Rank = 1
+        extractor.UpdatePipeline()
+        self.assertNotEqual(sm.Fetch(extractor).GetFieldData().GetArray("VerticalOffset").GetValue(0),
+                            0.0)
+
     def test_patch_matcher_with_two_exemplars_and_the_cpu_backend(self):
         alps = simple.TerrainReader(FileName=self.alps)
         colorado = simple.TerrainReader(FileName=os.path.join(PATHS.bundled_data, "dems", "colorado.png"))

@@ -1,0 +1,69 @@
+/**
+ * @class vtkTerrainPatchExtractor
+ * @brief The patch a match names, cut from its exemplar, with its core and
+ * vertical offset: what the Terrain Graph-Cut Merger places.
+ *
+ * Input port 0: the terrain so far (2D image, "Elevation"; an optional uint8
+ * point array "Filled" marks the cells patches wrote, else every valid cell
+ * counts; an optional uint8 "Line" marks sketched line cells). Input port 1: the
+ * exemplar heightfields, in the order the matcher had them. Input port 2: the
+ * Terrain Patch Matcher's table of matches (vtkTerrainPatchMatcher output 0).
+ *
+ * The match of row Rank is cut from its exemplar as its variant (rotation or
+ * mirror) sees it, patch size square, centred on the match's centre (the
+ * table's CellX, CellY), exactly as the synthesis cuts its patches; cells off
+ * the exemplar or on its nodata are invalid. With VerticalOffset, the patch is
+ * shifted to continue what it overlaps: the mean difference over the filled
+ * cells under it (with under 5% of the patch on filled cells, none; the
+ * synthesis then leans on its target, which this stage does not have). Output: the patch as an
+ * image on the terrain's cell size, with its origin on the window the matcher matched (the table's
+ * PatchCell), so the merger places it there; point arrays Elevation, Valid (where cells are
+ * invalid) and Core (uint8, 1 on the cells a feature patch owns whatever the
+ * seam: a disc of an eighth of a patch round its centre and the Line cells
+ * within a quarter patch; all 0 for a non-feature match); field data
+ * VerticalOffset (metres), Exemplar, Variant, Rank.
+ *
+ * Kernel: Kernels/Synthesis/PatchExtraction.h (extractPatch, fitPatchOffset,
+ * featureCore), which the synthesis' placement uses for every patch.
+ */
+#pragma once
+
+#include "TerrainSynthesisFiltersModule.h"
+
+#include <vtkImageAlgorithm.h>
+
+class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainPatchExtractor : public vtkImageAlgorithm
+{
+public:
+  static vtkTerrainPatchExtractor* New();
+  vtkTypeMacro(vtkTerrainPatchExtractor, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The row of the matches to cut (default 0: the best). A rank past the table's rows fails
+  /// the request with a sentence saying how many there are.
+  vtkSetClampMacro(Rank, int, 0, VTK_INT_MAX);
+  vtkGetMacro(Rank, int);
+  /// Shift the patch to fit what it overlaps (default on, as the synthesis does).
+  vtkSetMacro(VerticalOffset, bool);
+  vtkGetMacro(VerticalOffset, bool);
+  vtkBooleanMacro(VerticalOffset, bool);
+
+  /// Per-port clearing, for ParaView's multiple-input property.
+  void RemoveAllExemplars() { this->RemoveAllInputConnections(1); }
+
+protected:
+  vtkTerrainPatchExtractor();
+  ~vtkTerrainPatchExtractor() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int Rank = 0;
+  bool VerticalOffset = true;
+
+private:
+  vtkTerrainPatchExtractor(const vtkTerrainPatchExtractor&) = delete;
+  void operator=(const vtkTerrainPatchExtractor&) = delete;
+};

@@ -1,0 +1,211 @@
+// The Terrain Patch Extractor (Filters/vtkTerrainPatchExtractor.h) between the
+// Patch Matcher and the Graph-Cut Merger: the patch a match names, where the
+// matcher matched, shifted to fit, with its core.
+#include "TestData.h"
+#include "vtkTerrainCandidateBuilder.h"
+#include "vtkTerrainGraphCutMerger.h"
+#include "vtkTerrainPatchExtractor.h"
+#include "vtkTerrainPatchMatcher.h"
+#include "vtkTerrainReader.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkTable.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+namespace
+{
+
+struct Chain
+{
+  vtkNew<vtkTerrainReader> reader;
+  vtkNew<vtkTerrainCandidateBuilder> builder;
+  vtkNew<vtkTerrainPatchMatcher> matcher;
+  vtkNew<vtkTerrainPatchExtractor> extractor;
+  std::string errors;
+  vtkNew<vtkCallbackCommand> onError;
+
+  // Colorado matched against itself at a site of its own ridges, through the
+  // builder's pool, and the extractor on the matcher's table.
+  Chain()
+  {
+    reader->SetFileName((tsynth::test::bundledData() / "dems" / "colorado.png").string().c_str());
+    builder->SetInputConnection(0, reader->GetOutputPort());
+    builder->Update();
+    vtkTable* pool = builder->GetOutput();
+    matcher->SetInputConnection(0, reader->GetOutputPort());
+    matcher->AddInputConnection(1, reader->GetOutputPort());
+    matcher->SetCandidatePoolConnection(builder->GetOutputPort());
+    matcher->SetBackend(vtkTerrainPatchMatcher::CPU);
+    matcher->SetSite(pool->GetColumnByName("X")->GetVariantValue(500).ToDouble(),
+      pool->GetColumnByName("Y")->GetVariantValue(500).ToDouble());
+    extractor->SetInputConnection(0, reader->GetOutputPort());
+    extractor->AddInputConnection(1, reader->GetOutputPort());
+    extractor->SetInputConnection(2, matcher->GetOutputPort(0));
+    onError->SetClientData(this);
+    onError->SetCallback([](vtkObject*, unsigned long, void* self, void* message)
+      { static_cast<Chain*>(self)->errors += static_cast<const char*>(message); });
+    extractor->AddObserver(vtkCommand::ErrorEvent, onError);
+  }
+
+  vtkImageData* terrain() { return reader->GetOutput(); }
+  vtkImageData* patch() { return extractor->GetOutput(); }
+  int patchCell(int axis)
+  {
+    return static_cast<int>(
+      matcher->GetMatches()->GetFieldData()->GetArray("PatchCell")->GetComponent(axis, 0));
+  }
+  double field(const char* name)
+  {
+    return patch()->GetFieldData()->GetArray(name)->GetComponent(0, 0);
+  }
+};
+
+double pointValue(vtkImageData* image, const char* array, int i, int j)
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  return image->GetPointData()->GetArray(array)->GetComponent(
+    static_cast<vtkIdType>(j) * dims[0] + i, 0);
+}
+
+} // namespace
+
+TEST(PatchExtractor, TheBestSelfMatchIsTheTerrainItselfWhereTheMatcherMatched)
+{
+  Chain chain;
+  chain.extractor->Update();
+  ASSERT_EQ(chain.errors, "");
+  vtkTable* matches = chain.matcher->GetMatches();
+  ASSERT_GT(matches->GetNumberOfRows(), 1);
+  ASSERT_EQ(matches->GetColumnByName("Feature")->GetVariantValue(0).ToInt(), 1);
+  ASSERT_EQ(matches->GetColumnByName("Variant")->GetVariantValue(0).ToInt(), 0);
+  vtkImageData* patch = chain.patch();
+  int dims[3];
+  patch->GetDimensions(dims);
+  ASSERT_EQ(dims[0], 80);
+  ASSERT_EQ(dims[1], 80);
+  // Placed on the window: its origin is the PatchCell's point of the terrain.
+  const int x0 = chain.patchCell(0);
+  const int y0 = chain.patchCell(1);
+  double spacing[3];
+  chain.terrain()->GetSpacing(spacing);
+  EXPECT_DOUBLE_EQ(patch->GetOrigin()[0], x0 * spacing[0]);
+  EXPECT_DOUBLE_EQ(patch->GetOrigin()[1], y0 * spacing[1]);
+  // The place itself, unrotated: every height the terrain's, no shift.
+  EXPECT_EQ(chain.field("VerticalOffset"), 0.0);
+  for (int j = 0; j < 80; ++j)
+  {
+    for (int i = 0; i < 80; ++i)
+    {
+      ASSERT_EQ(pointValue(patch, "Elevation", i, j),
+        pointValue(chain.terrain(), "Elevation", x0 + i, y0 + j))
+        << i << ", " << j;
+    }
+  }
+  // A feature match owns the disc of an eighth of a patch round its centre.
+  double core = 0.0;
+  for (int j = 0; j < 80; ++j)
+  {
+    for (int i = 0; i < 80; ++i)
+    {
+      core += pointValue(patch, "Core", i, j);
+    }
+  }
+  EXPECT_EQ(pointValue(patch, "Core", 40, 40), 1.0);
+  EXPECT_EQ(pointValue(patch, "Core", 40, 52), 0.0);
+  EXPECT_NEAR(core, M_PI * 10.0 * 10.0, 0.1 * M_PI * 10.0 * 10.0);
+}
+
+TEST(PatchExtractor, ALesserMatchIsShiftedByItsMeanDifferenceToTheFilledTerrain)
+{
+  Chain chain;
+  chain.extractor->SetRank(1);
+  chain.extractor->Update();
+  ASSERT_EQ(chain.errors, "");
+  const int x0 = chain.patchCell(0);
+  const int y0 = chain.patchCell(1);
+  const double offset = chain.field("VerticalOffset");
+  // Every terrain cell is filled (no Filled array): the shift is the mean of
+  // terrain minus the unshifted patch over the patch's valid cells.
+  double sum = 0.0;
+  double n = 0.0;
+  for (int j = 0; j < 80; ++j)
+  {
+    for (int i = 0; i < 80; ++i)
+    {
+      const double shifted = pointValue(chain.patch(), "Elevation", i, j);
+      if (std::isfinite(shifted))
+      {
+        sum += pointValue(chain.terrain(), "Elevation", x0 + i, y0 + j) - (shifted - offset);
+        n += 1.0;
+      }
+    }
+  }
+  ASSERT_GT(n, 0.5 * 80 * 80);
+  EXPECT_NEAR(offset, sum / n, 1e-3);
+  EXPECT_GT(std::abs(offset), 0.01); // another place of the exemplar: another level
+  // Without the shift, the same heights less it.
+  vtkNew<vtkImageData> shifted;
+  shifted->DeepCopy(chain.patch());
+  chain.extractor->VerticalOffsetOff();
+  chain.extractor->Update();
+  EXPECT_EQ(chain.field("VerticalOffset"), 0.0);
+  EXPECT_NEAR(pointValue(shifted, "Elevation", 40, 40) - offset,
+    pointValue(chain.patch(), "Elevation", 40, 40),
+    1e-3);
+}
+
+TEST(PatchExtractor, TheMergerPlacesTheExtractedPatchOnTheMatchedWindow)
+{
+  // Matcher, extractor and merger chained: the self-match merged back leaves
+  // the terrain as it was, and the patch's cells are marked where it lies.
+  Chain chain;
+  vtkNew<vtkTerrainGraphCutMerger> merger;
+  merger->SetInputConnection(0, chain.reader->GetOutputPort());
+  merger->SetInputConnection(1, chain.extractor->GetOutputPort());
+  merger->Update();
+  ASSERT_EQ(chain.errors, "");
+  vtkImageData* merged = merger->GetOutput();
+  vtkDataArray* before = chain.terrain()->GetPointData()->GetArray("Elevation");
+  vtkDataArray* after = merged->GetPointData()->GetArray("Elevation");
+  ASSERT_EQ(before->GetNumberOfTuples(), after->GetNumberOfTuples());
+  double largest = 0.0;
+  for (vtkIdType k = 0; k < before->GetNumberOfTuples(); ++k)
+  {
+    largest = std::max(largest, std::abs(after->GetComponent(k, 0) - before->GetComponent(k, 0)));
+  }
+  EXPECT_LT(largest, 1e-3);
+  const int x0 = chain.patchCell(0);
+  const int y0 = chain.patchCell(1);
+  EXPECT_EQ(pointValue(merged, "PatchId", x0 + 40, y0 + 40), 1.0); // the core came from it
+}
+
+TEST(PatchExtractor, RefusesARankPastTheMatchesAndATableWithoutCentres)
+{
+  Chain chain;
+  chain.extractor->SetRank(1000);
+  chain.extractor->Update();
+  EXPECT_NE(chain.errors.find("Rank 1000 asks for a match past the"), std::string::npos)
+    << chain.errors;
+  EXPECT_EQ(chain.patch()->GetNumberOfPoints(), 0);
+  chain.errors.clear();
+  chain.matcher->Update();
+  vtkNew<vtkTable> noCentres;
+  noCentres->DeepCopy(chain.matcher->GetMatches());
+  noCentres->RemoveColumnByName("CellX");
+  chain.extractor->SetRank(0);
+  chain.extractor->SetInputData(2, noCentres);
+  chain.extractor->Update();
+  EXPECT_NE(chain.errors.find("The matches have no column CellX"), std::string::npos)
+    << chain.errors;
+}
