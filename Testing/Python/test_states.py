@@ -56,8 +56,19 @@ def point_array(data, name):
     return vtk_to_numpy(array)
 
 
+def clear_session():
+    """Deletes every view, layout and pipeline object: the next state loads alone, its names
+    (several states have an "Exemplar") and its view its own."""
+    simple.RemoveViewsAndLayouts()
+    sources = simple.GetSources()
+    # Newest first: a filter goes before the inputs it consumes.
+    for key in sorted(sources, key=lambda k: int(k[1]), reverse=True):
+        simple.Delete(sources[key])
+
+
 def load_state(name):
     path = os.path.join(STATE_ARGS.states, name)
+    clear_session()
     simple.LoadState(path, data_directory=PATHS.bundled_data, restrict_to_data_directory=True)
     simple._DisableFirstRenderCameraReset()  # keep the state's camera (as ParaView's traces do)
     return path
@@ -242,6 +253,55 @@ class PitRemovalState(unittest.TestCase):
         drawn = fetch("Streams")
         print("streams: %d stream cells, %d drawn cells" % (int(streams.sum()), drawn.GetNumberOfCells()))
         self.assertGreater(drawn.GetNumberOfCells(), MIN_STREAM_CELLS)
+
+
+class PatchStagesState(unittest.TestCase):
+    """patch_stages.pvsm: Builder -> Matcher -> Extractor -> Merger, one patch placed."""
+
+    @classmethod
+    def setUpClass(cls):
+        simple.LoadPlugin(PATHS.plugin, remote=False)
+        cls.path = load_state("patch_stages.pvsm")
+
+    def test_state_names_its_data_relative_to_the_repository(self):
+        self.assertEqual(file_names_in(self.path), ["Data/dems/colorado.png"])
+
+    def test_the_matcher_matches_with_the_builders_pool(self):
+        matcher = simple.FindSource("Matcher")
+        self.assertIs(matcher.CandidatePool, simple.FindSource("Candidates"))
+        chained = fetch("Matcher")
+        alone = simple.TerrainPatchMatcher(Input=simple.FindSource("Exemplar"),
+                                           Exemplars=[simple.FindSource("Exemplar")],
+                                           FeatureTrees=[simple.FindSource("FeatureTrees")],
+                                           Mode=0, Backend=CPU, Site=list(matcher.Site))
+        alone.UpdatePipeline()
+        own = sm.Fetch(alone, arg1=None, arg2=None, idx=0)
+        self.assertGreater(chained.GetNumberOfRows(), 1)
+        for name in ("Exemplar", "Variant", "CellX", "CellY", "Cost"):
+            np.testing.assert_array_equal(vtk_to_numpy(chained.GetColumnByName(name)),
+                                          vtk_to_numpy(own.GetColumnByName(name)))
+        simple.Delete(alone)
+
+    def test_the_patch_is_merged_on_the_matched_window_only(self):
+        matches = fetch("Matcher")
+        x0, y0 = (int(matches.GetFieldData().GetArray("PatchCell").GetValue(a)) for a in (0, 1))
+        size = int(matches.GetFieldData().GetArray("PatchSize").GetValue(0))
+        patch = fetch("Patch")
+        self.assertEqual(patch.GetDimensions(), (size, size, 1))
+        self.assertEqual(patch.GetOrigin()[:2], (x0 * EXEMPLAR_CELL_M, y0 * EXEMPLAR_CELL_M))
+        dem = point_array(fetch("Exemplar"), "Elevation").reshape(EXEMPLAR_CELLS[1], EXEMPLAR_CELLS[0])
+        merged = fetch("Merged")
+        z = point_array(merged, "Elevation").reshape(dem.shape)
+        taken = point_array(merged, "PatchId").reshape(dem.shape) == 1
+        window = np.zeros(dem.shape, dtype=bool)
+        window[y0:y0 + size, x0:x0 + size] = True
+        print("patch at cell (%d, %d): %d cells taken, %d seam cells"
+              % (x0, y0, int(taken.sum()), int(point_array(merged, "SeamMask").sum())))
+        self.assertGreater(int(taken.sum()), 100)  # at least the core round its centre
+        self.assertFalse(np.any(taken & ~window))
+        np.testing.assert_array_equal(z[~window], dem[~window])  # old terrain never changed
+        self.assertGreater(float(np.abs(z - dem)[taken].max()), 1.0)  # another place's land
+        self.assertGreater(fetch("Seam").GetNumberOfCells(), 20)
 
 
 def main():
