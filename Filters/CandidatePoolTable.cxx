@@ -173,13 +173,21 @@ void readAngles(vtkTable* table, vtkIdType rows, CandidatePool& pool)
   }
 }
 
-// Each exemplar's size and its run of candidates, from the field data and the
-// Exemplar column (the builder writes each exemplar's candidates in one run).
-void readExemplars(vtkTable* table, const ExemplarInputs& in, CandidatePool& pool)
+// Each exemplar's size, checksum and run of candidates, from the field data
+// and the Exemplar column (the builder writes each exemplar's candidates in one run).
+void readExemplars(vtkTable* table, CandidatePool& pool)
 {
-  const auto count = static_cast<vtkIdType>(in.heights.size());
+  auto* widthArray =
+    vtkIntArray::SafeDownCast(table->GetFieldData()->GetAbstractArray("ExemplarWidth"));
+  if (widthArray == nullptr || widthArray->GetNumberOfTuples() == 0)
+  {
+    throw Error("The candidate pool table's field data lacks ExemplarWidth: connect the Terrain "
+                "Candidate Builder's output, unchanged.");
+  }
+  const vtkIdType count = widthArray->GetNumberOfTuples();
   const vtkIntArray* widths = fieldArray<vtkIntArray>(table, "ExemplarWidth", count);
   const vtkIntArray* heights = fieldArray<vtkIntArray>(table, "ExemplarHeight", count);
+  const vtkTypeUInt64Array* sums = fieldArray<vtkTypeUInt64Array>(table, "ExemplarChecksum", count);
   std::size_t first = 0;
   for (vtkIdType e = 0; e < count; ++e)
   {
@@ -187,6 +195,7 @@ void readExemplars(vtkTable* table, const ExemplarInputs& in, CandidatePool& poo
     info.name = "exemplar " + std::to_string(e);
     info.width = widths->GetValue(e);
     info.height = heights->GetValue(e);
+    info.heightsChecksum = sums->GetValue(e);
     info.firstCandidate = first;
     while (first < pool.size() && pool.exemplar[first] == static_cast<int>(e))
     {
@@ -225,7 +234,7 @@ void writePoolTable(const CandidatePool& pool, const ExemplarInputs& in, vtkTabl
   addFieldArray<vtkTypeUInt64Array>(table, "ExemplarChecksum", heightChecksums(in));
 }
 
-CandidatePool readPoolTable(vtkTable* table, const ExemplarInputs& in, int patchSize)
+CandidatePool poolFromTable(vtkTable* table)
 {
   const vtkIdType rows = table->GetNumberOfRows();
   CandidatePool pool;
@@ -242,19 +251,7 @@ CandidatePool readPoolTable(vtkTable* table, const ExemplarInputs& in, int patch
       valuesOf<vtkFloatArray, float>(column<vtkFloatArray>(table, c.name, c.components, rows));
   }
   readAngles(table, rows, pool);
-  readExemplars(table, in, pool);
-  checkGivenPool(pool, in.heightPointers(), patchSize);
-  const vtkTypeUInt64Array* sums = fieldArray<vtkTypeUInt64Array>(
-    table, "ExemplarChecksum", static_cast<vtkIdType>(in.heights.size()));
-  const std::vector<std::uint64_t> given = heightChecksums(in);
-  for (std::size_t e = 0; e < given.size(); ++e)
-  {
-    if (sums->GetValue(static_cast<vtkIdType>(e)) != given[e])
-    {
-      throw Error("The candidate pool was cut from other heights than exemplar " +
-        std::to_string(e) + ": connect the same exemplars to the Candidate Builder.");
-    }
-  }
+  readExemplars(table, pool);
   return pool;
 }
 

@@ -24,10 +24,9 @@ struct ExemplarInputs;
 // Fills `table` (emptied first) with the pool built from `in`'s exemplars.
 void writePoolTable(const CandidatePool& pool, const ExemplarInputs& in, vtkTable* table);
 
-// The pool a table written by writePoolTable holds, checked against the
-// exemplars `in` at this patch size (checkGivenPool, and the heights'
-// checksums). Throws tsynth::Error with one sentence naming what is missing
-// or disagrees.
-CandidatePool readPoolTable(vtkTable* table, const ExemplarInputs& in, int patchSize);
+// The pool a table written by writePoolTable holds, exemplar checksums
+// included, for checkGivenPool against the exemplars it is used with. Throws
+// tsynth::Error with one sentence naming what is missing or misshapen.
+CandidatePool poolFromTable(vtkTable* table);
 
 } // namespace tsynth

@@ -1,5 +1,7 @@
 #include "MatchingInputs.h"
 
+#include "Synthesis/ExemplarCache.h"
+
 #include "FeatureGraphConversion.h"
 #include "TerrainImageConversion.h"
 
@@ -100,8 +102,7 @@ ExemplarInputs gatherExemplars(vtkInformationVector* images,
     }
     else
     {
-      graph = extractFeatures(hf, FeatureType::Ridge, {}).graph;
-      appendGraph(graph, extractFeatures(hf, FeatureType::Valley, {}).graph);
+      graph = ridgesAndValleys(hf, exemplarPpaOptions()); // as the synthesis finds them
     }
     in.graphs.push_back(std::move(graph));
   }

@@ -47,7 +47,8 @@ ExemplarInputs gatherExemplarImages(vtkInformationVector* images,
   const ExemplarHeights& heights = {});
 
 // Images from `images` (one or more connections); graphs from `trees` when it
-// has one per image, else ridges and valleys extracted with default settings.
+// has one per image, else ridges and valleys extracted as the synthesis finds
+// them (exemplarPpaOptions), so that the pool is the synthesis' own.
 // Throws tsynth::Error when there is no exemplar or the counts disagree.
 ExemplarInputs gatherExemplars(vtkInformationVector* images,
   vtkInformationVector* trees,

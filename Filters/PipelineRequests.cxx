@@ -5,6 +5,7 @@
 #include <vtkInformationVector.h>
 #include <vtkPolyData.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkTable.h>
 
 #include <algorithm>
 #include <map>
@@ -87,9 +88,10 @@ bool imageProducerFailed(vtkInformationVector* port)
   for (int c = 0; c < port->GetNumberOfInformationObjects(); ++c)
   {
     vtkInformation* in = port->GetInformationObject(c);
-    if (vtkPolyData::SafeDownCast(in->Get(vtkDataObject::DATA_OBJECT())) != nullptr)
+    vtkDataObject* data = in->Get(vtkDataObject::DATA_OBJECT());
+    if (vtkPolyData::SafeDownCast(data) != nullptr || vtkTable::SafeDownCast(data) != nullptr)
     {
-      continue;
+      continue; // no extent to announce
     }
     if (!in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
     {

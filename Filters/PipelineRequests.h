@@ -24,8 +24,8 @@ void requestWholeExtents(vtkInformationVector** inputVector, int ports);
 // whose file is missing: its RequestInformation failed and said why): no whole extent, or (past
 // ParaView's vtkPVPostFilter) an empty one without a spacing, which every image that was
 // announced has. A filter's RequestInformation then fails without a sentence of its own, which
-// would name a consequence (no cell size, an empty sketch) and not the cause. Poly data
-// announces no extent and never counts as failed here.
+// would name a consequence (no cell size, an empty sketch) and not the cause. Poly data and
+// tables announce no extent and never count as failed here.
 bool imageProducerFailed(vtkInformationVector* port);
 
 // Whether the image producer on any of the first `ports` input ports failed (see above).

@@ -5,13 +5,13 @@
  * Input port 0: one or more exemplar heightfields (images with "Elevation").
  * Input port 1 (optional): their feature trees (vtkTerrainFeatureExtractor
  * output), in the same order; without them ridges and valleys are extracted
- * with the default settings. Output: a vtkTable with one row per candidate
- * variant (each feature site in 8 rotations by 45 degrees and 2 mirrors): the
- * whole pool, exactly, in the columns Filters/CandidatePoolTable.h lists
- * (Exemplar, Site, Variant, Kind, FeatureType, Arms, X and Y in metres,
- * Angle0..3 in degrees, and the descriptors the matcher compares), so that the
- * Terrain Patch Matcher can take it as its Candidate Pool instead of building
- * the pool again. Tasse's thesis, 3.4 (candidates, rotations, mirrors, noise).
+ * as the synthesis finds them (tsynth::exemplarPpaOptions: every line, Significance
+ * 0), so the table is the Terrain Synthesis' own pool. Output: a vtkTable with one row per
+ * candidate variant (each feature site in 8 rotations by 45 degrees and 2 mirrors): the whole pool,
+ * exactly, in the columns Filters/CandidatePoolTable.h lists (Exemplar, Site, Variant, Kind,
+ * FeatureType, Arms, X and Y in metres, Angle0..3 in degrees, and the descriptors the matcher
+ * compares), so that the Terrain Patch Matcher can take it as its Candidate Pool instead of
+ * building the pool again. Tasse's thesis, 3.4 (candidates, rotations, mirrors, noise).
  *
  * Kernel: Kernels/Matching/CandidatePool.h (buildCandidatePool).
  */

@@ -173,8 +173,9 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
       o.weights.verticalOffset = this->VerticalOffset;
       if (poolTable != nullptr)
       {
-        o.pool = std::make_shared<const tsynth::CandidatePool>(
-          tsynth::readPoolTable(poolTable, in, this->PatchSize));
+        auto pool = std::make_shared<const tsynth::CandidatePool>(tsynth::poolFromTable(poolTable));
+        tsynth::checkGivenPool(*pool, in.heightPointers(), this->PatchSize);
+        o.pool = std::move(pool);
       }
       tsynth::PatchMatcher matcher(in.heightPointers(), in.graphPointers(), o);
       this->BackendUsed = matcher.backendName();

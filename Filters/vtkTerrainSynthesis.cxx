@@ -1,5 +1,7 @@
 #include "vtkTerrainSynthesis.h"
 
+#include "CandidatePoolTable.h"
+
 #include "FeatureGraphConversion.h"
 #include "MatchingInputs.h"
 #include "ParallelPieces.h"
@@ -62,6 +64,9 @@ static_assert(
 namespace
 {
 constexpr int kExemplarHeights = 0; // SetInputArrayToProcess index of the exemplars' heights
+// The optional input ports: style regions, and the Candidate Builder's pool.
+constexpr int kRegionsPort = 2;
+constexpr int kPoolPort = 3;
 // The output ports: the terrain, and what shows how it was made.
 constexpr int kTerrainPort = 0;
 constexpr int kPlacementsPort = 1;
@@ -93,7 +98,7 @@ vtkTerrainSynthesis::vtkTerrainSynthesis()
   this->MemoryBudget = initial("MemoryBudget");
   this->LandformRelief = initial("LandformRelief");
   this->UseExemplarCache = initial("UseExemplarCache") != 0.0;
-  this->SetNumberOfInputPorts(3);
+  this->SetNumberOfInputPorts(4);
   this->SetNumberOfOutputPorts(kOutputPorts);
 }
 
@@ -108,9 +113,14 @@ int vtkTerrainSynthesis::FillInputPortInformation(int port, vtkInformation* info
     info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
     return 1;
   }
-  if (port == 2)
+  if (port == kRegionsPort)
   {
     info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+    return 1;
+  }
+  if (port == kPoolPort)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkTable");
     return 1;
   }
   info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
@@ -487,8 +497,13 @@ tsynth::SetupInputs setupInputs(vtkTerrainSynthesis* filter,
   tsynth::SketchInput sketch =
     tsynth::sketchInput(vtkDataObject::GetData(inputVector[1], 0), ex.warnings);
   // The placement table needs only ex's origins.
-  return tsynth::setupInputs(
-    request, std::move(ex.heights), {}, std::move(sketch), propertyNames());
+  tsynth::SetupInputs in =
+    tsynth::setupInputs(request, std::move(ex.heights), {}, std::move(sketch), propertyNames());
+  if (vtkTable* pool = vtkTable::GetData(inputVector[kPoolPort], 0))
+  {
+    in.pool = std::make_shared<const tsynth::CandidatePool>(tsynth::poolFromTable(pool));
+  }
+  return in;
 }
 
 // The request's options, with the style regions (port 2) laid on the terrain's grid.
@@ -499,10 +514,10 @@ tsynth::SynthesisOptions optionsOnGrid(const tsynth::SynthesisRequest& request,
   std::size_t exemplars)
 {
   tsynth::SynthesisOptions o = request.options;
-  if (inputVector[2]->GetNumberOfInformationObjects() > 0)
+  if (inputVector[kRegionsPort]->GetNumberOfInformationObjects() > 0)
   {
     const tsynth::Heightfield labels =
-      tsynth::imageToHeightfield(vtkImageData::GetData(inputVector[2], 0));
+      tsynth::imageToHeightfield(vtkImageData::GetData(inputVector[kRegionsPort], 0));
     tsynth::assignRegions(o, labels, regionMaps, grid.width, grid.height, exemplars);
   }
   return o;

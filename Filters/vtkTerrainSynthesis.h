@@ -24,7 +24,13 @@
  * empty when it implies none. The stages are the other Terrain Synthesis
  * filters' kernels: feature extraction, candidate pools and matching (OpenCL or CPU), graph-cut
  * merging. Optional input port 2: style regions, an image of integer labels resized to the output;
- * label L is served by exemplar L unless AddRegionMap("L=E1,E2").
+ * label L is served by exemplar L unless AddRegionMap("L=E1,E2"). Optional input port 3: the
+ * exemplars' candidate pool, the Terrain Candidate Builder's table, built from the exemplars on
+ * the output's cells at the same PatchSize: the synthesis matches its feature patches from it
+ * (as the Terrain Patch Matcher does) instead of the pool it would prepare. With the builder's
+ * FeatureTrees from a Terrain Feature Extractor at the synthesis' PPA settings (ridges and
+ * valleys, Significance 0), the terrain is the same, bit for bit
+ * (Examples/states/stages.pvsm).
  *
  * On ParaView's parallel engine each rank's outputs hold its piece. While they do, the filter
  * keeps the whole outputs of its last synthesis, so that a request for another extent of the same
@@ -187,6 +193,11 @@ public:
     this->Modified();
   }
   void SetSketchConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
+  /// Optional candidate pool (port 3): the Terrain Candidate Builder's table.
+  void SetCandidatePoolConnection(vtkAlgorithmOutput* output)
+  {
+    this->SetInputConnection(3, output);
+  }
   const char* GetBackendUsed() { return this->BackendUsed.c_str(); }
 
   vtkImageData* GetTerrain();

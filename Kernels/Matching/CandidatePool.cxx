@@ -1,5 +1,6 @@
 #include "CandidatePool.h"
 
+#include "../Core/ContentHash.h"
 #include "../Core/Error.h"
 #include "../Core/Grid.h"
 #include "../Features/Ppa.h"
@@ -519,6 +520,18 @@ void checkGivenPool(const CandidatePool& pool,
         "given is " +
         std::to_string(exemplars[e]->width) + " x " + std::to_string(exemplars[e]->height) +
         ": build the pool from the same exemplars.");
+    }
+    if (info.heightsChecksum != 0)
+    {
+      ContentHasher hasher;
+      hashHeightfield(hasher, *exemplars[e]);
+      if (hasher.digest() != info.heightsChecksum)
+      {
+        throw Error("The candidate pool was cut from other heights than exemplar " +
+          std::to_string(e) +
+          " (at the cell size it is used at): build it from the same "
+          "exemplars, on the output's cells.");
+      }
     }
   }
   const std::size_t n = pool.size();

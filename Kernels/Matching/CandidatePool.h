@@ -15,6 +15,7 @@
 #include "Orientation.h"
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,9 @@ struct ExemplarInfo
   int height = 0;
   std::size_t firstCandidate = 0;
   std::size_t candidateCount = 0;
+  // hashHeightfield of the heights the candidates were cut from, when the pool
+  // came with it (the Candidate Builder's table); 0: not known.
+  std::uint64_t heightsChecksum = 0;
 };
 
 struct CandidatePool
@@ -106,9 +110,9 @@ CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplar
 // writes, read back by the Patch Matcher) that does not fit these exemplars at
 // this patch size, or whose arrays do not hold together: another patch size,
 // exemplar count or exemplar size, arrays of the wrong length, candidates out
-// of their exemplar or out of order, values that are not finite. Throws
-// tsynth::Error with one sentence saying what disagrees. (Whether the heights
-// are the same ones is for the caller to check: the pool does not keep them.)
+// of their exemplar or out of order, values that are not finite, exemplars
+// whose heights' checksum (where the pool knows it) is not the given ones'.
+// Throws tsynth::Error with one sentence saying what disagrees.
 void checkGivenPool(const CandidatePool& pool,
   const std::vector<const Heightfield*>& exemplars,
   int patchSize);

@@ -16,6 +16,7 @@
 
 #include "../Core/Heightfield.h"
 #include "../Features/FeatureGraph.h"
+#include "../Features/Ppa.h"
 #include "../Matching/CandidatePool.h"
 #include "Target.h"
 
@@ -34,6 +35,11 @@ namespace tsynth
 constexpr std::uintmax_t kExemplarCacheLimitBytes = std::uintmax_t{ 1 } << 30;
 
 // Everything synthesis derives from the exemplars alone, in their order.
+// The PPA settings the synthesis finds its exemplars' ridges and valleys with
+// (ridgesAndValleys): what the Candidate Builder and the Patch Matcher extract
+// when given no feature trees, so that their pool is the synthesis' own.
+PpaOptions exemplarPpaOptions();
+
 struct PreparedExemplars
 {
   std::vector<FeatureGraph> graphs;          // PPA ridges and valleys

@@ -544,6 +544,11 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
     prepareExemplarsCached(s.exemplarPointers(), in.patchSize, in.cacheDirectory, s.cache);
   s.graphs = std::move(prepared.graphs);
   s.pool = std::move(prepared.pool);
+  if (in.pool != nullptr)
+  {
+    checkGivenPool(*in.pool, s.exemplarPointers(), in.patchSize);
+    s.pool = in.pool;
+  }
   if (!s.cache.problem.empty())
   {
     s.warnings.push_back("Exemplar cache: " + s.cache.problem + ".");
@@ -576,6 +581,34 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
 
 namespace
 {
+
+// Everything of a given pool that decides a match.
+void hashPool(ContentHasher& h, const CandidatePool& p)
+{
+  h.value(p.patchSize);
+  h.value(p.heightScale);
+  for (const ExemplarInfo& e : p.exemplars)
+  {
+    h.value(e.width);
+    h.value(e.height);
+    h.value(e.heightsChecksum);
+  }
+  for (const std::vector<int>* v : { &p.exemplar, &p.variant, &p.kind, &p.type, &p.arms })
+  {
+    h.values(*v);
+  }
+  for (const std::vector<float>* v : { &p.centreX,
+         &p.centreY,
+         &p.angles,
+         &p.along,
+         &p.across,
+         &p.noise,
+         &p.descriptor,
+         &p.landform })
+  {
+    h.values(*v);
+  }
+}
 
 void hashSketch(ContentHasher& h, const SketchInput& sketch)
 {
@@ -642,6 +675,11 @@ std::uint64_t synthesisRequestKey(const SetupInputs& in, const SynthesisOptions&
   h.value(in.seed);
   h.value(in.landformRelief);
   h.value(in.rasterSketchPatch);
+  h.value(in.pool != nullptr);
+  if (in.pool != nullptr)
+  {
+    hashPool(h, *in.pool);
+  }
   h.value(o.patchSize);
   h.value(o.merge);
   h.value(o.fill);

