@@ -96,6 +96,9 @@ writes them: its output works directly as a sketch of the same DEM.
                          finish the whole terrain at once: the placement's memory follows the
                          tile, and the same tile grid gives the same terrain whoever runs it
                          (default: one piece)
+  --placements N         stop after N placements and write the terrain as those patches made
+                         it, unfinished (nodata where no patch is yet): the whole synthesis'
+                         first N, to step through it; one piece only (default: all, finished)
   --repetition P         seam-cost penalty for reusing a nearby source, %RANGE:Repetition%
                          (default %DEFAULT:Repetition%; 0 = off)
   --landform-relief F    sketched ridges and valleys get F times the relief they are given
@@ -394,7 +397,7 @@ void checkPaths(const SynthArguments& a)
 }
 
 // --patch, --backend, --merge, --fill, --seed, --drainage, --no-vertical-offset, --tile-size,
-// --repetition.
+// --placements, --repetition.
 void takeSynthesisOptions(CommandLine& cl, SynthesisOptions& o)
 {
   if (const auto patch = takeRowNumber(cl, synthesisOption("PatchSize")))
@@ -445,6 +448,13 @@ void takeSynthesisOptions(CommandLine& cl, SynthesisOptions& o)
   if (const auto repetition = takeRowNumber(cl, synthesisOption("Repetition")))
   {
     o.repetitionPenalty = *repetition;
+  }
+  if (const auto placements = takeRowNumber(cl, synthesisOption("PlacementLimit")))
+  {
+    // More placements than an int counts are all of them.
+    o.placementLimit = *placements >= static_cast<double>(std::numeric_limits<int>::max())
+      ? kAllPlacements
+      : placementLimitOf(static_cast<int>(*placements));
   }
 }
 

@@ -92,6 +92,7 @@ vtkTerrainSynthesis::vtkTerrainSynthesis()
   this->VerticalOffset = initial("VerticalOffset") != 0.0;
   this->Repetition = initial("Repetition");
   this->TileSize = static_cast<int>(initial("TileSize"));
+  this->PlacementLimit = static_cast<int>(initial("PlacementLimit"));
   this->OutputSize[0] = this->OutputSize[1] = static_cast<int>(initial("OutputSize"));
   this->CellSize = initial("CellSize");
   this->Seed = static_cast<vtkIdType>(initial("Seed"));
@@ -326,6 +327,7 @@ tsynth::SynthesisRequest synthesisRequest(vtkTerrainSynthesis* filter)
   o.verticalOffset = filter->GetVerticalOffset();
   o.repetitionPenalty = filter->GetRepetition();
   o.tileSize = filter->GetTileSize();
+  o.placementLimit = tsynth::placementLimitOf(filter->GetPlacementLimit());
   o.seed = static_cast<std::uint64_t>(filter->GetSeed());
   o.progress = [filter](double f, const std::string&)
   { filter->UpdateProgress(kSetupProgress + kSynthesisProgress * f); };
@@ -648,7 +650,8 @@ void writeOutputs(vtkTerrainSynthesis* filter,
   tsynth::featureGraphToPolyData(
     setup.target.implied, vtkPolyData::GetData(outputVector, kImpliedLinesPort));
   seamsToPolyData(r, vtkPolyData::GetData(outputVector, kSeamsPort));
-  if (filter->GetDebugOutputs())
+  // The figures measure a finished terrain, not one stopped after some placements.
+  if (filter->GetDebugOutputs() && filter->GetPlacementLimit() == tsynth::kAllPlacementsNumber)
   {
     fillReport(tsynth::measureSynthesis(setup, r, filter->GetPatchSize()),
       vtkTable::GetData(outputVector, kReportPort));
@@ -771,7 +774,7 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
     },
     [&]
     {
-      if (this->PreviewFirst)
+      if (this->PreviewFirst && this->PlacementLimit == tsynth::kAllPlacementsNumber)
       {
         this->ForgetWholeOutputs();
         this->PreviewOrRefined(inputVector, outputVector);
@@ -779,7 +782,7 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
       }
       this->StopRefinement();
       this->SynthesiseOrCut(inputVector, outputVector);
-      this->OutputLevel = "final";
+      this->OutputLevel = this->PlacementLimit == tsynth::kAllPlacementsNumber ? "final" : "placements";
     });
 }
 
@@ -905,6 +908,7 @@ void vtkTerrainSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "VerticalOffset: " << this->VerticalOffset << "\n";
   os << indent << "Repetition: " << this->Repetition << "\n";
   os << indent << "TileSize: " << this->TileSize << "\n";
+  os << indent << "PlacementLimit: " << this->PlacementLimit << "\n";
   os << indent << "OutputSize: " << this->OutputSize[0] << " x " << this->OutputSize[1] << "\n";
   os << indent << "CellSize: " << this->CellSize << "\n";
   os << indent << "Seed: " << this->Seed << "\n";

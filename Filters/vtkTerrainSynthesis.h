@@ -120,6 +120,12 @@ public:
   /// terrain finished at once (default 0: one piece).
   vtkSetClampMacro(TileSize, int, 0, VTK_INT_MAX);
   vtkGetMacro(TileSize, int);
+  /// Stop after this many placements and show the terrain as those patches made it, unfinished
+  /// (NaN where no patch is yet), so a user steps through the synthesis one patch at a time (the
+  /// Placements output lists them; the first N are the whole synthesis' first N). -1 (the
+  /// default): every placement, then the finishing. One piece only (TileSize 0); no preview.
+  vtkSetClampMacro(PlacementLimit, int, tsynth::kAllPlacementsNumber, VTK_INT_MAX);
+  vtkGetMacro(PlacementLimit, int);
   /// Output size in cells; 0 0 (default) takes the sketch image's pixels, or
   /// the poly-lines' frame (their GridSize x CellSize field data) or extent and half a patch.
   vtkSetVector2Macro(OutputSize, int);
@@ -175,7 +181,8 @@ public:
   bool GetNeedsUpdate();
   /// Blocks until the background refinement (if any) has finished or stopped.
   void WaitForRefinement();
-  /// What the outputs hold: "none", "preview" or "final".
+  /// What the outputs hold: "none", "preview", "final", or "placements" (stopped after
+  /// PlacementLimit patches, unfinished).
   const char* GetOutputLevel() { return this->OutputLevel.c_str(); }
 
   void RemoveAllExemplars() { this->RemoveAllInputConnections(0); }
@@ -239,6 +246,7 @@ protected:
   bool VerticalOffset;
   double Repetition;
   int TileSize;
+  int PlacementLimit;
   int OutputSize[2];
   double CellSize;
   vtkIdType Seed;

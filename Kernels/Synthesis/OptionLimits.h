@@ -16,4 +16,8 @@ constexpr double kDefaultLandformRelief = 1.0; // sketched landforms as bold as 
 // edge are normalised to about 1): larger values change nothing more.
 constexpr double kMaxRepetitionPenalty = 100.0;
 
+// A front end's placement limit (ParaView's Placement Limit, tsynth synth --placements) that asks
+// for every placement and then the finishing (SynthesisOptions::placementLimit).
+constexpr int kAllPlacementsNumber = -1;
+
 } // namespace tsynth

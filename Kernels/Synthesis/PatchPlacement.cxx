@@ -633,7 +633,7 @@ void PatchPlacement::placeFeatures()
 
 void PatchPlacement::placeFeatures(const std::vector<FeatureSite>& sites)
 {
-  for (std::size_t s = 0; s < sites.size(); ++s)
+  for (std::size_t s = 0; s < sites.size() && !placementsDone(); ++s)
   {
     const FeatureSite& site = sites[s];
     const int x0 = windowCorner(site.centre.x, P_);
@@ -665,6 +665,10 @@ void PatchPlacement::fill()
   steps.filledShare = [this](int x0, int y0) { return filledShare(x0, y0); };
   steps.fillWindow = [this](int x0, int y0)
   {
+    if (placementsDone())
+    {
+      return std::size_t{ 0 }; // the window is retired unfilled, at no cost
+    }
     return place(
       allowed(matcher_->matchDense(window(x0, y0), regionExemplars(x0, y0)), x0, y0, o_.fillK),
       x0,
@@ -731,6 +735,14 @@ SynthesisResult PatchPlacement::finish()
   plan.lowest = lowest_ + plan.slack;
   plan.highest = highest_ - plan.slack;
   result_.finishing = finishSynthesis(out_, target_, confidence_, plan);
+  result_.terrain = std::move(out_);
+  return std::move(result_);
+}
+
+SynthesisResult PatchPlacement::unfinished()
+{
+  normaliseMask(out_);
+  result_.patches = out_;
   result_.terrain = std::move(out_);
   return std::move(result_);
 }

@@ -72,6 +72,14 @@ public:
   // warning), then Finishing.h's finishSynthesis. Call once, last.
   SynthesisResult finish();
 
+  // The result of a run stopped at SynthesisOptions::placementLimit: the
+  // terrain as its patches made it (NaN where none is), not finished. Call
+  // once, last, in place of finish().
+  SynthesisResult unfinished();
+
+  // Whether the options' placement limit is reached: nothing more is placed.
+  bool placementsDone() const { return result_.placements.size() >= o_.placementLimit; }
+
   // Progress through the options' report (and a stop, Core/Progress.h).
   void report(double fraction, const char* stage) const;
 

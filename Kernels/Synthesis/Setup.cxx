@@ -692,6 +692,7 @@ std::uint64_t synthesisRequestKey(const SetupInputs& in, const SynthesisOptions&
   h.value(o.correctionScale);
   h.value(o.drainValleys);
   h.value(o.tileSize);
+  h.value(o.placementLimit);
   h.value(o.drainage.has_value());
   h.value(o.drainage.value_or(PitRemovalMethod{}));
   h.values(o.regionLabels);

@@ -77,6 +77,12 @@ std::vector<OptionRow> makeRows()
     numberRow(
       "Repetition", "--repetition", T::Real, o.repetitionPenalty, 0.0, kMaxRepetitionPenalty),
     numberRow("TileSize", "--tile-size", T::Integer, o.tileSize, 0.0, kUnbounded),
+    numberRow("PlacementLimit",
+      "--placements",
+      T::Integer,
+      o.placementLimit == kAllPlacements ? kAllPlacementsNumber : 0,
+      kAllPlacementsNumber,
+      kUnbounded),
     switchRow("UseExemplarCache", "--no-cache", d.useExemplarCache),
   };
 }

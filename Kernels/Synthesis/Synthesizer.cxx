@@ -310,6 +310,10 @@ SynthesisResult synthesize(const SynthesisTarget& target,
   }
   if (o.tileSize > 0)
   {
+    if (o.placementLimit != kAllPlacements)
+    {
+      throw Error("Stepping through the placements works on one piece: give a tile size of 0.");
+    }
     return synthesizeTiled(target, exemplars, graphs, o);
   }
   auto t0 = Clock::now();
@@ -333,7 +337,7 @@ SynthesisResult synthesize(const SynthesisTarget& target,
   const std::vector<std::string> matcherWarnings = matcher->warnings();
   state.releasePlacement();
   matcher.reset();
-  SynthesisResult r = state.finish();
+  SynthesisResult r = o.placementLimit == kAllPlacements ? state.finish() : state.unfinished();
   r.timings = { setup, features, fill, secondsSince(t0) };
   r.backend = backend;
   r.warnings.insert(r.warnings.begin(), matcherWarnings.begin(), matcherWarnings.end());

@@ -14,6 +14,7 @@
 #include "../Merging/PatchMerger.h"
 #include "FillOrder.h"
 #include "Finishing.h"
+#include "OptionLimits.h"
 #include "Target.h"
 
 #include <cstdint>
@@ -26,6 +27,15 @@
 
 namespace tsynth
 {
+
+// SynthesisOptions::placementLimit of a whole synthesis: every placement, then the finishing.
+constexpr std::size_t kAllPlacements = std::numeric_limits<std::size_t>::max();
+// The placement limit a front end's number asks for (kAllPlacementsNumber,
+// OptionLimits.h, or any negative: all).
+constexpr std::size_t placementLimitOf(int limit)
+{
+  return limit < 0 ? kAllPlacements : static_cast<std::size_t>(limit);
+}
 
 struct SynthesisOptions
 {
@@ -83,6 +93,13 @@ struct SynthesisOptions
     int ranks = 1;
     std::function<std::vector<std::string>(const std::string& mine)> allGather;
   } sharing;
+  // Stop after this many placements and return the terrain as those patches
+  // made it, unfinished (no final correction, drainage or height range; NaN
+  // where no patch is yet): a user steps through the synthesis, one patch at a
+  // time, and the first N placements are the whole synthesis' first N, bit for
+  // bit. kAllPlacements: every placement, then the finishing. One piece only
+  // (tileSize 0).
+  std::size_t placementLimit = kAllPlacements;
   // The exemplars' feature candidate pool at this patch size, prepared before
   // (SynthesisSetup::pool, perhaps read from the exemplar cache); null: built here.
   std::shared_ptr<const CandidatePool> pool;

@@ -227,6 +227,22 @@ class FrontEndsTest(unittest.TestCase):
         self.assertFalse(np.array_equal(vtk_to_numpy(filtered.GetPointData().GetArray("Elevation")),
                                         vtk_to_numpy(default.GetPointData().GetArray("Elevation"))))
 
+    def test_a_synthesis_stopped_after_some_placements_is_the_same_in_both(self):
+        # Stepping through the synthesis: Placement Limit N in ParaView is --placements N.
+        exemplar = simple.TerrainReader(FileName=self.colorado)
+        sketch = simple.PNGSeriesReader(FileNames=[self.strokes])
+        synth = simple.TerrainSynthesis(Exemplars=[exemplar], Sketch=sketch, OutputSize=[160, 160],
+                                        PatchSize=PATCH, Backend=CPU, Seed=SEED, PlacementLimit=7)
+        synth.UpdatePipeline()
+        self.assertEqual(synth.GetClientSideObject().GetOutputLevel(), "placements")
+        self.assertEqual(sm.Fetch(synth, arg1=None, arg2=None, idx=1).GetNumberOfRows(), 7)
+        stopped = sm.Fetch(synth, arg1=None, arg2=None, idx=0)
+        z = vtk_to_numpy(stopped.GetPointData().GetArray("Elevation"))
+        self.assertTrue(np.isnan(z).any())  # land no patch has reached yet
+        self.assertGreater(int(np.isfinite(z).sum()), 1000)
+        cli = self.cli(self.colorado, self.strokes, "--size", "160x160", "--placements", "7")
+        np.testing.assert_array_equal(z, vtk_to_numpy(cli.GetPointData().GetArray("Elevation")))
+
     def test_a_tiled_synthesis_gives_the_same_terrain(self):
         exemplar = simple.TerrainReader(FileName=self.colorado)
         sketch = simple.PNGSeriesReader(FileNames=[self.strokes])
