@@ -45,28 +45,9 @@ def main():
     streams = simple.Threshold(registrationName="Streams", Input=pits, Scalars=["POINTS", "Streams"],
                                LowerThreshold=1, UpperThreshold=1, AllScalars=0)
 
-    view = simple.GetActiveViewOrCreate("RenderView")
-    view.ViewSize = VIEW_SIZE
-    view.OrientationAxesVisibility = 0
-    view.UseColorPaletteForBackground = 0
-    view.Background = [1.0, 1.0, 1.0]
-    shaded = simple.Show(shade, view)
-    simple.ColorBy(shaded, ("POINTS", "Hillshade"))
-    shaded.Ambient = 1.0
-    shaded.Diffuse = 0.0
-    grey = simple.GetColorTransferFunction("Hillshade")
-    grey.ApplyPreset("Grayscale", True)
-    grey.RescaleTransferFunction(0.0, 1.0)
-    grey.AutomaticRescaleRangeMode = "Never"
-    drawn = simple.Show(streams, view)
-    simple.ColorBy(drawn, None)
-    drawn.AmbientColor = drawn.DiffuseColor = BLUE
-    drawn.Ambient = 1.0
-    drawn.Diffuse = 0.0
-    drawn.Position = [0.0, 0.0, STREAM_LIFT_M]
-    view.CameraParallelProjection = 1
-    simple.ResetCamera(view)
-    simple.Render(view)
+    view = state_files.grey_hillshade_view(shade, VIEW_SIZE)
+    state_files.show_in_colour(streams, view, BLUE, STREAM_LIFT_M)
+    state_files.look_from_above(view)
     print("Streams from %d cells of accumulation" % threshold)
     state_files.save_portable_state(OUT)
 

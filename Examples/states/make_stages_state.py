@@ -48,22 +48,8 @@ def main():
                                     CandidatePool=candidates)
     shade = simple.TerrainHillshade(registrationName="Hillshade", Input=synth)
 
-    view = simple.GetActiveViewOrCreate("RenderView")
-    view.ViewSize = VIEW_SIZE
-    view.OrientationAxesVisibility = 0
-    view.UseColorPaletteForBackground = 0
-    view.Background = [1.0, 1.0, 1.0]
-    shaded = simple.Show(shade, view)
-    simple.ColorBy(shaded, ("POINTS", "Hillshade"))
-    shaded.Ambient = 1.0
-    shaded.Diffuse = 0.0
-    grey = simple.GetColorTransferFunction("Hillshade")
-    grey.ApplyPreset("Grayscale", True)
-    grey.RescaleTransferFunction(0.0, 1.0)
-    grey.AutomaticRescaleRangeMode = "Never"
-    view.CameraParallelProjection = 1
-    simple.ResetCamera(view)
-    simple.Render(view)
+    view = state_files.grey_hillshade_view(shade, VIEW_SIZE)
+    state_files.look_from_above(view)
     state_files.save_portable_state(OUT)
 
 

@@ -40,6 +40,42 @@ def save_portable_state(path):
     print("Wrote", path)
 
 
+def grey_hillshade_view(shade, size):
+    """A white render view of size (width, height) pixels showing the Terrain Hillshade `shade`
+    in grey, lit flat (the hillshade is the light), with no orientation axes."""
+    view = simple.GetActiveViewOrCreate("RenderView")
+    view.ViewSize = size
+    view.OrientationAxesVisibility = 0
+    view.UseColorPaletteForBackground = 0
+    view.Background = [1.0, 1.0, 1.0]
+    shaded = simple.Show(shade, view)
+    simple.ColorBy(shaded, ("POINTS", "Hillshade"))
+    shaded.Ambient = 1.0
+    shaded.Diffuse = 0.0
+    grey = simple.GetColorTransferFunction("Hillshade")
+    grey.ApplyPreset("Grayscale", True)
+    grey.RescaleTransferFunction(0.0, 1.0)
+    grey.AutomaticRescaleRangeMode = "Never"
+    return view
+
+
+def show_in_colour(source, view, colour, lift_m):
+    """Shows `source` in one flat colour, lifted lift_m metres above the map it marks."""
+    drawn = simple.Show(source, view)
+    simple.ColorBy(drawn, None)
+    drawn.AmbientColor = drawn.DiffuseColor = colour
+    drawn.Ambient = 1.0
+    drawn.Diffuse = 0.0
+    drawn.Position = [0.0, 0.0, lift_m]
+
+
+def look_from_above(view):
+    """A map view: parallel projection, the whole scene in view, rendered."""
+    view.CameraParallelProjection = 1
+    simple.ResetCamera(view)
+    simple.Render(view)
+
+
 # The share of the view's limiting side (height in a wide window, width in a tall one) the pieces
 # span once fitted: a thin margin around them.
 FIT_SHARE = 0.92
