@@ -23,7 +23,7 @@
 #include "Synthesis/Setup.h"
 #include "Synthesis/SynthesisFigures.h"
 #include "Synthesis/SynthesisRequest.h"
-#include "Synthesis/Synthesizer.h"
+#include "Synthesis/Synthesiser.h"
 #include "Synthesis/Tiling.h"
 
 #include <nlohmann/json.hpp>
@@ -574,7 +574,7 @@ SynthesisResult runWithProgress(const SynthesisSetup& setup,
     bar(f, stage);
     interrupt.reclaim(); // PoCL's LLVM takes the signals when it compiles the matcher
   };
-  SynthesisResult r = synthesize(setup, o);
+  SynthesisResult r = synthesise(setup, o);
   interrupt.reclaim();
   bar(1.0, "done");
   printWarnings(r.warnings);
@@ -594,7 +594,7 @@ struct PreviewSummary
 PreviewSummary writePreview(const SynthArguments& a, const SetupInputs& in)
 {
   const PreviewPlan plan = planPreview(in);
-  const Preview p = synthesizePreview(in, optionsOnGrid(a, plan.full, in.exemplars.size()));
+  const Preview p = synthesisePreview(in, optionsOnGrid(a, plan.full, in.exemplars.size()));
   writeTerrainFile(*a.preview, p.result.terrain);
   publishStagedOutputs(); // it stays, complete, even if the run is stopped after it
   const SynthesisTimings& t = p.result.timings;

@@ -2,7 +2,7 @@
 // ranks share a tiled synthesis, and each rank's outputs hold only its piece.
 #pragma once
 
-#include "Synthesis/Synthesizer.h"
+#include "Synthesis/Synthesiser.h"
 
 #include <string>
 #include <vector>

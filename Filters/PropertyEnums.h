@@ -6,7 +6,7 @@
 #include "Hydrology/PitRemoval.h"
 #include "Matching/OpenClMatcher.h"
 #include "Merging/PatchMerger.h"
-#include "Synthesis/Synthesizer.h"
+#include "Synthesis/Synthesiser.h"
 
 #include <optional>
 

@@ -20,7 +20,7 @@
 #include "Synthesis/Setup.h"
 #include "Synthesis/SynthesisFigures.h"
 #include "Synthesis/SynthesisRequest.h"
-#include "Synthesis/Synthesizer.h"
+#include "Synthesis/Synthesiser.h"
 
 #include <vtkAlgorithmOutput.h>
 #include <vtkCellArray.h>
@@ -558,7 +558,7 @@ public:
         {
           const tsynth::CancellationScope scope([this] { return this->stop.load(); });
           this->setup = tsynth::prepareSynthesis(std::move(in));
-          this->result = tsynth::synthesize(this->setup, o);
+          this->result = tsynth::synthesise(this->setup, o);
         }
         catch (const tsynth::Cancelled&)
         {
@@ -813,7 +813,7 @@ void vtkTerrainSynthesis::SynthesiseOrCut(vtkInformationVector** inputVector,
   }
   this->UpdateProgress(kSetupProgress);
   tsynth::shareTilesAmongRanks(o);
-  const tsynth::SynthesisResult r = tsynth::synthesize(setup, o);
+  const tsynth::SynthesisResult r = tsynth::synthesise(setup, o);
   tsynth::reportRankWork(o, r);
   this->BackendUsed = r.backend;
   writeOutputs(this, setup, r, ex, outputVector);
@@ -876,7 +876,7 @@ void vtkTerrainSynthesis::PreviewOrRefined(vtkInformationVector** inputVector,
                     << " (its coarser level would be under " << tsynth::kMinSynthesisPatch
                     << " cells): the whole synthesis is done at once.");
     const tsynth::SynthesisSetup setup = tsynth::prepareSynthesis(std::move(in));
-    const tsynth::SynthesisResult r = tsynth::synthesize(setup, o);
+    const tsynth::SynthesisResult r = tsynth::synthesise(setup, o);
     this->BackendUsed = r.backend;
     writeOutputs(this, setup, r, ex, outputVector);
     this->OutputLevel = "final";
@@ -886,7 +886,7 @@ void vtkTerrainSynthesis::PreviewOrRefined(vtkInformationVector** inputVector,
   quiet.progress = nullptr; // a fraction of a second
   auto r = std::make_unique<vtkRefinement>();
   r->key = key;
-  tsynth::Preview preview = tsynth::synthesizePreview(in, quiet);
+  tsynth::Preview preview = tsynth::synthesisePreview(in, quiet);
   r->preview = std::move(preview.onFullGrid);
   r->sketchLines = std::move(preview.setup.target.graph);
   r->impliedLines = std::move(preview.setup.target.implied);

@@ -163,7 +163,7 @@ public:
   vtkBooleanMacro(DebugOutputs, bool);
   /// Show a quick preview first, then the whole synthesis (default off: one update gives the
   /// whole synthesis, as scripts expect). On, an update produces the preview of
-  /// tsynth::synthesizePreview (cells 4 times coarser, patches 4 times smaller: the same
+  /// tsynth::synthesisePreview (cells 4 times coarser, patches 4 times smaller: the same
   /// landforms in the same places, less detail; about a tenth of the time), upsampled onto the
   /// terrain's grid, and starts the whole synthesis in the background. GetNeedsUpdate() says
   /// when it is done, and the next update shows it, bit for bit what the filter gives with

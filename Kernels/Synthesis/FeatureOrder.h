@@ -44,7 +44,7 @@ constexpr double kSiteSpacingInPatches = 0.25;
 
 // The feature sites (featureSites, a quarter patch apart along each chain, each
 // chain's first one shifted by a share of that drawn from the seed) in the
-// order synthesize() places them: breadth first over the target's graph
+// order synthesise() places them: breadth first over the target's graph
 // (FeatureGraph::bfsOrder), each node, then the path points of its chains not
 // yet visited, walking away from the node; spaced out (spacedOut) when the
 // sites crowd (featureSitesCrowd).

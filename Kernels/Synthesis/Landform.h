@@ -107,7 +107,7 @@ struct LandformFieldOptions
   // higher than the summits around it (Colorado's ridges were raised x1.23 at
   // most) and did not stand out of them. At 0.2 it stays inside the bound the
   // finished terrain is compressed into (the exemplars' maximum and a tenth of
-  // their span, Synthesizer), which lies 0.24 to 0.45 of that span past the
+  // their span, Synthesiser), which lies 0.24 to 0.45 of that span past the
   // highest on the eight DEMs of ../shared/data, so the crest is not flattened
   // against it. Floors keep to the lowest land: given the same room below it,
   // the deeper valleys drained less.

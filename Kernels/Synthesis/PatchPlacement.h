@@ -18,7 +18,7 @@
 #include "../Matching/NoiseVariance.h"
 #include "../Matching/PatchMatcher.h"
 #include "../Merging/PatchMerger.h"
-#include "Synthesizer.h"
+#include "Synthesiser.h"
 #include "Tiling.h"
 
 #include <array>

@@ -154,7 +154,7 @@ Heightfield upsampleOnto(const Heightfield& coarse, const OutputGrid& full)
   return out;
 }
 
-Preview synthesizePreview(const SetupInputs& full, const SynthesisOptions& options)
+Preview synthesisePreview(const SetupInputs& full, const SynthesisOptions& options)
 {
   const auto start = std::chrono::steady_clock::now();
   Preview p;
@@ -168,7 +168,7 @@ Preview synthesizePreview(const SetupInputs& full, const SynthesisOptions& optio
   p.setup = prepareSynthesis(previewInputs(full, p.plan));
   p.prepareSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  p.result = synthesize(p.setup, previewOptions(options, p.plan));
+  p.result = synthesise(p.setup, previewOptions(options, p.plan));
   p.onFullGrid = upsampleOnto(p.result.terrain, p.plan.full);
   p.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return p;

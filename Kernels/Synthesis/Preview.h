@@ -55,10 +55,10 @@ struct Preview
   double seconds = 0.0;        // set-up, synthesis and upsampling, wall clock
 };
 
-// The preview of what synthesize(prepareSynthesis(full), options) would give.
+// The preview of what synthesise(prepareSynthesis(full), options) would give.
 // Throws tsynth::Error when the plan has no coarser level (a patch under
 // kMinPreviewedPatch) or the inputs are unusable, tsynth::Cancelled when the
 // caller's CancellationScope says stop.
-Preview synthesizePreview(const SetupInputs& full, const SynthesisOptions& options);
+Preview synthesisePreview(const SetupInputs& full, const SynthesisOptions& options);
 
 } // namespace tsynth

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
-#include "Synthesizer.h"
+#include "Synthesiser.h"
 
 #include <string>
 #include <vector>

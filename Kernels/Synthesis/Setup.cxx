@@ -1,6 +1,6 @@
 #include "Setup.h"
 
-#include "Synthesizer.h"
+#include "Synthesiser.h"
 
 #include "../Core/Cancellation.h"
 #include "../Core/ContentHash.h"
@@ -704,7 +704,7 @@ std::uint64_t synthesisRequestKey(const SetupInputs& in, const SynthesisOptions&
   return h.digest();
 }
 
-SynthesisResult synthesize(const SynthesisSetup& setup, SynthesisOptions options)
+SynthesisResult synthesise(const SynthesisSetup& setup, SynthesisOptions options)
 {
   if (options.patchSize != setup.patchSize || options.seed != setup.seed)
   {
@@ -715,7 +715,7 @@ SynthesisResult synthesize(const SynthesisSetup& setup, SynthesisOptions options
       ": prepare it again from the same request.");
   }
   options.pool = setup.pool;
-  return synthesize(setup.target, setup.exemplarPointers(), setup.graphPointers(), options);
+  return synthesise(setup.target, setup.exemplarPointers(), setup.graphPointers(), options);
 }
 
 } // namespace tsynth

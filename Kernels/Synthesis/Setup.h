@@ -1,4 +1,4 @@
-// Everything between "files read" and synthesize(): the one set-up both the
+// Everything between "files read" and synthesise(): the one set-up both the
 // command line and the ParaView filter call, so that the same inputs give the
 // same terrain whichever front end reads them. It names the sketch, turns
 // poly-lines in metres into output cells, decides the output grid, resamples the
@@ -14,7 +14,7 @@
 #include "../Features/Sketch.h"
 #include "ExemplarCache.h"
 #include "OptionLimits.h"
-#include "Synthesizer.h"
+#include "Synthesiser.h"
 #include "Target.h"
 
 #include <cstddef>
@@ -181,7 +181,7 @@ struct SetupInputs
   SetupOptionNames names;
 };
 
-// Everything synthesize() needs, and what the set-up found on the way.
+// Everything synthesise() needs, and what the set-up found on the way.
 struct SynthesisSetup
 {
   std::vector<Heightfield> exemplars;        // at the output's cell size
@@ -191,7 +191,7 @@ struct SynthesisSetup
   SynthesisTarget target;                    // on the output grid
   LandformStatistics landform;               // the exemplars' cross-sections the target uses
   OutputGrid grid;
-  // What the pool and the target were prepared for: synthesize(setup, options)
+  // What the pool and the target were prepared for: synthesise(setup, options)
   // refuses options that ask for another patch size or seed.
   int patchSize = 0;
   std::uint64_t seed = 0;
@@ -199,7 +199,7 @@ struct SynthesisSetup
   double memoryEstimate = 0.0; // bytes
   double memoryBudget = 0.0;   // bytes, the one applied
   // The set-up's own warnings (sketch, resampling); the target's travel in
-  // target.warnings, which synthesize() passes on.
+  // target.warnings, which synthesise() passes on.
   std::vector<std::string> warnings;
 
   std::vector<const Heightfield*> exemplarPointers() const;
@@ -233,9 +233,9 @@ OutputGrid plannedGrid(const SetupInputs& inputs);
 // pool, the memory budget or the cache. Equal keys: the same terrain.
 std::uint64_t synthesisRequestKey(const SetupInputs& inputs, const SynthesisOptions& options);
 
-// synthesize() on what the set-up prepared, with its candidate pool. Throws
+// synthesise() on what the set-up prepared, with its candidate pool. Throws
 // tsynth::Error if the options' patch size or seed is not the set-up's (the
 // pool, the target's valley outlets and the seed's streams would disagree).
-SynthesisResult synthesize(const SynthesisSetup& setup, SynthesisOptions options);
+SynthesisResult synthesise(const SynthesisSetup& setup, SynthesisOptions options);
 
 } // namespace tsynth

@@ -13,6 +13,6 @@ set(TSYNTH_SYNTHESIS_SOURCES
   Synthesis/Setup.cxx
   Synthesis/SynthesisFigures.cxx
   Synthesis/SynthesisRequest.cxx
-  Synthesis/Synthesizer.cxx
+  Synthesis/Synthesiser.cxx
   Synthesis/Target.cxx
   Synthesis/Tiling.cxx)

@@ -7,7 +7,7 @@
 #include "../Metrics/Legibility.h"
 #include "../Metrics/TerrainMetrics.h"
 #include "Setup.h"
-#include "Synthesizer.h"
+#include "Synthesiser.h"
 
 #include <limits>
 #include <string>

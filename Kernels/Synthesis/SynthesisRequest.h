@@ -11,7 +11,7 @@
 #include "../Core/OptionTable.h"
 #include "OptionLimits.h"
 #include "Setup.h"
-#include "Synthesizer.h"
+#include "Synthesiser.h"
 
 #include <optional>
 #include <string>

@@ -11,7 +11,7 @@
 // grid, never on how many processes share the work.
 #pragma once
 
-#include "Synthesizer.h"
+#include "Synthesiser.h"
 #include "Target.h"
 
 #include <cstddef>

@@ -6,7 +6,7 @@
 #include "Core/Error.h"
 #include "Core/Grid.h"
 #include "Synthesis/PatchPlacement.h"
-#include "Synthesis/Synthesizer.h"
+#include "Synthesis/Synthesiser.h"
 #include "YOverColorado.h"
 
 #include <gtest/gtest.h>
@@ -112,7 +112,7 @@ TEST(PatchPlacement, FeaturesThenFillThenFinishAreTheSynthesis)
 
   p.releasePlacement();
   const SynthesisResult steps = p.finish();
-  const SynthesisResult whole = synthesize(setup, placing.o);
+  const SynthesisResult whole = synthesise(setup, placing.o);
   EXPECT_EQ(steps.terrain.z, whole.terrain.z);
   EXPECT_EQ(steps.patchId, whole.patchId);
   EXPECT_EQ(steps.placements.size(), whole.placements.size());
@@ -211,7 +211,7 @@ TEST(PatchPlacement, AStoppedRunIsTheWholeSynthesisFirstPlacementsUnfinished)
   // they wrote and NaN elsewhere: nothing is finished.
   const SynthesisSetup& setup = test::yOverColoradoSetup();
   SynthesisOptions o = options();
-  const SynthesisResult whole = synthesize(setup, o);
+  const SynthesisResult whole = synthesise(setup, o);
   std::size_t features = 0;
   while (features < whole.placements.size() && whole.placements[features].feature)
   {
@@ -222,7 +222,7 @@ TEST(PatchPlacement, AStoppedRunIsTheWholeSynthesisFirstPlacementsUnfinished)
   for (const std::size_t limit : { std::size_t{ 0 }, features / 2, features + 2 })
   {
     o.placementLimit = limit;
-    const SynthesisResult part = synthesize(setup, o);
+    const SynthesisResult part = synthesise(setup, o);
     ASSERT_EQ(part.placements.size(), limit);
     for (std::size_t k = 0; k < limit; ++k)
     {
@@ -246,5 +246,5 @@ TEST(PatchPlacement, AStoppedRunIsTheWholeSynthesisFirstPlacementsUnfinished)
   // Stepping works on one piece.
   o.placementLimit = 3;
   o.tileSize = 2 * kPatch;
-  EXPECT_THROW(synthesize(setup, o), Error);
+  EXPECT_THROW(synthesise(setup, o), Error);
 }

@@ -66,7 +66,7 @@ TEST(Preview, SmallerPatchesHalveAndTheSmallestHaveNoPreview)
   EXPECT_EQ(none.coarse.width, none.full.width);
   try
   {
-    synthesizePreview(inputsFor(600, 28), SynthesisOptions{});
+    synthesisePreview(inputsFor(600, 28), SynthesisOptions{});
     FAIL() << "a patch of 28 has no preview";
   }
   catch (const Error& e)

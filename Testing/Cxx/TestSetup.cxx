@@ -185,13 +185,13 @@ TEST(Setup, PrepareConvertsMetresResamplesExemplarsAndBuildsTheTarget)
   SynthesisOptions other;
   other.patchSize = kPatch + kPatchSizeStep;
   other.seed = 5;
-  EXPECT_EQ(errorOf([&] { synthesize(s, other); }),
+  EXPECT_EQ(errorOf([&] { synthesise(s, other); }),
     "The synthesis was asked for " + std::to_string(kPatch + kPatchSizeStep) +
       "-cell patches and seed 5, but its set-up was prepared for " + std::to_string(kPatch) +
       "-cell patches and seed 5: prepare it again from the same request.");
   other.patchSize = kPatch;
   other.seed = 6;
-  EXPECT_NE(errorOf([&] { synthesize(s, other); }), "");
+  EXPECT_NE(errorOf([&] { synthesise(s, other); }), "");
   EXPECT_EQ(s.grid.width, 181 + kPatch / 2);
   EXPECT_EQ(s.grid.height, 101 + kPatch / 2);
   EXPECT_EQ(s.target.field.width, 181 + kPatch / 2);

@@ -5,7 +5,7 @@
 #include "Core/Error.h"
 #include "Core/HeightfieldIO.h"
 #include "Synthesis/Setup.h"
-#include "Synthesis/Synthesizer.h"
+#include "Synthesis/Synthesiser.h"
 #include "Synthesis/Tiling.h"
 #include "TestData.h"
 #include "YOverColorado.h"
@@ -42,7 +42,7 @@ SynthesisResult yOverColorado(int tile)
   o.backend = Backend::Cpu;
   o.pool = setup.pool;
   o.tileSize = tile;
-  return synthesize(setup, o);
+  return synthesise(setup, o);
 }
 
 // Stands in for ParaView's MPI ranks: `ranks` threads, each running the same
@@ -120,7 +120,7 @@ std::vector<SynthesisResult> yOverColoradoOnRanks(int tile,
         }
         try
         {
-          results[static_cast<std::size_t>(r)] = synthesize(setup, o);
+          results[static_cast<std::size_t>(r)] = synthesise(setup, o);
         }
         catch (const Error& e)
         {

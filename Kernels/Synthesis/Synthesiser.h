@@ -175,7 +175,7 @@ struct SynthesisResult
 
 // Throws tsynth::Error for unusable input (no exemplar, an exemplar or output
 // smaller than a patch).
-SynthesisResult synthesize(const SynthesisTarget& target,
+SynthesisResult synthesise(const SynthesisTarget& target,
   const std::vector<const Heightfield*>& exemplars,
   const std::vector<const FeatureGraph*>& graphs,
   const SynthesisOptions& options);

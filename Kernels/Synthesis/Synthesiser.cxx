@@ -1,4 +1,4 @@
-#include "Synthesizer.h"
+#include "Synthesiser.h"
 
 #include "../Core/Error.h"
 #include "../Core/Grid.h"
@@ -212,7 +212,7 @@ struct TiledRun
 // once, as an untiled synthesis is. Features first, over all tiles, as
 // without tiles: a tile's fill would otherwise cover the strokes in its halo
 // before the next tile's feature patches could lay them.
-SynthesisResult synthesizeTiled(const SynthesisTarget& target,
+SynthesisResult synthesiseTiled(const SynthesisTarget& target,
   const std::vector<const Heightfield*>& exemplars,
   const std::vector<const FeatureGraph*>& graphs,
   const SynthesisOptions& o)
@@ -267,7 +267,7 @@ SynthesisResult synthesizeTiled(const SynthesisTarget& target,
 
 } // namespace
 
-SynthesisResult synthesize(const SynthesisTarget& target,
+SynthesisResult synthesise(const SynthesisTarget& target,
   const std::vector<const Heightfield*>& exemplars,
   const std::vector<const FeatureGraph*>& graphs,
   const SynthesisOptions& o)
@@ -314,7 +314,7 @@ SynthesisResult synthesize(const SynthesisTarget& target,
     {
       throw Error("Stepping through the placements works on one piece: give a tile size of 0.");
     }
-    return synthesizeTiled(target, exemplars, graphs, o);
+    return synthesiseTiled(target, exemplars, graphs, o);
   }
   auto t0 = Clock::now();
   reportProgress(o.progress, 0.0, "setup");
