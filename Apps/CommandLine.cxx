@@ -14,7 +14,13 @@ CommandLine::CommandLine(std::vector<std::string> args)
 
 std::optional<std::string> CommandLine::take(const std::string& name, const std::string& alias)
 {
-  std::optional<std::string> value;
+  const std::vector<std::string> values = takeAll(name, alias);
+  return values.empty() ? std::nullopt : std::make_optional(values.back()); // the last one given
+}
+
+std::vector<std::string> CommandLine::takeAll(const std::string& name, const std::string& alias)
+{
+  std::vector<std::string> values;
   for (std::size_t k = 0; k < args_.size(); ++k)
   {
     if (used_[k])
@@ -29,16 +35,16 @@ std::optional<std::string> CommandLine::take(const std::string& name, const std:
         throw UsageError(name + " needs a value.");
       }
       used_[k] = used_[k + 1] = true;
-      value = args_[k + 1];
+      values.push_back(args_[k + 1]);
       ++k;
     }
     else if (a.rfind(name + "=", 0) == 0)
     {
       used_[k] = true;
-      value = a.substr(name.size() + 1);
+      values.push_back(a.substr(name.size() + 1));
     }
   }
-  return value;
+  return values;
 }
 
 bool CommandLine::takeFlag(const std::string& name)

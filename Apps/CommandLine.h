@@ -25,8 +25,11 @@ class CommandLine
 public:
   explicit CommandLine(std::vector<std::string> args);
 
-  // Takes "--name V" / "--name=V" (or a short alias such as "-o"); nullopt if absent.
+  // Takes "--name V" / "--name=V" (or a short alias such as "-o"); nullopt if absent,
+  // the last value if given more than once.
   std::optional<std::string> take(const std::string& name, const std::string& alias = "");
+  // Takes every value of a repeatable option ("--exemplar A --exemplar B"), in order.
+  std::vector<std::string> takeAll(const std::string& name, const std::string& alias = "");
   // Takes a bare flag such as "--3d".
   bool takeFlag(const std::string& name);
   // Numeric options, with a clear message when the value is not a number.

@@ -1,4 +1,6 @@
-#include "ConvertCommand.h"
+// tsynth convert: a DEM rewritten as GeoTIFF, 16-bit PNG with its sidecar or .vti, or cut
+// into tiles that share their edges.
+#include "Commands.h"
 
 #include "CliSupport.h"
 #include "CommandLine.h"

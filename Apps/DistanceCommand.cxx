@@ -1,4 +1,5 @@
-#include "DistanceCommand.h"
+// tsynth distance: distance-based synthesis from generator strokes, no exemplar (Rusnell 2009).
+#include "Commands.h"
 
 #include "CliSupport.h"
 #include "CommandLine.h"

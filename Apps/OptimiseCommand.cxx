@@ -1,6 +1,6 @@
 // tsynth optimise: terrain optimisation (Scott & Dodgson 2021) from a source
 // DEM and a guide.
-#include "HydrologyCommands.h"
+#include "Commands.h"
 
 #include "CliSupport.h"
 #include "CommandLine.h"

@@ -5,7 +5,7 @@
 // labels. The set-up's inputs and the synthesiser's options are both derived
 // from the request, so the patch size and the seed travel as one value each.
 // In ParaView: vtkTerrainSynthesis (Terrain Synthesis), in Filters/; on the
-// command line: tsynth synth (Apps/SynthCommands.cxx).
+// command line: tsynth synth (Apps/SynthCommand.cxx).
 #pragma once
 
 #include "../Core/OptionTable.h"

@@ -1,8 +1,10 @@
-#include "SynthCommands.h"
+// tsynth synth: the synthesis pipeline, from files read to terrain, report and debug images.
+#include "Commands.h"
 
 #include "CliSupport.h"
 #include "CommandLine.h"
 #include "FeatureGraphConversion.h"
+#include "QualityFigures.h"
 #include "TerrainFileIO.h"
 
 #include "Analysis/Hillshade.h"
@@ -116,137 +118,6 @@ writes them: its output works directly as a sketch of the same DEM.
   --no-progress          no progress bar on the terminal
 )";
 
-const char* const kEvaluateHelp =
-  R"(Usage: tsynth evaluate TERRAIN --exemplar DEM [--exemplar DEM ...] [--sketch SKETCH] [--json]
-
-Quality figures of a terrain against its exemplars (pooled: each counts by its area) and
-sketch, with two trivial baselines for scale, made from the first exemplar (the exemplar
-tiled; random exemplar patches pasted without blending):
-  fidelity   share of samples along each sketched ridge (valley) where the terrain has a crest
-             (trough) across the line: the extreme within 2 cells beats both sides at 8 cells
-  seam       99.9th percentile of |Laplacian| over that of the exemplar (1 = as smooth)
-  slope      Wasserstein-1 distance of slope-angle distributions over the exemplar's mean slope
-  pits       strict local minima per 1000 cells
-and, with a sketch, at the scale of the landforms (a patch across the lines):
-  prominence median height of the sketched ridges over the land a patch away on both sides,
-             and depth of the valleys below it, in metres and as a ratio to the same figure
-             on the exemplars' own ridges and valleys (1 = like the exemplars' own)
-  order      chance that a point on a sketched ridge is higher than one on a sketched valley
-  drainage   share of the valleys' length along which D8 flow (after filling pits) gathers
-             the water of their flanks; descent: share of floor steps a quarter patch apart
-             that go down towards the outlet
-  shedding   share of the ridges' length from which water runs off to the sides
-A figure that does not apply (no ridge sketched, a flat exemplar) is shown as "-" (null in JSON).
-
-  --patch N   landform scale in cells (default %PATCH%, the synthesis default)
-)";
-
-// The synthesis' default patch: the random-patch baseline's patch, and the
-// smallest sketch evaluate accepts.
-constexpr int kEvaluationPatch = kDefaultSynthesisPatch;
-
-// Every value of a repeatable option, removed from the arguments.
-std::vector<std::string> takeRepeated(std::vector<std::string>& args, const std::string& name)
-{
-  std::vector<std::string> out;
-  for (std::size_t k = 0; k < args.size();)
-  {
-    if (args[k] == name && k + 1 < args.size())
-    {
-      out.push_back(args[k + 1]);
-      args.erase(args.begin() + static_cast<long>(k), args.begin() + static_cast<long>(k + 2));
-    }
-    else if (args[k].rfind(name + "=", 0) == 0)
-    {
-      out.push_back(args[k].substr(name.size() + 1));
-      args.erase(args.begin() + static_cast<long>(k));
-    }
-    else
-    {
-      ++k;
-    }
-  }
-  return out;
-}
-
-nlohmann::json evaluationJson(const TerrainEvaluation& e)
-{
-  nlohmann::json notes = nlohmann::json::object();
-  for (const auto& [field, why] : e.notes)
-  {
-    notes[field] = why;
-  }
-  // nlohmann writes NaN (a figure that does not apply) as null; notes say why.
-  return { { "ridge_fidelity", e.ridgeFidelity },
-    { "valley_fidelity", e.valleyFidelity },
-    { "seam_index", e.seamIndex },
-    { "slope_distance", e.slopeDistance },
-    { "pit_density", e.pitDensity },
-    { "notes", notes } };
-}
-
-std::string figure(double v, int digits)
-{
-  return std::isnan(v)
-    ? std::string("-")
-    : (std::ostringstream() << std::fixed << std::setprecision(digits) << v).str();
-}
-
-void printLandforms(const char* name, const LandformMeasures& m)
-{
-  std::cout << std::left << std::setw(22) << name << " landforms: ridges "
-            << figure(m.ridgeProminence, 0) << " m (x" << figure(m.ridgeProminenceRatio, 2)
-            << "), valleys " << figure(m.valleyDepth, 0) << " m (x" << figure(m.valleyDepthRatio, 2)
-            << "), order " << figure(m.ridgeOverValley, 3) << ", drainage "
-            << figure(m.valleyDrainage, 3) << ", descent " << figure(m.valleyDescent, 3)
-            << ", shedding " << figure(m.ridgeShedding, 3) << "\n";
-}
-
-nlohmann::json landformJson(const LandformMeasures& m)
-{
-  nlohmann::json notes = nlohmann::json::object();
-  for (const auto& [field, why] : m.notes)
-  {
-    notes[field] = why;
-  }
-  return { { "ridge_prominence_m", m.ridgeProminence },
-    { "ridge_prominence_ratio", m.ridgeProminenceRatio },
-    { "valley_depth_m", m.valleyDepth },
-    { "valley_depth_ratio", m.valleyDepthRatio },
-    { "ridge_over_valley", m.ridgeOverValley },
-    { "valley_drainage", m.valleyDrainage },
-    { "valley_descent", m.valleyDescent },
-    { "ridge_shedding", m.ridgeShedding },
-    { "notes", notes } };
-}
-
-nlohmann::json legibilityJson(const Legibility& l)
-{
-  auto kind = [](const StrokeLegibility& k)
-  {
-    return nlohmann::json{ { "legible_share", k.share },
-      { "samples", k.samples },
-      { "median_prominence_m", k.prominence },
-      { "median_threshold_m", k.threshold },
-      { "median_half_width_cells", k.halfWidth },
-      { "flank_agreement", k.flankAgreement } };
-  };
-  return { { "legible_share", l.share },
-    { "flank_agreement", l.flankAgreement },
-    { "ridge", kind(l.ridge) },
-    { "valley", kind(l.valley) } };
-}
-
-nlohmann::json correlationJson(const std::vector<BandCorrelation>& bands)
-{
-  nlohmann::json out = nlohmann::json::array();
-  for (const BandCorrelation& b : bands)
-  {
-    out.push_back({ { "sigma_cells", b.sigma }, { "correlation", b.correlation } });
-  }
-  return out;
-}
-
 // Each tile's place and colour, its pass and how long it took (wall clock and CPU), in the
 // order it was placed: the figures Testing/Benchmarks/tile_cost_model.py models ranks from.
 nlohmann::json tileTimingsJson(const std::vector<TileTiming>& tiles)
@@ -262,36 +133,6 @@ nlohmann::json tileTimingsJson(const std::vector<TileTiming>& tiles)
       { "cpu_seconds", t.cpuSeconds } });
   }
   return out;
-}
-
-void printLegibility(const char* name, const Legibility& l)
-{
-  std::cout << std::left << std::setw(22) << name << " legible: " << figure(l.share, 2)
-            << " of the stroke length (ridges " << figure(l.ridge.share, 2) << ", valleys "
-            << figure(l.valley.share, 2) << "); flanks agree " << figure(l.flankAgreement, 2)
-            << "\n";
-}
-
-void printCorrelation(const char* name, const std::vector<BandCorrelation>& bands)
-{
-  std::cout << std::left << std::setw(22) << name << " band-pass correlation with the target:";
-  for (const BandCorrelation& b : bands)
-  {
-    std::cout << " " << figure(b.correlation, 2) << " (" << b.sigma << " cells)";
-  }
-  std::cout << "\n";
-}
-
-void printEvaluation(const char* name, const TerrainEvaluation& e)
-{
-  auto f = [](double v)
-  {
-    return std::isnan(v) ? std::string("  -  ")
-                         : (std::ostringstream() << std::fixed << std::setprecision(3) << v).str();
-  };
-  std::cout << std::left << std::setw(22) << name << " fidelity ridge " << f(e.ridgeFidelity)
-            << " valley " << f(e.valleyFidelity) << "  seam " << f(e.seamIndex) << "  slope "
-            << f(e.slopeDistance) << "  pits " << f(e.pitDensity) << "\n";
 }
 
 // Everything `tsynth synth` was asked to do, checked.
@@ -500,9 +341,9 @@ void takeCacheOptions(CommandLine& cl, SynthesisRequest& r)
 SynthArguments parseSynthArguments(std::vector<std::string> args)
 {
   SynthArguments a;
-  a.exemplars = takeRepeated(args, "--exemplar");
-  a.regionMaps = takeRepeated(args, "--region");
   CommandLine cl(std::move(args));
+  a.exemplars = cl.takeAll("--exemplar");
+  a.regionMaps = cl.takeAll("--region");
   a.regions = cl.take("--regions");
   a.sketch = cl.take("--sketch").value_or("");
   a.output = cl.take("--output", "-o").value_or("");
@@ -671,20 +512,14 @@ void printSummary(const SynthesisSetup& setup,
   std::cout << "Wrote " << output << "\n";
 }
 
-void writeReport(const std::string& path,
-  const SynthArguments& a,
-  const SynthesisSetup& setup,
-  const SynthesisResult& r,
-  const SynthesisFigures& figures,
-  const RunRecord& run)
+// One row per placement, in placement order: [order, feature, exemplar, variant,
+// x0, y0, match cost, seam cost, landform misfit (m), vertical offset (m), line
+// offset (cells; null where not measured)].
+nlohmann::json placementListJson(const std::vector<Placement>& placements)
 {
-  double seamSum = 0.0;
-  // [order, feature, exemplar, variant, x0, y0, match cost, seam cost, landform misfit (m),
-  //  vertical offset (m), line offset (cells; null where not measured)]
   nlohmann::json list = nlohmann::json::array();
-  for (const Placement& p : r.placements)
+  for (const Placement& p : placements)
   {
-    seamSum += p.seamCost;
     list.push_back({ p.order,
       p.feature ? 1 : 0,
       p.exemplar,
@@ -697,7 +532,22 @@ void writeReport(const std::string& path,
       p.offset,
       std::isnan(p.lineOffset) ? nlohmann::json() : nlohmann::json(p.lineOffset) });
   }
-  const LandformStatistics& l = setup.landform;
+  return list;
+}
+
+double meanSeamCost(const std::vector<Placement>& placements)
+{
+  double sum = 0.0;
+  for (const Placement& p : placements)
+  {
+    sum += p.seamCost;
+  }
+  return placements.empty() ? 0.0 : sum / static_cast<double>(placements.size());
+}
+
+// The exemplars' ridge and valley cross-sections the landform target was built from.
+nlohmann::json landformProfilesJson(const LandformStatistics& l)
+{
   auto profile = [](const LandformProfile& p)
   {
     return nlohmann::json{ { "level_m", p.level },
@@ -706,26 +556,39 @@ void writeReport(const std::string& path,
       { "distance_m", p.section.distances() },
       { "height_m", p.section.values() } };
   };
-  const nlohmann::json landforms = { { "ridge", profile(l.ridge) },
+  return { { "ridge", profile(l.ridge) },
     { "valley", profile(l.valley) },
     { "base_m", l.base },
     { "floor_gradient", l.floorGradient } };
-  nlohmann::json finishing = { { "landform_correction_max_m", r.finishing.landformCorrection },
-    { "valley_cells", r.finishing.valleyCells },
-    { "valley_cells_lowered", r.finishing.valleyCellsLowered },
-    { "deepest_valley_cut_m", r.finishing.deepestValleyCut },
-    { "mean_valley_cut_m", r.finishing.meanValleyCut },
-    { "cells_brought_into_range", r.finishing.cellsBroughtIntoRange } };
-  if (r.finishing.drained)
+}
+
+nlohmann::json finishingJson(const FinishingReport& f, const SynthesisOptions& o)
+{
+  nlohmann::json finishing = { { "landform_correction_max_m", f.landformCorrection },
+    { "valley_cells", f.valleyCells },
+    { "valley_cells_lowered", f.valleyCellsLowered },
+    { "deepest_valley_cut_m", f.deepestValleyCut },
+    { "mean_valley_cut_m", f.meanValleyCut },
+    { "cells_brought_into_range", f.cellsBroughtIntoRange } };
+  if (f.drained)
   {
-    finishing["drainage"] = { { "method", pitRemovalMethodName(*a.request.options.drainage) },
-      { "pits_before", r.finishing.pitsBefore },
-      { "pits_after", r.finishing.pitsAfter },
-      { "largest_raise_m", r.finishing.largestDrainageRaise },
-      { "largest_lowering_m", r.finishing.largestDrainageLowering },
-      { "mean_change_m", r.finishing.meanDrainageChange } };
+    finishing["drainage"] = { { "method", pitRemovalMethodName(*o.drainage) },
+      { "pits_before", f.pitsBefore },
+      { "pits_after", f.pitsAfter },
+      { "largest_raise_m", f.largestDrainageRaise },
+      { "largest_lowering_m", f.largestDrainageLowering },
+      { "mean_change_m", f.meanDrainageChange } };
   }
-  const double n = static_cast<double>(r.placements.size());
+  return finishing;
+}
+
+void writeReport(const std::string& path,
+  const SynthArguments& a,
+  const SynthesisSetup& setup,
+  const SynthesisResult& r,
+  const SynthesisFigures& figures,
+  const RunRecord& run)
+{
   nlohmann::json report = { { "output", a.output },
     { "size", { setup.grid.width, setup.grid.height } },
     { "cell_size_m", { setup.grid.cellX, setup.grid.cellY } },
@@ -754,7 +617,7 @@ void writeReport(const std::string& path,
     { "placements", r.placements.size() },
     { "anchored_merges", r.anchoredMerges },
     { "feature_placements", featurePlacements(r) },
-    { "mean_seam_cost", n > 0 ? seamSum / n : 0.0 },
+    { "mean_seam_cost", meanSeamCost(r.placements) },
     { "quality", evaluationJson(figures.quality) },
     { "landform_quality", landformJson(figures.landforms) },
     { "legibility", legibilityJson(figures.legibility) },
@@ -763,9 +626,9 @@ void writeReport(const std::string& path,
       { { "median", figures.lineOffset }, { "p90", figures.lineOffset90 } } },
     { "landform_raise",
       { { "ridge", setup.target.ridgeRaise }, { "valley", setup.target.valleyRaise } } },
-    { "landforms", landforms },
-    { "finishing", finishing },
-    { "placement_list", list } };
+    { "landforms", landformProfilesJson(setup.landform) },
+    { "finishing", finishingJson(r.finishing, a.request.options) },
+    { "placement_list", placementListJson(r.placements) } };
   if (!r.tiles.empty())
   {
     report["tiles"] = tileTimingsJson(r.tiles);
@@ -831,45 +694,6 @@ void writeDebug(const std::string& dir, const SynthesisSetup& setup, const Synth
   writeTerrainFile(dir + "/seams.tif", seams);
 }
 
-// The sketch as the synthesis reads it, on the terrain's grid: its features,
-// and for a DEM used as the target its heights.
-struct SketchOnTerrain
-{
-  FeatureGraph graph;
-  bool demTarget = false;
-  Heightfield heights; // the DEM target resampled onto the terrain's grid
-};
-
-SketchOnTerrain sketchOnTerrain(const std::string& path, const Heightfield& terrain)
-{
-  std::vector<std::string> warnings;
-  const SketchInput input = readSketchInput(path, warnings);
-  printWarnings(warnings);
-  // The synthesis' checks of a sketch for a grid of the terrain's size (poly-lines
-  // outside it or in the wrong unit are refused), then its analysis.
-  GridRequest request;
-  request.width = terrain.width;
-  request.height = terrain.height;
-  request.cellX = terrain.cellX;
-  request.cellY = terrain.cellY;
-  SetupOptionNames names;
-  names.size = "the terrain's size";
-  names.cell = "cell size";
-  const OutputGrid grid =
-    outputGrid(sketchExtent(input), request, terrain.cellX, terrain.cellY, 1, names);
-  const AnalysedSketch s = analyseSketch(input, grid, kEvaluationPatch);
-  printWarnings(s.warnings);
-  SketchOnTerrain out;
-  out.graph = scaleGraph(
-    s.graph, s.width, s.height, terrain.width, terrain.height, terrain.cellX, terrain.cellY);
-  out.demTarget = s.hasHeights && s.kind == "DEM";
-  if (out.demTarget)
-  {
-    out.heights = resampleNearest(s.heights, terrain.width, terrain.height);
-  }
-  return out;
-}
-
 } // namespace
 
 int runSynth(std::vector<std::string> args)
@@ -921,127 +745,6 @@ int runSynth(std::vector<std::string> args)
   if (a.debugDir)
   {
     writeDebug(*a.debugDir, setup, r);
-  }
-  return 0;
-}
-
-int runEvaluate(std::vector<std::string> args)
-{
-  if (wantsHelp(args))
-  {
-    std::cout << withPatchDefault(kEvaluateHelp);
-    return 0;
-  }
-  std::vector<std::string> exemplarPaths = takeRepeated(args, "--exemplar");
-  CommandLine cl(std::move(args));
-  const auto sketchPath = cl.take("--sketch");
-  const bool asJson = cl.takeFlag("--json");
-  const auto patch = cl.takeNumber("--patch");
-  const auto rest = cl.positionals();
-  if (patch && !(*patch >= 8 && *patch <= 4096))
-  {
-    throw UsageError("--patch expects a landform scale from 8 to 4096 cells.");
-  }
-  if (rest.size() != 1)
-  {
-    throw UsageError("tsynth evaluate needs one terrain file.");
-  }
-  if (exemplarPaths.empty())
-  {
-    throw UsageError("tsynth evaluate needs an --exemplar DEM to compare with.");
-  }
-  const Heightfield terrain = readTerrainFile(rest[0]);
-  std::vector<Heightfield> exemplars;
-  for (const std::string& path : exemplarPaths)
-  {
-    exemplars.push_back(readTerrainFile(path));
-  }
-  std::vector<const Heightfield*> pooled;
-  for (const Heightfield& x : exemplars)
-  {
-    pooled.push_back(&x);
-  }
-  const Heightfield& exemplar = exemplars.front();
-  SketchOnTerrain drawn;
-  const FeatureGraph* sketch = nullptr;
-  if (sketchPath)
-  {
-    drawn = sketchOnTerrain(*sketchPath, terrain);
-    sketch = &drawn.graph;
-  }
-  const TerrainEvaluation e = evaluateTerrain(terrain, pooled, sketch);
-  const Heightfield tiledTerrain = tiledBaseline(exemplar, terrain.width, terrain.height);
-  const TerrainEvaluation tiled = evaluateTerrain(tiledTerrain, exemplar, sketch);
-  const Heightfield randomTerrain =
-    randomPatchBaseline(exemplar, terrain.width, terrain.height, kEvaluationPatch, 1);
-  const TerrainEvaluation random = evaluateTerrain(randomTerrain, exemplar, sketch);
-  // Landform figures against the exemplars' own ridges and valleys.
-  std::vector<FeatureGraph> lines;
-  for (const Heightfield& x : exemplars)
-  {
-    lines.push_back(ownFeatureLines(x));
-  }
-  std::vector<const FeatureGraph*> linePointers;
-  for (const FeatureGraph& g : lines)
-  {
-    linePointers.push_back(&g);
-  }
-  LandformOptions lo;
-  lo.patchSize = patch.value_or(kEvaluationPatch);
-  auto landforms = [&](const Heightfield& t)
-  { return sketch ? evaluateLandforms(t, *sketch, pooled, linePointers, lo) : LandformMeasures{}; };
-  const LandformMeasures le = landforms(terrain);
-  const LandformMeasures lt = landforms(tiledTerrain);
-  const LandformMeasures lr = landforms(randomTerrain);
-  const LandRelief land(pooled);
-  LegibilityOptions go;
-  go.loneHalfWidth = kLoneHalfWidthInPatches * lo.patchSize;
-  const std::optional<LegibilityMeter> meter =
-    sketch ? std::make_optional<LegibilityMeter>(*sketch, land, go) : std::nullopt;
-  auto legibility = [&](const Heightfield& t) { return meter ? meter->measure(t) : Legibility{}; };
-  const Legibility ge = legibility(terrain);
-  const Legibility gr = legibility(randomTerrain);
-  auto correlation = [&](const Heightfield& t)
-  {
-    return drawn.demTarget ? bandPassCorrelation(t, drawn.heights, defaultCorrelationScales())
-                           : std::vector<BandCorrelation>{};
-  };
-  if (asJson)
-  {
-    nlohmann::json figures = { { "terrain", evaluationJson(e) },
-      { "tiled_exemplar", evaluationJson(tiled) },
-      { "random_patches", evaluationJson(random) } };
-    if (sketch)
-    {
-      figures["terrain"]["landforms"] = landformJson(le);
-      figures["tiled_exemplar"]["landforms"] = landformJson(lt);
-      figures["random_patches"]["landforms"] = landformJson(lr);
-      figures["terrain"]["legibility"] = legibilityJson(ge);
-      figures["random_patches"]["legibility"] = legibilityJson(gr);
-    }
-    if (drawn.demTarget)
-    {
-      figures["terrain"]["target_correlation"] = correlationJson(correlation(terrain));
-      figures["random_patches"]["target_correlation"] = correlationJson(correlation(randomTerrain));
-    }
-    std::cout << figures.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
-    return 0;
-  }
-  printEvaluation(rest[0].c_str(), e);
-  printEvaluation("baseline: tiled", tiled);
-  printEvaluation("baseline: random", random);
-  if (sketch)
-  {
-    printLandforms(rest[0].c_str(), le);
-    printLandforms("baseline: tiled", lt);
-    printLandforms("baseline: random", lr);
-    printLegibility(rest[0].c_str(), ge);
-    printLegibility("baseline: random", gr);
-  }
-  if (drawn.demTarget)
-  {
-    printCorrelation(rest[0].c_str(), correlation(terrain));
-    printCorrelation("baseline: random", correlation(randomTerrain));
   }
   return 0;
 }

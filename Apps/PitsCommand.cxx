@@ -1,4 +1,5 @@
-#include "HydrologyCommands.h"
+// tsynth pits: depression removal (breach, fill or hybrid), flow accumulation and streams.
+#include "Commands.h"
 
 #include "CliSupport.h"
 #include "CommandLine.h"
