@@ -284,6 +284,72 @@ Options for reading DEMs (override the NAME.json sidecar and the file):
   --no-sidecar           ignore NAME.json beside the file
 )";
 
+namespace
+{
+
+// "MIN,MAX" or, with `same` for a single number, "V" (both V); nullopt unless numbers.
+std::optional<std::pair<double, double>> parsePair(const std::string& text, bool same)
+{
+  const std::size_t comma = text.find(',');
+  const auto first = parseNumber(text.substr(0, comma));
+  const auto second = comma == std::string::npos ? (same ? first : std::nullopt)
+                                                 : parseNumber(text.substr(comma + 1));
+  if (!first || !second)
+  {
+    return std::nullopt;
+  }
+  return std::make_pair(*first, *second);
+}
+
+// --cell M or MX,MY: positive, at most the CellSize row's maximum (0 is the filter's "from
+// the file", which the option expresses by its absence).
+void takeCellSize(CommandLine& cl, ReadOptions& o)
+{
+  const auto cell = cl.take("--cell");
+  if (!cell)
+  {
+    return;
+  }
+  const double most = optionRow(readOptionRows(), "CellSize").max;
+  const auto xy = parsePair(*cell, true);
+  const auto fits = [most](double v) { return v > 0.0 && v <= most; };
+  if (!xy || !fits(xy->first) || !fits(xy->second))
+  {
+    throw UsageError("--cell expects a positive number of metres (at most " + numberText(most) +
+      ") or X,Y, not \"" + *cell + "\".");
+  }
+  o.cellX = xy->first;
+  o.cellY = xy->second;
+}
+
+// --z-range MIN,MAX within the ZMin and ZMax rows' range, MAX above MIN.
+void takeNormalisedRange(CommandLine& cl, ReadOptions& o)
+{
+  const auto range = cl.take("--z-range");
+  if (!range)
+  {
+    return;
+  }
+  const auto lohi = parsePair(*range, false);
+  if (!lohi || !(lohi->second > lohi->first))
+  {
+    throw UsageError("--z-range expects MIN,MAX with MAX > MIN, not \"" + *range + "\".");
+  }
+  try
+  {
+    optionRow(readOptionRows(), "ZMin").checkValue(lohi->first, "--z-range's MIN");
+    optionRow(readOptionRows(), "ZMax").checkValue(lohi->second, "--z-range's MAX");
+  }
+  catch (const Error& e)
+  {
+    throw UsageError(e.what());
+  }
+  o.zMin = lohi->first;
+  o.zMax = lohi->second;
+}
+
+} // namespace
+
 ReadOptions takeReadOptions(CommandLine& cl)
 {
   ReadOptions o;
@@ -292,35 +358,13 @@ ReadOptions takeReadOptions(CommandLine& cl)
     const auto parsed = parseZUnit(*unit);
     if (!parsed)
     {
-      throw UsageError("--z-unit must be m or ft, not \"" + *unit + "\".");
+      throw UsageError("--z-unit must be " + optionRow(readOptionRows(), "ZUnit").choices.list() +
+        ", not \"" + *unit + "\".");
     }
     o.zUnit = *parsed;
   }
-  if (auto cell = cl.take("--cell"))
-  {
-    const std::size_t comma = cell->find(',');
-    const auto x = parseNumber(cell->substr(0, comma));
-    const auto y = comma == std::string::npos ? x : parseNumber(cell->substr(comma + 1));
-    if (!x || !y || !(*x > 0.0) || !(*y > 0.0))
-    {
-      throw UsageError("--cell expects a positive number of metres or X,Y, not \"" + *cell + "\".");
-    }
-    o.cellX = *x;
-    o.cellY = *y;
-  }
-  if (auto range = cl.take("--z-range"))
-  {
-    const std::size_t comma = range->find(',');
-    const auto lo = parseNumber(range->substr(0, comma));
-    const auto hi =
-      comma == std::string::npos ? std::nullopt : parseNumber(range->substr(comma + 1));
-    if (!lo || !hi || !(*hi > *lo))
-    {
-      throw UsageError("--z-range expects MIN,MAX with MAX > MIN, not \"" + *range + "\".");
-    }
-    o.zMin = lo;
-    o.zMax = hi;
-  }
+  takeCellSize(cl, o);
+  takeNormalisedRange(cl, o);
   o.useSidecar = !cl.takeFlag("--no-sidecar");
   return o;
 }

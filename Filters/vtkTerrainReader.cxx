@@ -17,6 +17,11 @@
 
 vtkStandardNewMacro(vtkTerrainReader);
 
+static_assert(vtkTerrainReader::ZUNIT_AUTO == static_cast<int>(tsynth::ZUnit::Auto) &&
+    vtkTerrainReader::ZUNIT_METRES == static_cast<int>(tsynth::ZUnit::Metres) &&
+    vtkTerrainReader::ZUNIT_FEET == static_cast<int>(tsynth::ZUnit::Feet),
+  "the ZUnit property takes tsynth::ZUnit's values");
+
 namespace
 {
 
@@ -28,9 +33,8 @@ tsynth::ReadOptions optionsOf(int zUnit,
   double zMax)
 {
   tsynth::ReadOptions o;
-  o.zUnit = zUnit == vtkTerrainReader::ZUNIT_METRES
-    ? tsynth::ZUnit::Metres
-    : (zUnit == vtkTerrainReader::ZUNIT_FEET ? tsynth::ZUnit::Feet : tsynth::ZUnit::Auto);
+  o.zUnit = tsynth::choiceOf<tsynth::ZUnit>(
+    tsynth::optionRow(tsynth::readOptionRows(), "ZUnit").choices, zUnit, "ZUnit");
   o.cellX = cellSize;
   o.useSidecar = useSidecar;
   if (normalised)
@@ -47,6 +51,14 @@ vtkTerrainReader::vtkTerrainReader()
 {
   this->SetNumberOfInputPorts(0);
   this->SetNumberOfOutputPorts(1);
+  const auto initial = [](const char* property)
+  { return tsynth::optionRow(tsynth::readOptionRows(), property).defaultValue; };
+  this->ZUnit = static_cast<int>(initial("ZUnit"));
+  this->CellSize = initial("CellSize");
+  this->UseSidecar = initial("UseSidecar") != 0.0;
+  this->UseNormalisedRange = initial("UseNormalisedRange") != 0.0;
+  this->ZMin = initial("ZMin");
+  this->ZMax = initial("ZMax");
 }
 
 vtkTerrainReader::~vtkTerrainReader()

@@ -17,6 +17,8 @@
 
 #include "TerrainSynthesisFiltersModule.h"
 
+#include "Core/HeightfieldIO.h" // the read options table and its limits
+
 #include <vtkImageAlgorithm.h>
 
 #include <string>
@@ -28,6 +30,7 @@ public:
   vtkTypeMacro(vtkTerrainReader, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  // tsynth::ZUnit's values (checked in the .cxx).
   enum ZUnits
   {
     ZUNIT_AUTO = 0,
@@ -46,7 +49,7 @@ public:
 
   ///@{
   /// Cell size in metres; 0 (default) takes it from the sidecar or the georeference.
-  vtkSetClampMacro(CellSize, double, 0.0, 1.0e7);
+  vtkSetClampMacro(CellSize, double, 0.0, tsynth::kMaxCellSizeMetres);
   vtkGetMacro(CellSize, double);
   ///@}
 
@@ -64,9 +67,9 @@ public:
   vtkGetMacro(UseNormalisedRange, bool);
   vtkBooleanMacro(UseNormalisedRange, bool);
   /// Both within +-1e6 (metres or feet): beyond any height on Earth.
-  vtkSetClampMacro(ZMin, double, -1.0e6, 1.0e6);
+  vtkSetClampMacro(ZMin, double, -tsynth::kMaxNormalisedHeight, tsynth::kMaxNormalisedHeight);
   vtkGetMacro(ZMin, double);
-  vtkSetClampMacro(ZMax, double, -1.0e6, 1.0e6);
+  vtkSetClampMacro(ZMax, double, -tsynth::kMaxNormalisedHeight, tsynth::kMaxNormalisedHeight);
   vtkGetMacro(ZMax, double);
   ///@}
 
@@ -81,12 +84,13 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   char* FileName = nullptr;
-  int ZUnit = ZUNIT_AUTO;
-  double CellSize = 0.0;
-  bool UseSidecar = true;
-  bool UseNormalisedRange = false;
-  double ZMin = 0.0;
-  double ZMax = 1.0;
+  // The read options table's defaults (tsynth::readOptionRows), set in the constructor.
+  int ZUnit;
+  double CellSize;
+  bool UseSidecar;
+  bool UseNormalisedRange;
+  double ZMin;
+  double ZMax;
 
 private:
   vtkTerrainReader(const vtkTerrainReader&) = delete;

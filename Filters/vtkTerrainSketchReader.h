@@ -21,6 +21,8 @@
 
 #include "TerrainSynthesisFiltersModule.h"
 
+#include "Core/HeightfieldIO.h" // kMaxCellSizeMetres
+
 #include <vtkImageAlgorithm.h>
 
 class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainSketchReader : public vtkImageAlgorithm
@@ -38,7 +40,7 @@ public:
   vtkSetStringMacro(ExemplarFileName);
   vtkGetStringMacro(ExemplarFileName);
   /// Cell size in metres; 0 (default) takes the exemplar's, and without an exemplar 1 m.
-  vtkSetClampMacro(CellSize, double, 0.0, 1.0e7);
+  vtkSetClampMacro(CellSize, double, 0.0, tsynth::kMaxCellSizeMetres);
   vtkGetMacro(CellSize, double);
 
 protected:

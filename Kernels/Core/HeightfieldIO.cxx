@@ -997,4 +997,27 @@ void writeRgbPng(const std::string& path,
   file.commit();
 }
 
+const std::vector<OptionRow>& readOptionRows()
+{
+  static const std::vector<OptionRow> rows = []
+  {
+    const ReadOptions d;
+    using T = OptionType;
+    return std::vector<OptionRow>{
+      choiceRow("ZUnit",
+        "--z-unit",
+        static_cast<int>(d.zUnit),
+        choicesOf(kZUnitWords),
+        { "Auto (sidecar, file, else metres)", "Metres", "Feet" }),
+      numberRow("CellSize", "--cell", T::Real, d.cellX, 0.0, kMaxCellSizeMetres),
+      switchRow("UseSidecar", "--no-sidecar", d.useSidecar),
+      switchRow("UseNormalisedRange", "--z-range", d.zMin.has_value()),
+      // Placeholders until UseNormalisedRange is on (a range must be typed then).
+      numberRow("ZMin", "--z-range", T::Real, 0.0, -kMaxNormalisedHeight, kMaxNormalisedHeight),
+      numberRow("ZMax", "--z-range", T::Real, 1.0, -kMaxNormalisedHeight, kMaxNormalisedHeight),
+    };
+  }();
+  return rows;
+}
+
 } // namespace tsynth

@@ -6,6 +6,7 @@
 #include "Geodesy.h"
 #include "Grid.h"
 #include "Heightfield.h"
+#include "OptionTable.h"
 #include "Sidecar.h"
 
 #include <array>
@@ -18,6 +19,15 @@
 namespace tsynth
 {
 
+// Cell sizes and normalised heights beyond anything on Earth are refused: 1e7 m
+// is a quarter of the equator, 1e6 m (or ft) a hundred times Everest.
+constexpr double kMaxCellSizeMetres = 1.0e7;
+constexpr double kMaxNormalisedHeight = 1.0e6;
+
+// The words of ZUnit in its order, as --z-unit takes them (parseZUnit also
+// takes metres, feet and their other spellings).
+inline constexpr const char* kZUnitWords[] = { "auto", "m", "ft" };
+
 // Options that override what the file and its sidecar say.
 struct ReadOptions
 {
@@ -28,6 +38,12 @@ struct ReadOptions
   std::optional<double> zMax; // ... and the type's maximum (255 or 65535) here
   bool useSidecar = true;
 };
+
+// The read options as a table: the Terrain Reader's properties (ZUnit,
+// CellSize, UseSidecar, UseNormalisedRange, ZMin, ZMax) and tsynth's --z-unit,
+// --cell, --no-sidecar and --z-range (MIN,MAX). CellSize 0 means "from the
+// sidecar or the georeference"; ZMin and ZMax apply only with UseNormalisedRange.
+const std::vector<OptionRow>& readOptionRows();
 
 // What a raster is, read from its header and sidecar without reading the heights.
 struct RasterInfo

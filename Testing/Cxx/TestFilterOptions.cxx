@@ -11,11 +11,13 @@
 #include "vtkTerrainOptimisation.h"
 #include "vtkTerrainPatchMatcher.h"
 #include "vtkTerrainPitRemoval.h"
+#include "vtkTerrainReader.h"
 #include "vtkTerrainSketchFeatures.h"
 #include "vtkTerrainSynthesis.h"
 
 #include "Analysis/Hillshade.h"
 #include "Core/Error.h"
+#include "Core/HeightfieldIO.h"
 #include "Core/PatchSize.h"
 #include "Distance/DistanceSources.h"
 #include "Features/Ppa.h"
@@ -580,6 +582,29 @@ TEST(FilterOptions, TheHillshadeFilterAndItsXmlAreItsTable)
     { "ZFactor", realProperty(&H::GetZFactor, &H::SetZFactor) },
   };
   expectDefaultsAndClamps<H>(rows, properties, {});
+}
+
+TEST(FilterOptions, TheTerrainReaderAndItsXmlAreTheReadTable)
+{
+  const std::vector<tsynth::OptionRow>& rows = tsynth::readOptionRows();
+  for (const tsynth::OptionRow& row : rows)
+  {
+    expectDeclaredAsRow("TerrainReader.xml", row);
+  }
+  using R = vtkTerrainReader;
+  const std::map<std::string, FilterProperty<R>> properties = {
+    { "ZUnit", countProperty(&R::GetZUnit, &R::SetZUnit) },
+    { "CellSize", realProperty(&R::GetCellSize, &R::SetCellSize) },
+    { "UseSidecar", onOffProperty(&R::GetUseSidecar, &R::SetUseSidecar) },
+    { "UseNormalisedRange", onOffProperty(&R::GetUseNormalisedRange, &R::SetUseNormalisedRange) },
+    { "ZMin", realProperty(&R::GetZMin, &R::SetZMin) },
+    { "ZMax", realProperty(&R::GetZMax, &R::SetZMax) },
+  };
+  expectDefaultsAndClamps<R>(rows, properties, {});
+  // The reader's ZUnit values are the kernel's, whose words --z-unit takes.
+  EXPECT_EQ(tsynth::parseZUnit(tsynth::kZUnitWords[R::ZUNIT_FEET]), tsynth::ZUnit::Feet);
+  EXPECT_EQ(tsynth::parseZUnit(tsynth::kZUnitWords[R::ZUNIT_METRES]), tsynth::ZUnit::Metres);
+  EXPECT_EQ(tsynth::parseZUnit(tsynth::kZUnitWords[R::ZUNIT_AUTO]), tsynth::ZUnit::Auto);
 }
 
 TEST(FilterOptions, ThePatchMatcherAndItsXmlAreTheMatchersTable)

@@ -89,7 +89,11 @@ CASES = [
     ("cell-inf", ["info", "$dem", "--cell", "inf"], 2, r"--cell.*positive"),
     ("cell-nan", ["convert", "$dem", "--cell", "nan", "-o", "^out.tif"], 2, r"--cell.*positive"),
     ("z-range-infinite", ["info", "$dem", "--z-range", "-inf,inf"], 2, r"--z-range"),
-    ("z-unit-unknown", ["info", "$dem", "--z-unit", "furlong"], 2, r"--z-unit must be m or ft"),
+    # The Terrain Reader's ZMin/ZMax range (the read options table), as one sentence.
+    ("z-range-beyond-earth", ["info", "$dem", "--z-range", "0,2e6"], 2,
+     r"--z-range's MAX expects a number from -1000000 to 1000000, not 2000000\."),
+    ("cell-beyond-earth", ["info", "$dem", "--cell", "2e7"], 2, r"--cell .*at most 10000000"),
+    ("z-unit-unknown", ["info", "$dem", "--z-unit", "furlong"], 2, r"--z-unit must be auto, m or ft"),
     # render -------------------------------------------------------------------------------------
     ("render-size-overflow", ["render", "$dem", "--3d", "--size", "99999999999x5", "-o", "^out.png"], 2,
      r"--size.*16 and 8192"),
