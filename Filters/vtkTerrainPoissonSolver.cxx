@@ -22,6 +22,12 @@
 
 vtkStandardNewMacro(vtkTerrainPoissonSolver);
 
+static_assert(vtkTerrainPoissonSolver::SEAMLESS_CLONE ==
+      static_cast<int>(tsynth::PoissonEditMode::SeamlessClone) &&
+    vtkTerrainPoissonSolver::GUIDANCE_FIELD ==
+      static_cast<int>(tsynth::PoissonEditMode::GuidanceField),
+  "the Mode property takes tsynth::PoissonEditMode's values");
+
 vtkTerrainPoissonSolver::vtkTerrainPoissonSolver()
 {
   this->SetMaskArray(kDefaultMaskArray);
@@ -31,6 +37,10 @@ vtkTerrainPoissonSolver::vtkTerrainPoissonSolver()
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
   this->SetInputArrayToProcess(
     1, 1, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
+  const auto initial = [](const char* property)
+  { return tsynth::optionRow(tsynth::poissonEditOptionRows(), property).defaultValue; };
+  this->Mode = static_cast<int>(initial("Mode"));
+  this->Tolerance = initial("Tolerance");
 }
 
 vtkTerrainPoissonSolver::~vtkTerrainPoissonSolver()

@@ -22,6 +22,8 @@
 
 #include "TerrainSynthesisFiltersModule.h"
 
+#include "Merging/PoissonEditing.h" // the options table and its limits
+
 #include <vtkImageAlgorithm.h>
 
 class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainPoissonSolver : public vtkImageAlgorithm
@@ -31,6 +33,7 @@ public:
   vtkTypeMacro(vtkTerrainPoissonSolver, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  // tsynth::PoissonEditMode's values (checked in the .cxx).
   enum Modes
   {
     SEAMLESS_CLONE = 0,
@@ -38,8 +41,8 @@ public:
   };
   vtkSetClampMacro(Mode, int, SEAMLESS_CLONE, GUIDANCE_FIELD);
   vtkGetMacro(Mode, int);
-  /// Relative residual at which the solver stops (default 1e-8).
-  vtkSetClampMacro(Tolerance, double, 1e-14, 1e-1);
+  /// Relative residual at which the solver stops (default the solver's own, 1e-10).
+  vtkSetClampMacro(Tolerance, double, tsynth::kMinEditTolerance, tsynth::kMaxEditTolerance);
   vtkGetMacro(Tolerance, double);
 
   /// The point array, non-zero on the cells to solve: on the source for SeamlessClone (none:
@@ -65,8 +68,9 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int Mode = SEAMLESS_CLONE;
-  double Tolerance = 1e-8;
+  // The options table's defaults (tsynth::poissonEditOptionRows), set in the constructor.
+  int Mode;
+  double Tolerance;
   char* MaskArray = nullptr;
   char* GradientArray = nullptr;
 

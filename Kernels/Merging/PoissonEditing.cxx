@@ -153,4 +153,22 @@ PoissonEditResult integrateSlopes(const Heightfield& destination,
   return solve(destination, mask, gx, gy, tolerance);
 }
 
+const std::vector<OptionRow>& poissonEditOptionRows()
+{
+  static const std::vector<OptionRow> rows = {
+    choiceRow("Mode",
+      "",
+      static_cast<int>(PoissonEditMode::SeamlessClone),
+      choicesOf(kPoissonEditModeWords),
+      { "Seamless clone", "Guidance field" }),
+    numberRow("Tolerance",
+      "",
+      OptionType::Real,
+      PoissonOptions{}.tolerance,
+      kMinEditTolerance,
+      kMaxEditTolerance),
+  };
+  return rows;
+}
+
 } // namespace tsynth

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/OptionTable.h"
 #include "Poisson.h"
 
 #include <cstddef>
@@ -15,6 +16,25 @@
 
 namespace tsynth
 {
+
+// The two edits, in the Terrain Poisson Solver's Mode order.
+enum class PoissonEditMode
+{
+  SeamlessClone, // the source's slopes inside the mask
+  GuidanceField  // a given slope field inside the mask
+};
+inline constexpr const char* kPoissonEditModeWords[] = { "clone", "guidance" };
+
+// The relative residual an edit stops at by default: the solver's own
+// (PoissonOptions::tolerance, 1e-10). Multigrid-preconditioned CG gains about
+// two orders of magnitude per iteration, so it costs two iterations more than
+// 1e-8 (measured: 14 against 12 on a 648^2 clone) and leaves no question of
+// which of two defaults applies.
+constexpr double kMinEditTolerance = 1e-14; // near double precision's reach on a solve
+constexpr double kMaxEditTolerance = 0.1;   // coarser stops leave visible steps
+
+// The edits' options as a table: the Terrain Poisson Solver's Mode and Tolerance.
+const std::vector<OptionRow>& poissonEditOptionRows();
 
 // CG with the multigrid preconditioner converges in tens of iterations on any
 // mask; this bounds a solve that cannot (the statistics say how far it got).

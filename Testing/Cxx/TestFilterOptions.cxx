@@ -11,6 +11,7 @@
 #include "vtkTerrainOptimisation.h"
 #include "vtkTerrainPatchMatcher.h"
 #include "vtkTerrainPitRemoval.h"
+#include "vtkTerrainPoissonSolver.h"
 #include "vtkTerrainReader.h"
 #include "vtkTerrainSketchFeatures.h"
 #include "vtkTerrainSynthesis.h"
@@ -23,6 +24,7 @@
 #include "Features/Ppa.h"
 #include "Hydrology/PitRemoval.h"
 #include "Matching/PatchMatcher.h"
+#include "Merging/PoissonEditing.h"
 #include "Optimisation/TerrainOptimisation.h"
 #include "Synthesis/SynthesisRequest.h"
 
@@ -605,6 +607,21 @@ TEST(FilterOptions, TheTerrainReaderAndItsXmlAreTheReadTable)
   EXPECT_EQ(tsynth::parseZUnit(tsynth::kZUnitWords[R::ZUNIT_FEET]), tsynth::ZUnit::Feet);
   EXPECT_EQ(tsynth::parseZUnit(tsynth::kZUnitWords[R::ZUNIT_METRES]), tsynth::ZUnit::Metres);
   EXPECT_EQ(tsynth::parseZUnit(tsynth::kZUnitWords[R::ZUNIT_AUTO]), tsynth::ZUnit::Auto);
+}
+
+TEST(FilterOptions, ThePoissonSolverAndItsXmlAreTheEditTable)
+{
+  const std::vector<tsynth::OptionRow>& rows = tsynth::poissonEditOptionRows();
+  for (const tsynth::OptionRow& row : rows)
+  {
+    expectDeclaredAsRow("TerrainPoissonSolver.xml", row);
+  }
+  using P = vtkTerrainPoissonSolver;
+  const std::map<std::string, FilterProperty<P>> properties = {
+    { "Mode", countProperty(&P::GetMode, &P::SetMode) },
+    { "Tolerance", realProperty(&P::GetTolerance, &P::SetTolerance) },
+  };
+  expectDefaultsAndClamps<P>(rows, properties, {});
 }
 
 TEST(FilterOptions, ThePatchMatcherAndItsXmlAreTheMatchersTable)
