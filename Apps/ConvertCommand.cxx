@@ -117,7 +117,8 @@ int runConvert(std::vector<std::string> args)
   }
   CommandLine cl(std::move(args));
   const std::optional<std::string> output = cl.take("--output", "-o");
-  const std::optional<int> tileSize = takeCount(cl, "--tile-size", kSmallestTile, kLargestTile);
+  const std::optional<double> tileSize =
+    takeRowNumber(cl, optionRow(tileExportOptionRows(), "TileSize"));
   const bool progress = !cl.takeFlag("--no-progress");
   const ReadOptions options = takeReadOptions(cl);
   const std::string path = oneInput(cl, "convert");
@@ -128,7 +129,7 @@ int runConvert(std::vector<std::string> args)
   }
   if (tileSize)
   {
-    return runTiledConvert(path, options, *output, *tileSize, progress);
+    return runTiledConvert(path, options, *output, static_cast<int>(*tileSize), progress);
   }
   if (hasExtension(*output, ".vrt") || hasExtension(*output, ".raw") ||
     hasExtension(*output, ".r16"))

@@ -118,6 +118,12 @@ vtkTypeBool vtkTerrainTileWriter::ProcessRequest(vtkInformation* request,
   return this->Superclass::ProcessRequest(request, inputVector, outputVector);
 }
 
+vtkTerrainTileWriter::vtkTerrainTileWriter()
+  : TileSize(
+      static_cast<int>(tsynth::optionRow(tsynth::tileExportOptionRows(), "TileSize").defaultValue))
+{
+}
+
 vtkTerrainTileWriter::~vtkTerrainTileWriter()
 {
   this->SetFileName(nullptr);

@@ -26,6 +26,8 @@
 
 #include "TerrainSynthesisFiltersModule.h"
 
+#include "Core/TileExport.h" // the options table and its limits
+
 #include <vtkWriter.h>
 
 class vtkImageData;
@@ -44,10 +46,10 @@ public:
   ///@}
 
   ///@{
-  /// Samples per tile side (default 1025, Unity's and a common Unreal size);
-  /// neighbouring tiles share one row or column. 16-bit tiles need 2^k + 1,
+  /// Samples per tile side (default tsynth::kDefaultTileSize, 1025: Unity's and a common
+  /// Unreal size); neighbouring tiles share one row or column. 16-bit tiles need 2^k + 1,
   /// 33 to 8193.
-  vtkSetClampMacro(TileSize, int, 2, 65537);
+  vtkSetClampMacro(TileSize, int, tsynth::kSmallestTile, tsynth::kLargestTile);
   vtkGetMacro(TileSize, int);
   ///@}
 
@@ -55,7 +57,7 @@ public:
   vtkGetMacro(TilesWritten, int);
 
 protected:
-  vtkTerrainTileWriter() = default;
+  vtkTerrainTileWriter();
   ~vtkTerrainTileWriter() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
@@ -66,7 +68,7 @@ protected:
   void WriteShare(vtkImageData* image);
 
   char* FileName = nullptr;
-  int TileSize = 1025;
+  int TileSize; // the options table's default (tsynth::tileExportOptionRows)
   int TilesWritten = 0;
 
 private:

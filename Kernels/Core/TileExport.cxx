@@ -559,4 +559,17 @@ TileExportReport exportTiles(const Heightfield& hf,
   return report;
 }
 
+const std::vector<OptionRow>& tileExportOptionRows()
+{
+  static const std::vector<OptionRow> rows = {
+    numberRow("TileSize",
+      "--tile-size",
+      OptionType::Integer,
+      kDefaultTileSize,
+      kSmallestTile,
+      kLargestTile),
+  };
+  return rows;
+}
+
 } // namespace tsynth

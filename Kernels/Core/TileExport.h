@@ -15,6 +15,7 @@
 #include "Grid.h"
 #include "Heightfield.h"
 #include "HeightfieldIO.h"
+#include "OptionTable.h"
 #include "Progress.h"
 
 #include <cstddef>
@@ -40,6 +41,13 @@ std::optional<TileFormat> tileFormatFor(const std::string& output);
 // edge to share; past 2^16 + 1 samples a 16-bit engine heightmap is no tile.
 constexpr int kSmallestTile = 2;
 constexpr int kLargestTile = 65537;
+// The Terrain Tile Writer's default: 1025 samples, Unity's default heightmap
+// resolution and one of Unreal's recommended landscape sizes.
+constexpr int kDefaultTileSize = 1025;
+
+// The tile export's options as a table: the Terrain Tile Writer's TileSize and
+// tsynth convert's --tile-size (which has no default: it asks for tiles).
+const std::vector<OptionRow>& tileExportOptionRows();
 // At most this many tiles per export (a 16k terrain in tiles of 65 samples):
 // more is almost surely a mistyped size, and would flood the folder.
 constexpr std::size_t kMostTiles = 65536;

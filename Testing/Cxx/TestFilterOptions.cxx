@@ -15,11 +15,13 @@
 #include "vtkTerrainReader.h"
 #include "vtkTerrainSketchFeatures.h"
 #include "vtkTerrainSynthesis.h"
+#include "vtkTerrainTileWriter.h"
 
 #include "Analysis/Hillshade.h"
 #include "Core/Error.h"
 #include "Core/HeightfieldIO.h"
 #include "Core/PatchSize.h"
+#include "Core/TileExport.h"
 #include "Distance/DistanceSources.h"
 #include "Features/Ppa.h"
 #include "Hydrology/PitRemoval.h"
@@ -622,6 +624,20 @@ TEST(FilterOptions, ThePoissonSolverAndItsXmlAreTheEditTable)
     { "Tolerance", realProperty(&P::GetTolerance, &P::SetTolerance) },
   };
   expectDefaultsAndClamps<P>(rows, properties, {});
+}
+
+TEST(FilterOptions, TheTileWriterAndItsXmlAreTheTileExportTable)
+{
+  const std::vector<tsynth::OptionRow>& rows = tsynth::tileExportOptionRows();
+  for (const tsynth::OptionRow& row : rows)
+  {
+    expectDeclaredAsRow("TerrainTileWriter.xml", row);
+  }
+  using W = vtkTerrainTileWriter;
+  const std::map<std::string, FilterProperty<W>> properties = {
+    { "TileSize", countProperty(&W::GetTileSize, &W::SetTileSize) },
+  };
+  expectDefaultsAndClamps<W>(rows, properties, {});
 }
 
 TEST(FilterOptions, ThePatchMatcherAndItsXmlAreTheMatchersTable)
