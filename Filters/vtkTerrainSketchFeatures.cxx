@@ -26,6 +26,13 @@ vtkTerrainSketchFeatures::vtkTerrainSketchFeatures()
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(2);
+  const auto initial = [](const char* property)
+  { return tsynth::optionRow(tsynth::sketchOptionRows(), property).defaultValue; };
+  this->PatchSize = static_cast<int>(initial("PatchSize"));
+  this->ControlRadius = initial("ControlRadius");
+  this->CellSize = initial("CellSize");
+  this->SnapTolerance = initial("SnapTolerance");
+  this->SmoothingPasses = static_cast<int>(initial("SmoothingPasses"));
 }
 
 int vtkTerrainSketchFeatures::FillInputPortInformation(int port, vtkInformation* info)

@@ -19,8 +19,9 @@
  */
 #pragma once
 
-#include "Core/PatchSize.h"
 #include "TerrainSynthesisFiltersModule.h"
+
+#include "Features/Sketch.h" // the options table and its limits
 
 #include <vtkPolyDataAlgorithm.h>
 
@@ -41,26 +42,26 @@ public:
 
   ///@{
   /// Control-point radius in cells; 0 (default) means half the patch size.
-  vtkSetClampMacro(ControlRadius, double, 0.0, 10000.0);
+  vtkSetClampMacro(ControlRadius, double, 0.0, tsynth::kMaxControlRadius);
   vtkGetMacro(ControlRadius, double);
   ///@}
 
   ///@{
   /// Metres per sketch pixel (images) or per cell (poly-lines without a
   /// reference image); 0 (default) takes the image spacing, or 1 for poly-lines.
-  vtkSetClampMacro(CellSize, double, 0.0, 1.0e6);
+  vtkSetClampMacro(CellSize, double, 0.0, tsynth::kMaxCellSizeMetres);
   vtkGetMacro(CellSize, double);
   ///@}
 
   ///@{
   /// Poly-line vertices closer than this many cells are merged (default 1).
-  vtkSetClampMacro(SnapTolerance, double, 0.0, 1000.0);
+  vtkSetClampMacro(SnapTolerance, double, 0.0, tsynth::kMaxSnapCells);
   vtkGetMacro(SnapTolerance, double);
   ///@}
 
   ///@{
   /// Chain smoothing passes for sketch images (default 2).
-  vtkSetClampMacro(SmoothingPasses, int, 0, 100);
+  vtkSetClampMacro(SmoothingPasses, int, 0, tsynth::kMaxSmoothingPasses);
   vtkGetMacro(SmoothingPasses, int);
   ///@}
 
@@ -74,11 +75,12 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int PatchSize = tsynth::kDefaultSynthesisPatch;
-  double ControlRadius = 0.0;
-  double CellSize = 0.0;
-  double SnapTolerance = 1.0;
-  int SmoothingPasses = 2;
+  // The options table's defaults (tsynth::sketchOptionRows), set in the constructor.
+  int PatchSize;
+  double ControlRadius;
+  double CellSize;
+  double SnapTolerance;
+  int SmoothingPasses;
 
 private:
   vtkTerrainSketchFeatures(const vtkTerrainSketchFeatures&) = delete;

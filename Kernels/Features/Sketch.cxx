@@ -768,4 +768,22 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& drawn,
   return g;
 }
 
+const std::vector<OptionRow>& sketchOptionRows()
+{
+  static const std::vector<OptionRow> rows = []
+  {
+    const SketchOptions d;
+    using T = OptionType;
+    return std::vector<OptionRow>{
+      numberRow(
+        "PatchSize", "--patch", T::Integer, d.patchSize, kMinSynthesisPatch, kMaxSynthesisPatch),
+      numberRow("ControlRadius", "", T::Real, 0.0, 0.0, kMaxControlRadius),
+      numberRow("CellSize", "--cell", T::Real, 0.0, 0.0, kMaxCellSizeMetres),
+      numberRow("SnapTolerance", "", T::Real, kDefaultSnapCells, 0.0, kMaxSnapCells),
+      numberRow("SmoothingPasses", "", T::Integer, d.smoothingPasses, 0, kMaxSmoothingPasses),
+    };
+  }();
+  return rows;
+}
+
 } // namespace tsynth

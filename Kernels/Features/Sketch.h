@@ -6,8 +6,10 @@
 
 #include "../Core/Heightfield.h"
 #include "../Core/HeightfieldIO.h"
+#include "../Core/OptionTable.h"
 #include "../Core/PatchSize.h"
 #include "FeatureGraph.h"
+#include "PpaLimits.h"
 
 #include <string>
 #include <vector>
@@ -21,10 +23,17 @@ enum class SketchKind
   Strokes // colour: red ridges, blue valleys
 };
 
+// Control points sit half a patch apart along the lines: one per patch placed.
+constexpr double kDefaultSketchControlRadius = 0.5 * kDefaultSynthesisPatch; // cells
+// Poly-line vertices within a cell of each other join: a user who draws two
+// lines to meet lands within a pixel of the point, not on it.
+constexpr double kDefaultSnapCells = 1.0;
+constexpr double kMaxSnapCells = 1000.0; // beyond, whole sketches collapse to a point
+
 struct SketchOptions
 {
-  int patchSize = kDefaultSynthesisPatch; // a sketch smaller than one patch is refused
-  double controlRadius = 40.0;            // cells (half the patch)
+  int patchSize = kDefaultSynthesisPatch;             // a sketch smaller than one patch is refused
+  double controlRadius = kDefaultSketchControlRadius; // cells
   int smoothingPasses = 2;
   double cellSize = 1.0; // metres per sketch pixel, for the graph's coordinates
 };
@@ -94,7 +103,13 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& lines,
   int height,
   double cellX,
   double cellY,
-  double snapTolerance = 1.0,
-  double controlRadius = 40.0);
+  double snapTolerance = kDefaultSnapCells,
+  double controlRadius = kDefaultSketchControlRadius);
+
+// The Terrain Sketch Features filter's options as a table: PatchSize (--patch,
+// the synthesis' range), ControlRadius (0: half the patch), CellSize (--cell;
+// 0: the image's spacing, or 1 m for poly-lines), SnapTolerance (cells, for
+// poly-lines) and SmoothingPasses (for sketch images).
+const std::vector<OptionRow>& sketchOptionRows();
 
 } // namespace tsynth

@@ -38,8 +38,6 @@ constexpr double kOpenClBytesPerExemplarCell = 64.0;
 // Exemplar cells differing from the output's by more than this fraction are
 // resampled (less is rounding in a file's georeference).
 constexpr double kResampleTolerance = 0.01;
-// Poly-line vertices within this many cells of each other are one vertex.
-constexpr double kPolylineSnapCells = 1.0;
 
 // Beyond this, whole metres would print hundreds of digits: an exponent instead.
 constexpr double kLargestPlainNumber = 1.0e9;
@@ -305,7 +303,7 @@ AnalysedSketch analysePolylines(const PolylineSketch& sketch, const OutputGrid& 
       "-cell output; only what lies inside is sketched.");
   }
   a.graph =
-    polylineFeatures(cells, g.width, g.height, g.cellX, g.cellY, kPolylineSnapCells, 0.5 * patch);
+    polylineFeatures(cells, g.width, g.height, g.cellX, g.cellY, kDefaultSnapCells, 0.5 * patch);
   a.width = g.width;
   a.height = g.height;
   a.kind = "poly-lines";

@@ -24,6 +24,7 @@
 #include "Core/TileExport.h"
 #include "Distance/DistanceSources.h"
 #include "Features/Ppa.h"
+#include "Features/Sketch.h"
 #include "Hydrology/PitRemoval.h"
 #include "Matching/PatchMatcher.h"
 #include "Merging/PoissonEditing.h"
@@ -638,6 +639,24 @@ TEST(FilterOptions, TheTileWriterAndItsXmlAreTheTileExportTable)
     { "TileSize", countProperty(&W::GetTileSize, &W::SetTileSize) },
   };
   expectDefaultsAndClamps<W>(rows, properties, {});
+}
+
+TEST(FilterOptions, TheSketchFeaturesFilterAndItsXmlAreTheSketchTable)
+{
+  const std::vector<tsynth::OptionRow>& rows = tsynth::sketchOptionRows();
+  for (const tsynth::OptionRow& row : rows)
+  {
+    expectDeclaredAsRow("TerrainSketchFeatures.xml", row);
+  }
+  using S = vtkTerrainSketchFeatures;
+  const std::map<std::string, FilterProperty<S>> properties = {
+    { "PatchSize", countProperty(&S::GetPatchSize, &S::SetPatchSize) },
+    { "ControlRadius", realProperty(&S::GetControlRadius, &S::SetControlRadius) },
+    { "CellSize", realProperty(&S::GetCellSize, &S::SetCellSize) },
+    { "SnapTolerance", realProperty(&S::GetSnapTolerance, &S::SetSnapTolerance) },
+    { "SmoothingPasses", countProperty(&S::GetSmoothingPasses, &S::SetSmoothingPasses) },
+  };
+  expectDefaultsAndClamps<S>(rows, properties, { "PatchSize" });
 }
 
 TEST(FilterOptions, ThePatchMatcherAndItsXmlAreTheMatchersTable)
