@@ -36,16 +36,18 @@ constexpr int kMinFeaturePatch = 8;
 constexpr int kMaxFeaturePatch = 4096;
 
 const char* const kFeaturesHelp =
-  R"(Usage: tsynth features DEM -o FEATURES.vtp [--valleys | --both] [options]
+  R"(Usage: tsynth features DEM -o FEATURES.vtp [--features ridges|valleys|both] [options]
        tsynth features SKETCH --sketch -o FEATURES.vtp [options]
 
-Extracts ridge lines (or valleys, or both) as a feature tree with PPA and writes it
+Extracts ridge and valley lines (or one kind) as a feature tree with PPA and writes it
 as VTK poly-lines in metres (open it in ParaView over the DEM; colour by NodeKind).
 With --sketch the input is a sketch: a grey sketch map or an RGB stroke map (red
 ridges, blue valleys), or a .vtp of poly-lines with a FeatureType cell array.
 
   -o, --output F.vtp         the feature tree
-  --valleys | --both         valleys instead of ridges, or both
+  --features W               which lines: %WORDS:Features% (default %DEFAULT:Features%, as
+                             the Terrain Feature Extractor); --valleys and --both
+                             are short for --features valleys and --features both
   --control-points CP.vtp    also write the control points
   --profile-length N         PPA half profile length in cells (default 3)
   --relative-dip F           dip as a fraction of the local relief (default 0.1)
@@ -118,14 +120,32 @@ FeatureGraph polylineSketchFeatures(const std::string& path,
   return std::move(analysed.graph);
 }
 
+// --features WORD, or its shorthands --valleys and --both; the table's default without any.
+FeatureSelection takeFeatureSelection(CommandLine& cl)
+{
+  const OptionRow& row = optionRow(ppaOptionRows(), "Features");
+  const std::optional<int> word = takeRowChoice(cl, row);
+  const bool valleys = cl.takeFlag("--valleys");
+  const bool both = cl.takeFlag("--both");
+  const int given = (word ? 1 : 0) + (valleys ? 1 : 0) + (both ? 1 : 0);
+  if (given > 1)
+  {
+    throw UsageError("Give one of --features, --valleys and --both.");
+  }
+  if (valleys || both)
+  {
+    return valleys ? FeatureSelection::Valleys : FeatureSelection::Both;
+  }
+  return static_cast<FeatureSelection>(word.value_or(static_cast<int>(row.defaultValue)));
+}
+
 // Everything `tsynth features` was asked to do, checked.
 struct FeaturesArguments
 {
   std::string input;
   std::string output;
   std::optional<std::string> controlOutput;
-  bool valleys = false;
-  bool both = false;
+  FeatureSelection selection = FeatureSelection::Both;
   bool sketch = false;
   int patch = kDefaultSynthesisPatch;
   PpaOptions ppa;
@@ -138,8 +158,7 @@ FeaturesArguments parseFeaturesArguments(std::vector<std::string> args)
   FeaturesArguments a;
   const std::optional<std::string> output = cl.take("--output", "-o");
   a.controlOutput = cl.take("--control-points");
-  a.valleys = cl.takeFlag("--valleys");
-  a.both = cl.takeFlag("--both");
+  a.selection = takeFeatureSelection(cl);
   a.sketch = cl.takeFlag("--sketch");
   a.patch =
     takeCount(cl, "--patch", kMinFeaturePatch, kMaxFeaturePatch).value_or(kDefaultSynthesisPatch);
@@ -155,10 +174,6 @@ FeaturesArguments parseFeaturesArguments(std::vector<std::string> args)
     (a.controlOutput && !hasExtension(*a.controlOutput, ".vtp")))
   {
     throw UsageError("Feature trees are written as .vtp files.");
-  }
-  if (a.valleys && a.both)
-  {
-    throw UsageError("Give --valleys or --both, not both.");
   }
   return a;
 }
@@ -210,23 +225,11 @@ Heightfield readFeatureDem(const FeaturesArguments& a)
 
 ExtractedFeatures demFeatures(const FeaturesArguments& a)
 {
-  const Heightfield hf = readFeatureDem(a);
+  FeatureExtraction e = extractSelectedFeatures(readFeatureDem(a), a.selection, a.ppa);
   ExtractedFeatures out;
-  out.graph.width = hf.width;
-  out.graph.height = hf.height;
-  out.graph.cellX = hf.cellX;
-  out.graph.cellY = hf.cellY;
-  for (FeatureType type : { FeatureType::Ridge, FeatureType::Valley })
-  {
-    const bool wanted = a.both || (type == FeatureType::Valley) == a.valleys;
-    if (wanted)
-    {
-      FeatureExtraction e = extractFeatures(hf, type, a.ppa);
-      out.significance = e.statistics; // the relief and drop are the same for both types
-      appendGraph(out.graph, e.graph);
-      out.warnings.insert(out.warnings.end(), e.warnings.begin(), e.warnings.end());
-    }
-  }
+  out.graph = std::move(e.graph);
+  out.warnings = std::move(e.warnings);
+  out.significance = e.statistics;
   return out;
 }
 
@@ -276,7 +279,8 @@ int runFeatures(std::vector<std::string> args)
 {
   if (wantsHelp(args))
   {
-    std::cout << withPatchDefault(kFeaturesHelp) << kReadOptionsHelp;
+    std::cout << withOptionRows(withPatchDefault(kFeaturesHelp), ppaOptionRows())
+              << kReadOptionsHelp;
     return 0;
   }
   const FeaturesArguments a = parseFeaturesArguments(std::move(args));

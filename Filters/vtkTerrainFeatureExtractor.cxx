@@ -18,6 +18,13 @@
 
 vtkStandardNewMacro(vtkTerrainFeatureExtractor);
 
+static_assert(
+  vtkTerrainFeatureExtractor::RIDGES == static_cast<int>(tsynth::FeatureSelection::Ridges) &&
+    vtkTerrainFeatureExtractor::VALLEYS == static_cast<int>(tsynth::FeatureSelection::Valleys) &&
+    vtkTerrainFeatureExtractor::RIDGES_AND_VALLEYS ==
+      static_cast<int>(tsynth::FeatureSelection::Both),
+  "the Features property takes tsynth::FeatureSelection's values");
+
 vtkTerrainFeatureExtractor::vtkTerrainFeatureExtractor()
 {
   this->SetNumberOfOutputPorts(2);
@@ -26,6 +33,7 @@ vtkTerrainFeatureExtractor::vtkTerrainFeatureExtractor()
   // The defaults of the options table (tsynth::ppaOptionRows).
   const auto initial = [](const char* property)
   { return tsynth::optionRow(tsynth::ppaOptionRows(), property).defaultValue; };
+  this->Features = static_cast<int>(initial("Features"));
   this->HalfProfileLength = static_cast<int>(initial("HalfProfileLength"));
   this->MinimumDip = initial("MinimumDip");
   this->RelativeDip = initial("RelativeDip");
@@ -80,32 +88,15 @@ int vtkTerrainFeatureExtractor::RequestData(vtkInformation*,
       o.smoothingPasses = this->SmoothingPasses;
       o.controlRadius = this->ControlRadius;
 
-      tsynth::FeatureGraph graph;
-      graph.width = hf.width;
-      graph.height = hf.height;
-      graph.cellX = hf.cellX;
-      graph.cellY = hf.cellY;
-      const bool ridges = this->Features != VALLEYS;
-      const bool valleys = this->Features != RIDGES;
-      if (ridges)
+      const auto selection = tsynth::choiceOf<tsynth::FeatureSelection>(
+        tsynth::optionRow(tsynth::ppaOptionRows(), "Features").choices, this->Features, "Features");
+      tsynth::FeatureExtraction lines = tsynth::extractSelectedFeatures(
+        hf, selection, o, [this](double f, const std::string&) { this->UpdateProgress(0.9 * f); });
+      for (const auto& w : lines.warnings)
       {
-        const auto r = tsynth::extractFeatures(hf, tsynth::FeatureType::Ridge, o);
-        for (const auto& w : r.warnings)
-        {
-          vtkWarningMacro(<< w);
-        }
-        tsynth::appendGraph(graph, r.graph);
+        vtkWarningMacro(<< w);
       }
-      this->UpdateProgress(0.5);
-      if (valleys)
-      {
-        const auto v = tsynth::extractFeatures(hf, tsynth::FeatureType::Valley, o);
-        for (const auto& w : v.warnings)
-        {
-          vtkWarningMacro(<< w);
-        }
-        tsynth::appendGraph(graph, v.graph);
-      }
+      tsynth::FeatureGraph& graph = lines.graph;
       this->UpdateProgress(0.9);
       // Points sit on the input's grid: its origin plus the extent's offset.
       double ox = 0.0;

@@ -27,6 +27,7 @@ public:
   vtkTypeMacro(vtkTerrainFeatureExtractor, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  // tsynth::FeatureSelection's values (checked in the .cxx).
   enum FeatureKinds
   {
     RIDGES = 0,
@@ -125,8 +126,8 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int Features = RIDGES_AND_VALLEYS;
   // The options table's defaults (tsynth::ppaOptionRows), set in the constructor.
+  int Features;
   int HalfProfileLength;
   double MinimumDip;
   double RelativeDip;

@@ -613,6 +613,37 @@ FeatureGraph ridgesAndValleys(const Heightfield& hf, const PpaOptions& options)
   return g;
 }
 
+bool keeps(FeatureSelection selection, FeatureType type)
+{
+  return selection == FeatureSelection::Both ||
+    (selection == FeatureSelection::Valleys) == (type == FeatureType::Valley);
+}
+
+FeatureExtraction extractSelectedFeatures(const Heightfield& hf,
+  FeatureSelection selection,
+  const PpaOptions& options,
+  const ProgressReport& progress)
+{
+  FeatureExtraction out;
+  out.graph.width = hf.width;
+  out.graph.height = hf.height;
+  out.graph.cellX = hf.cellX;
+  out.graph.cellY = hf.cellY;
+  for (const FeatureType type : { FeatureType::Ridge, FeatureType::Valley })
+  {
+    const bool valleys = type == FeatureType::Valley;
+    if (keeps(selection, type))
+    {
+      reportProgress(progress, valleys ? 0.5 : 0.0, valleys ? "valleys" : "ridges");
+      FeatureExtraction e = extractFeatures(hf, type, options);
+      out.statistics = e.statistics;
+      appendGraph(out.graph, e.graph);
+      out.warnings.insert(out.warnings.end(), e.warnings.begin(), e.warnings.end());
+    }
+  }
+  return out;
+}
+
 const std::vector<OptionRow>& ppaOptionRows()
 {
   static const std::vector<OptionRow> rows = []
@@ -620,6 +651,12 @@ const std::vector<OptionRow>& ppaOptionRows()
     const PpaOptions d;
     using T = OptionType;
     return std::vector<OptionRow>{
+      // Both by default: a terrain's whole feature tree, as the synthesis reads exemplars.
+      choiceRow("Features",
+        "--features",
+        static_cast<int>(FeatureSelection::Both),
+        choicesOf(kFeatureSelectionWords),
+        { "Ridges", "Valleys", "Ridges and valleys" }),
       numberRow("HalfProfileLength",
         "--profile-length",
         T::Integer,

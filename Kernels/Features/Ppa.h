@@ -6,6 +6,7 @@
 
 #include "../Core/Heightfield.h"
 #include "../Core/OptionTable.h"
+#include "../Core/Progress.h"
 #include "FeatureGraph.h"
 #include "PixelGraph.h"
 #include "PpaLimits.h"
@@ -169,8 +170,30 @@ FeatureGraph ridgesAndValleys(const Heightfield& hf, const PpaOptions& options);
 // Gaussian smoothing of valid cells (invalid neighbours get no weight).
 Heightfield gaussianSmooth(const Heightfield& hf, double sigma);
 
+// Which lines a feature extraction keeps: the Feature Extractor's Features
+// property and tsynth features' --features, in this order.
+enum class FeatureSelection
+{
+  Ridges,
+  Valleys,
+  Both
+};
+inline constexpr const char* kFeatureSelectionWords[] = { "ridges", "valleys", "both" };
+// True if `selection` keeps lines of `type`.
+bool keeps(FeatureSelection selection, FeatureType type);
+
+// The lines `selection` keeps, ridges first, in one graph on hf's grid, with
+// every warning and the statistics of the last extraction (the relief and the
+// drop are the same for both kinds); no pixel forest or timings. `progress`
+// hears 0 before the ridges and 0.5 before the valleys.
+FeatureExtraction extractSelectedFeatures(const Heightfield& hf,
+  FeatureSelection selection,
+  const PpaOptions& options,
+  const ProgressReport& progress = {});
+
 // The PPA options tsynth features and the Terrain Feature Extractor filter share
-// (Core/OptionTable.h), their defaults a default PpaOptions'. SmoothingPasses and
+// (Core/OptionTable.h), their defaults a default PpaOptions', with Features (a
+// FeatureSelection) first. SmoothingPasses and
 // ControlRadius are the filter's alone: tsynth features smooths as the default
 // does and takes the control radius from --patch (half of it).
 const std::vector<OptionRow>& ppaOptionRows();

@@ -555,6 +555,7 @@ TEST(FilterOptions, TheFeatureExtractorAndItsXmlArePpasTable)
   }
   using E = vtkTerrainFeatureExtractor;
   const std::map<std::string, FilterProperty<E>> properties = {
+    { "Features", countProperty(&E::GetFeatures, &E::SetFeatures) },
     { "HalfProfileLength", countProperty(&E::GetHalfProfileLength, &E::SetHalfProfileLength) },
     { "MinimumDip", realProperty(&E::GetMinimumDip, &E::SetMinimumDip) },
     { "RelativeDip", realProperty(&E::GetRelativeDip, &E::SetRelativeDip) },

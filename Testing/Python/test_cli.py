@@ -251,7 +251,8 @@ class CliTest(unittest.TestCase):
         out = self.path("ridges.vtp")
         controls = self.path("controls.vtp")
         dem = os.path.join(PATHS.bundled_data, "dems", "colorado.png")
-        result = tsynth("features", dem, "-o", out, "--control-points", controls)
+        result = tsynth("features", dem, "-o", out, "--control-points", controls,
+                        "--features", "ridges")
         self.assertEqual(result.returncode, 0, result.stderr)
         match = re.search(r"Features: (\d+) nodes \((\d+) branch, (\d+) end", result.stdout)
         self.assertIsNotNone(match, result.stdout)
@@ -264,16 +265,24 @@ class CliTest(unittest.TestCase):
         self.assertGreater(vtp_counts(controls)[0], nodes)  # one control point per chain end
         valleys = tsynth("features", dem, "-o", self.path("valleys.vtp"), "--valleys")
         self.assertEqual(valleys.returncode, 0, valleys.stderr)
+        # By default both kinds, as the Terrain Feature Extractor: the ridges' and the valleys'
+        # nodes together (--valleys is short for --features valleys).
+        both = tsynth("features", dem, "-o", self.path("both.vtp"))
+        self.assertEqual(both.returncode, 0, both.stderr)
+        valley_nodes = int(re.search(r"Features: (\d+) nodes", valleys.stdout).group(1))
+        self.assertIn("Features: %d nodes" % (nodes + valley_nodes), both.stdout)
         # The significance test (default 0.02 of the 1762 m relief) removes minor lines;
         # --significance 0 is plain PPA (768 nodes on this DEM, 486 at 0.05).
         drop = re.search(r"Significance: features stand ([0-9.]+) m", result.stdout)
         self.assertIsNotNone(drop, result.stdout)
         self.assertAlmostEqual(float(drop.group(1)), 0.02 * 1762.1, delta=0.5)
-        plain = tsynth("features", dem, "-o", self.path("plain.vtp"), "--significance", "0")
+        plain = tsynth("features", dem, "-o", self.path("plain.vtp"), "--significance", "0",
+                       "--features", "ridges")
         self.assertEqual(plain.returncode, 0, plain.stderr)
         self.assertNotIn("Significance:", plain.stdout)
         self.assertIn("Features: 768 nodes", plain.stdout)
-        strict = tsynth("features", dem, "-o", self.path("strict.vtp"), "--significance", "0.05",
+        strict = tsynth("features", dem, "-o", self.path("strict.vtp"), "--features", "ridges",
+                        "--significance", "0.05",
                         "--significance-noise", "0", "--significance-radius", "20")
         self.assertEqual(strict.returncode, 0, strict.stderr)
         self.assertIn("Features: 486 nodes", strict.stdout)
