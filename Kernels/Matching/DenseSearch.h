@@ -4,7 +4,7 @@
 // cheap lower bound from 2f x 2f means, then the full sum only where the bound
 // leaves an offset a chance), then the best coarse offsets overall are refined
 // cell by cell at full resolution: far fewer operations than exhaustive search,
-// with the same winner on almost every query (Testing/Cxx/TestMatching.cxx
+// with the same winner on almost every query (Testing/Cxx/Matching/TestDenseSearch.cxx
 // measures the recall).
 #pragma once
 

@@ -1,7 +1,8 @@
 """The seeded commands other than synth, through the command line: tsynth optimise and tsynth distance
 give the same bytes for the same seed, again and on any thread count, and another terrain for another
 seed. (tsynth synth's twin, across backends too, is in test_synth.py; the kernels' own ones with
-omp_set_num_threads in TestOptimisation.cxx and TestDistanceSynthesis.cxx.)"""
+omp_set_num_threads in Testing/Cxx/Optimisation/TestTerrainOptimisation.cxx and
+Testing/Cxx/Distance/TestDistanceSynthesis.cxx.)"""
 import filecmp
 import os
 import shutil

@@ -261,8 +261,8 @@ class DrawnSketchTest(unittest.TestCase):
         # down to -5621 m (seed 4; seeds 1 and 3: -1646 and -3848 m) where the exemplar spans
         # 454-4810 m. With the free border anchored they stayed within 483-4143 m. Since the
         # correction is spread over a tenth of a patch (Tasse's code), not a quarter, no merge needs
-        # the anchor here (the guard itself: TestPatchMerge). Allowed: the exemplar's range widened
-        # by a tenth of its span (436 m) each way.
+        # the anchor here (the guard itself: Testing/Cxx/Merging/TestPatchMerger.cxx). Allowed: the
+        # exemplar's range widened by a tenth of its span (436 m) each way.
         sketch = sketch_drawing.spiral().save(os.path.join(self.tmp, "spiral.png"))
         dem = os.path.join(PATHS.bundled_data, "dems", "alps-montblanc.png")
         out = os.path.join(self.tmp, "spiral.tif")
