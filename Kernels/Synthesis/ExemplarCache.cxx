@@ -560,7 +560,16 @@ std::string writeEntry(const std::filesystem::path& path,
   return "";
 }
 
-PreparedExemplars compute(const std::vector<const Heightfield*>& exemplars, int patchSize)
+// Whether a preparation builds the candidate pool: not for a synthesis given its pool.
+enum class PoolWanted
+{
+  Yes,
+  No
+};
+
+PreparedExemplars compute(const std::vector<const Heightfield*>& exemplars,
+  int patchSize,
+  PoolWanted pool)
 {
   PreparedExemplars p;
   std::vector<const FeatureGraph*> graphs;
@@ -571,9 +580,12 @@ PreparedExemplars compute(const std::vector<const Heightfield*>& exemplars, int 
     graphs.push_back(&p.graphs.back());
   }
   p.statistics = exemplarStatistics(exemplars, graphs, patchSize);
-  PoolOptions po;
-  po.patchSize = patchSize;
-  p.pool = std::make_shared<const CandidatePool>(buildCandidatePool(exemplars, graphs, po));
+  if (pool == PoolWanted::Yes)
+  {
+    PoolOptions po;
+    po.patchSize = patchSize;
+    p.pool = std::make_shared<const CandidatePool>(buildCandidatePool(exemplars, graphs, po));
+  }
   return p;
 }
 
@@ -682,21 +694,23 @@ void store(const PreparedExemplars& p,
   keepWithinLimit(directory, path, limit);
 }
 
+// Without a pool a miss stores no entry: an entry holds the pool.
 PreparedExemplars prepareOrRead(const std::vector<const Heightfield*>& exemplars,
   int patchSize,
   const std::string& directory,
   ExemplarCacheUse& use,
-  std::uintmax_t limit)
+  std::uintmax_t limit,
+  PoolWanted pool)
 {
   use = {};
   if (directory.empty())
   {
-    return compute(exemplars, patchSize);
+    return compute(exemplars, patchSize, pool);
   }
   if (codeHash() == 0)
   {
     use.problem = "the library's own file could not be read to key the cache";
-    return compute(exemplars, patchSize);
+    return compute(exemplars, patchSize, pool);
   }
   use.directory = directory;
   const std::uint64_t key = exemplarPreparationKey(exemplars, patchSize);
@@ -706,10 +720,17 @@ PreparedExemplars prepareOrRead(const std::vector<const Heightfield*>& exemplars
         readIntact(path, key, exemplars.size(), patchSize, use))
   {
     use.hit = true;
+    if (pool == PoolWanted::No)
+    {
+      read->pool.reset();
+    }
     return std::move(*read);
   }
-  PreparedExemplars p = compute(exemplars, patchSize);
-  store(p, directory, path, key, limit, use);
+  PreparedExemplars p = compute(exemplars, patchSize, pool);
+  if (pool == PoolWanted::Yes)
+  {
+    store(p, directory, path, key, limit, use);
+  }
   return p;
 }
 
@@ -775,7 +796,19 @@ PreparedExemplars prepareExemplarsCached(const std::vector<const Heightfield*>& 
   std::uintmax_t limit)
 {
   const auto start = std::chrono::steady_clock::now();
-  PreparedExemplars p = prepareOrRead(exemplars, patchSize, directory, use, limit);
+  PreparedExemplars p = prepareOrRead(exemplars, patchSize, directory, use, limit, PoolWanted::Yes);
+  use.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return p;
+}
+
+PreparedExemplars prepareExemplarsForGivenPool(const std::vector<const Heightfield*>& exemplars,
+  int patchSize,
+  const std::string& directory,
+  ExemplarCacheUse& use)
+{
+  const auto start = std::chrono::steady_clock::now();
+  PreparedExemplars p =
+    prepareOrRead(exemplars, patchSize, directory, use, kExemplarCacheLimitBytes, PoolWanted::No);
   use.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return p;
 }

@@ -82,4 +82,12 @@ PreparedExemplars prepareExemplarsCached(const std::vector<const Heightfield*>& 
   ExemplarCacheUse& use,
   std::uintmax_t limit = kExemplarCacheLimitBytes);
 
+// The same for a synthesis given its candidate pool (a Candidate Builder's
+// table): the lines and statistics, with `pool` left null. A cache hit is read
+// as above; a miss builds no pool and so stores no entry (an entry holds one).
+PreparedExemplars prepareExemplarsForGivenPool(const std::vector<const Heightfield*>& exemplars,
+  int patchSize,
+  const std::string& directory,
+  ExemplarCacheUse& use);
+
 } // namespace tsynth

@@ -538,8 +538,10 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
   s.warnings = std::move(sketch.warnings);
   prepareExemplars(in, s);
   checkCancellation();
-  PreparedExemplars prepared =
-    prepareExemplarsCached(s.exemplarPointers(), in.patchSize, in.cacheDirectory, s.cache);
+  // A given pool (the Candidate Builder's) replaces the one the preparation would build.
+  PreparedExemplars prepared = in.pool != nullptr
+    ? prepareExemplarsForGivenPool(s.exemplarPointers(), in.patchSize, in.cacheDirectory, s.cache)
+    : prepareExemplarsCached(s.exemplarPointers(), in.patchSize, in.cacheDirectory, s.cache);
   s.graphs = std::move(prepared.graphs);
   s.pool = std::move(prepared.pool);
   if (in.pool != nullptr)

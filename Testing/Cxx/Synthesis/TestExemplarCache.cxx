@@ -330,3 +330,32 @@ TEST(ExemplarCache, TheDefaultDirectoryFollowsTheEnvironment)
   restore("XDG_CACHE_HOME", xdg);
   restore("HOME", home);
 }
+
+// A synthesis given its pool (the Candidate Builder's) prepares the lines and statistics
+// only: it builds no pool of its own, so a miss stores no entry, and a hit leaves the
+// entry's pool out.
+TEST(ExemplarCache, AGivenPoolIsNotBuiltAgainNorStored)
+{
+  const Heightfield ex = exemplar();
+  const fs::path dir = cacheDir("given-pool");
+  ExemplarCacheUse none;
+  const PreparedExemplars computed = prepareExemplarsCached({ &ex }, kPatch, "", none);
+
+  ExemplarCacheUse miss;
+  PreparedExemplars lines = prepareExemplarsForGivenPool({ &ex }, kPatch, dir.string(), miss);
+  EXPECT_EQ(lines.pool, nullptr);
+  EXPECT_FALSE(miss.hit);
+  EXPECT_FALSE(fs::exists(miss.entry)) << "an entry without its pool was stored";
+  lines.pool = computed.pool;
+  expectSamePreparation(lines, computed);
+
+  ExemplarCacheUse stored;
+  prepare(ex, dir, stored);
+  ASSERT_TRUE(fs::exists(stored.entry));
+  ExemplarCacheUse hit;
+  PreparedExemplars read = prepareExemplarsForGivenPool({ &ex }, kPatch, dir.string(), hit);
+  EXPECT_TRUE(hit.hit);
+  EXPECT_EQ(read.pool, nullptr);
+  read.pool = computed.pool;
+  expectSamePreparation(read, computed);
+}
