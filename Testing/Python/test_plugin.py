@@ -334,8 +334,8 @@ class PluginTest(unittest.TestCase):
         with tempfile.TemporaryDirectory() as tmp:
             out = os.path.join(tmp, "ridges.vtp")
             dem = os.path.join(PATHS.bundled_data, "dems", "colorado.png")
-            subprocess.run([PATHS.tsynth, "features", dem, "-o", out], check=True,
-                           stdout=subprocess.DEVNULL)
+            subprocess.run([PATHS.tsynth, "features", dem, "-o", out, "--features", "ridges"],
+                           check=True, stdout=subprocess.DEVNULL)
             opened = simple.OpenDataFile(out)
             opened.UpdatePipeline()
             tree = sm.Fetch(opened)
