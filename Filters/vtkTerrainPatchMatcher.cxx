@@ -101,28 +101,22 @@ vtkImageData* vtkTerrainPatchMatcher::GetCostMap()
   return vtkImageData::SafeDownCast(this->GetOutputDataObject(1));
 }
 
-vtkTypeBool vtkTerrainPatchMatcher::ProcessRequest(vtkInformation* request,
+int vtkTerrainPatchMatcher::RequestInformation(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()))
-  {
-    // The cost map lies on the first exemplar's grid.
-    tsynth::copyGrid(
-      inputVector[1]->GetInformationObject(0), outputVector->GetInformationObject(1));
-    return 1;
-  }
-  if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
-  {
-    // Every input is needed whole, whatever their sizes.
-    tsynth::requestWholeExtents(inputVector, this->GetNumberOfInputPorts());
-    return 1;
-  }
-  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
-  {
-    return this->RequestData(request, inputVector, outputVector);
-  }
-  return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+  // The cost map lies on the first exemplar's grid.
+  tsynth::copyGrid(inputVector[1]->GetInformationObject(0), outputVector->GetInformationObject(1));
+  return 1;
+}
+
+int vtkTerrainPatchMatcher::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
+{
+  // Every input is needed whole, whatever their sizes.
+  tsynth::requestWholeExtents(inputVector, this->GetNumberOfInputPorts());
+  return 1;
 }
 
 int vtkTerrainPatchMatcher::RequestData(vtkInformation*,

@@ -33,16 +33,16 @@
 #include "Matching/MatcherLimits.h"
 #include "TerrainSynthesisFiltersModule.h"
 
-#include <vtkAlgorithm.h>
+#include <vtkImageAlgorithm.h>
 
 class vtkImageData;
 class vtkTable;
 
-class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainPatchMatcher : public vtkAlgorithm
+class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainPatchMatcher : public vtkImageAlgorithm
 {
 public:
   static vtkTerrainPatchMatcher* New();
-  vtkTypeMacro(vtkTerrainPatchMatcher, vtkAlgorithm);
+  vtkTypeMacro(vtkTerrainPatchMatcher, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum Modes
@@ -109,17 +109,18 @@ public:
 
   vtkTable* GetMatches();
   vtkImageData* GetCostMap();
-  vtkTypeBool ProcessRequest(vtkInformation*,
-    vtkInformationVector**,
-    vtkInformationVector*) override;
 
 protected:
   vtkTerrainPatchMatcher();
   ~vtkTerrainPatchMatcher() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  // Output 0 is a table, output 1 an image: vtkImageAlgorithm's request methods,
+  // each overridden (its defaults would allocate an image on output 0).
   int FillOutputPortInformation(int port, vtkInformation* info) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int Mode = FEATURE;
   // The options table's defaults (tsynth::matcherOptionRows), set in the constructor.

@@ -176,25 +176,13 @@ vtkPolyData* vtkTerrainSynthesis::GetImpliedLines()
   return vtkPolyData::SafeDownCast(this->GetOutputDataObject(kImpliedLinesPort));
 }
 
-vtkTypeBool vtkTerrainSynthesis::ProcessRequest(vtkInformation* request,
+int vtkTerrainSynthesis::RequestUpdateExtent(vtkInformation*,
   vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+  vtkInformationVector*)
 {
-  if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()))
-  {
-    return this->RequestInformation(inputVector, outputVector);
-  }
-  if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
-  {
-    // Every input is needed whole, whatever their sizes.
-    tsynth::requestWholeExtents(inputVector, 3);
-    return 1;
-  }
-  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
-  {
-    return this->RequestData(inputVector, outputVector);
-  }
-  return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+  // Every image input (the ports before the pool, a table) is needed whole, whatever its size.
+  tsynth::requestWholeExtents(inputVector, kPoolPort);
+  return 1;
 }
 
 namespace
@@ -433,7 +421,8 @@ void clearAnnouncedGrid(vtkInformationVector* outputVector)
 
 } // namespace
 
-int vtkTerrainSynthesis::RequestInformation(vtkInformationVector** inputVector,
+int vtkTerrainSynthesis::RequestInformation(vtkInformation*,
+  vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
   vtkInformation* sketch = inputVector[1]->GetInformationObject(0);
@@ -751,7 +740,8 @@ void restoreWholeOutputs(const vtkTerrainSynthesis::vtkWholeOutputs& whole,
 
 } // namespace
 
-int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
+int vtkTerrainSynthesis::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
   if (tsynth::anyImageProducerFailed(inputVector, this->GetNumberOfInputPorts()))
@@ -782,7 +772,8 @@ int vtkTerrainSynthesis::RequestData(vtkInformationVector** inputVector,
       }
       this->StopRefinement();
       this->SynthesiseOrCut(inputVector, outputVector);
-      this->OutputLevel = this->PlacementLimit == tsynth::kAllPlacementsNumber ? "final" : "placements";
+      this->OutputLevel =
+        this->PlacementLimit == tsynth::kAllPlacementsNumber ? "final" : "placements";
     });
 }
 

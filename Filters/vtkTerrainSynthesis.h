@@ -46,7 +46,7 @@
 #include "Synthesis/OptionLimits.h"
 #include "TerrainSynthesisFiltersModule.h"
 
-#include <vtkAlgorithm.h>
+#include <vtkImageAlgorithm.h>
 
 #include <string>
 #include <vector>
@@ -55,11 +55,11 @@ class vtkImageData;
 class vtkPolyData;
 class vtkTable;
 
-class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainSynthesis : public vtkAlgorithm
+class TERRAINSYNTHESISFILTERS_EXPORT vtkTerrainSynthesis : public vtkImageAlgorithm
 {
 public:
   static vtkTerrainSynthesis* New();
-  vtkTypeMacro(vtkTerrainSynthesis, vtkAlgorithm);
+  vtkTypeMacro(vtkTerrainSynthesis, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum Backends
@@ -216,18 +216,19 @@ public:
   vtkTable* GetReport();
   vtkImageData* GetConstruction();
   vtkPolyData* GetImpliedLines();
-  vtkTypeBool ProcessRequest(vtkInformation*,
-    vtkInformationVector**,
-    vtkInformationVector*) override;
 
 protected:
   vtkTerrainSynthesis();
   ~vtkTerrainSynthesis() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  // The terrain (output 0) and the construction are images, the other outputs poly-lines and
+  // tables: vtkImageAlgorithm's request methods, each overridden (its defaults would
+  // allocate an image on every output).
   int FillOutputPortInformation(int port, vtkInformation* info) override;
-  int RequestInformation(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
-  int RequestData(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   // PreviewFirst's update: the refinement's result if it answers this request, else a preview
   // and a new refinement.
   void PreviewOrRefined(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
