@@ -24,6 +24,14 @@ float heightAt(const Heightfield* hf, int i, int j)
   return hf->at(i, j);
 }
 
+// Element `id` of a vector indexed by the graph's int ids (nodes, chains,
+// components; -1 = none), which must be valid here.
+template<class Vector>
+auto& byId(Vector& v, int id)
+{
+  return v[static_cast<std::size_t>(id)];
+}
+
 } // namespace
 
 void forEachChainCell(const FeatureChain& chain,
@@ -165,8 +173,8 @@ FeatureGraph buildFeatureGraph(const PixelGraph& pixels,
     }
     c.to = nodeOf[cur];
     const int id = static_cast<int>(g.chains.size());
-    g.nodes[static_cast<std::size_t>(c.from)].chains.push_back(id);
-    g.nodes[static_cast<std::size_t>(c.to)].chains.push_back(id);
+    byId(g.nodes, c.from).chains.push_back(id);
+    byId(g.nodes, c.to).chains.push_back(id);
     g.chains.push_back(std::move(c));
   };
 
@@ -244,13 +252,13 @@ void computeBreadthFirstOrder(FeatureGraph& g)
       const int v = stack.back();
       stack.pop_back();
       members.back().push_back(v);
-      for (int c : g.nodes[static_cast<std::size_t>(v)].chains)
+      for (int c : byId(g.nodes, v).chains)
       {
-        const FeatureChain& ch = g.chains[static_cast<std::size_t>(c)];
+        const FeatureChain& ch = byId(g.chains, c);
         const int w = ch.from == v ? ch.to : ch.from;
-        if (component[static_cast<std::size_t>(w)] < 0)
+        if (byId(component, w) < 0)
         {
-          component[static_cast<std::size_t>(w)] = id;
+          byId(component, w) = id;
           stack.push_back(w);
         }
       }
@@ -259,26 +267,25 @@ void computeBreadthFirstOrder(FeatureGraph& g)
   std::vector<double> length(members.size(), 0.0);
   for (const FeatureChain& c : g.chains)
   {
-    length[static_cast<std::size_t>(component[static_cast<std::size_t>(c.from)])] += c.length();
+    byId(length, byId(component, c.from)) += c.length();
   }
-  std::vector<int> order(members.size());
-  std::iota(order.begin(), order.end(), 0);
+  std::vector<std::size_t> order(members.size());
+  std::iota(order.begin(), order.end(), std::size_t{ 0 });
   std::stable_sort(order.begin(),
     order.end(),
-    [&](int a, int b)
-    { return length[static_cast<std::size_t>(a)] > length[static_cast<std::size_t>(b)]; });
+    [&](std::size_t a, std::size_t b) { return length[a] > length[b]; });
 
   g.bfsOrder.clear();
   g.componentCount = static_cast<int>(members.size());
   std::vector<char> seen(n, 0);
   for (std::size_t rank = 0; rank < order.size(); ++rank)
   {
-    const auto& m = members[static_cast<std::size_t>(order[rank])];
+    const auto& m = members[order[rank]];
     int root = m.front();
     for (int v : m)
     {
-      const FeatureNode& a = g.nodes[static_cast<std::size_t>(v)];
-      const FeatureNode& b = g.nodes[static_cast<std::size_t>(root)];
+      const FeatureNode& a = byId(g.nodes, v);
+      const FeatureNode& b = byId(g.nodes, root);
       const float ea =
         std::isnan(a.elevation) ? -std::numeric_limits<float>::infinity() : a.elevation;
       const float eb =
@@ -289,20 +296,20 @@ void computeBreadthFirstOrder(FeatureGraph& g)
       }
     }
     std::deque<int> queue{ root };
-    seen[static_cast<std::size_t>(root)] = 1;
+    byId(seen, root) = 1;
     while (!queue.empty())
     {
       const int v = queue.front();
       queue.pop_front();
-      g.nodes[static_cast<std::size_t>(v)].component = static_cast<int>(rank);
+      byId(g.nodes, v).component = static_cast<int>(rank);
       g.bfsOrder.push_back(v);
-      for (int c : g.nodes[static_cast<std::size_t>(v)].chains)
+      for (int c : byId(g.nodes, v).chains)
       {
-        const FeatureChain& ch = g.chains[static_cast<std::size_t>(c)];
+        const FeatureChain& ch = byId(g.chains, c);
         const int w = ch.from == v ? ch.to : ch.from;
-        if (seen[static_cast<std::size_t>(w)] == 0)
+        if (byId(seen, w) == 0)
         {
-          seen[static_cast<std::size_t>(w)] = 1;
+          byId(seen, w) = 1;
           queue.push_back(w);
         }
       }
@@ -320,7 +327,7 @@ void computeControlPoints(FeatureGraph& g, double radius)
     std::vector<int> usedLoopStart;
     for (int c : node.chains)
     {
-      const FeatureChain& ch = g.chains[static_cast<std::size_t>(c)];
+      const FeatureChain& ch = byId(g.chains, c);
       bool forward = ch.from == static_cast<int>(v);
       if (ch.from == ch.to)
       {

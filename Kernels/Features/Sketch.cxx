@@ -23,11 +23,26 @@ std::size_t pixelCount(const ColourImage& image)
   return cellCount(image.width, image.height);
 }
 
-// Channel c of pixel k, treating 1-2 channel images as grey.
+// Channel c of pixel k, treating 1-2 channel images as grey. Pixels are rows
+// of `channels` bytes: channel ch of pixel k is element (ch, k).
 std::uint8_t channel(const ColourImage& image, std::size_t k, int c)
 {
   const int ch = image.channels <= 2 ? 0 : c;
-  return image.data[k * static_cast<std::size_t>(image.channels) + static_cast<std::size_t>(ch)];
+  return image.data[rowMajor(ch, k, image.channels)];
+}
+
+// Cells set to 1 in a mask (std::count's signed count, as a size).
+std::size_t countOnes(const std::vector<std::uint8_t>& mask)
+{
+  return static_cast<std::size_t>(std::count(mask.begin(), mask.end(), 1));
+}
+
+// Element `id` of a vector indexed by int ids (vertices, nodes; -1 = none),
+// which must be valid here.
+template<class Vector>
+auto& byId(Vector& v, int id)
+{
+  return v[static_cast<std::size_t>(id)];
 }
 
 // True if a's and b's trees are joined by a path of at most maxSteps edges.
@@ -71,7 +86,7 @@ FeatureGraph strokeGraph(std::vector<std::uint8_t> mask,
   const SketchOptions& o,
   double& widthOut)
 {
-  const std::size_t area = static_cast<std::size_t>(std::count(mask.begin(), mask.end(), 1));
+  const std::size_t area = countOnes(mask);
   // Ragged stroke outlines thin into hairy centre lines: smooth the outline first.
   {
     std::vector<std::uint8_t> probe = mask;
@@ -90,7 +105,7 @@ FeatureGraph strokeGraph(std::vector<std::uint8_t> mask,
     }
   }
   thinMask(mask, w, h);
-  const std::size_t skeleton = static_cast<std::size_t>(std::count(mask.begin(), mask.end(), 1));
+  const std::size_t skeleton = countOnes(mask);
   const double width =
     skeleton > 0 ? static_cast<double>(area) / static_cast<double>(skeleton) : 0.0;
   widthOut = width;
@@ -192,8 +207,7 @@ SketchFeatures strokeFeatures(const ColourImage& image, const SketchOptions& o)
       }
     }
   }
-  const std::size_t strokes = static_cast<std::size_t>(
-    std::count(ridge.begin(), ridge.end(), 1) + std::count(valley.begin(), valley.end(), 1));
+  const std::size_t strokes = countOnes(ridge) + countOnes(valley);
   if (strokes == 0)
   {
     throw Error("The image is in colour but has no red ridge or blue valley strokes, so it is "
@@ -603,12 +617,12 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& drawn,
         }
         for (int v : it->second)
         {
-          const Point2& q = vertices[static_cast<std::size_t>(v)].p;
+          const Point2& q = byId(vertices, v).p;
           if (std::hypot(q.x - p.x, q.y - p.y) <= snapTolerance)
           {
-            if (std::isnan(vertices[static_cast<std::size_t>(v)].constraint))
+            if (std::isnan(byId(vertices, v).constraint))
             {
-              vertices[static_cast<std::size_t>(v)].constraint = constraint;
+              byId(vertices, v).constraint = constraint;
             }
             return v;
           }
@@ -626,13 +640,13 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& drawn,
     {
       return;
     }
-    auto& adj = vertices[static_cast<std::size_t>(a)].adjacent;
+    auto& adj = byId(vertices, a).adjacent;
     if (std::any_of(adj.begin(), adj.end(), [&](const auto& e) { return e.first == b; }))
     {
       return; // the same segment drawn twice
     }
     adj.push_back({ b, type });
-    vertices[static_cast<std::size_t>(b)].adjacent.push_back({ a, type });
+    byId(vertices, b).adjacent.push_back({ a, type });
   };
   for (const Polyline& line : lines)
   {
@@ -658,14 +672,14 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& drawn,
   std::vector<int> nodeOf(vertices.size(), -1);
   auto addNode = [&](int v)
   {
-    const Vertex& vx = vertices[static_cast<std::size_t>(v)];
+    const Vertex& vx = byId(vertices, v);
     FeatureNode n;
     n.position = vx.p;
     n.elevation = vx.constraint;
     n.degree = static_cast<int>(vx.adjacent.size());
     n.kind = n.degree == 1 ? NodeKind::End : (n.degree >= 3 ? NodeKind::Branch : NodeKind::Path);
     n.type = vx.adjacent.empty() ? FeatureType::Ridge : vx.adjacent.front().second;
-    nodeOf[static_cast<std::size_t>(v)] = static_cast<int>(g.nodes.size());
+    byId(nodeOf, v) = static_cast<int>(g.nodes.size());
     g.nodes.push_back(n);
   };
   for (std::size_t v = 0; v < vertices.size(); ++v)
@@ -680,17 +694,17 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& drawn,
   auto walk = [&](int start, int first)
   {
     FeatureChain c;
-    c.from = nodeOf[static_cast<std::size_t>(start)];
+    c.from = byId(nodeOf, start);
     c.type = FeatureType::Ridge;
     int prev = start;
     int cur = first;
     auto push = [&](int v)
     {
-      c.points.push_back(vertices[static_cast<std::size_t>(v)].p);
-      c.elevation.push_back(vertices[static_cast<std::size_t>(v)].constraint);
-      c.constraint.push_back(vertices[static_cast<std::size_t>(v)].constraint);
+      c.points.push_back(byId(vertices, v).p);
+      c.elevation.push_back(byId(vertices, v).constraint);
+      c.constraint.push_back(byId(vertices, v).constraint);
     };
-    for (const auto& e : vertices[static_cast<std::size_t>(start)].adjacent)
+    for (const auto& e : byId(vertices, start).adjacent)
     {
       if (e.first == first)
       {
@@ -702,12 +716,12 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& drawn,
     {
       used[{ std::min(prev, cur), std::max(prev, cur) }] = true;
       push(cur);
-      if (nodeOf[static_cast<std::size_t>(cur)] >= 0)
+      if (byId(nodeOf, cur) >= 0)
       {
         break;
       }
       int next = -1;
-      for (const auto& e : vertices[static_cast<std::size_t>(cur)].adjacent)
+      for (const auto& e : byId(vertices, cur).adjacent)
       {
         if (e.first != prev && !used.count({ std::min(cur, e.first), std::max(cur, e.first) }))
         {
@@ -722,15 +736,15 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& drawn,
       prev = cur;
       cur = next;
     }
-    c.to = nodeOf[static_cast<std::size_t>(cur)];
+    c.to = byId(nodeOf, cur);
     const int id = static_cast<int>(g.chains.size());
-    g.nodes[static_cast<std::size_t>(c.from)].chains.push_back(id);
-    g.nodes[static_cast<std::size_t>(c.to)].chains.push_back(id);
+    byId(g.nodes, c.from).chains.push_back(id);
+    byId(g.nodes, c.to).chains.push_back(id);
     g.chains.push_back(std::move(c));
   };
   auto walkAll = [&](int v)
   {
-    for (const auto& e : vertices[static_cast<std::size_t>(v)].adjacent)
+    for (const auto& e : byId(vertices, v).adjacent)
     {
       if (!used.count({ std::min(v, e.first), std::max(v, e.first) }))
       {
@@ -738,10 +752,10 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& drawn,
       }
     }
   };
-  const std::size_t realNodes = g.nodes.size();
+  const int realNodes = static_cast<int>(g.nodes.size());
   for (std::size_t v = 0; v < vertices.size(); ++v)
   {
-    if (nodeOf[v] >= 0 && static_cast<std::size_t>(nodeOf[v]) < realNodes)
+    if (nodeOf[v] >= 0 && nodeOf[v] < realNodes)
     {
       walkAll(static_cast<int>(v));
     }

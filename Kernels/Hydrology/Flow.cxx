@@ -16,16 +16,41 @@ namespace tsynth
 std::array<double, kD8Directions> d8Distances(double cellX, double cellY)
 {
   std::array<double, kD8Directions> d{};
-  for (int c = 0; c < kD8Directions; ++c)
+  for (std::size_t c = 0; c < d.size(); ++c)
   {
-    const std::size_t u = static_cast<std::size_t>(c);
-    d[u] = std::hypot(kD8Dx[u] * cellX, kD8Dy[u] * cellY);
+    d[c] = std::hypot(kD8Dx[c] * cellX, kD8Dy[c] * cellY);
   }
   return d;
 }
 
 namespace
 {
+
+struct GridCell
+{
+  int i;
+  int j;
+};
+
+// Column and row of element k of a row-major grid `width` wide (rowMajor's inverse).
+GridCell cellOf(std::size_t k, int width)
+{
+  const std::size_t w = static_cast<std::size_t>(width); // a grid width is never negative
+  return { static_cast<int>(k % w), static_cast<int>(k / w) };
+}
+
+// The neighbour of cell (i, j) along D8 code `code` (0..7; codes are ints, kNoFlow is -1).
+GridCell d8Neighbour(int i, int j, int code)
+{
+  const std::size_t c = static_cast<std::size_t>(code);
+  return { i + kD8Dx[c], j + kD8Dy[c] };
+}
+
+// Element k moved by a signed index offset (d8Offset's, negative towards the south and west).
+std::size_t offsetCell(std::size_t k, std::ptrdiff_t offset)
+{
+  return static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k) + offset);
+}
 
 bool inGrid(const Heightfield& dem, int i, int j)
 {
@@ -57,8 +82,7 @@ bool isSeedCell(const Heightfield& dem, const std::vector<std::uint8_t>* sinks, 
   }
   for (int c = 0; c < kD8Directions; ++c)
   {
-    const int ni = i + kD8Dx[static_cast<std::size_t>(c)];
-    const int nj = j + kD8Dy[static_cast<std::size_t>(c)];
+    const auto [ni, nj] = d8Neighbour(i, j, c);
     if (!inGrid(dem, ni, nj) || !isUsableCell(dem, dem.index(ni, nj)))
     {
       return true;
@@ -94,9 +118,10 @@ public:
     , z_(cellCount(width_, dem.height + 2), 0.0f)
     , closed_(z_.size(), 1)
   {
-    for (int c = 0; c < kD8Directions; ++c)
+    int code = 0;
+    for (std::ptrdiff_t& o : offsets_)
     {
-      offsets_[static_cast<std::size_t>(c)] = d8Offset(c, width_);
+      o = d8Offset(code++, width_);
     }
     for (int j = 0; j < dem.height; ++j)
     {
@@ -187,14 +212,14 @@ private:
 
   std::size_t neighbour(std::uint32_t cell, std::size_t code) const
   {
-    return static_cast<std::size_t>(static_cast<std::ptrdiff_t>(cell) + offsets_[code]);
+    return offsetCell(cell, offsets_[code]);
   }
 
   bool touchesClosed(std::size_t p) const
   {
     for (const std::ptrdiff_t o : offsets_)
     {
-      if (closed_[static_cast<std::size_t>(static_cast<std::ptrdiff_t>(p) + o)] != 0)
+      if (closed_[offsetCell(p, o)] != 0)
       {
         return true;
       }
@@ -308,12 +333,12 @@ std::int8_t steepestDescent(const Heightfield& dem,
   std::int8_t code = kNoFlow;
   for (int c = 0; c < kD8Directions; ++c)
   {
-    const std::size_t u = static_cast<std::size_t>(c);
+    const std::size_t u = static_cast<std::size_t>(c); // the code (the result) as a table index
     if (!inside && !inGrid(dem, i + kD8Dx[u], j + kD8Dy[u]))
     {
       continue;
     }
-    const std::size_t n = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k) + offset[u]);
+    const std::size_t n = offsetCell(k, offset[u]);
     if (!isUsableCell(dem, n))
     {
       continue;
@@ -358,8 +383,7 @@ void routeAcrossFlats(const Heightfield& dem,
       }
       for (int c = 0; c < kD8Directions; ++c)
       {
-        const int ni = i + kD8Dx[static_cast<std::size_t>(c)];
-        const int nj = j + kD8Dy[static_cast<std::size_t>(c)];
+        const auto [ni, nj] = d8Neighbour(i, j, c);
         const std::size_t n = dem.index(ni, nj);
         if (dem.z[n] == dem.z[k] && exit(n, ni, nj))
         {
@@ -375,12 +399,10 @@ void routeAcrossFlats(const Heightfield& dem,
   {
     pollCancellation();
     const std::size_t k = queue[head];
-    const int i = static_cast<int>(k % static_cast<std::size_t>(dem.width));
-    const int j = static_cast<int>(k / static_cast<std::size_t>(dem.width));
+    const auto [i, j] = cellOf(k, dem.width);
     for (int c = 0; c < kD8Directions; ++c)
     {
-      const int ni = i + kD8Dx[static_cast<std::size_t>(c)];
-      const int nj = j + kD8Dy[static_cast<std::size_t>(c)];
+      const auto [ni, nj] = d8Neighbour(i, j, c);
       if (ni < 0 || nj < 0 || ni >= dem.width || nj >= dem.height)
       {
         continue;
@@ -404,9 +426,10 @@ std::vector<std::int8_t> flowDirections(const Heightfield& dem,
   checkSinks(dem, sinks);
   const std::array<double, kD8Directions> distance = d8Distances(dem.cellX, dem.cellY);
   std::array<std::ptrdiff_t, kD8Directions> offset{};
-  for (int c = 0; c < kD8Directions; ++c)
+  int code = 0;
+  for (std::ptrdiff_t& o : offset)
   {
-    offset[static_cast<std::size_t>(c)] = d8Offset(c, dem.width);
+    o = d8Offset(code++, dem.width);
   }
   std::vector<std::int8_t> dir(dem.size(), kNoFlow);
 #pragma omp parallel for schedule(static) if (dem.height >= kParallelRows)
@@ -441,10 +464,8 @@ std::size_t downstreamOf(std::size_t k,
     throw Error("Flow direction " + std::to_string(code) + " at cell " + std::to_string(k) +
       " is not a D8 code (0..7 or -1 for no flow).");
   }
-  const int i =
-    static_cast<int>(k % static_cast<std::size_t>(width)) + kD8Dx[static_cast<std::size_t>(code)];
-  const int j =
-    static_cast<int>(k / static_cast<std::size_t>(width)) + kD8Dy[static_cast<std::size_t>(code)];
+  const GridCell from = cellOf(k, width);
+  const auto [i, j] = d8Neighbour(from.i, from.j, code);
   if (i < 0 || j < 0 || i >= width || j >= height)
   {
     throw Error("The flow direction at cell " + std::to_string(k) +
@@ -543,8 +564,7 @@ bool drainsEverywhere(const Heightfield& dem,
       bool ok = isSeedCell(dem, sinks, i, j);
       for (int c = 0; c < kD8Directions && !ok; ++c)
       {
-        const int ni = i + kD8Dx[static_cast<std::size_t>(c)];
-        const int nj = j + kD8Dy[static_cast<std::size_t>(c)];
+        const auto [ni, nj] = d8Neighbour(i, j, c);
         ok =
           inGrid(dem, ni, nj) && isUsableCell(dem, dem.index(ni, nj)) && dem.at(ni, nj) < dem.z[k];
       }
@@ -560,12 +580,10 @@ bool drainsEverywhere(const Heightfield& dem,
   {
     const std::size_t k = front.back();
     front.pop_back();
-    const int i = static_cast<int>(k % static_cast<std::size_t>(dem.width));
-    const int j = static_cast<int>(k / static_cast<std::size_t>(dem.width));
+    const auto [i, j] = cellOf(k, dem.width);
     for (int c = 0; c < kD8Directions; ++c)
     {
-      const int ni = i + kD8Dx[static_cast<std::size_t>(c)];
-      const int nj = j + kD8Dy[static_cast<std::size_t>(c)];
+      const auto [ni, nj] = d8Neighbour(i, j, c);
       if (!inGrid(dem, ni, nj))
       {
         continue;
@@ -607,8 +625,8 @@ std::size_t countPits(const Heightfield& dem)
       bool pit = true;
       for (int c = 0; c < kD8Directions && pit; ++c)
       {
-        const std::size_t n =
-          dem.index(i + kD8Dx[static_cast<std::size_t>(c)], j + kD8Dy[static_cast<std::size_t>(c)]);
+        const auto [ni, nj] = d8Neighbour(i, j, c);
+        const std::size_t n = dem.index(ni, nj);
         pit = isUsableCell(dem, n) && dem.z[n] > dem.z[k];
       }
       pits += pit ? 1 : 0;

@@ -1,6 +1,7 @@
 #include "PatchMerger.h"
 
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 
 #include <algorithm>
 #include <cmath>
@@ -37,7 +38,7 @@ std::pair<double, double> gradientPair(const std::vector<float>& a,
   int j,
   int axis)
 {
-  const std::size_t k = static_cast<std::size_t>(j) * w + i;
+  const std::size_t k = rowMajor(i, j, w);
   const std::ptrdiff_t step = axis == 0 ? 1 : w;
   const bool hasPlus = axis == 0 ? i + 1 < w : j + 1 < h;
   const bool hasMinus = axis == 0 ? i > 0 : j > 0;
@@ -54,6 +55,13 @@ std::pair<double, double> gradientPair(const std::vector<float>& a,
     return 0.0;
   };
   return { diff(a), diff(b) };
+}
+
+// The window cell of a seam point, whose coordinates are whole cell numbers
+// held as float.
+std::size_t seamCell(float x, float y, int width)
+{
+  return rowMajor(static_cast<int>(x), static_cast<int>(y), width);
 }
 
 } // namespace
@@ -100,7 +108,7 @@ MergeResult PatchMerger::prepare(const Heightfield& terrain,
   fy0_ = std::max(wy0 - 1, 0);
   fw_ = std::min(wx1 + 1, terrain.width) - fx0_;
   fh_ = std::min(wy1 + 1, terrain.height) - fy0_;
-  const std::size_t n = static_cast<std::size_t>(fw_) * fh_;
+  const std::size_t n = cellCount(fw_, fh_);
   const float fnan = std::numeric_limits<float>::quiet_NaN();
   old_.assign(n, fnan);
   new_.assign(n, fnan);
@@ -111,7 +119,7 @@ MergeResult PatchMerger::prepare(const Heightfield& terrain,
   {
     for (int i = 0; i < fw_; ++i)
     {
-      const std::size_t k = static_cast<std::size_t>(j) * fw_ + i;
+      const std::size_t k = rowMajor(i, j, fw_);
       const int ti = fx0_ + i;
       const int tj = fy0_ + j;
       const std::size_t tk = terrain.index(ti, tj);
@@ -142,7 +150,7 @@ MergeResult PatchMerger::prepare(const Heightfield& terrain,
   if (given != nullptr &&
     (given->x0 != wx0 || given->y0 != wy0 || given->width != result.width ||
       given->height != result.height ||
-      given->takeNew.size() != static_cast<std::size_t>(result.width) * result.height ||
+      given->takeNew.size() != cellCount(result.width, result.height) ||
       given->seam.size() != given->takeNew.size()))
   {
     throw Error("The given cut belongs to another placement of the patch.");
@@ -166,17 +174,17 @@ MergeResult PatchMerger::prepare(const Heightfield& terrain,
   }
 
   side_.assign(n, 0);
-  result.takeNew.assign(static_cast<std::size_t>(result.width) * result.height, 0);
+  result.takeNew.assign(cellCount(result.width, result.height), 0);
   result.seam.assign(result.takeNew.size(), 0);
   for (int j = 0; j < fh_; ++j)
   {
     for (int i = 0; i < fw_; ++i)
     {
-      const std::size_t k = static_cast<std::size_t>(j) * fw_ + i;
+      const std::size_t k = rowMajor(i, j, fw_);
       const int ri = fx0_ + i - wx0;
       const int rj = fy0_ + j - wy0;
       const bool inWindow = ri >= 0 && rj >= 0 && ri < result.width && rj < result.height;
-      const std::size_t rk = inWindow ? static_cast<std::size_t>(rj) * result.width + ri : 0;
+      const std::size_t rk = inWindow ? rowMajor(ri, rj, result.width) : 0;
       // The frame around the window holds no patch cells, so a given cut (known
       // on the window only) decides every cell that matters.
       const bool cutNew = cut != nullptr ? cut->takeNew[k] != 0 : inWindow && given->takeNew[rk];
@@ -217,7 +225,7 @@ MergeResult PatchMerger::seamCost(const Heightfield& terrain,
 template<int V>
 void PatchMerger::shepard(double radius, double power, std::vector<double>& out)
 {
-  const std::size_t n = static_cast<std::size_t>(fw_) * fh_;
+  const std::size_t n = cellCount(fw_, fh_);
   out.assign(n * V, 0.0);
   const std::size_t points = seamX_.size();
   if (points == 0)
@@ -227,8 +235,7 @@ void PatchMerger::shepard(double radius, double power, std::vector<double>& out)
   pointAt_.assign(n, -1);
   for (std::size_t s = 0; s < points; ++s)
   {
-    pointAt_[static_cast<std::size_t>(seamY_[s]) * fw_ + static_cast<std::size_t>(seamX_[s])] =
-      static_cast<std::int32_t>(s);
+    pointAt_[seamCell(seamX_[s], seamY_[s], fw_)] = static_cast<std::int32_t>(s);
   }
   bandX_.resize(points);
   bandDy2_.resize(points);
@@ -265,7 +272,7 @@ void PatchMerger::shepard(double radius, double power, std::vector<double>& out)
     const int iEnd = std::min(fw_, static_cast<int>(std::ceil(static_cast<float>(maxX) + r)));
     for (int i = iBegin; i < iEnd; ++i)
     {
-      const std::size_t k = static_cast<std::size_t>(j) * fw_ + i;
+      const std::size_t k = rowMajor(i, j, fw_);
       if (side_[k] != 2)
         continue;
       if (pointAt_[k] >= 0)
@@ -344,7 +351,7 @@ void PatchMerger::blendShepard(const MergeOptions& options)
   {
     for (int i = 0; i < fw_; ++i)
     {
-      const std::size_t k = static_cast<std::size_t>(j) * fw_ + i;
+      const std::size_t k = rowMajor(i, j, fw_);
       if (side_[k] != 2)
         continue;
       double sum = 0.0;
@@ -355,7 +362,7 @@ void PatchMerger::blendShepard(const MergeOptions& options)
         const int nj = j + Dj[d];
         if (ni < 0 || nj < 0 || ni >= fw_ || nj >= fh_)
           continue;
-        const std::size_t m = static_cast<std::size_t>(nj) * fw_ + ni;
+        const std::size_t m = rowMajor(ni, nj, fw_);
         if (side_[m] != 1)
           continue;
         const double b = newMask_[m] ? new_[m] : new_[k];
@@ -388,7 +395,7 @@ void PatchMerger::blendPoisson(const MergeOptions& options,
   bool gradientShepard,
   MergeResult& result)
 {
-  const std::size_t n = static_cast<std::size_t>(fw_) * fh_;
+  const std::size_t n = cellCount(fw_, fh_);
   // Tasse: the gradient mismatch G_A - G_B at seam points (new cells with an
   // old neighbour where the old terrain exists too), spread over the new side.
   // The height mismatch A - B rides along as a third value: the patch shifted
@@ -403,7 +410,7 @@ void PatchMerger::blendPoisson(const MergeOptions& options,
     {
       for (int i = 0; i < fw_; ++i)
       {
-        const std::size_t k = static_cast<std::size_t>(j) * fw_ + i;
+        const std::size_t k = rowMajor(i, j, fw_);
         if (side_[k] != 2 || !oldMask_[k])
           continue;
         bool touchesOld = false;
@@ -412,8 +419,7 @@ void PatchMerger::blendPoisson(const MergeOptions& options,
           const int ni = i + Di[d];
           const int nj = j + Dj[d];
           touchesOld = touchesOld ||
-            (ni >= 0 && nj >= 0 && ni < fw_ && nj < fh_ &&
-              side_[static_cast<std::size_t>(nj) * fw_ + ni] == 1);
+            (ni >= 0 && nj >= 0 && ni < fw_ && nj < fh_ && side_[rowMajor(ni, nj, fw_)] == 1);
         }
         if (!touchesOld)
           continue;
@@ -436,7 +442,7 @@ void PatchMerger::blendPoisson(const MergeOptions& options,
   {
     for (int i = 0; i < fw_; ++i)
     {
-      const std::size_t p = static_cast<std::size_t>(j) * fw_ + i;
+      const std::size_t p = rowMajor(i, j, fw_);
       for (int axis = 0; axis < 2; ++axis)
       {
         if (axis == 0 ? i + 1 >= fw_ : j + 1 >= fh_)
@@ -518,7 +524,7 @@ PoissonStatistics PatchMerger::solveNewSide(bool gradientShepard,
   double anchorDistance,
   const PoissonOptions& poisson)
 {
-  const std::size_t n = static_cast<std::size_t>(fw_) * fh_;
+  const std::size_t n = cellCount(fw_, fh_);
   std::vector<std::uint8_t>& unknown = coreMask_; // reused as scratch
   unknown.assign(n, 0);
   double meanMismatch = 0.0;
@@ -559,14 +565,15 @@ bool PatchMerger::freeBorderOutside(float lowest, float highest) const
 
 bool PatchMerger::onFreeBorder(std::size_t k) const
 {
-  const int i = static_cast<int>(k % static_cast<std::size_t>(fw_));
-  const int j = static_cast<int>(k / static_cast<std::size_t>(fw_));
+  // Column and row of window cell k (the window is at most an int wide).
+  const std::size_t width = static_cast<std::size_t>(fw_);
+  const int i = static_cast<int>(k % width);
+  const int j = static_cast<int>(k / width);
   for (int d = 0; d < 4; ++d)
   {
     const int ni = i + Di[d];
     const int nj = j + Dj[d];
-    if (ni < 0 || nj < 0 || ni >= fw_ || nj >= fh_ ||
-      side_[static_cast<std::size_t>(nj) * fw_ + ni] == 0)
+    if (ni < 0 || nj < 0 || ni >= fw_ || nj >= fh_ || side_[rowMajor(ni, nj, fw_)] == 0)
     {
       return true;
     }
@@ -580,11 +587,11 @@ void PatchMerger::seamDistance(std::vector<float>& out) const
   // Euclidean distance, plenty to say where the correction has faded out.
   constexpr float kStraight = 1.0f;
   constexpr float kDiagonal = 1.4f;
-  const std::size_t n = static_cast<std::size_t>(fw_) * fh_;
+  const std::size_t n = cellCount(fw_, fh_);
   out.assign(n, std::numeric_limits<float>::infinity());
   for (std::size_t s = 0; s < seamX_.size(); ++s)
   {
-    out[static_cast<std::size_t>(seamY_[s]) * fw_ + static_cast<std::size_t>(seamX_[s])] = 0.0f;
+    out[seamCell(seamX_[s], seamY_[s], fw_)] = 0.0f;
   }
   auto relax = [&](int i, int j, int di, int dj, float step)
   {
@@ -592,8 +599,8 @@ void PatchMerger::seamDistance(std::vector<float>& out) const
     const int nj = j + dj;
     if (ni < 0 || nj < 0 || ni >= fw_ || nj >= fh_)
       return;
-    float& here = out[static_cast<std::size_t>(j) * fw_ + i];
-    here = std::min(here, out[static_cast<std::size_t>(nj) * fw_ + ni] + step);
+    float& here = out[rowMajor(i, j, fw_)];
+    here = std::min(here, out[rowMajor(ni, nj, fw_)] + step);
   };
   for (int j = 0; j < fh_; ++j)
   {
@@ -631,7 +638,7 @@ MergeResult PatchMerger::merge(Heightfield& terrain,
     throw Error("The Shepard radius and power must be positive.");
   }
   MergeResult result = prepare(terrain, filled, patch, x0, y0, core, options.cut, cut);
-  const std::size_t n = static_cast<std::size_t>(fw_) * fh_;
+  const std::size_t n = cellCount(fw_, fh_);
   out_.assign(n, NaN);
   for (std::size_t k = 0; k < n; ++k)
   {
@@ -656,7 +663,7 @@ MergeResult PatchMerger::merge(Heightfield& terrain,
   {
     for (int i = 0; i < fw_; ++i)
     {
-      const std::size_t k = static_cast<std::size_t>(j) * fw_ + i;
+      const std::size_t k = rowMajor(i, j, fw_);
       if (side_[k] != 2)
         continue;
       const std::size_t tk = terrain.index(fx0_ + i, fy0_ + j);

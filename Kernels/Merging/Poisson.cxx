@@ -3,6 +3,7 @@
 #include "../Core/Cancellation.h"
 #include "../Core/Constants.h"
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 
 #include <Eigen/Dense>
 #include <fftw3.h>
@@ -47,7 +48,7 @@ public:
     {
       return it->second;
     }
-    double* scratch = fftw_alloc_real(static_cast<std::size_t>(nx) * ny);
+    double* scratch = fftw_alloc_real(cellCount(nx, ny));
     fftw_plan plan = fftw_plan_r2r_2d(
       ny, nx, scratch, scratch, FFTW_RODFT00, FFTW_RODFT00, measure ? FFTW_MEASURE : FFTW_ESTIMATE);
     fftw_free(scratch);
@@ -97,7 +98,7 @@ void DstPoissonSolver::solveZeroBoundary(int nx, int ny, double cellX, double ce
   {
     return;
   }
-  const std::size_t n = static_cast<std::size_t>(nx) * ny;
+  const std::size_t n = cellCount(nx, ny);
   Buffer& buf = *buffer_;
   if (buf.capacity < n)
   {
@@ -130,7 +131,7 @@ void DstPoissonSolver::solveZeroBoundary(int nx, int ny, double cellX, double ce
   const double norm = 1.0 / (4.0 * (nx + 1) * (ny + 1));
   for (int j = 0; j < ny; ++j)
   {
-    double* row = buf.data + static_cast<std::size_t>(j) * nx;
+    double* row = buf.data + rowMajor(0, j, nx);
     const double ly = buf.lambdaY[j];
     for (int i = 0; i < nx; ++i)
     {
@@ -156,12 +157,12 @@ void DstPoissonSolver::solve(int width,
   }
   const double wx = 1.0 / (cellX * cellX);
   const double wy = 1.0 / (cellY * cellY);
-  std::vector<double> b(static_cast<std::size_t>(nx) * ny);
+  std::vector<double> b(cellCount(nx, ny));
   for (int j = 1; j <= ny; ++j)
   {
     for (int i = 1; i <= nx; ++i)
     {
-      const std::size_t k = static_cast<std::size_t>(j) * width + i;
+      const std::size_t k = rowMajor(i, j, width);
       // -L u = -laplacian, with the known boundary values moved to the right.
       double v = -laplacian[k];
       if (i == 1)
@@ -180,15 +181,14 @@ void DstPoissonSolver::solve(int width,
       {
         v += wy * u[k + width];
       }
-      b[static_cast<std::size_t>(j - 1) * nx + (i - 1)] = v;
+      b[rowMajor(i - 1, j - 1, nx)] = v;
     }
   }
   solveZeroBoundary(nx, ny, cellX, cellY, b.data());
   for (int j = 1; j <= ny; ++j)
   {
-    std::copy(b.begin() + static_cast<std::ptrdiff_t>(j - 1) * nx,
-      b.begin() + static_cast<std::ptrdiff_t>(j) * nx,
-      u + static_cast<std::size_t>(j) * width + 1);
+    const double* solved = b.data() + rowMajor(0, j - 1, nx);
+    std::copy(solved, solved + nx, u + rowMajor(1, j, width));
   }
 }
 
@@ -235,20 +235,16 @@ struct Level
   Eigen::LLT<Eigen::MatrixXd> dense;
   Eigen::VectorXd denseRhs;
 
-  std::size_t pad(int i, int j) const
-  {
-    return static_cast<std::size_t>(j + 1) * stride + static_cast<std::size_t>(i + 1);
-  }
-  std::size_t split(int i, int j) const
-  {
-    return static_cast<std::size_t>(j + 1) * hs + static_cast<std::size_t>((i >> 1) + 1);
-  }
+  std::size_t pad(int i, int j) const { return rowMajor(i + 1, j + 1, stride); }
+  std::size_t split(int i, int j) const { return rowMajor((i >> 1) + 1, j + 1, hs); }
+  // Start of row j in the split arrays (split index 0, the frame).
+  std::size_t splitRow(int j) const { return rowMajor(0, j + 1, hs); }
   void allocate(int width, int height)
   {
     w = width;
     h = height;
     stride = w + 2;
-    const std::size_t n = static_cast<std::size_t>(stride) * (h + 2);
+    const std::size_t n = cellCount(stride, h + 2);
     // assign keeps the capacity: no allocation once the hierarchy has seen
     // a window this large.
     unknown.assign(n, 0);
@@ -261,12 +257,13 @@ struct Level
   // split single-precision copy.
   void finish()
   {
-    rowBegin.assign(static_cast<std::size_t>(h), 0);
-    rowEnd.assign(static_cast<std::size_t>(h), 0);
-    mBegin.assign(static_cast<std::size_t>(h), 1);
-    mEnd.assign(static_cast<std::size_t>(h), 1);
+    const std::size_t rows = static_cast<std::size_t>(h); // a count, for assign
+    rowBegin.assign(rows, 0);
+    rowEnd.assign(rows, 0);
+    mBegin.assign(rows, 1);
+    mEnd.assign(rows, 1);
     hs = w / 2 + 2;
-    const std::size_t n = static_cast<std::size_t>(hs) * (h + 2);
+    const std::size_t n = cellCount(hs, h + 2);
     for (int c = 0; c < 2; ++c)
     {
       for (auto* v : { &cE[c], &cW[c], &cN[c], &cS[c], &sDiag[c], &sInv[c], &x[c], &b[c], &r[c] })
@@ -334,7 +331,7 @@ void applyOperator(const Level& L, const double* v, double* y)
     const std::size_t row = L.pad(0, j);
     // Off the unknowns the diagonal and every coupling are 0 (and v is 0), so
     // y is 0 there without a test, and the loop vectorises.
-    for (std::size_t k = row + L.rowBegin[j]; k < row + static_cast<std::size_t>(L.rowEnd[j]); ++k)
+    for (std::size_t k = row + L.rowBegin[j]; k < row + L.rowEnd[j]; ++k)
     {
       y[k] = diag[k] * v[k] -
         (wE[k] * v[k + 1] + wE[k - 1] * v[k - 1] + wN[k] * v[k + s] + wN[k - s] * v[k - s]);
@@ -408,7 +405,7 @@ enum class RowOp
 template<RowOp Op>
 inline void rowOp(Level& L, int j, int c)
 {
-  const std::size_t row = static_cast<std::size_t>(j + 1) * L.hs;
+  const std::size_t row = L.splitRow(j);
   const std::ptrdiff_t p = (c + j) & 1;
   const std::ptrdiff_t hs = L.hs;
   const int mb = L.mBegin[j], me = L.mEnd[j];
@@ -611,13 +608,15 @@ struct MaskedPoissonSolver::Impl
 #pragma omp parallel for schedule(static) if (parallel(L))
     for (int cj = 0; cj < C.h; ++cj)
     {
-      const float* r0 = L.r[0].data() + static_cast<std::size_t>(2 * cj + 1) * hs + 1;
+      // Fine rows 2 cj and 2 cj + 1 (split index 1 of padded rows 2 cj + 1 and
+      // 2 cj + 2): r0[ci] and r1[ci] are aggregate ci's cells.
+      const float* r0 = L.r[0].data() + rowMajor(1, 2 * cj + 1, hs);
       const float* r1 = r0 + hs;
       for (int c = 0; c < 2; ++c)
       {
         // Coarse cells of colour c in row cj: ci = 2 (m - 1) + p.
         const int p = (c + cj) & 1;
-        float* cb = C.b[c].data() + static_cast<std::size_t>(cj + 1) * C.hs;
+        float* cb = C.b[c].data() + C.splitRow(cj);
         for (int m = 1; m < C.hs; ++m)
         {
           const int ci = 2 * (m - 1) + p;
@@ -629,7 +628,7 @@ struct MaskedPoissonSolver::Impl
     // Prolongation: each cell of an aggregate gets its coarse value; cells
     // that are not unknowns (zero inverse diagonal) stay 0.
     // The coarse row is interleaved once for both fine rows of its aggregates.
-    coarseRow.resize(static_cast<std::size_t>(C.w) + 1);
+    coarseRow.resize(static_cast<std::size_t>(C.w) + 1); // a count, for resize
 #pragma omp parallel for schedule(static) if (parallel(L)) firstprivate(coarseRow)
     for (int cj = 0; cj < C.h; ++cj)
     {
@@ -641,7 +640,7 @@ struct MaskedPoissonSolver::Impl
       nat[C.w] = 0.0f;
       for (int j = 2 * cj; j < std::min(2 * cj + 2, L.h); ++j)
       {
-        const std::size_t row = static_cast<std::size_t>(j + 1) * hs;
+        const std::size_t row = rowMajor(0, j + 1, hs); // L.splitRow(j)
         for (int c = 0; c < 2; ++c)
         {
           float* __restrict x = L.x[c].data() + row;
@@ -680,7 +679,7 @@ struct MaskedPoissonSolver::Impl
     for (int j = 0; j < height; ++j)
     {
       pollRow(j);
-      const std::size_t g0 = static_cast<std::size_t>(j) * width;
+      const std::size_t g0 = rowMajor(0, j, width);
       for (int i = 0; i < width; ++i)
       {
         const std::size_t k = F.pad(i, j);
@@ -699,7 +698,7 @@ struct MaskedPoissonSolver::Impl
         const std::size_t k = F.pad(i, j);
         if (!present[k])
           continue;
-        const std::size_t g = static_cast<std::size_t>(j) * width + i;
+        const std::size_t g = rowMajor(i, j, width);
         if ((F.unknown[k] || F.unknown[k + 1]) && present[k + 1] && edgeOk(g, 0))
         {
           if (F.unknown[k] && F.unknown[k + 1])
@@ -811,7 +810,7 @@ struct MaskedPoissonSolver::Impl
         {
           // Colour c cells: i = 2 (m - 1) + p, at rrow[i + 1].
           const int p = (c + j) & 1;
-          float* b = F.b[c].data() + static_cast<std::size_t>(j + 1) * F.hs;
+          float* b = F.b[c].data() + F.splitRow(j);
           for (int m = F.mBegin[j]; m < F.mEnd[j]; ++m)
             b[m] = static_cast<float>(rrow[2 * m - 1 + p]);
         }
@@ -824,7 +823,7 @@ struct MaskedPoissonSolver::Impl
         for (int c = 0; c < 2; ++c)
         {
           const int p = (c + j) & 1;
-          const float* x = F.x[c].data() + static_cast<std::size_t>(j + 1) * F.hs;
+          const float* x = F.x[c].data() + F.splitRow(j);
           for (int m = F.mBegin[j]; m < F.mEnd[j]; ++m)
             zrow[2 * m - 1 + p] = x[m];
         }
@@ -901,7 +900,7 @@ struct MaskedPoissonSolver::Impl
       {
         const std::size_t k = F.pad(i, j);
         if (F.unknown[k])
-          u[static_cast<std::size_t>(j) * F.w + i] += delta[k];
+          u[rowMajor(i, j, F.w)] += delta[k];
       }
     }
   }
@@ -950,7 +949,7 @@ PoissonStatistics MaskedPoissonSolver::solveGuided(int width,
       const std::size_t k = F.pad(i, j);
       if (!F.unknown[k])
         continue;
-      const std::size_t g = static_cast<std::size_t>(j) * width + i;
+      const std::size_t g = rowMajor(i, j, width);
       double r = 0.0;
       // present is 0 on the frame, so the neighbour's guidance is read only
       // inside the grid.
@@ -1008,7 +1007,7 @@ PoissonStatistics MaskedPoissonSolver::solveLaplacian(int width,
       const std::size_t k = F.pad(i, j);
       if (!F.unknown[k])
         continue;
-      const std::size_t g = static_cast<std::size_t>(j) * width + i;
+      const std::size_t g = rowMajor(i, j, width);
       double lu = 0.0;
       auto edge = [&](std::size_t gq, double w)
       {
