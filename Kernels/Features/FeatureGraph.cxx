@@ -24,14 +24,6 @@ float heightAt(const Heightfield* hf, int i, int j)
   return hf->at(i, j);
 }
 
-// Element `id` of a vector indexed by the graph's int ids (nodes, chains,
-// components; -1 = none), which must be valid here.
-template<class Vector>
-auto& byId(Vector& v, int id)
-{
-  return v[static_cast<std::size_t>(id)];
-}
-
 } // namespace
 
 void forEachChainCell(const FeatureChain& chain,

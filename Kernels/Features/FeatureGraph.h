@@ -11,6 +11,15 @@
 namespace tsynth
 {
 
+// Element `id` of a vector indexed by int ids (nodes, chains, components,
+// vertices; -1 = none), which must be valid here: the one place the id
+// becomes an index.
+template<class Vector>
+auto& byId(Vector& v, int id)
+{
+  return v[static_cast<std::size_t>(id)];
+}
+
 struct Heightfield;
 class PixelGraph;
 

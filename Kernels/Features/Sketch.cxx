@@ -37,14 +37,6 @@ std::size_t countOnes(const std::vector<std::uint8_t>& mask)
   return static_cast<std::size_t>(std::count(mask.begin(), mask.end(), 1));
 }
 
-// Element `id` of a vector indexed by int ids (vertices, nodes; -1 = none),
-// which must be valid here.
-template<class Vector>
-auto& byId(Vector& v, int id)
-{
-  return v[static_cast<std::size_t>(id)];
-}
-
 // True if a's and b's trees are joined by a path of at most maxSteps edges.
 bool connectedWithin(const PixelGraph& g, std::size_t a, std::size_t b, int maxSteps)
 {
