@@ -2,6 +2,7 @@
 # the rest of the process, after the tests that use OpenCL.
 add_executable(tsynth_matching_tests
   Matching/TestOrientation.cxx
+  Matching/TestLandformTerm.cxx
   Matching/TestNoiseVariance.cxx
   Matching/TestFeatureCost.cxx
   Matching/TestCandidatePool.cxx
