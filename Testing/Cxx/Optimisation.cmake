@@ -2,6 +2,7 @@
 # the EM loop with pit removal, determinism and input checks.
 add_executable(tsynth_optimisation_tests
   Optimisation/TestPatchMatch.cxx
+  Optimisation/TestPyramid.cxx
   Optimisation/TestTerrainOptimisation.cxx)
 target_link_libraries(tsynth_optimisation_tests PRIVATE
   tsynth::kernels GDAL::GDAL OpenMP::OpenMP_CXX GTest::gtest GTest::gtest_main)
