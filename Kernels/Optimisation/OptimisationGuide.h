@@ -26,7 +26,7 @@ struct OptimisationGuide
 
 // The landform scale in cells the guide is built at: the synthesis' default
 // patch, the width of the cross-sections its landforms are measured over.
-constexpr int kGuideLandformScale = 80;
+constexpr int kGuideLandformScale = kDefaultSynthesisPatch;
 
 // `grid` zeros: the sketch's pixels (or the poly-lines' frame) at the source's
 // cell size; the guide's ties are broken by run.seed. Throws tsynth::Error as
