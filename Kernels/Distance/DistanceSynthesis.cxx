@@ -3,6 +3,7 @@
 #include "../Core/Error.h"
 #include "../Core/Grid.h"
 #include "../Core/Random.h"
+#include "../Features/FeatureGraph.h"
 #include "DistanceMemory.h"
 #include "LatticeSearch.h"
 
@@ -48,6 +49,18 @@ void require(bool ok, const std::string& message)
   }
 }
 
+// Whether int id `id` (a cell, profile, feature) is one of `count`.
+bool validId(std::int32_t id, std::size_t count)
+{
+  return id >= 0 && static_cast<std::size_t>(id) < count;
+}
+
+// This OpenMP thread's slot in per-thread arrays (omp_get_thread_num() is an int from 0).
+std::size_t threadSlot()
+{
+  return static_cast<std::size_t>(omp_get_thread_num());
+}
+
 std::string number(double v)
 {
   std::ostringstream s;
@@ -89,11 +102,10 @@ std::vector<std::vector<Source>> gatherSources(const DistanceInputs& in, const D
   {
     for (const GeneratorNode& node : in.features[f].nodes)
     {
-      require(node.cell >= 0 && static_cast<std::size_t>(node.cell) < n,
+      require(validId(node.cell, n),
         "Feature " + std::to_string(f) + " has a generator outside the " +
           std::to_string(in.width) + "x" + std::to_string(in.height) + " grid.");
-      require(node.profile == kNoProfile ||
-          (node.profile >= 0 && static_cast<std::size_t>(node.profile) < in.profiles.size()),
+      require(node.profile == kNoProfile || validId(node.profile, in.profiles.size()),
         "Feature " + std::to_string(f) + " asks for profile " + std::to_string(node.profile) +
           " but there are " + std::to_string(in.profiles.size()) + " profiles.");
       require(!std::isinf(node.cost),
@@ -111,8 +123,7 @@ std::vector<std::vector<Source>> gatherSources(const DistanceInputs& in, const D
   {
     for (const GeneratorNode& node : in.features[f].nodes)
     {
-      const float cost =
-        std::isnan(node.cost) ? fbm[static_cast<std::size_t>(node.cell)] : node.cost;
+      const float cost = std::isnan(node.cost) ? byId(fbm, node.cell) : node.cost;
       sources[f].push_back({ node.cell, cost, node.profile, static_cast<std::int32_t>(f) });
     }
   }
@@ -128,11 +139,10 @@ std::vector<std::int32_t> regionMap(const DistanceInputs& in)
   for (std::size_t r = 0; r < order.size(); ++r)
   {
     const DistanceRegion& region = in.regions[r];
-    require(region.feature >= 0 && static_cast<std::size_t>(region.feature) < in.features.size(),
+    require(validId(region.feature, in.features.size()),
       "Region " + std::to_string(r) + " belongs to feature " + std::to_string(region.feature) +
         ", which does not exist.");
-    require(region.profile == kNoProfile ||
-        (region.profile >= 0 && static_cast<std::size_t>(region.profile) < in.profiles.size()),
+    require(region.profile == kNoProfile || validId(region.profile, in.profiles.size()),
       "Region " + std::to_string(r) + " asks for profile " + std::to_string(region.profile) +
         " but there are " + std::to_string(in.profiles.size()) + " profiles.");
     order[r] = r;
@@ -145,9 +155,8 @@ std::vector<std::int32_t> regionMap(const DistanceInputs& in)
   {
     for (const std::int32_t k : in.regions[r].cells)
     {
-      require(k >= 0 && static_cast<std::size_t>(k) < n,
-        "Region " + std::to_string(r) + " has a cell outside the grid.");
-      regionOf[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(r);
+      require(validId(k, n), "Region " + std::to_string(r) + " has a cell outside the grid.");
+      byId(regionOf, k) = static_cast<std::int32_t>(r);
     }
   }
   return regionOf;
@@ -231,7 +240,7 @@ std::size_t traceRidges(const DistanceOptions& o,
   std::vector<std::uint8_t> isGenerator(n, 0);
   for (const Source& g : flat)
   {
-    isGenerator[static_cast<std::size_t>(g.cell)] = 1;
+    byId(isGenerator, g.cell) = 1;
   }
   std::size_t added = 0;
   int traced = 0;
@@ -239,6 +248,7 @@ std::size_t traceRidges(const DistanceOptions& o,
   const auto fraction = static_cast<float>(o.ridgeFraction);
   for (std::uint64_t a = 0; a < attempts && traced < o.ridgeCount; ++a)
   {
+    // A uniform draw in [0, 1) scaled to a cell: a double truncated to an index.
     const auto start = std::min(n - 1,
       static_cast<std::size_t>(seededUniform(o.seed, kRidgeStream, a) * static_cast<double>(n)));
     if (approx.cost[start] == kUnreached || isGenerator[start] || regionOf[start] != kNone)
@@ -247,17 +257,16 @@ std::size_t traceRidges(const DistanceOptions& o,
     }
     ++traced;
     ridges.emplace_back();
-    const Source& g = flat[static_cast<std::size_t>(approx.source[start])];
-    std::vector<Source>& feature = perFeature[static_cast<std::size_t>(g.feature)];
-    for (std::int32_t k = static_cast<std::int32_t>(start);
-         k != kNone && !isGenerator[static_cast<std::size_t>(k)];
-         k = approx.pred[static_cast<std::size_t>(k)])
+    const Source& g = byId(flat, approx.source[start]);
+    std::vector<Source>& feature = byId(perFeature, g.feature);
+    for (std::int32_t k = static_cast<std::int32_t>(start); k != kNone && !byId(isGenerator, k);
+         k = byId(approx.pred, k))
     {
-      const float ca = approx.cost[static_cast<std::size_t>(k)];
+      const float ca = byId(approx.cost, k);
       const float cost =
         o.ridgeCost == RidgeCost::ScaledRise ? g.cost + fraction * (ca - g.cost) : fraction * ca;
       feature.push_back({ k, cost, g.profile, g.feature });
-      isGenerator[static_cast<std::size_t>(k)] = 1;
+      byId(isGenerator, k) = 1;
       ridges.back().push_back(k);
       ++added;
     }
@@ -471,13 +480,8 @@ void blendFeatures(const Search& s,
     {
       const std::size_t f = batch + i;
       std::vector<Visit> visits = ordered.buffer();
-      const bool radix = featurePass(s,
-        o,
-        approxHeight,
-        begin[f],
-        begin[f + 1],
-        fields[static_cast<std::size_t>(omp_get_thread_num())],
-        visits);
+      const bool radix =
+        featurePass(s, o, approxHeight, begin[f], begin[f + 1], fields[threadSlot()], visits);
       ordered.finish(i, std::move(visits), radix);
     }
     ordered.endBatch();

@@ -21,6 +21,7 @@ namespace
 Point2 pointAt(const std::vector<Point2>& pts, const std::vector<double>& arc, double s)
 {
   const auto it = std::lower_bound(arc.begin(), arc.end(), s);
+  // lower_bound's offset is a signed count, never negative.
   const std::size_t k =
     std::clamp<std::size_t>(static_cast<std::size_t>(it - arc.begin()), 1, pts.size() - 1);
   const double len = arc[k] - arc[k - 1];
@@ -77,22 +78,21 @@ SiteProfiles sampleSite(const FeatureSite& site, const Heightfield& hf, int patc
     const ControlPoint& cp = site.arms[a];
     p.angle.push_back(static_cast<float>(cp.angle));
     std::array<float, kAlongSamples> al{};
-    for (int k = 0; k < kAlongSamples; ++k)
+    for (std::size_t k = 0; k < al.size(); ++k)
     {
       const double t = static_cast<double>(k) / (kAlongSamples - 1);
-      al[static_cast<std::size_t>(k)] = sampleBilinear(hf,
-                                          site.centre.x + t * (cp.position.x - site.centre.x),
-                                          site.centre.y + t * (cp.position.y - site.centre.y)) -
+      al[k] = sampleBilinear(hf,
+                site.centre.x + t * (cp.position.x - site.centre.x),
+                site.centre.y + t * (cp.position.y - site.centre.y)) -
         base;
     }
     std::array<float, kAcrossSamples> ac{};
     const double nx = -std::sin(cp.angle);
     const double ny = std::cos(cp.angle);
-    for (int k = 0; k < kAcrossSamples; ++k)
+    for (std::size_t k = 0; k < ac.size(); ++k)
     {
-      const double d = half * (1.0 - 2.0 * k / (kAcrossSamples - 1));
-      ac[static_cast<std::size_t>(k)] =
-        sampleBilinear(hf, cp.position.x + d * nx, cp.position.y + d * ny) - base;
+      const double d = half * (1.0 - 2.0 * static_cast<double>(k) / (kAcrossSamples - 1));
+      ac[k] = sampleBilinear(hf, cp.position.x + d * nx, cp.position.y + d * ny) - base;
     }
     p.along.push_back(al);
     p.across.push_back(ac);
@@ -356,7 +356,7 @@ CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplar
       const int arms = static_cast<int>(prof.angle.size());
       for (int k = 0; k < kVariantCount; ++k)
       {
-        if (!options.variants[static_cast<std::size_t>(k)])
+        if (!byId(options.variants, k))
         {
           continue;
         }
@@ -370,33 +370,30 @@ CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplar
         pool.centreX.push_back(static_cast<float>(site.centre.x));
         pool.centreY.push_back(static_cast<float>(site.centre.y));
         // Arms in counter-clockwise order of their placed angles.
-        std::vector<int> order(static_cast<std::size_t>(arms));
-        std::iota(order.begin(), order.end(), 0);
-        std::vector<double> placed(static_cast<std::size_t>(arms));
-        for (int a = 0; a < arms; ++a)
+        std::vector<std::size_t> order(prof.angle.size());
+        std::iota(order.begin(), order.end(), std::size_t{ 0 });
+        std::vector<double> placed(prof.angle.size());
+        for (std::size_t a = 0; a < placed.size(); ++a)
         {
-          placed[static_cast<std::size_t>(a)] =
-            v.placedAngle(prof.angle[static_cast<std::size_t>(a)]);
+          placed[a] = v.placedAngle(prof.angle[a]);
         }
         std::sort(order.begin(),
           order.end(),
-          [&](int x, int y)
-          { return placed[static_cast<std::size_t>(x)] < placed[static_cast<std::size_t>(y)]; });
-        for (int slot = 0; slot < kMaxArms; ++slot)
+          [&](std::size_t x, std::size_t y) { return placed[x] < placed[y]; });
+        for (std::size_t slot = 0; slot < kMaxArms; ++slot)
         {
-          const bool used = slot < arms;
-          const std::size_t a =
-            used ? static_cast<std::size_t>(order[static_cast<std::size_t>(slot)]) : 0;
+          const bool used = slot < order.size();
+          const std::size_t a = used ? order[slot] : 0;
           pool.angles.push_back(used ? static_cast<float>(placed[a]) : 0.0f);
-          for (int s = 0; s < kAlongSamples; ++s)
+          for (std::size_t s = 0; s < kAlongSamples; ++s)
           {
-            pool.along.push_back(used ? prof.along[a][static_cast<std::size_t>(s)] : 0.0f);
+            pool.along.push_back(used ? prof.along[a][s] : 0.0f);
           }
-          for (int s = 0; s < kAcrossSamples; ++s)
+          for (std::size_t s = 0; s < kAcrossSamples; ++s)
           {
             // A mirror swaps the two sides of an arm.
-            const int src = v.mirrored ? kAcrossSamples - 1 - s : s;
-            pool.across.push_back(used ? prof.across[a][static_cast<std::size_t>(src)] : 0.0f);
+            const std::size_t src = v.mirrored ? kAcrossSamples - 1 - s : s;
+            pool.across.push_back(used ? prof.across[a][src] : 0.0f);
           }
         }
         pool.noise.insert(pool.noise.end(), nv.begin(), nv.end());
@@ -410,7 +407,7 @@ CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplar
     const Heightfield smooth = landformImage(ex, P);
     for (int k = 0; k < kVariantCount; ++k)
     {
-      if (!options.variants[static_cast<std::size_t>(k)])
+      if (!byId(options.variants, k))
       {
         continue;
       }
@@ -474,8 +471,7 @@ void checkLength(std::size_t size, std::size_t n, std::size_t perCandidate, cons
 // Candidate c's own values lie in their ranges, its centre on its exemplar.
 void checkCandidate(const CandidatePool& pool, std::size_t c)
 {
-  const auto e = static_cast<std::size_t>(pool.exemplar[c]);
-  const ExemplarInfo& info = pool.exemplars[e];
+  const ExemplarInfo& info = byId(pool.exemplars, pool.exemplar[c]);
   const bool inRange = pool.variant[c] >= 0 && pool.variant[c] < kVariantCount &&
     pool.arms[c] >= 0 && pool.arms[c] <= kMaxArms &&
     (pool.type[c] == static_cast<int>(FeatureType::Ridge) ||
@@ -641,16 +637,15 @@ FeatureQuery makeFeatureQuery(const FeatureSite& site,
   q.kind = static_cast<int>(site.kind);
   const SiteProfiles prof = sampleSite(site, target, patchSize);
   q.arms = static_cast<int>(prof.angle.size());
-  std::vector<int> order(static_cast<std::size_t>(q.arms));
-  std::iota(order.begin(), order.end(), 0);
+  std::vector<std::size_t> order(prof.angle.size());
+  std::iota(order.begin(), order.end(), std::size_t{ 0 });
   std::sort(order.begin(),
     order.end(),
-    [&](int x, int y)
-    { return prof.angle[static_cast<std::size_t>(x)] < prof.angle[static_cast<std::size_t>(y)]; });
-  for (int slot = 0; slot < q.arms; ++slot)
+    [&](std::size_t x, std::size_t y) { return prof.angle[x] < prof.angle[y]; });
+  for (std::size_t slot = 0; slot < order.size(); ++slot)
   {
-    const std::size_t a = static_cast<std::size_t>(order[static_cast<std::size_t>(slot)]);
-    q.angles[static_cast<std::size_t>(slot)] = prof.angle[a];
+    const std::size_t a = order[slot];
+    q.angles[slot] = prof.angle[a];
     std::copy(prof.along[a].begin(), prof.along[a].end(), q.along.begin() + slot * kAlongSamples);
     std::copy(
       prof.across[a].begin(), prof.across[a].end(), q.across.begin() + slot * kAcrossSamples);
@@ -685,7 +680,7 @@ FeatureQuery makeFeatureQuery(const FeatureSite& site,
             }
           }
         }
-        const std::size_t k = static_cast<std::size_t>(b * kDescriptorSide + a);
+        const std::size_t k = rowMajor(a, b, kDescriptorSide);
         q.weight[k] = total > 0 ? static_cast<float>(n / total) : 0.0f;
         q.descriptor[k] = n > 0 ? static_cast<float>(s / n) : 0.0f;
       }
@@ -704,7 +699,7 @@ FeatureQuery makeFeatureQuery(const FeatureSite& site,
         const bool inside = i >= 0 && j >= 0 && i < lowTarget->width && j < lowTarget->height;
         const std::size_t cell = inside ? lowTarget->index(i, j) : 0;
         const bool done = inside && known != nullptr && (*known)[cell] != 0;
-        q.landformWeight[static_cast<std::size_t>(b * kLandformSide + a)] =
+        q.landformWeight[rowMajor(a, b, kLandformSide)] =
           inside && !done ? (*confidence)[cell] : 0.0f;
       }
     }

@@ -1,6 +1,7 @@
 #include "FeatureCost.h"
 
 #include "../Core/Constants.h"
+#include "../Core/Grid.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +13,13 @@ namespace
 {
 
 constexpr float kPiF = static_cast<float>(kPi);
+
+// Element k of a query array; candidateCost counts in int, as the OpenCL kernel does.
+template<class Array>
+const float& queryAt(const Array& v, int k)
+{
+  return v[static_cast<std::size_t>(k)];
+}
 
 // One candidate's cost; the OpenCL kernel (OpenCL/FeatureCost.cl) follows this
 // function line by line so both backends give the same numbers.
@@ -32,8 +40,8 @@ float candidateCost(const CandidatePool& pool,
   {
     for (int l = 0; l < 16; ++l)
     {
-      const float diff = q.descriptor[static_cast<std::size_t>(k + l)] - d[k + l];
-      const float wk = q.weight[static_cast<std::size_t>(k + l)];
+      const float diff = queryAt(q.descriptor, k + l) - d[k + l];
+      const float wk = queryAt(q.weight, k + l);
       lw[l] += wk;
       lwd[l] += wk * diff;
       lwd2[l] += wk * diff * diff;
@@ -71,26 +79,23 @@ float candidateCost(const CandidatePool& pool,
     for (int a = 0; a < arms; ++a)
     {
       const int b = (a + s) % arms;
-      float da = q.angles[static_cast<std::size_t>(a)] -
-        pool.angles[c * kMaxArms + static_cast<std::size_t>(b)];
+      float da = queryAt(q.angles, a) - pool.angles[rowMajor(b, c, kMaxArms)];
       da = std::remainder(da, 2.0f * kPiF) / kPiF;
       angle += da * da;
-      const float* ca =
-        pool.along.data() + (c * kMaxArms + static_cast<std::size_t>(b)) * kAlongSamples;
+      const float* ca = pool.along.data() + rowMajor(b, c, kMaxArms) * kAlongSamples;
       for (int k = 0; k < kAlongSamples; ++k)
       {
-        const float t = q.along[static_cast<std::size_t>(a * kAlongSamples + k)];
+        const float t = queryAt(q.along, a * kAlongSamples + k);
         if (!std::isnan(t))
         {
           profile += (t - ca[k]) * (t - ca[k]);
           samples += 1.0f;
         }
       }
-      const float* cx =
-        pool.across.data() + (c * kMaxArms + static_cast<std::size_t>(b)) * kAcrossSamples;
+      const float* cx = pool.across.data() + rowMajor(b, c, kMaxArms) * kAcrossSamples;
       for (int k = 0; k < kAcrossSamples; ++k)
       {
-        const float t = q.across[static_cast<std::size_t>(a * kAcrossSamples + k)];
+        const float t = queryAt(q.across, a * kAcrossSamples + k);
         if (!std::isnan(t))
         {
           profile += (t - cx[k]) * (t - cx[k]);
@@ -108,8 +113,8 @@ float candidateCost(const CandidatePool& pool,
   float cn = 0.0f;
   for (int l = 0; l < kNoiseLevels; ++l)
   {
-    const float a = q.noise[static_cast<std::size_t>(l)];
-    const float f = pool.noise[c * kNoiseLevels + static_cast<std::size_t>(l)];
+    const float a = queryAt(q.noise, l);
+    const float f = pool.noise[rowMajor(l, c, kNoiseLevels)];
     if (a > 0.0f)
     {
       const float relative = (a - f) / (a + f);
@@ -123,8 +128,8 @@ float candidateCost(const CandidatePool& pool,
   {
     for (int m = 0; m < 16; ++m)
     {
-      const float diff = q.landform[static_cast<std::size_t>(k + m)] - l[k + m];
-      const float wk = q.landformWeight[static_cast<std::size_t>(k + m)];
+      const float diff = queryAt(q.landform, k + m) - l[k + m];
+      const float wk = queryAt(q.landformWeight, k + m);
       lwl2[m] += (wk * diff) * diff;
     }
   }
@@ -146,12 +151,11 @@ std::vector<float> scoreFeatureCandidates(const CandidatePool& pool,
 {
   std::vector<float> costs(pool.size());
   const float invScale2 = static_cast<float>(1.0 / (pool.heightScale * pool.heightScale));
-  const long n = static_cast<long>(pool.size());
+  const std::size_t n = pool.size();
 #pragma omp parallel for schedule(static)
-  for (long c = 0; c < n; ++c)
+  for (std::size_t c = 0; c < n; ++c)
   {
-    costs[static_cast<std::size_t>(c)] =
-      candidateCost(pool, static_cast<std::size_t>(c), query, weights, invScale2);
+    costs[c] = candidateCost(pool, c, query, weights, invScale2);
   }
   return costs;
 }

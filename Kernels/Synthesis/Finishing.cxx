@@ -22,6 +22,31 @@ namespace tsynth
 namespace
 {
 
+struct GridCell
+{
+  int i;
+  int j;
+};
+
+// Column and row of element c of a row-major grid `width` wide (rowMajor's inverse).
+GridCell cellOf(std::size_t c, int width)
+{
+  const std::size_t w = static_cast<std::size_t>(width); // a grid width is never negative
+  return { static_cast<int>(c % w), static_cast<int>(c / w) };
+}
+
+// Element k moved by a signed index offset (d8Offset's, negative towards the south and west).
+std::size_t offsetCell(std::size_t k, std::ptrdiff_t offset)
+{
+  return static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k) + offset);
+}
+
+// The nearest seed of cell c, an int32 cell (-1: none, which the caller has ruled out).
+std::size_t nearestSeed(const NearestSeeds& near, std::size_t c)
+{
+  return static_cast<std::size_t>(near.nearest[c]);
+}
+
 // Scale of the final landform correction, in patches: relief coarser than a
 // sixth of a patch is pulled towards the target (what the patches missed or
 // drifted off); the detail within it stays the patches' own. Applied once, at
@@ -107,8 +132,7 @@ void descendAlongLines(Heightfield& out,
 {
   for (std::size_t c : order)
   {
-    const int i = static_cast<int>(c % static_cast<std::size_t>(out.width));
-    const int j = static_cast<int>(c / static_cast<std::size_t>(out.width));
+    const auto [i, j] = cellOf(c, out.width);
     forNeighbours(out,
       i,
       j,
@@ -125,8 +149,7 @@ void descendAlongLines(Heightfield& out,
 // The lowest valid 8-neighbour of (i, j) that is not on a line (+inf: none).
 double lowestSide(const Heightfield& hf, const std::vector<std::uint8_t>& line, std::size_t c)
 {
-  const int i = static_cast<int>(c % static_cast<std::size_t>(hf.width));
-  const int j = static_cast<int>(c / static_cast<std::size_t>(hf.width));
+  const auto [i, j] = cellOf(c, hf.width);
   double side = std::numeric_limits<double>::infinity();
   forNeighbours(hf,
     i,
@@ -185,7 +208,7 @@ void widenCuts(Heightfield& out,
     {
       continue;
     }
-    const std::size_t at = static_cast<std::size_t>(near.nearest[c]);
+    const std::size_t at = nearestSeed(near, c);
     const double cut = static_cast<double>(before.z[at]) - out.z[at];
     if (cut > 0.0)
     {
@@ -223,9 +246,10 @@ std::vector<std::uint32_t> labelNetworks(const Heightfield& hf, const std::vecto
     {
       const std::size_t c = stack.back();
       stack.pop_back();
+      const GridCell at = cellOf(c, hf.width);
       forNeighbours(hf,
-        static_cast<int>(c % static_cast<std::size_t>(hf.width)),
-        static_cast<int>(c / static_cast<std::size_t>(hf.width)),
+        at.i,
+        at.j,
         [&](std::size_t q, double)
         {
           if (std::isfinite(flow[q]) && label[q] == kOffLines)
@@ -242,8 +266,7 @@ std::vector<std::uint32_t> labelNetworks(const Heightfield& hf, const std::vecto
 // Whether water at cell c leaves the map: on its border or beside nodata.
 bool onTheEdge(const Heightfield& hf, std::size_t c)
 {
-  const int i = static_cast<int>(c % static_cast<std::size_t>(hf.width));
-  const int j = static_cast<int>(c / static_cast<std::size_t>(hf.width));
+  const auto [i, j] = cellOf(c, hf.width);
   if (i == 0 || j == 0 || i == hf.width - 1 || j == hf.height - 1)
   {
     return true;
@@ -279,8 +302,7 @@ std::vector<std::size_t> lowestWayOut(const Heightfield& out,
   {
     const std::size_t c = flood.top().second;
     flood.pop();
-    const int i = static_cast<int>(c % static_cast<std::size_t>(out.width));
-    const int j = static_cast<int>(c / static_cast<std::size_t>(out.width));
+    const auto [i, j] = cellOf(c, out.width);
     const bool otherLine = network[c] != kOffLines && network[c] != network[outlet];
     forNeighbours(out,
       i,
@@ -384,8 +406,7 @@ std::vector<double> meanAlongLines(const std::vector<double>& values,
     {
       continue;
     }
-    const int i = static_cast<int>(c % static_cast<std::size_t>(w));
-    const int j = static_cast<int>(c / static_cast<std::size_t>(w));
+    const auto [i, j] = cellOf(c, w);
     double sum = 0.0;
     double count = 0.0;
     for (int y = std::max(0, j - r); y <= std::min(h - 1, j + r); ++y)
@@ -582,7 +603,7 @@ std::vector<float> throughClosedOutlets(const Heightfield& out,
     bool backUpItsOwnLines = false;
     for (std::size_t k = c; dir[k] != kNoFlow;)
     {
-      k = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k) + d8Offset(dir[k], out.width));
+      k = offsetCell(k, d8Offset(dir[k], out.width));
       way.push_back(k);
       if (std::isfinite(flow[k]))
       {
@@ -671,8 +692,8 @@ DrainageReport drainValleys(Heightfield& out,
       {
         continue;
       }
-      spread.z[c] = static_cast<float>(
-        smooth[static_cast<std::size_t>(near.nearest[c])] * biweight(near.distance[c] / o.reach));
+      spread.z[c] =
+        static_cast<float>(smooth[nearestSeed(near, c)] * biweight(near.distance[c] / o.reach));
     }
     // Each cell took the change of its nearest line cell, which steps from one
     // line cell to the next: spread out along those rays, the steps combed the

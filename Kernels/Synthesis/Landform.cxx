@@ -23,6 +23,20 @@ namespace tsynth
 namespace
 {
 
+// The nearest seed of cell k, an int32 cell (-1: none, which the caller has ruled out).
+std::size_t nearestSeed(const NearestSeeds& near, std::size_t k)
+{
+  return static_cast<std::size_t>(near.nearest[k]);
+}
+
+// Column and row of element k of a row-major grid `width` wide, as coordinates
+// (rowMajor's inverse).
+Point2 cellPoint(std::size_t k, int width)
+{
+  const std::size_t w = static_cast<std::size_t>(width); // a grid width is never negative
+  return { static_cast<double>(k % w), static_cast<double>(k / w) };
+}
+
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Every so many cells of an exemplar are enough for its height percentiles.
@@ -138,6 +152,7 @@ LineMeasure measureLines(const Heightfield& ex,
   const double cell = std::min(ex.cellX, ex.cellY);
   m.majorLength = static_cast<double>(m.majorHeights.size()) * cell;
   const NearestSeeds near = nearestSeeds(major, ex.width, ex.height, ex.cellX, ex.cellY);
+  // A reach in cells, rounded up, as a count of one-cell bins.
   const std::size_t bins = static_cast<std::size_t>(std::ceil(o.reachInPatches * o.patchSize));
   std::vector<std::vector<float>> differences(bins);
   for (std::size_t k = 0; k < n; ++k)
@@ -146,10 +161,10 @@ LineMeasure measureLines(const Heightfield& ex,
     {
       continue;
     }
-    const std::size_t bin = static_cast<std::size_t>(near.distance[k] / cell);
+    const std::size_t bin = static_cast<std::size_t>(near.distance[k] / cell); // whole cells
     if (bin < bins)
     {
-      differences[bin].push_back(ex.z[k] - ex.z[static_cast<std::size_t>(near.nearest[k])]);
+      differences[bin].push_back(ex.z[k] - ex.z[nearestSeed(near, k)]);
     }
   }
   m.bins.median.assign(bins, 0.0);
@@ -440,6 +455,7 @@ public:
       {
         if (k == 0 || k + 1 == ch.points.size())
         {
+          // A node's vertex is its int id (valid: a chain's ends), held as a size.
           ids.push_back(static_cast<std::size_t>(k == 0 ? ch.from : ch.to));
         }
         else
@@ -872,15 +888,14 @@ void exactLineDistances(NearestSeeds& near,
   const int w = near.width;
   for (std::size_t k = 0; k < near.distance.size(); ++k)
   {
-    const std::int32_t piece = lines.piece[static_cast<std::size_t>(near.nearest[k])];
+    const std::int32_t piece = lines.piece[nearestSeed(near, k)];
     if (piece < 0 || lines.seeds[k] != 0)
     {
       continue;
     }
-    const auto [c, s] = lines.pieces[static_cast<std::size_t>(piece)];
-    const std::vector<Point2>& points = g.chains[static_cast<std::size_t>(c)].points;
-    const double i = static_cast<double>(k % static_cast<std::size_t>(w));
-    const double j = static_cast<double>(k / static_cast<std::size_t>(w));
+    const auto [c, s] = byId(lines.pieces, piece);
+    const std::vector<Point2>& points = byId(g.chains, c).points;
+    const auto [i, j] = cellPoint(k, w);
     // The nearest seed lies up to sqrt(2 d) cells along the line from the
     // foot of the perpendicular (a seed half a cell nearer the line beats one
     // opposite the cell): the pieces that far either side are searched.
@@ -1121,11 +1136,13 @@ double unitProminence(const CrossSection& section,
   double cell,
   FeatureType type)
 {
-  std::vector<double> z(static_cast<std::size_t>(2 * half + 1));
+  std::vector<double> z(static_cast<std::size_t>(2 * half + 1)); // a count, for the constructor
   const double sign = type == FeatureType::Ridge ? 1.0 : -1.0;
-  for (int k = -half; k <= half; ++k)
+  int k = -half; // z[0] is offset -half
+  for (double& v : z)
   {
-    z[static_cast<std::size_t>(k + half)] = sign * (1.0 - section.shape(std::abs(k) * cell, room));
+    v = sign * (1.0 - section.shape(std::abs(k) * cell, room));
+    ++k;
   }
   return sectionProminence(z, sign);
 }
@@ -1200,7 +1217,7 @@ std::vector<double> lineValueField(const RasterLines& lines,
   double widest = 0.0;
   for (std::size_t k = 0; k < n; ++k)
   {
-    raw.z[k] = lines.value[static_cast<std::size_t>(near.nearest[k])];
+    raw.z[k] = lines.value[nearestSeed(near, k)];
     widest = std::max(widest, sigmaAt(k));
   }
   // Smoothed at sigmas kLineValueLevelStep apart, interpolated between them in

@@ -38,6 +38,33 @@ constexpr double kShepardRadiusInPatches = 0.1;
 // land a little beyond the exemplars' extremes is plausible, kilometres are a
 // runaway.
 constexpr double kHeightSlackShare = 0.1;
+
+// The threads an OpenMP region may use (omp_get_max_threads()'s int), at least 1, as a count.
+std::size_t maxThreads()
+{
+  return static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
+}
+
+// This OpenMP thread's slot in per-thread arrays (omp_get_thread_num() is an int from 0).
+std::size_t threadSlot()
+{
+  return static_cast<std::size_t>(omp_get_thread_num());
+}
+
+// Cell (i, j) of a row-major window `width` wide, no bigger than a patch or a
+// merge window: formed in int and widened once, the arithmetic (and machine
+// code) of the hot loops that use it.
+std::size_t windowCell(int i, int j, int width)
+{
+  return static_cast<std::size_t>(j * width + i);
+}
+
+// Whether int id `id` names an element of v (a negative id converts to past the end).
+template<class Vector>
+bool hasId(const Vector& v, int id)
+{
+  return static_cast<std::size_t>(id) < v.size();
+}
 // Candidates compared per placement are fewer than this (it spaces the
 // seed's draws of different placements apart).
 constexpr std::size_t kMaxCandidates = 4096;
@@ -94,7 +121,7 @@ PatchPlacement::PatchPlacement(const SynthesisTarget& target,
         ? std::vector<float>()
         : std::vector<float>(target.field.size(), 1.0f))
   , confidence_(target.weight.size() == target.field.size() ? target.weight : ownConfidence_)
-  , mergers_(static_cast<std::size_t>(std::max(1, omp_get_max_threads())))
+  , mergers_(maxThreads())
 {
   for (std::size_t c = 0; c < out_.size(); ++c)
   {
@@ -142,8 +169,7 @@ PatchPlacement::OwnLine PatchPlacement::ownLine(const PatchCandidate& c) const
 {
   OwnLine own;
   const CandidatePool& pool = matcher_->pool();
-  if (!c.feature || c.poolIndex >= pool.size() ||
-    static_cast<std::size_t>(c.exemplar) >= linePoints_.size())
+  if (!c.feature || c.poolIndex >= pool.size() || !hasId(linePoints_, c.exemplar))
   {
     return own;
   }
@@ -152,7 +178,8 @@ PatchPlacement::OwnLine PatchPlacement::ownLine(const PatchCandidate& c) const
   const double det = v.m[0] * v.m[3] - v.m[1] * v.m[2];
   const double reach = kLineOffsetReachInPatches * P_;
   const FeatureType type = own.type > 0 ? FeatureType::Ridge : FeatureType::Valley;
-  linePoints_[static_cast<std::size_t>(c.exemplar)].forEachNear(type,
+  const ChainPointGrid& lines = byId(linePoints_, c.exemplar);
+  lines.forEachNear(type,
     c.centreX,
     c.centreY,
     reach,
@@ -198,8 +225,8 @@ float PatchPlacement::lineOffset(const OwnLine& own, int x0, int y0) const
 DenseQuery PatchPlacement::window(int x0, int y0) const
 {
   DenseQuery q;
-  q.heights.assign(static_cast<std::size_t>(P_ * P_), 0.0f);
-  q.known.assign(static_cast<std::size_t>(P_ * P_), 0);
+  q.heights.assign(cellCount(P_, P_), 0.0f);
+  q.known.assign(cellCount(P_, P_), 0);
   for (int j = 0; j < P_; ++j)
   {
     for (int i = 0; i < P_; ++i)
@@ -211,7 +238,7 @@ DenseQuery PatchPlacement::window(int x0, int y0) const
         continue;
       }
       const std::size_t c = out_.index(x, y);
-      const std::size_t k = static_cast<std::size_t>(j * P_ + i);
+      const std::size_t k = windowCell(i, j, P_);
       q.heights[k] = out_.z[c];
       q.known[k] = 1;
     }
@@ -223,7 +250,7 @@ DenseQuery PatchPlacement::window(int x0, int y0) const
     {
       const int x = x0 + landformCell(a, P_, f);
       const int y = y0 + landformCell(b, P_, f);
-      const std::size_t k = static_cast<std::size_t>(b * kLandformSide + a);
+      const std::size_t k = windowCell(a, b, kLandformSide);
       if (x >= 0 && y >= 0 && x < out_.width && y < out_.height && filled_[out_.index(x, y)] == 0 &&
         lowTarget_.isValid(x, y))
       {
@@ -244,7 +271,7 @@ Heightfield PatchPlacement::extract(const PatchCandidate& c) const
   {
     if (r.exemplar == c.exemplar && r.variant == c.variant)
     {
-      const auto& ex = matcher_->pool().exemplars[static_cast<std::size_t>(c.exemplar)];
+      const auto& ex = byId(matcher_->pool().exemplars, c.exemplar);
       Heightfield patch = extractPatch(r.full, r.centreX, r.centreY, ex.width, ex.height, c, P_);
       patch.cellX = out_.cellX;
       patch.cellY = out_.cellY;
@@ -295,12 +322,11 @@ const std::vector<int>* PatchPlacement::regionExemplars(int x0, int y0) const
   const int x = std::clamp(x0 + P_ / 2, 0, out_.width - 1);
   const int y = std::clamp(y0 + P_ / 2, 0, out_.height - 1);
   const int label = o_.regionLabels[out_.index(x, y)];
-  if (label < 0 || static_cast<std::size_t>(label) >= o_.regionExemplars.size() ||
-    o_.regionExemplars[static_cast<std::size_t>(label)].empty())
+  if (label < 0 || !hasId(o_.regionExemplars, label) || byId(o_.regionExemplars, label).empty())
   {
     return nullptr;
   }
-  return &o_.regionExemplars[static_cast<std::size_t>(label)];
+  return &byId(o_.regionExemplars, label);
 }
 
 std::vector<PatchCandidate> PatchPlacement::allowed(std::vector<PatchCandidate> candidates,
@@ -413,7 +439,7 @@ void PatchPlacement::prepareTrial(const PatchCandidate& candidate,
         {
           if ((i - ci) * (i - ci) + (j - cj) * (j - cj) <= half * half)
           {
-            t.core[static_cast<std::size_t>(j * P_ + i)] = 1;
+            t.core[windowCell(i, j, P_)] = 1;
           }
         }
       }
@@ -495,7 +521,7 @@ void PatchPlacement::record(const PatchCandidate& chosen,
   {
     for (int i = 0; i < r.width; ++i)
     {
-      const std::size_t w = static_cast<std::size_t>(j * r.width + i);
+      const std::size_t w = windowCell(i, j, r.width);
       const std::size_t c = out_.index(r.x0 + i, r.y0 + j);
       if (r.takeNew[w] != 0)
       {
@@ -544,14 +570,12 @@ std::size_t PatchPlacement::place(const std::vector<PatchCandidate>& candidates,
   // on the thread count. Patches of candidates choose() passes over are
   // never cut out: on a DEM target that was 60% of them.
   std::vector<Trial> trials(candidates.size());
-  const long count = static_cast<long>(candidates.size());
   const int threads = static_cast<int>(std::min(candidates.size(), mergers_.size()));
   if (feature)
   {
 #pragma omp parallel for schedule(dynamic) num_threads(threads)
-    for (long n = 0; n < count; ++n)
+    for (std::size_t c = 0; c < candidates.size(); ++c)
     {
-      const std::size_t c = static_cast<std::size_t>(n);
       alignTrial(candidates[c], x0, y0, trials[c]);
     }
   }
@@ -567,12 +591,11 @@ std::size_t PatchPlacement::place(const std::vector<PatchCandidate>& candidates,
     t.dry = merger.seamCost(out_, filled_, t.patch, x0, y0, feature ? &t.core : nullptr);
   };
 #pragma omp parallel for schedule(dynamic) num_threads(threads)
-  for (long n = 0; n < count; ++n)
+  for (std::size_t c = 0; c < candidates.size(); ++c)
   {
-    const std::size_t c = static_cast<std::size_t>(n);
     if (eligible(trials[c], aligned))
     {
-      tryCandidate(c, mergers_[static_cast<std::size_t>(omp_get_thread_num())]);
+      tryCandidate(c, mergers_[threadSlot()]);
     }
   }
   double seam = 0.0;
@@ -856,6 +879,7 @@ void PatchPlacement::adopt(const SynthesisTile& t, const TileOutcome& tile)
     p.y0 += t.regionY0;
     result_.placements.push_back(p);
   }
+  // The tile's count is a fixed-width std::uint64_t (tiles cross processes): a conversion.
   result_.anchoredMerges += static_cast<std::size_t>(tile.anchoredMerges);
 }
 
