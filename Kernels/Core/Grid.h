@@ -25,6 +25,26 @@ constexpr std::size_t cellCount(W width, H height)
   return static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
 }
 
+// A cell's column and row.
+struct GridCell
+{
+  int i;
+  int j;
+};
+
+// Column and row of element k of a row-major grid `width` wide (rowMajor's inverse).
+inline GridCell cellOf(std::size_t k, int width)
+{
+  const std::size_t w = static_cast<std::size_t>(width); // a grid width is never negative
+  return { static_cast<int>(k % w), static_cast<int>(k / w) };
+}
+
+// Element k moved by a signed index offset (a neighbour's: negative towards the south and west).
+inline std::size_t offsetCell(std::size_t k, std::ptrdiff_t offset)
+{
+  return static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k) + offset);
+}
+
 // A width x height grid of T, row-major: at(i, j) is values[j * width + i].
 template<class T>
 struct Grid

@@ -26,30 +26,11 @@ std::array<double, kD8Directions> d8Distances(double cellX, double cellY)
 namespace
 {
 
-struct GridCell
-{
-  int i;
-  int j;
-};
-
-// Column and row of element k of a row-major grid `width` wide (rowMajor's inverse).
-GridCell cellOf(std::size_t k, int width)
-{
-  const std::size_t w = static_cast<std::size_t>(width); // a grid width is never negative
-  return { static_cast<int>(k % w), static_cast<int>(k / w) };
-}
-
 // The neighbour of cell (i, j) along D8 code `code` (0..7; codes are ints, kNoFlow is -1).
 GridCell d8Neighbour(int i, int j, int code)
 {
   const std::size_t c = static_cast<std::size_t>(code);
   return { i + kD8Dx[c], j + kD8Dy[c] };
-}
-
-// Element k moved by a signed index offset (d8Offset's, negative towards the south and west).
-std::size_t offsetCell(std::size_t k, std::ptrdiff_t offset)
-{
-  return static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k) + offset);
 }
 
 bool inGrid(const Heightfield& dem, int i, int j)

@@ -22,25 +22,6 @@ namespace tsynth
 namespace
 {
 
-struct GridCell
-{
-  int i;
-  int j;
-};
-
-// Column and row of element c of a row-major grid `width` wide (rowMajor's inverse).
-GridCell cellOf(std::size_t c, int width)
-{
-  const std::size_t w = static_cast<std::size_t>(width); // a grid width is never negative
-  return { static_cast<int>(c % w), static_cast<int>(c / w) };
-}
-
-// Element k moved by a signed index offset (d8Offset's, negative towards the south and west).
-std::size_t offsetCell(std::size_t k, std::ptrdiff_t offset)
-{
-  return static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k) + offset);
-}
-
 // The nearest seed of cell c, an int32 cell (-1: none, which the caller has ruled out).
 std::size_t nearestSeed(const NearestSeeds& near, std::size_t c)
 {
