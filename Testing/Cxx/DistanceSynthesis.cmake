@@ -3,6 +3,7 @@
 add_executable(tsynth_distance_tests
   Distance/TestDistanceSynthesis.cxx
   Distance/TestCostScaling.cxx
+  Distance/TestDistanceSources.cxx
   Distance/TestGenerators.cxx
   Distance/TestLattice.cxx)
 target_link_libraries(tsynth_distance_tests PRIVATE
