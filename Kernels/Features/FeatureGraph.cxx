@@ -363,6 +363,74 @@ void computeControlPoints(FeatureGraph& g, double radius)
   }
 }
 
+namespace
+{
+
+// Union-find over the nodes, by path halving.
+class NodeSets
+{
+public:
+  explicit NodeSets(std::size_t n)
+    : parent_(n)
+  {
+    std::iota(parent_.begin(), parent_.end(), std::size_t{ 0 });
+  }
+  std::size_t root(std::size_t k)
+  {
+    while (parent_[k] != k)
+    {
+      parent_[k] = parent_[parent_[k]];
+      k = parent_[k];
+    }
+    return k;
+  }
+  void join(std::size_t a, std::size_t b) { parent_[root(a)] = root(b); }
+
+private:
+  std::vector<std::size_t> parent_;
+};
+
+} // namespace
+
+std::vector<std::size_t> connectedChainSets(const FeatureGraph& graph, std::size_t* count)
+{
+  const std::size_t nodes = graph.nodes.size();
+  auto valid = [&](int id) { return id >= 0 && static_cast<std::size_t>(id) < nodes; };
+  NodeSets sets(nodes);
+  for (const FeatureChain& c : graph.chains)
+  {
+    if (valid(c.from) && valid(c.to))
+    {
+      sets.join(static_cast<std::size_t>(c.from), static_cast<std::size_t>(c.to));
+    }
+  }
+  constexpr std::size_t kUnnumbered = std::numeric_limits<std::size_t>::max();
+  std::vector<std::size_t> numberOfRoot(nodes, kUnnumbered);
+  std::vector<std::size_t> out(graph.chains.size());
+  std::size_t next = 0;
+  for (std::size_t c = 0; c < graph.chains.size(); ++c)
+  {
+    const int from = graph.chains[c].from;
+    const int to = graph.chains[c].to;
+    if (!valid(from) || !valid(to))
+    {
+      out[c] = next++;
+      continue;
+    }
+    std::size_t& number = numberOfRoot[sets.root(static_cast<std::size_t>(from))];
+    if (number == kUnnumbered)
+    {
+      number = next++;
+    }
+    out[c] = number;
+  }
+  if (count != nullptr)
+  {
+    *count = next;
+  }
+  return out;
+}
+
 void appendGraph(FeatureGraph& a, const FeatureGraph& b)
 {
   const int nodeOffset = static_cast<int>(a.nodes.size());

@@ -123,6 +123,13 @@ void forEachChainCell(const FeatureChain& chain,
 // width x height grid of 0.
 std::vector<std::uint8_t> rasteriseChains(const FeatureGraph& graph, int width, int height);
 
+// Per chain, the number of the connected set of chains it belongs to (chains
+// joined at their nodes: all of a letter's strokes, a whole valley network),
+// numbered from 0 in the order of their first chains; `count`, if given,
+// receives the number of sets. A chain whose nodes are missing is a set alone.
+std::vector<std::size_t> connectedChainSets(const FeatureGraph& graph,
+  std::size_t* count = nullptr);
+
 // Appends b's nodes and chains to a (renumbered) and recomputes the order.
 void appendGraph(FeatureGraph& a, const FeatureGraph& b);
 

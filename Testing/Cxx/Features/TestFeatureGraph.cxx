@@ -160,3 +160,18 @@ TEST(FeatureGraph, AppendingRenumbersTheSecondGraph)
   EXPECT_EQ(a.countKind(NodeKind::Branch), 2);
   EXPECT_EQ(a.countKind(NodeKind::End, FeatureType::Valley), 4);
 }
+
+TEST(FeatureGraph, ConnectedChainSetsJoinChainsAtTheirNodes)
+{
+  FeatureGraph g = yAndAValley();
+  // A chain whose end node is missing stands alone.
+  FeatureChain loose = straightChain(0, 99, { 20, 20 }, { 30, 30 }, FeatureType::Ridge);
+  loose.from = -1;
+  g.chains.push_back(loose);
+  std::size_t count = 0;
+  const std::vector<std::size_t> sets = connectedChainSets(g, &count);
+  EXPECT_EQ(count, 3u);
+  EXPECT_EQ(sets, (std::vector<std::size_t>{ 0, 0, 0, 1, 2 }))
+    << "the Y, the valley, the loose chain";
+  EXPECT_EQ(connectedChainSets(FeatureGraph{}).size(), 0u);
+}
