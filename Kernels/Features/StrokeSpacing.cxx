@@ -1,7 +1,9 @@
 #include "StrokeSpacing.h"
 
+#include "../Core/Error.h"
 #include "../Core/Grid.h"
 #include "../Distance/DistanceField.h"
+#include "FeatureGraph.h"
 
 #include <algorithm>
 #include <cmath>
@@ -235,6 +237,75 @@ float strokeHalfSpacing(const StrokeSpacing& s, int i, int j)
     }
   }
   return best;
+}
+
+namespace
+{
+
+double chainMetres(const FeatureChain& c, double cellX, double cellY)
+{
+  double length = 0.0;
+  for (std::size_t k = 1; k < c.points.size(); ++k)
+  {
+    length += std::hypot(
+      (c.points[k].x - c.points[k - 1].x) * cellX, (c.points[k].y - c.points[k - 1].y) * cellY);
+  }
+  return length;
+}
+
+} // namespace
+
+std::vector<float> nearestStrokeLength(const FeatureGraph& lines, double cellX, double cellY)
+{
+  const int w = lines.width;
+  const int h = lines.height;
+  std::size_t setCount = 0;
+  const std::vector<std::size_t> setOf = connectedChainSets(lines, &setCount);
+  std::vector<double> setLength(setCount, 0.0);
+  for (std::size_t c = 0; c < lines.chains.size(); ++c)
+  {
+    setLength[setOf[c]] += chainMetres(lines.chains[c], cellX, cellY);
+  }
+  std::vector<std::uint8_t> seeds(cellCount(w, h), 0);
+  std::vector<float> lengthAt(seeds.size(), 0.0f);
+  for (std::size_t c = 0; c < lines.chains.size(); ++c)
+  {
+    const float length = static_cast<float>(setLength[setOf[c]]);
+    forEachChainCell(lines.chains[c],
+      w,
+      h,
+      [&](int i, int j, std::size_t, double)
+      {
+        const std::size_t k = rowMajor(i, j, w);
+        seeds[k] = 1;
+        lengthAt[k] = std::max(lengthAt[k], length); // where two sets cross, the longer
+      });
+  }
+  const NearestSeeds nearest = nearestSeeds(seeds, w, h, cellX, cellY);
+  std::vector<float> out(seeds.size(), kInfinity);
+  if (nearest.empty())
+  {
+    return out;
+  }
+  for (std::size_t k = 0; k < out.size(); ++k)
+  {
+    out[k] = lengthAt[static_cast<std::size_t>(nearest.nearest[k])];
+  }
+  return out;
+}
+
+void limitByStrokeLength(StrokeSpacing& s, const FeatureGraph& lines, double cellX, double cellY)
+{
+  if (lines.width != s.width || lines.height != s.height)
+  {
+    throw Error("The strokes' spacing and their lines are on different grids.");
+  }
+  const std::vector<float> length = nearestStrokeLength(lines, cellX, cellY);
+  for (std::size_t k = 0; k < length.size(); ++k)
+  {
+    s.halfSpacing[k] =
+      std::min(s.halfSpacing[k], static_cast<float>(length[k] / kStrokeLengthPerHalfWidth));
+  }
 }
 
 } // namespace tsynth

@@ -358,6 +358,9 @@ LegibilityMeter::LegibilityMeter(const FeatureGraph& sketch,
   }
   spacing_ = strokeSpacing(
     rasteriseChains(sketch, sketch.width, sketch.height), sketch.width, sketch.height);
+  // Each stroke read at the width the synthesis draws it (Landform.cxx): a
+  // short one's is a share of its length.
+  limitByStrokeLength(spacing_, sketch, 1.0, 1.0);
 }
 
 Legibility LegibilityMeter::measure(const Heightfield& terrain) const

@@ -1308,14 +1308,25 @@ LandformField landformField(const FeatureGraph& sketch,
   // reaches up to the divide implied beside it); its raise and the scale the
   // result follows it at, the room the drawn lines leave.
   checkCancellation(); // each step below takes tens of milliseconds at 1024^2: a stop waits
-  const StrokeSpacing spacing = strokeSpacing(chainCells(graph, w, h, nullptr), w, h, cellX, cellY);
+  StrokeSpacing spacing = strokeSpacing(chainCells(graph, w, h, nullptr), w, h, cellX, cellY);
   checkCancellation(); // for one step at most
   FeatureGraph drawn = graph;
   drawn.chains.resize(std::min(drawn.chains.size(), o.impliedChainsFrom));
+  drawn.width = w;
+  drawn.height = h;
+  // A short stroke's landform is held to a share of its length
+  // (kStrokeLengthPerHalfWidth), the drawn strokes' alone: an implied divide
+  // is as long as the valleys it parts.
+  limitByStrokeLength(spacing, drawn, cellX, cellY);
+  checkCancellation();
   const bool anyImplied = drawn.chains.size() < graph.chains.size();
-  const StrokeSpacing drawnSpacing = anyImplied
+  StrokeSpacing drawnSpacing = anyImplied
     ? strokeSpacing(chainCells(drawn, w, h, nullptr), w, h, cellX, cellY)
     : StrokeSpacing();
+  if (anyImplied)
+  {
+    limitByStrokeLength(drawnSpacing, drawn, cellX, cellY);
+  }
   const StrokeSpacing& drawnRoom = anyImplied ? drawnSpacing : spacing;
   LandformField out;
   // Each kind's relief raised to stand out at the room the drawing leaves it.

@@ -1,4 +1,6 @@
 // Tests of Kernels/Features/StrokeSpacing.cxx: how far apart the strokes of a sketch are.
+#include "Core/Error.h"
+#include "Features/FeatureGraph.h"
 #include "Features/StrokeSpacing.h"
 
 #include <gtest/gtest.h>
@@ -77,4 +79,87 @@ TEST(StrokeSpacing, NoStrokesNoSpacing)
   {
     EXPECT_TRUE(std::isinf(v));
   }
+}
+
+namespace
+{
+
+FeatureChain straight(int from, int to, Point2 a, Point2 b)
+{
+  FeatureChain c;
+  c.from = from;
+  c.to = to;
+  const int n = static_cast<int>(std::ceil(std::hypot(b.x - a.x, b.y - a.y)));
+  for (int k = 0; k <= n; ++k)
+  {
+    const double t = static_cast<double>(k) / n;
+    c.points.push_back({ a.x + t * (b.x - a.x), a.y + t * (b.y - a.y) });
+  }
+  return c;
+}
+
+// A T (a bar 100 cells long, a stem of 50 joined at node 1) and a dash of 30
+// cells far off, on a 200 x 120 grid.
+FeatureGraph aTAndADash()
+{
+  FeatureGraph g;
+  g.width = 200;
+  g.height = 120;
+  g.nodes.resize(5);
+  g.chains.push_back(straight(0, 1, { 10, 100 }, { 60, 100 }));
+  g.chains.push_back(straight(1, 2, { 60, 100 }, { 110, 100 }));
+  g.chains.push_back(straight(1, 3, { 60, 100 }, { 60, 50 }));
+  g.chains.push_back(straight(4, -1, { 160, 20 }, { 190, 20 }));
+  return g;
+}
+
+} // namespace
+
+TEST(StrokeSpacing, EachCellKnowsTheLengthOfItsNearestConnectedStrokes)
+{
+  const FeatureGraph g = aTAndADash();
+  const double cellX = 2.0, cellY = 3.0; // metres
+  const std::vector<float> length = nearestStrokeLength(g, cellX, cellY);
+  auto at = [&](int i, int j) { return length[static_cast<std::size_t>(j * g.width + i)]; };
+  const double tMetres = 100.0 * cellX + 50.0 * cellY;
+  EXPECT_NEAR(at(60, 100), tMetres, 1e-3) << "on the junction";
+  EXPECT_NEAR(at(62, 60), tMetres, 1e-3) << "beside the stem: the whole T, not the stem";
+  EXPECT_NEAR(at(30, 110), tMetres, 1e-3) << "above the bar";
+  EXPECT_NEAR(at(170, 30), 30.0 * cellX, 1e-3) << "beside the dash";
+  EXPECT_NEAR(at(140, 10), 30.0 * cellX, 1e-3) << "nearer the dash than the T";
+  EXPECT_NEAR(at(100, 70), tMetres, 1e-3) << "nearer the T than the dash";
+  FeatureGraph empty;
+  empty.width = 8;
+  empty.height = 8;
+  const std::vector<float> none = nearestStrokeLength(empty, 1.0, 1.0);
+  ASSERT_EQ(none.size(), 64u);
+  EXPECT_TRUE(std::isinf(none[0]));
+}
+
+TEST(StrokeSpacing, AShortStrokesRoomIsAShareOfItsLength)
+{
+  const FeatureGraph g = aTAndADash();
+  StrokeSpacing s = strokeSpacing(rasteriseChains(g, g.width, g.height), g.width, g.height);
+  const float beforeT = at(s, 30, 110);
+  ASSERT_GT(beforeT, 150.0 / kStrokeLengthPerHalfWidth) << "the drawing leaves the bar more";
+  limitByStrokeLength(s, g, 1.0, 1.0);
+  EXPECT_NEAR(at(s, 30, 110), 150.0 / kStrokeLengthPerHalfWidth, 1e-3);
+  EXPECT_NEAR(at(s, 175, 5), 30.0 / kStrokeLengthPerHalfWidth, 1e-3);
+  // Room the drawing already narrowed stays: two strokes 120 cells long
+  // (room 20 by their length) drawn 10 cells apart have 5 each.
+  FeatureGraph pair;
+  pair.width = 140;
+  pair.height = 40;
+  pair.nodes.resize(4);
+  pair.chains.push_back(straight(0, 1, { 10, 15 }, { 130, 15 }));
+  pair.chains.push_back(straight(2, 3, { 10, 25 }, { 130, 25 }));
+  StrokeSpacing narrow =
+    strokeSpacing(rasteriseChains(pair, pair.width, pair.height), pair.width, pair.height);
+  const float between = at(narrow, 70, 20);
+  ASSERT_NEAR(between, 5.0, 1.0);
+  limitByStrokeLength(narrow, pair, 1.0, 1.0);
+  EXPECT_EQ(at(narrow, 70, 20), between);
+  EXPECT_NEAR(at(narrow, 70, 35), 120.0 / kStrokeLengthPerHalfWidth, 1e-3) << "the open side";
+  StrokeSpacing other = strokeSpacing(rasteriseChains(g, 100, 100), 100, 100);
+  EXPECT_THROW(limitByStrokeLength(other, g, 1.0, 1.0), Error);
 }

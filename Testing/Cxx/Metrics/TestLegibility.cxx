@@ -70,7 +70,8 @@ TEST(Legibility, AGaussianRidgeOnTheStrokeIsLegibleAndTheLandBesideItIsNot)
   EXPECT_GT(good.ridge.prominence, 200.0);
   EXPECT_TRUE(std::isnan(good.valley.share));
   EXPECT_EQ(good.share, good.ridge.share);
-  EXPECT_NEAR(good.ridge.halfWidth, 40.0, 0.5); // a lone stroke: loneHalfWidth
+  // A lone stroke 160 cells long: a sixth of its length, under loneHalfWidth.
+  EXPECT_NEAR(good.ridge.halfWidth, std::floor(160.0 / kStrokeLengthPerHalfWidth), 0.5);
   EXPECT_LT(evaluateLegibility(ridged, beside, relief).ridge.share, 0.35);
   EXPECT_LT(evaluateLegibility(ridged, asValley, relief).valley.share, 0.05);
   // The bare land reads about as often as chance would have it.

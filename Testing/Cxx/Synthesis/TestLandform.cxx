@@ -755,7 +755,9 @@ TEST(LandformField, TheTroughBetweenTwoRidgesIsAValleyWithoutAnOutlet)
     EXPECT_LT(shaped.field.at(i, 70), shaped.field.at(i, 78)) << i;
     // The ridges keep their crests and the room the drawing gives them; the
     // trough carries no flow (nothing drains it: it has no outlet).
-    EXPECT_NEAR(shaped.field.at(i, 50), bare.field.at(i, 50), 1.0) << i;
+    // (Within half a percent of the relief: a trough drawn into a crest would
+    // take tens of percent off it.)
+    EXPECT_NEAR(shaped.field.at(i, 50), bare.field.at(i, 50), 0.005 * kRelief) << i;
     EXPECT_EQ(shaped.halfWidth[cell(i, 50)], bare.halfWidth[cell(i, 50)]) << i;
     EXPECT_TRUE(std::isnan(shaped.downstream[cell(i, 70)])) << i;
   }
@@ -837,9 +839,12 @@ TEST(LandformField, TwoValleyNetworksMeetWithoutAStep)
   // Two valleys draining to the south border, 40 cells apart, of different
   // lengths: their floors and rims rise at different rates, so where the land
   // turns from one's flank to the other's the two disagree by tens of metres.
-  // Taken from the nearest line cell alone, the field stepped there.
+  // Taken from the nearest line cell alone, the field stepped there. (The
+  // shorter is long enough, 120 cells, that the room its length leaves it,
+  // kStrokeLengthPerHalfWidth, is the 20 cells the drawing leaves: shorter,
+  // its flank is squeezed steeper than the hand section's steepest.)
   const LandformField f =
-    fieldOf({ valley({ { 40, 150 }, { 40, 0 } }), valley({ { 80, 60 }, { 80, 0 } }) });
+    fieldOf({ valley({ { 40, 150 }, { 40, 0 } }), valley({ { 80, 120 }, { 80, 0 } }) });
   // The steepest the land gets anywhere on a flank of one valley alone (the
   // hand section rises 140 m in 150 m at its steepest: 28 m a cell).
   const double flankStep = 140.0 / 150.0 * kCell;
