@@ -70,10 +70,21 @@ nlohmann::json legibilityJson(const Legibility& l)
       { "median_half_width_cells", k.halfWidth },
       { "flank_agreement", k.flankAgreement } };
   };
+  nlohmann::json strokes = nlohmann::json::array();
+  for (const StrokeReading& r : l.strokes)
+  {
+    strokes.push_back({ { "type", r.type == FeatureType::Ridge ? "ridge" : "valley" },
+      { "length_cells", r.length },
+      { "samples", r.samples },
+      { "legible_share", r.share },
+      { "centre_cells", { r.centre.x, r.centre.y } } });
+  }
   return { { "legible_share", l.share },
     { "flank_agreement", l.flankAgreement },
     { "ridge", kind(l.ridge) },
-    { "valley", kind(l.valley) } };
+    { "valley", kind(l.valley) },
+    { "weakest_stroke_share", l.weakestShare() },
+    { "strokes", strokes } };
 }
 
 nlohmann::json correlationJson(const std::vector<BandCorrelation>& bands)
@@ -92,6 +103,16 @@ void printLegibility(const char* name, const Legibility& l)
             << " of the stroke length (ridges " << figure(l.ridge.share, 2) << ", valleys "
             << figure(l.valley.share, 2) << "); flanks agree " << figure(l.flankAgreement, 2)
             << "\n";
+  if (l.weakest < l.strokes.size())
+  {
+    const StrokeReading& w = l.strokes[l.weakest];
+    std::cout << std::setw(22) << ""
+              << " weakest stroke: " << figure(w.share, 2) << " legible, a "
+              << (w.type == FeatureType::Ridge ? "ridge" : "valley") << " " << std::lround(w.length)
+              << " cells long centred at cell (" << std::lround(w.centre.x) << ", "
+              << std::lround(w.centre.y) << ") of " << l.strokes.size() << " stroke"
+              << (l.strokes.size() == 1 ? "" : "s") << "\n";
+  }
 }
 
 void printCorrelation(const char* name, const std::vector<BandCorrelation>& bands)

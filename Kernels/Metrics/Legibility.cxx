@@ -207,6 +207,74 @@ private:
   const StrokeSpacing& spacing_;
 };
 
+// The samples of each connected stroke, counted as its chains are read.
+class StrokeTally
+{
+public:
+  explicit StrokeTally(std::size_t strokes)
+    : readings_(strokes)
+    , legible_(strokes, 0)
+    , low_(strokes, Point2{ kInfinity, kInfinity })
+    , high_(strokes, Point2{ -kInfinity, -kInfinity })
+  {
+  }
+  void addLine(std::size_t stroke, const FeatureChain& c)
+  {
+    StrokeReading& r = readings_[stroke];
+    r.type = c.type;
+    r.length += c.length();
+    for (const Point2& p : c.points)
+    {
+      low_[stroke] = { std::min(low_[stroke].x, p.x), std::min(low_[stroke].y, p.y) };
+      high_[stroke] = { std::max(high_[stroke].x, p.x), std::max(high_[stroke].y, p.y) };
+    }
+  }
+  void addSamples(std::size_t stroke, const std::vector<Sample>& samples)
+  {
+    readings_[stroke].samples += samples.size();
+    for (const Sample& s : samples)
+    {
+      legible_[stroke] += s.legible ? 1 : 0;
+    }
+  }
+  std::vector<StrokeReading> readings() const
+  {
+    std::vector<StrokeReading> out = readings_;
+    for (std::size_t k = 0; k < out.size(); ++k)
+    {
+      if (out[k].samples > 0)
+      {
+        out[k].share = static_cast<double>(legible_[k]) / static_cast<double>(out[k].samples);
+      }
+      out[k].centre = { 0.5 * (low_[k].x + high_[k].x), 0.5 * (low_[k].y + high_[k].y) };
+    }
+    return out;
+  }
+
+private:
+  static constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  std::vector<StrokeReading> readings_;
+  std::vector<std::size_t> legible_;
+  std::vector<Point2> low_;
+  std::vector<Point2> high_;
+};
+
+// The index of the least legible stroke with enough samples, strokes.size()
+// if none has; ties to the first.
+std::size_t weakestStroke(const std::vector<StrokeReading>& strokes)
+{
+  std::size_t weakest = strokes.size();
+  for (std::size_t k = 0; k < strokes.size(); ++k)
+  {
+    if (strokes[k].samples >= kMinWeakestStrokeSamples &&
+      (weakest == strokes.size() || strokes[k].share < strokes[weakest].share))
+    {
+      weakest = k;
+    }
+  }
+  return weakest;
+}
+
 StrokeLegibility summarise(const std::vector<Sample>& samples)
 {
   StrokeLegibility r;
@@ -379,8 +447,13 @@ Legibility LegibilityMeter::measure(const Heightfield& terrain) const
   const LandRelief around = away.size() > 0 ? LandRelief({ &away }, kSectionsAround) : LandRelief();
   const SectionReader reader(terrain, spacing_, land_, around, options_);
   std::vector<Sample> ridge, valley;
-  for (const FeatureChain& c : sketch_.chains)
+  std::size_t strokeCount = 0;
+  const std::vector<std::size_t> strokeOf = connectedChainSets(sketch_, &strokeCount);
+  StrokeTally tally(strokeCount);
+  for (std::size_t chain = 0; chain < sketch_.chains.size(); ++chain)
   {
+    const FeatureChain& c = sketch_.chains[chain];
+    tally.addLine(strokeOf[chain], c);
     if (c.points.size() < 2)
     {
       continue;
@@ -398,6 +471,7 @@ Legibility LegibilityMeter::measure(const Heightfield& terrain) const
       }
     }
     markRuns(samples);
+    tally.addSamples(strokeOf[chain], samples);
     std::vector<Sample>& kind = c.type == FeatureType::Ridge ? ridge : valley;
     kind.insert(kind.end(), samples.begin(), samples.end());
   }
@@ -412,6 +486,8 @@ Legibility LegibilityMeter::measure(const Heightfield& terrain) const
     l.share = (r + v) / static_cast<double>(all);
   }
   l.flankAgreement = flankAgreementOfBoth(l.ridge, l.valley);
+  l.strokes = tally.readings();
+  l.weakest = weakestStroke(l.strokes);
   return l;
 }
 

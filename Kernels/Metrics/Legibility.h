@@ -69,6 +69,24 @@ struct StrokeLegibility
   std::size_t flankSamples = 0; // samples with flank cells to read, behind flankAgreement
 };
 
+// One connected stroke of the sketch (connectedChainSets: a letter's strokes
+// together, a whole valley network), as read.
+struct StrokeReading
+{
+  FeatureType type = FeatureType::Ridge;
+  double length = 0.0;     // cells
+  std::size_t samples = 0; // with a valid cross-section
+  double share = StrokeLegibility::kNaN;
+  Point2 centre; // the middle of its lines' extent, cells (row 0 south)
+};
+
+// The eye reads a sketch stroke by stroke: a letter lost beside a long valley
+// network is a failed sketch, though it is a tenth of the stroke length (the
+// T of a "TS" over Colorado, faint where the network read, left the share of
+// legible length at 0.76). Strokes with fewer samples than this are too
+// short to be read as a line at all and do not count as the weakest.
+constexpr std::size_t kMinWeakestStrokeSamples = 20;
+
 struct Legibility
 {
   StrokeLegibility ridge;
@@ -76,6 +94,15 @@ struct Legibility
   // Both kinds together, each sample counting once (share of all stroke length).
   double share = StrokeLegibility::kNaN;
   double flankAgreement = StrokeLegibility::kNaN; // both kinds, each sample counting once
+  // Every connected stroke, in the order of their first chains ...
+  std::vector<StrokeReading> strokes;
+  // ... and the least legible of those with kMinWeakestStrokeSamples samples
+  // or more (its index into strokes; strokes.size() if none has).
+  std::size_t weakest = 0;
+  double weakestShare() const
+  {
+    return weakest < strokes.size() ? strokes[weakest].share : StrokeLegibility::kNaN;
+  }
 };
 
 // Measures terrains against one sketch: the strokes' spacing (StrokeSpacing,

@@ -86,6 +86,7 @@ void addLegibility(std::vector<FigureRow>& rows, const std::string& at, const Le
 {
   rows.push_back({ at + ".legible_share", l.share });
   rows.push_back({ at + ".flank_agreement", l.flankAgreement });
+  rows.push_back({ at + ".weakest_stroke_share", l.weakestShare() });
   for (const auto& [kind, k] :
     { std::pair{ ".ridge", &l.ridge }, std::pair{ ".valley", &l.valley } })
   {

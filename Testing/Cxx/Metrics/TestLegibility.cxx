@@ -325,3 +325,36 @@ TEST(BandPassCorrelation, SharedGaussiansGiveTheBandsTakenOneByOne)
   EXPECT_NEAR(self.front().correlation, 1.0, 1e-12);
   EXPECT_THROW(shared.correlate(rough(100, 120, 1.0, 1)), std::exception);
 }
+
+TEST(Legibility, EachStrokeIsReadOnItsOwnAndTheWeakestIsNamed)
+{
+  const int w = 200, h = 160;
+  const Heightfield land = rough(w, h, 15.0, 3);
+  const LandRelief relief({ &land });
+  const Heightfield ridged = surface(w,
+    h,
+    [&](int i, int j)
+    { return land.at(i, j) + 600.0 * std::exp(-0.5 * std::pow((j - 80) / 10.0, 2)); });
+  // The ridge drawn on it, a stroke beside it, and one too short to count.
+  const FeatureGraph drawn = lines(w,
+    h,
+    { { { 20, 80 }, { 180, 80 } }, { { 20, 130 }, { 180, 130 } }, { { 20, 20 }, { 30, 20 } } },
+    FeatureType::Ridge);
+  const Legibility l = evaluateLegibility(ridged, drawn, relief);
+  ASSERT_EQ(l.strokes.size(), 3u);
+  EXPECT_GT(l.strokes[0].share, 0.95);
+  EXPECT_LT(l.strokes[1].share, 0.35);
+  EXPECT_NEAR(l.strokes[0].length, 160.0, 1e-9);
+  EXPECT_NEAR(l.strokes[0].centre.x, 100.0, 1e-9);
+  EXPECT_NEAR(l.strokes[1].centre.y, 130.0, 1e-9);
+  EXPECT_LT(l.strokes[2].samples, kMinWeakestStrokeSamples);
+  EXPECT_EQ(l.weakest, 1u);
+  EXPECT_EQ(l.weakestShare(), l.strokes[1].share);
+  // The share of all the length lies between the strokes'.
+  EXPECT_GT(l.share, l.strokes[1].share);
+  EXPECT_LT(l.share, l.strokes[0].share);
+  // Nothing to read: no weakest.
+  const Legibility none = evaluateLegibility(ridged, lines(w, h, {}, FeatureType::Ridge), relief);
+  EXPECT_TRUE(none.strokes.empty());
+  EXPECT_TRUE(std::isnan(none.weakestShare()));
+}
