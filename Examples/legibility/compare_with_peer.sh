@@ -25,7 +25,7 @@ mkdir -p "$out/runs"
 "$tsynth" convert "$shared/data/dems/norway.png" -o "$out/sketches/dem_norway.tif" > /dev/null
 
 shade() { "$tsynth" render "$1" --grey --azimuth 315 -o "$2" > /dev/null; }
-legible() { # terrain exemplar sketch -> "share (ridges, valleys); flanks" or, for a DEM target, band-pass correlations
+legible() { # terrain exemplar sketch -> "share (ridges, valleys); flanks; weakest stroke" or, for a DEM target, band-pass correlations
   "$tsynth" evaluate "$1" --exemplar "$2" --sketch "$3" --json 2> /dev/null | "$py" -c '
 import json, sys
 t = json.load(sys.stdin)["terrain"]
@@ -34,12 +34,13 @@ if "target_correlation" in t:
 else:
     l = t["legibility"]
     f = lambda v: "-" if v is None else "%.2f" % v
-    print("%s (ridges %s, valleys %s); flanks %s" % (f(l["legible_share"]), f(l["ridge"]["legible_share"]),
-                                                     f(l["valley"]["legible_share"]), f(l["flank_agreement"])))'
+    print("%s (ridges %s, valleys %s); flanks %s; weakest %s" % (
+        f(l["legible_share"]), f(l["ridge"]["legible_share"]), f(l["valley"]["legible_share"]),
+        f(l["flank_agreement"]), f(l["weakest_stroke_share"])))'
 }
 
 {
-  echo "| sketch | exemplar | ours: legible share; flank agreement | peer: legible share; flank agreement | ours, peer: time (s) |"
+  echo "| sketch | exemplar | ours: legible share; flank agreement; weakest stroke | peer: the same | ours, peer: time (s) |"
   echo "|---|---|---|---|---|"
 } > "$out/legibility.md"
 for sketch in "$out"/sketches/*; do
