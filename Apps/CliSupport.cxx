@@ -101,6 +101,9 @@ std::string defaultText(const OptionRow& row)
 std::string withPatchDefault(std::string help)
 {
   replaceAll(help, "%PATCH%", std::to_string(kDefaultSynthesisPatch));
+  replaceAll(help, "%DEMPATCH%", std::to_string(kDefaultDemTargetPatch));
+  replaceAll(help, "%PATCHMIN%", std::to_string(kMinSynthesisPatch));
+  replaceAll(help, "%PATCHMAX%", std::to_string(kMaxSynthesisPatch));
   return withOptionRows(help, synthesisOptionRows());
 }
 

@@ -70,7 +70,9 @@ writes them: its output works directly as a sketch of the same DEM.
   --size WxH             output size in cells (default: the sketch's pixels; for poly-lines
                          the grid they were found on, else half a patch past their reach)
   --cell M               output cell size in metres (default: the first exemplar's)
-  --patch N              patch size in cells, a multiple of 4 %RANGE:PatchSize% (default %DEFAULT:PatchSize%)
+  --patch N              patch size in cells, a multiple of 4 from %PATCHMIN% to %PATCHMAX% (default
+                         %PATCH%, or %DEMPATCH% for a DEM target, whose ridges and valleys lie
+                         closer than %PATCH%-cell patches follow)
   --backend B            %WORDS:Backend%: same result, different speed (default
                          %DEFAULT:Backend%: OpenCL on a GPU or accelerator, else the CPU)
   --merge M              %WORDS:MergeMode% (default %DEFAULT:MergeMode%)
@@ -278,7 +280,10 @@ void takeSynthesisOptions(CommandLine& cl, SynthesisOptions& o)
   {
     try
     {
-      checkTileSize(*tile, o.patchSize);
+      if (o.patchSize != kAutomaticPatch) // else once the sketch is read (resolvePatchSize)
+      {
+        checkTileSize(*tile, o.patchSize);
+      }
     }
     catch (const Error& e)
     {
@@ -359,7 +364,9 @@ SynthArguments parseSynthArguments(std::vector<std::string> args)
     throw UsageError("Unexpected argument \"" + cl.positionals()[0] + "\".");
   }
   checkPaths(a);
-  if (a.preview && a.request.options.patchSize < kMinPreviewedPatch)
+  // An automatic patch (80, or 32 for a DEM target) is always large enough.
+  if (a.preview && a.request.options.patchSize != kAutomaticPatch &&
+    a.request.options.patchSize < kMinPreviewedPatch)
   {
     throw UsageError("--preview needs a --patch of at least " + std::to_string(kMinPreviewedPatch) +
       " cells (its coarser level halves it at least).");
@@ -367,8 +374,9 @@ SynthArguments parseSynthArguments(std::vector<std::string> args)
   return a;
 }
 
-// The files read into the set-up's inputs (warnings printed as they come).
-SetupInputs readSynthInputs(const SynthArguments& a)
+// The files read into the set-up's inputs (warnings printed as they come), and
+// the request's automatic patch size fixed for the sketch read.
+SetupInputs readSynthInputs(SynthArguments& a)
 {
   std::vector<Heightfield> exemplars;
   for (const std::string& path : a.exemplars)
@@ -385,6 +393,14 @@ SetupInputs readSynthInputs(const SynthArguments& a)
   names.cell = "--cell";
   names.patch = "--patch";
   names.memory = kMemoryOption;
+  try
+  {
+    resolvePatchSize(a.request, sketch, names); // --patch was checked already: only the tiles fail
+  }
+  catch (const Error& e)
+  {
+    throw UsageError(std::string(e.what()) + " (--tile-size)");
+  }
   return setupInputs(a.request, std::move(exemplars), a.exemplars, std::move(sketch), names);
 }
 
@@ -703,7 +719,7 @@ int runSynth(std::vector<std::string> args)
     std::cout << withPatchDefault(kSynthHelp);
     return 0;
   }
-  const SynthArguments a = parseSynthArguments(std::move(args));
+  SynthArguments a = parseSynthArguments(std::move(args));
   const InterruptGuard interrupt; // from here on Ctrl-C stops the run cleanly
   const auto t0 = std::chrono::steady_clock::now();
   SynthesisSetup setup;

@@ -438,16 +438,22 @@ int vtkTerrainSynthesis::RequestInformation(vtkInformation*,
   }
   try
   {
-    tsynth::checkPatchSize(this->PatchSize, propertyNames().patch);
+    if (this->PatchSize != tsynth::kAutomaticPatch)
+    {
+      tsynth::checkPatchSize(this->PatchSize, propertyNames().patch);
+    }
     // The grid RequestData's set-up will produce, by the same kernel function.
     const tsynth::SketchExtent extent = tsynth::announcedSketchExtent(this, 1, inputVector[1]);
+    // The patch sizes only the poly-lines' grid (half a patch past their
+    // reach), and poly-lines are no DEM target: an automatic patch is theirs.
+    const int patch = tsynth::patchSizeFor(this->PatchSize, tsynth::PolylineSketch{});
     double spacing[3] = { 0.0, 0.0, 0.0 };
     if (exemplar->Has(vtkDataObject::SPACING()))
     {
       exemplar->Get(vtkDataObject::SPACING(), spacing);
     }
-    const tsynth::OutputGrid grid = tsynth::outputGrid(
-      extent, gridRequest(this), spacing[0], spacing[1], this->PatchSize, propertyNames());
+    const tsynth::OutputGrid grid =
+      tsynth::outputGrid(extent, gridRequest(this), spacing[0], spacing[1], patch, propertyNames());
     const int wholeExtent[6] = { 0, grid.width - 1, 0, grid.height - 1, 0, 0 };
     const double origin[3] = { 0.0, 0.0, 0.0 };
     const int noExtent[6] = { 0, -1, 0, -1, 0, -1 };
@@ -474,10 +480,11 @@ int vtkTerrainSynthesis::RequestInformation(vtkInformation*,
 namespace
 {
 
-// The set-up's inputs from the filter's inputs and its request; the exemplars' origins
-// and warnings stay in `ex` for the placement table.
+// The set-up's inputs from the filter's inputs and its request, whose automatic
+// patch size is fixed for the sketch found; the exemplars' origins and warnings
+// stay in `ex` for the placement table.
 tsynth::SetupInputs setupInputs(vtkTerrainSynthesis* filter,
-  const tsynth::SynthesisRequest& request,
+  tsynth::SynthesisRequest& request,
   vtkInformationVector** inputVector,
   tsynth::ExemplarInputs& ex)
 {
@@ -487,6 +494,7 @@ tsynth::SetupInputs setupInputs(vtkTerrainSynthesis* filter,
       filter->GetInputArrayInformation(kExemplarHeights), inputVector[0]));
   tsynth::SketchInput sketch =
     tsynth::sketchInput(vtkDataObject::GetData(inputVector[1], 0), ex.warnings);
+  tsynth::resolvePatchSize(request, sketch, propertyNames());
   // The placement table needs only ex's origins.
   tsynth::SetupInputs in =
     tsynth::setupInputs(request, std::move(ex.heights), {}, std::move(sketch), propertyNames());
@@ -642,7 +650,7 @@ void writeOutputs(vtkTerrainSynthesis* filter,
   // The figures measure a finished terrain, not one stopped after some placements.
   if (filter->GetDebugOutputs() && filter->GetPlacementLimit() == tsynth::kAllPlacementsNumber)
   {
-    fillReport(tsynth::measureSynthesis(setup, r, filter->GetPatchSize()),
+    fillReport(tsynth::measureSynthesis(setup, r, setup.patchSize),
       vtkTable::GetData(outputVector, kReportPort));
     fillConstruction(setup, r, vtkImageData::GetData(outputVector, kConstructionPort));
   }
@@ -780,7 +788,7 @@ int vtkTerrainSynthesis::RequestData(vtkInformation*,
 void vtkTerrainSynthesis::SynthesiseOrCut(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  const tsynth::SynthesisRequest request = synthesisRequest(this);
+  tsynth::SynthesisRequest request = synthesisRequest(this);
   tsynth::ExemplarInputs ex;
   tsynth::SetupInputs in = setupInputs(this, request, inputVector, ex);
   tsynth::SynthesisOptions o = optionsOnGrid(
@@ -835,7 +843,7 @@ void showPreview(const vtkTerrainSynthesis::vtkRefinement& r, vtkInformationVect
 void vtkTerrainSynthesis::PreviewOrRefined(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  const tsynth::SynthesisRequest request = synthesisRequest(this);
+  tsynth::SynthesisRequest request = synthesisRequest(this);
   tsynth::ExemplarInputs ex;
   tsynth::SetupInputs in = setupInputs(this, request, inputVector, ex);
   const tsynth::PreviewPlan plan = tsynth::planPreview(in);
@@ -863,7 +871,7 @@ void vtkTerrainSynthesis::PreviewOrRefined(vtkInformationVector** inputVector,
   this->StopRefinement(); // it answers another request
   if (!plan.available())
   {
-    vtkWarningMacro(<< "No preview for a Patch Size of " << this->PatchSize
+    vtkWarningMacro(<< "No preview for a Patch Size of " << in.patchSize
                     << " (its coarser level would be under " << tsynth::kMinSynthesisPatch
                     << " cells): the whole synthesis is done at once.");
     const tsynth::SynthesisSetup setup = tsynth::prepareSynthesis(std::move(in));

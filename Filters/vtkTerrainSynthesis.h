@@ -88,8 +88,10 @@ public:
     DRAIN_BY_HYBRID = 3
   };
 
-  /// Patch size in cells (a multiple of 4 from 16 to 512, checked when the
-  /// filter runs: another size fails the request, never clamped; default 80).
+  /// Patch size in cells: 0 (the default) chooses it for the sketch, 80 cells
+  /// or 32 for a DEM target (tsynth::patchSizeFor); else a multiple of 4 from
+  /// 16 to 512, checked when the filter runs: another size fails the request,
+  /// never clamped.
   vtkSetMacro(PatchSize, int);
   vtkGetMacro(PatchSize, int);
   /// Where the matcher runs (default AUTO); every backend gives the same terrain.

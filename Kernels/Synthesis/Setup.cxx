@@ -509,7 +509,10 @@ std::optional<std::string> finenessWarning(const SynthesisTarget& target, int pa
     ? "give a patch of " + std::to_string(serving) + " cells (or a larger output) to follow them"
     : "give a larger output, or " + std::string(dem ? "a target" : "strokes") +
       " with more room between them";
-  return what + ": they will read faintly; " + remedy + ".";
+  // A DEM target's finest lines only: its coarser ones, which make its shape,
+  // the correction follows at any patch.
+  const std::string faint = dem ? "the finest of them will read faintly" : "they will read faintly";
+  return what + ": " + faint + "; " + remedy + ".";
 }
 
 SynthesisSetup prepareSynthesis(SetupInputs in)

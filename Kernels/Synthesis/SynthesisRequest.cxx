@@ -3,11 +3,36 @@
 #include "../Core/Memory.h"
 #include "../Core/PatchSize.h"
 #include "ExemplarCache.h"
+#include "Tiling.h"
 
 #include <utility>
+#include <variant>
 
 namespace tsynth
 {
+
+int patchSizeFor(int requested, const SketchInput& sketch)
+{
+  if (requested != kAutomaticPatch)
+  {
+    return requested;
+  }
+  return std::holds_alternative<Heightfield>(sketch) ? kDefaultDemTargetPatch
+                                                     : kDefaultSynthesisPatch;
+}
+
+void resolvePatchSize(SynthesisRequest& request,
+  const SketchInput& sketch,
+  const SetupOptionNames& names)
+{
+  SynthesisOptions& o = request.options;
+  o.patchSize = patchSizeFor(o.patchSize, sketch);
+  checkPatchSize(o.patchSize, names.patch);
+  if (o.tileSize > 0)
+  {
+    checkTileSize(o.tileSize, o.patchSize);
+  }
+}
 
 SetupInputs setupInputs(const SynthesisRequest& request,
   std::vector<Heightfield> exemplars,
@@ -41,8 +66,7 @@ std::vector<OptionRow> makeRows()
   const SynthesisOptions& o = d.options;
   using T = OptionType;
   return {
-    numberRow(
-      "PatchSize", "--patch", T::Integer, o.patchSize, kMinSynthesisPatch, kMaxSynthesisPatch),
+    numberRow("PatchSize", "--patch", T::Integer, o.patchSize, kAutomaticPatch, kMaxSynthesisPatch),
     numberRow("OutputSize", "--size", T::Integer, d.grid.width, 0, kMaxOutputSide),
     numberRow("CellSize", "--cell", T::Real, d.grid.cellX, 0.0, kUnbounded),
     numberRow("Seed", "--seed", T::Integer, static_cast<double>(o.seed), 0.0, kUnbounded),

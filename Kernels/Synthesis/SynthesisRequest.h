@@ -22,12 +22,32 @@ namespace tsynth
 
 // The options' bounds: Core/PatchSize.h and OptionLimits.h.
 
+// A request's patch size of 0: the patch is chosen for the sketch
+// (resolvePatchSize), as it is when neither --patch nor Patch Size is given.
+constexpr int kAutomaticPatch = 0;
+// The patch chosen for a DEM used as the target. Real DEMs' ridges and valleys
+// lie 8 to 15 cells apart (Norway's fjords, Alaska's valleys, the Appalachian
+// ridges, at 648 x 648), finer than 80-cell patches follow: from Colorado, the
+// result matched the target at 8 cells and coarser (band-pass correlation
+// 0.93-0.95) but not finer, and its hillshade showed the fjords and valleys
+// faintly. With 32-cell patches it matched at 4 cells too (0.95-0.97) and they
+// read (hillshades side by side, Examples/legibility); 16-cell patches, which
+// the fineness warning names for Norway, took six times as long (67 s against
+// 11 s) for no more that the eye sees.
+constexpr int kDefaultDemTargetPatch = 32;
+
+// The patch a synthesis of this sketch uses when asked for `requested`:
+// `requested` itself, or for kAutomaticPatch kDefaultDemTargetPatch when the
+// sketch is a DEM used as the target and kDefaultSynthesisPatch otherwise.
+int patchSizeFor(int requested, const SketchInput& sketch);
+
 struct SynthesisRequest
 {
   // Patch size, seed, backend, merge, fill order, drainage, vertical offset,
   // repetition penalty and tile size: each here once (the set-up reads the patch
-  // size and the seed from here too).
-  SynthesisOptions options;
+  // size and the seed from here too). The patch size starts as
+  // kAutomaticPatch: resolvePatchSize fixes it once the sketch is read.
+  SynthesisOptions options = automaticOptions();
   GridRequest grid;
   double landformRelief = kDefaultLandformRelief;
   double memoryBudgetGB = 0.0; // 0: defaultMemoryBudget()
@@ -35,7 +55,22 @@ struct SynthesisRequest
   // when that is empty, defaultExemplarCacheDirectory().
   bool useExemplarCache = true;
   std::string cacheDirectory;
+
+private:
+  static SynthesisOptions automaticOptions()
+  {
+    SynthesisOptions o;
+    o.patchSize = kAutomaticPatch;
+    return o;
+  }
 };
+
+// Fixes a request's automatic patch size (patchSizeFor) for the sketch read,
+// and checks the options that depend on it (the tile size), before anything
+// uses it. Throws tsynth::Error, naming the options by `names`.
+void resolvePatchSize(SynthesisRequest& request,
+  const SketchInput& sketch,
+  const SetupOptionNames& names);
 
 // The set-up's inputs of a request: its grid, patch size, seed, relief, memory
 // budget (in bytes), cache directory and whether the matcher runs on OpenCL, with

@@ -341,8 +341,9 @@ class BadFilterInputTest(unittest.TestCase):
 
     def test_patch_size_refusal_is_said_once_through_paraview(self):
         """The synthesis proxy as ParaView runs it: Apply updates the pipeline, then the view
-        fetches the output; a Patch Size of 0, 8 or 600 is refused in one sentence, not one
-        per update (it was said by RequestInformation and again by RequestData)."""
+        fetches the output; a Patch Size of 12, 30 or 600 is refused in one sentence, not one
+        per update (it was said by RequestInformation and again by RequestData). (0 is not
+        refused: it chooses the patch for the sketch.)"""
         from paraview import servermanager as sm
         from paraview import simple
         simple.LoadPlugin(PATHS.plugin, remote=False)
@@ -350,7 +351,7 @@ class BadFilterInputTest(unittest.TestCase):
         dem = simple.TerrainReader(FileName=os.path.join(dems, "colorado.png"))
         sketch = simple.TerrainSketchReader(FileName=os.path.join(sketches, "strokes_y_ridges.png"),
                                             ExemplarFileName=os.path.join(dems, "colorado.png"))
-        for size in (0, 8, 600):
+        for size in (12, 30, 600):
             with self.subTest(patch_size=size):
                 synth = simple.TerrainSynthesis(Exemplars=[dem], Sketch=sketch, OutputSize=[128, 128])
                 errors = []

@@ -138,8 +138,9 @@ class LegibilityTest(unittest.TestCase):
 
 # Band-pass correlation (sigma 2, 4, 8, 16, 32 cells) with the target of Tasse's code (the peer) on a
 # 320 x 320 window of the bundled Mount Jackson DEM as the target, 80-cell patches, measured with
-# ../shared/peers/tasse/run.sh and tsynth evaluate (README, "Legibility"). Ours must reach at least the
-# peer's at every scale once corrected, and before the corrections at the finer two.
+# ../shared/peers/tasse/run.sh and tsynth evaluate (README, "Legibility"). Ours, with its own default
+# patch for a DEM target (32 cells), must reach at least the peer's at every scale once corrected, and
+# before the corrections at the finer two.
 PEER_CORRELATION = {
     "colorado.png": (0.06, 0.18, 0.40, 0.69, 0.84),
     "alps-montblanc.png": (0.06, 0.20, 0.46, 0.81, 0.93),
@@ -156,8 +157,11 @@ class DemTargetTest(unittest.TestCase):
                     out = os.path.join(tmp, exemplar + ".tif")
                     report, stderr = synthesise(
                         self, os.path.join(PATHS.bundled_data, "dems", exemplar), target, out)
-                    # Its ridges and valleys are about 10 cells apart: finer than 80-cell patches follow.
-                    self.assertIn("cells apart, finer than 80-cell patches follow", stderr)
+                    # A DEM target gets 32-cell patches unless told otherwise (80 for drawings), and
+                    # its ridges and valleys, about 10 cells apart, are finer still: it says so.
+                    self.assertEqual(report["patch_size"], 32)
+                    self.assertIn("cells apart, finer than 32-cell patches follow: the finest of them "
+                                  "will read faintly; give a patch of 16 cells", stderr)
                     final = [c["correlation"] for c in report["target_correlation"]]
                     before = [c["correlation"] for c in report["target_correlation_before_corrections"]]
                     self.assertEqual([c["sigma_cells"] for c in report["target_correlation"]], [2, 4, 8, 16, 32])

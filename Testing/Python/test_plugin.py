@@ -1094,7 +1094,9 @@ class PluginTest(unittest.TestCase):
                         found = [d for d in prop if d.tag in domains]
                         self.assertTrue(found, "no domain")
                         if prop.get("name") == "PatchSize" and proxy.get("name") != "TerrainOptimisation":
-                            self.assertEqual((found[0].get("min"), found[0].get("max")), ("16", "512"))
+                            # The synthesis' 0 chooses the patch for the sketch (80, or 32 for a DEM).
+                            lowest = "0" if proxy.get("name") == "TerrainSynthesis" else "16"
+                            self.assertEqual((found[0].get("min"), found[0].get("max")), (lowest, "512"))
                         domain = found[0]
                         if (domain.tag not in ("IntRangeDomain", "DoubleRangeDomain")
                                 or prop.get("number_of_elements") != "1"

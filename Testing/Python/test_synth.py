@@ -522,12 +522,16 @@ class SynthTest(unittest.TestCase):
 
         colorado = os.path.join(PATHS.bundled_data, "dems", "colorado.png")
         # Corners are the centres rounded to cells: up to a diagonal cell closer than the centres.
-        spaced = 0.25 * 80 - math.sqrt(2)
+        def spacing_for(patch):
+            return 0.25 * patch - math.sqrt(2)
+
+        spaced = spacing_for(80)
         target = crop_dem(self.tmp, "mount_jackson_crop601.tif", (100, 100, 320, 320))
         report, _ = synthesise(self, colorado, target, self.path("dem.tif"))
+        self.assertEqual(report["patch_size"], 32)  # a DEM target's own default
         count, closest = closest_feature_corners(report)
         self.assertGreater(count, 10)
-        self.assertGreaterEqual(closest, spaced)
+        self.assertGreaterEqual(closest, spacing_for(32))
 
         def draw(name, ridge):
             path = self.path(name)

@@ -58,8 +58,8 @@ TEST(SynthesisRequest, TheSetUpTakesEachOptionFromTheRequestOnce)
 
 TEST(SynthesisRequest, TheTableHoldsADefaultRequestsValues)
 {
-  EXPECT_EQ(synthesisOption("PatchSize").defaultValue, kDefaultSynthesisPatch);
-  EXPECT_EQ(synthesisOption("PatchSize").min, kMinSynthesisPatch);
+  EXPECT_EQ(synthesisOption("PatchSize").defaultValue, kAutomaticPatch);
+  EXPECT_EQ(synthesisOption("PatchSize").min, kAutomaticPatch);
   EXPECT_EQ(synthesisOption("PatchSize").max, kMaxSynthesisPatch);
   EXPECT_EQ(defaultWord("Backend"), "auto");
   EXPECT_EQ(defaultWord("MergeMode"), "new");
@@ -95,6 +95,50 @@ TEST(SynthesisRequest, EveryChoiceHasALabelPerWordAndItsRangeIsItsWords)
     EXPECT_EQ(row.max, static_cast<double>(row.choices.count) - 1.0);
   }
   EXPECT_EQ(choices, 4); // backend, merge, fill order, drainage
+}
+
+} // namespace tsynth
+
+namespace tsynth
+{
+
+TEST(SynthesisRequest, AnAutomaticPatchIsChosenForTheSketchOnceItIsRead)
+{
+  Heightfield dem(64, 64, 100.0f);
+  const SketchInput demTarget = dem;
+  const SketchInput drawing = ColourImage{};
+  const SketchInput lines = PolylineSketch{};
+  EXPECT_EQ(patchSizeFor(kAutomaticPatch, demTarget), kDefaultDemTargetPatch);
+  EXPECT_EQ(patchSizeFor(kAutomaticPatch, drawing), kDefaultSynthesisPatch);
+  EXPECT_EQ(patchSizeFor(kAutomaticPatch, lines), kDefaultSynthesisPatch);
+  EXPECT_EQ(patchSizeFor(48, demTarget), 48) << "a patch asked for is kept";
+
+  SynthesisRequest r;
+  ASSERT_EQ(r.options.patchSize, kAutomaticPatch);
+  resolvePatchSize(r, demTarget, SetupOptionNames{});
+  EXPECT_EQ(r.options.patchSize, kDefaultDemTargetPatch);
+  EXPECT_EQ(inputsOf(r).patchSize, kDefaultDemTargetPatch);
+  // The tile size is checked against the patch chosen: two of the DEM's
+  // 32-cell patches fit 64 cells, two of 80 would not.
+  SynthesisRequest tiled;
+  tiled.options.tileSize = 64;
+  resolvePatchSize(tiled, demTarget, SetupOptionNames{});
+  tiled.options.patchSize = kAutomaticPatch;
+  EXPECT_THROW(resolvePatchSize(tiled, drawing, SetupOptionNames{}), Error);
+  // A patch the kernels cannot use is refused by the option's name.
+  SynthesisRequest odd;
+  odd.options.patchSize = 30;
+  SetupOptionNames names;
+  names.patch = "--patch";
+  try
+  {
+    resolvePatchSize(odd, drawing, names);
+    FAIL() << "a patch of 30 was taken";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("--patch"), std::string::npos) << e.what();
+  }
 }
 
 } // namespace tsynth
