@@ -29,8 +29,8 @@ struct MatchWeights
   bool verticalOffset = false; // compare overlap heights up to a constant offset
 };
 
-// Added to the cost of a candidate whose type (ridge/valley), kind (end, branch,
-// path) or number of arms differs from the target's.
+// The cost of a candidate whose type (ridge/valley), kind (end, branch, path)
+// or number of arms differs from the target's: never chosen, and not scored.
 constexpr float kMismatchPenalty = 1.0e6f;
 
 // Reference implementation (threads, vectorisable loops): one cost per candidate.

@@ -38,6 +38,13 @@ __kernel void featureCost(__global const int* kind, __global const int* type,
   {
     return;
   }
+  // A candidate of another type, kind or number of arms is never chosen
+  // (PatchMatcher::matchFeature skips it): the penalty alone, nothing computed.
+  if (type[c] != qType || kind[c] != qKind || arms[c] != qArms)
+  {
+    out[c] = 1.0e6f;
+    return;
+  }
   // Overlap: 16 lanes accumulate blocks k, k + 16, ...
   float16 sw16 = (float16)(0.0f);
   float16 swd16 = (float16)(0.0f);
@@ -60,11 +67,6 @@ __kernel void featureCost(__global const int* kind, __global const int* type,
     overlap *= invScale2;
   }
   const float costOverlap = weights.w * overlap;
-  if (type[c] != qType || kind[c] != qKind || arms[c] != qArms)
-  {
-    out[c] = 1.0e6f + costOverlap;
-    return;
-  }
   float best = 3.4e38f;
   const int alignments = qArms > 1 ? qArms : 1;
   for (int s = 0; s < alignments; ++s)

@@ -45,10 +45,13 @@ TEST(FeatureCost, HandMadeCandidateHasTheExpectedCost)
 
   FeatureQuery branch = q;
   branch.kind = static_cast<int>(NodeKind::Branch);
-  EXPECT_GE(scoreFeatureCandidates(pool, branch, w)[0], kMismatchPenalty);
+  EXPECT_EQ(scoreFeatureCandidates(pool, branch, w)[0], kMismatchPenalty);
   FeatureQuery valley = q;
   valley.type = -1;
-  EXPECT_NEAR(scoreFeatureCandidates(pool, valley, w)[0], kMismatchPenalty + 0.25, 1.0);
+  EXPECT_EQ(scoreFeatureCandidates(pool, valley, w)[0], kMismatchPenalty); // not scored
+  FeatureQuery threeArms = q;
+  threeArms.arms = 3;
+  EXPECT_EQ(scoreFeatureCandidates(pool, threeArms, w)[0], kMismatchPenalty);
 
   // Arms given in the other order align cyclically at no extra cost.
   FeatureQuery swapped = q;
