@@ -50,18 +50,28 @@ FeatureGraph lines(int w,
   return g;
 }
 
+// Rough land of 200 x 160 cells with a ridge 600 m high, 10 cells wide
+// (sigma), along row 80.
+struct RidgedLand
+{
+  static constexpr int kW = 200;
+  static constexpr int kH = 160;
+  Heightfield land = rough(kW, kH, 15.0, 3);
+  Heightfield ridged = surface(kW,
+    kH,
+    [this](int i, int j)
+    { return land.at(i, j) + 600.0 * std::exp(-0.5 * std::pow((j - 80) / 10.0, 2)); });
+};
+
 } // namespace
 
 TEST(Legibility, AGaussianRidgeOnTheStrokeIsLegibleAndTheLandBesideItIsNot)
 {
-  const int w = 200, h = 160;
-  const Heightfield land = rough(w, h, 15.0, 3);
+  const RidgedLand r;
+  const int w = r.kW, h = r.kH;
+  const Heightfield& land = r.land;
   const LandRelief relief({ &land });
-  // A ridge 600 m high, 10 cells wide (sigma), along row 80.
-  const Heightfield ridged = surface(w,
-    h,
-    [&](int i, int j)
-    { return land.at(i, j) + 600.0 * std::exp(-0.5 * std::pow((j - 80) / 10.0, 2)); });
+  const Heightfield& ridged = r.ridged;
   const FeatureGraph onIt = lines(w, h, { { { 20, 80 }, { 180, 80 } } }, FeatureType::Ridge);
   const FeatureGraph beside = lines(w, h, { { { 20, 120 }, { 180, 120 } } }, FeatureType::Ridge);
   const FeatureGraph asValley = lines(w, h, { { { 20, 80 }, { 180, 80 } } }, FeatureType::Valley);
@@ -328,13 +338,10 @@ TEST(BandPassCorrelation, SharedGaussiansGiveTheBandsTakenOneByOne)
 
 TEST(Legibility, EachStrokeIsReadOnItsOwnAndTheWeakestIsNamed)
 {
-  const int w = 200, h = 160;
-  const Heightfield land = rough(w, h, 15.0, 3);
-  const LandRelief relief({ &land });
-  const Heightfield ridged = surface(w,
-    h,
-    [&](int i, int j)
-    { return land.at(i, j) + 600.0 * std::exp(-0.5 * std::pow((j - 80) / 10.0, 2)); });
+  const RidgedLand r;
+  const int w = r.kW, h = r.kH;
+  const LandRelief relief({ &r.land });
+  const Heightfield& ridged = r.ridged;
   // The ridge drawn on it, a stroke beside it, and one too short to count.
   const FeatureGraph drawn = lines(w,
     h,
