@@ -1,5 +1,6 @@
 # Patch merging kernels: graph cut, Poisson solvers, blending.
 add_executable(tsynth_merging_tests
+  Merging/TestGridMaxFlow.cxx
   Merging/TestSeamCut.cxx
   Merging/TestPoisson.cxx
   Merging/TestPoissonEditing.cxx
