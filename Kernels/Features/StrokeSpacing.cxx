@@ -300,11 +300,19 @@ void limitByStrokeLength(StrokeSpacing& s, const FeatureGraph& lines, double cel
   {
     throw Error("The strokes' spacing and their lines are on different grids.");
   }
-  const std::vector<float> length = nearestStrokeLength(lines, cellX, cellY);
-  for (std::size_t k = 0; k < length.size(); ++k)
+  limitByStrokeLength(s, nearestStrokeLength(lines, cellX, cellY));
+}
+
+void limitByStrokeLength(StrokeSpacing& s, const std::vector<float>& nearestLength)
+{
+  if (nearestLength.size() != s.halfSpacing.size())
+  {
+    throw Error("The strokes' spacing and their lengths are on different grids.");
+  }
+  for (std::size_t k = 0; k < nearestLength.size(); ++k)
   {
     s.halfSpacing[k] =
-      std::min(s.halfSpacing[k], static_cast<float>(length[k] / kStrokeLengthPerHalfWidth));
+      std::min(s.halfSpacing[k], static_cast<float>(nearestLength[k] / kStrokeLengthPerHalfWidth));
   }
 }
 

@@ -66,4 +66,8 @@ std::vector<float> nearestStrokeLength(const FeatureGraph& lines, double cellX, 
 // however much room the drawing leaves around it.
 void limitByStrokeLength(StrokeSpacing& s, const FeatureGraph& lines, double cellX, double cellY);
 
+// The same with the lengths already read (nearestStrokeLength on s's grid),
+// for several spacings of one drawing. Throws tsynth::Error for another grid.
+void limitByStrokeLength(StrokeSpacing& s, const std::vector<float>& nearestLength);
+
 } // namespace tsynth

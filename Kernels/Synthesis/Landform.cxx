@@ -1317,7 +1317,8 @@ LandformField landformField(const FeatureGraph& sketch,
   // A short stroke's landform is held to a share of its length
   // (kStrokeLengthPerHalfWidth), the drawn strokes' alone: an implied divide
   // is as long as the valleys it parts.
-  limitByStrokeLength(spacing, drawn, cellX, cellY);
+  const std::vector<float> drawnLength = nearestStrokeLength(drawn, cellX, cellY);
+  limitByStrokeLength(spacing, drawnLength);
   checkCancellation();
   const bool anyImplied = drawn.chains.size() < graph.chains.size();
   StrokeSpacing drawnSpacing = anyImplied
@@ -1325,7 +1326,7 @@ LandformField landformField(const FeatureGraph& sketch,
     : StrokeSpacing();
   if (anyImplied)
   {
-    limitByStrokeLength(drawnSpacing, drawn, cellX, cellY);
+    limitByStrokeLength(drawnSpacing, drawnLength);
   }
   const StrokeSpacing& drawnRoom = anyImplied ? drawnSpacing : spacing;
   LandformField out;

@@ -162,4 +162,18 @@ TEST(StrokeSpacing, AShortStrokesRoomIsAShareOfItsLength)
   EXPECT_NEAR(at(narrow, 70, 35), 120.0 / kStrokeLengthPerHalfWidth, 1e-3) << "the open side";
   StrokeSpacing other = strokeSpacing(rasteriseChains(g, 100, 100), 100, 100);
   EXPECT_THROW(limitByStrokeLength(other, g, 1.0, 1.0), Error);
+  EXPECT_THROW(limitByStrokeLength(other, nearestStrokeLength(g, 1.0, 1.0)), Error);
+}
+
+TEST(StrokeSpacing, LengthsReadOnceLimitAsTheLinesDo)
+{
+  const FeatureGraph g = aTAndADash();
+  const double cellX = 2.0, cellY = 3.0;
+  StrokeSpacing fromLines =
+    strokeSpacing(rasteriseChains(g, g.width, g.height), g.width, g.height, cellX, cellY);
+  StrokeSpacing fromLengths = fromLines;
+  limitByStrokeLength(fromLines, g, cellX, cellY);
+  limitByStrokeLength(fromLengths, nearestStrokeLength(g, cellX, cellY));
+  EXPECT_EQ(fromLengths.halfSpacing, fromLines.halfSpacing);
+  EXPECT_NEAR(at(fromLengths, 170, 30), 30.0 * cellX / kStrokeLengthPerHalfWidth, 1e-3);
 }
