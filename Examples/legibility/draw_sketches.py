@@ -5,6 +5,7 @@ them to get them back as land.
 
     python3 Examples/legibility/draw_sketches.py OUT_DIR
 """
+import math
 import os
 import sys
 
@@ -73,7 +74,27 @@ def dashes():
     return c
 
 
-SKETCHES = (valley_network, letters, rings, herringbone, carved_letters, isolated, dashes)
+def ts_over_valleys():
+    """A T and an S as ridges above a branching valley network, one valley's spur reaching up
+    towards the T's stem: short letters beside long valleys, where a lost letter hides."""
+    c = Canvas(SIZE, SIZE)
+    c.polyline([(60, 470), (200, 380), (300, 300), (440, 120)], VALLEY)
+    c.polyline([(200, 380), (120, 250), (90, 140)], VALLEY)
+    c.polyline([(300, 300), (380, 360), (470, 420)], VALLEY)
+    c.polyline([(120, 250), (200, 200)], VALLEY)
+    c.polyline([(60, 60), (200, 60)], RIDGE)
+    c.polyline([(130, 60), (130, 190)], RIDGE)
+
+    def arc(cy, start, end):  # the S: two arcs of ellipses 100 x 80 pixels, degrees clockwise from east
+        c.curve(lambda t: (310 + 50 * math.cos(t), cy + 40 * math.sin(t)), math.radians(start), math.radians(end),
+                RIDGE)
+
+    arc(70, 315, 90)
+    arc(150, -90, 135)
+    return c
+
+
+SKETCHES = (valley_network, letters, rings, herringbone, carved_letters, isolated, dashes, ts_over_valleys)
 
 if __name__ == "__main__":
     out = sys.argv[1] if len(sys.argv) > 1 else "."
