@@ -94,6 +94,11 @@ void addField(vtkImageData* image, const char* name, double value)
 vtkTerrainPatchExtractor::vtkTerrainPatchExtractor()
 {
   this->SetNumberOfInputPorts(3);
+  // The defaults of the options table (tsynth::patchExtractionOptionRows).
+  const auto byDefault = [](const char* property)
+  { return tsynth::optionRow(tsynth::patchExtractionOptionRows(), property).defaultValue; };
+  this->Rank = static_cast<int>(byDefault("Rank"));
+  this->VerticalOffset = byDefault("VerticalOffset") != 0.0;
   this->SetInputArrayToProcess(
     0, kTerrainPort, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, tsynth::kElevationArray);
 }

@@ -60,8 +60,9 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int Rank = 0;
-  bool VerticalOffset = true;
+  // The options table's defaults (tsynth::patchExtractionOptionRows).
+  int Rank;
+  bool VerticalOffset;
 
 private:
   vtkTerrainPatchExtractor(const vtkTerrainPatchExtractor&) = delete;

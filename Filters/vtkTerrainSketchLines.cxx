@@ -2,6 +2,8 @@
 
 #include "PipelineRequests.h"
 
+#include "Core/Error.h"
+
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkFloatArray.h>
@@ -19,6 +21,24 @@
 
 vtkStandardNewMacro(vtkTerrainSketchLines);
 
+// The property's values are the kernel's (the wrappers cannot parse a cast in the header).
+static_assert(vtkTerrainSketchLines::NO_ELEVATION == static_cast<int>(tsynth::LineElevation::None));
+static_assert(
+  vtkTerrainSketchLines::ELEVATION_FROM_Z == static_cast<int>(tsynth::LineElevation::FromZ));
+static_assert(
+  vtkTerrainSketchLines::CONSTANT_ELEVATION == static_cast<int>(tsynth::LineElevation::Constant));
+static_assert(vtkTerrainSketchLines::RIDGE == static_cast<int>(tsynth::FeatureType::Ridge));
+static_assert(vtkTerrainSketchLines::VALLEY == static_cast<int>(tsynth::FeatureType::Valley));
+
+vtkTerrainSketchLines::vtkTerrainSketchLines()
+{
+  const auto byDefault = [](const char* property)
+  { return tsynth::optionRow(tsynth::sketchLineOptionRows(), property).defaultValue; };
+  this->FeatureType = static_cast<int>(byDefault("FeatureType"));
+  this->ElevationMode = static_cast<int>(byDefault("ElevationMode"));
+  this->Elevation = byDefault("Elevation");
+}
+
 int vtkTerrainSketchLines::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
@@ -28,6 +48,17 @@ int vtkTerrainSketchLines::RequestData(vtkInformation*,
   if (input == nullptr || output == nullptr)
   {
     tsynth::reportRefusal(this, "Sketch Lines needs poly-lines on its input.");
+    return 0;
+  }
+  try
+  {
+    const auto& rows = tsynth::sketchLineOptionRows();
+    tsynth::optionRow(rows, "FeatureType").choices.wordOf(this->FeatureType, "Feature type");
+    tsynth::optionRow(rows, "ElevationMode").choices.wordOf(this->ElevationMode, "Elevation mode");
+  }
+  catch (const tsynth::Error& e)
+  {
+    tsynth::reportRefusal(this, e.what());
     return 0;
   }
   if (input->GetNumberOfLines() == 0)
@@ -77,7 +108,11 @@ int vtkTerrainSketchLines::RequestData(vtkInformation*,
 void vtkTerrainSketchLines::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "FeatureType: " << (this->FeatureType == RIDGE ? "ridge" : "valley") << "\n";
+  os << indent << "FeatureType: " << this->FeatureType
+     << (this->FeatureType == RIDGE       ? " (ridge)"
+            : this->FeatureType == VALLEY ? " (valley)"
+                                          : "")
+     << "\n";
   os << indent << "ElevationMode: " << this->ElevationMode << "\n";
   os << indent << "Elevation: " << this->Elevation << "\n";
 }

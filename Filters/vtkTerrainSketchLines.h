@@ -12,11 +12,14 @@
  * height. Several marked sources are combined with Append Geometry.
  *
  * Kernel: none: it only sets the arrays, which Filters/FeatureGraphConversion.h
- * (polyDataToPolylines) reads for the synthesis.
+ * (polyDataToPolylines) reads for the synthesis. Its options' table:
+ * tsynth::sketchLineOptionRows (Kernels/Features/Sketch.h).
  */
 #pragma once
 
 #include "TerrainSynthesisFiltersModule.h"
+
+#include "Features/Sketch.h" // LineElevation, kLowestLineElevation, kHighestLineElevation
 
 #include <vtkPolyDataAlgorithm.h>
 
@@ -32,7 +35,7 @@ public:
     VALLEY = -1,
     RIDGE = 1
   };
-  enum ElevationModes
+  enum ElevationModes // tsynth::LineElevation's values (checked where the filter is built)
   {
     NO_ELEVATION = 0, // the synthesis chooses the heights
     ELEVATION_FROM_Z = 1,
@@ -40,7 +43,7 @@ public:
   };
 
   ///@{
-  /// RIDGE (default) or VALLEY.
+  /// RIDGE (default) or VALLEY; 0, between them, fails the request with a sentence naming both.
   vtkSetClampMacro(FeatureType, int, VALLEY, RIDGE);
   vtkGetMacro(FeatureType, int);
   ///@}
@@ -52,20 +55,22 @@ public:
   ///@}
 
   ///@{
-  /// The height in metres of CONSTANT_ELEVATION (default 0).
-  vtkSetClampMacro(Elevation, double, -11000.0, 9000.0);
+  /// The height in metres of CONSTANT_ELEVATION (default 0), from the deepest sea floor to
+  /// above the highest summit.
+  vtkSetClampMacro(Elevation, double, tsynth::kLowestLineElevation, tsynth::kHighestLineElevation);
   vtkGetMacro(Elevation, double);
   ///@}
 
 protected:
-  vtkTerrainSketchLines() = default;
+  vtkTerrainSketchLines();
   ~vtkTerrainSketchLines() override = default;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int FeatureType = RIDGE;
-  int ElevationMode = NO_ELEVATION;
-  double Elevation = 0.0;
+  // The options table's defaults (tsynth::sketchLineOptionRows).
+  int FeatureType;
+  int ElevationMode;
+  double Elevation;
 
 private:
   vtkTerrainSketchLines(const vtkTerrainSketchLines&) = delete;

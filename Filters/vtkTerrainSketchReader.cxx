@@ -5,6 +5,7 @@
 #include "TerrainImageConversion.h"
 
 #include "Core/Error.h"
+#include "Features/Sketch.h"
 
 #include <vtkDataObject.h>
 #include <vtkImageData.h>
@@ -135,6 +136,9 @@ vtkTerrainSketchReader::vtkTerrainSketchReader()
 {
   this->SetNumberOfInputPorts(0);
   this->SetNumberOfOutputPorts(1);
+  // The sketch's cell size, as the Terrain Sketch Features filter takes it
+  // (tsynth::sketchOptionRows).
+  this->CellSize = tsynth::optionRow(tsynth::sketchOptionRows(), "CellSize").defaultValue;
 }
 
 vtkTerrainSketchReader::~vtkTerrainSketchReader()

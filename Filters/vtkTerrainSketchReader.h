@@ -21,7 +21,7 @@
 
 #include "TerrainSynthesisFiltersModule.h"
 
-#include "Core/HeightfieldIO.h" // kMaxCellSizeMetres
+#include "Core/HeightfieldIO.h" // kMaxCellSizeMetres, the sketch table's bound
 
 #include <vtkImageAlgorithm.h>
 
@@ -52,7 +52,7 @@ protected:
 
   char* FileName = nullptr;
   char* ExemplarFileName = nullptr;
-  double CellSize = 0.0;
+  double CellSize; // tsynth::sketchOptionRows' default
 
 private:
   vtkTerrainSketchReader(const vtkTerrainSketchReader&) = delete;

@@ -3,6 +3,7 @@
 #include "Error.h"
 #include "Memory.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -28,7 +29,7 @@ int Choices::valueOf(const std::string& word, const std::string& what) const
   {
     if (word == words[i])
     {
-      return static_cast<int>(i);
+      return valueAt(i);
     }
   }
   throw Error(what + " must be " + list() + ", not \"" + word + "\".");
@@ -36,16 +37,20 @@ int Choices::valueOf(const std::string& word, const std::string& what) const
 
 const char* Choices::wordOf(int value, const std::string& what) const
 {
-  if (value < 0 || static_cast<std::size_t>(value) >= count)
+  for (std::size_t i = 0; i < count; ++i)
   {
-    std::string values;
-    for (std::size_t i = 0; i < count; ++i)
+    if (valueAt(i) == value)
     {
-      values += (i == 0 ? "" : i + 1 == count ? " or " : ", ") + std::to_string(i) + " " + words[i];
+      return words[i];
     }
-    throw Error(what + " " + std::to_string(value) + " is none of " + values + ".");
   }
-  return words[value];
+  std::string taken;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const char* separator = i == 0 ? "" : i + 1 == count ? " or " : ", ";
+    taken += separator + std::to_string(valueAt(i)) + " " + words[i];
+  }
+  throw Error(what + " " + std::to_string(value) + " is none of " + taken + ".");
 }
 
 namespace
@@ -103,8 +108,14 @@ OptionRow choiceRow(const char* property,
   const Choices& words,
   std::vector<std::string> labels)
 {
-  OptionRow row = numberRow(
-    property, flag, OptionType::Choice, defaultValue, 0.0, static_cast<double>(words.count) - 1.0);
+  int smallest = words.valueAt(0);
+  int largest = smallest;
+  for (std::size_t i = 1; i < words.count; ++i)
+  {
+    smallest = std::min(smallest, words.valueAt(i));
+    largest = std::max(largest, words.valueAt(i));
+  }
+  OptionRow row = numberRow(property, flag, OptionType::Choice, defaultValue, smallest, largest);
   row.choices = words;
   row.labels = std::move(labels);
   return row;

@@ -15,12 +15,18 @@
 namespace tsynth
 {
 
-// An enumeration's words in the order of its values: value i is words[i], the
-// filters' property value i and the plugin XML's Entry value i.
+// An enumeration's words, in the order ParaView lists them: word i stands for
+// value i (the filters' property value i and the plugin XML's Entry value i),
+// or for values[i] where the values are not 0, 1, 2 ... (a feature type's +1
+// ridge and -1 valley).
 struct Choices
 {
   const char* const* words = nullptr;
   std::size_t count = 0;
+  const int* values = nullptr; // by position; nullptr: each word's position
+
+  // The value of the i-th word.
+  int valueAt(std::size_t i) const { return values != nullptr ? values[i] : static_cast<int>(i); }
 
   // "cut, poisson, shepard or new".
   std::string list() const;
@@ -28,14 +34,21 @@ struct Choices
   // poisson, shepard or new, not "x"." for any other word.
   int valueOf(const std::string& word, const std::string& what) const;
   // The word of `value`. Throws tsynth::Error naming `what` and the values taken
-  // for a value outside 0..count-1 (a property set by number in a script).
+  // for a value no word stands for (a property set by number in a script).
   const char* wordOf(int value, const std::string& what) const;
 };
 
 template<std::size_t N>
 constexpr Choices choicesOf(const char* const (&words)[N])
 {
-  return { words, N };
+  return { words, N, nullptr };
+}
+
+// Words that stand for the values beside them, not for their positions.
+template<std::size_t N>
+constexpr Choices choicesOf(const char* const (&words)[N], const int (&values)[N])
+{
+  return { words, N, values };
 }
 
 // The enumeration value `value` (a filter property) stands for, checked.
@@ -87,7 +100,7 @@ OptionRow numberRow(const char* property,
   double defaultValue,
   double min,
   double max);
-// Its range is 0 to the last word's value.
+// Its range is the words' smallest value to their largest.
 OptionRow choiceRow(const char* property,
   const char* flag,
   int defaultValue,

@@ -792,4 +792,30 @@ const std::vector<OptionRow>& sketchOptionRows()
   return rows;
 }
 
+namespace
+{
+const char* const kFeatureTypeWords[] = { "ridge", "valley" };
+const int kFeatureTypeValues[] = { static_cast<int>(FeatureType::Ridge),
+  static_cast<int>(FeatureType::Valley) };
+const char* const kLineElevationWords[] = { "none", "z", "constant" }; // by LineElevation
+} // namespace
+
+const std::vector<OptionRow>& sketchLineOptionRows()
+{
+  static const std::vector<OptionRow> rows = {
+    choiceRow("FeatureType",
+      "",
+      static_cast<int>(FeatureType::Ridge),
+      choicesOf(kFeatureTypeWords, kFeatureTypeValues),
+      { "Ridge", "Valley" }),
+    choiceRow("ElevationMode",
+      "",
+      static_cast<int>(LineElevation::None),
+      choicesOf(kLineElevationWords),
+      { "None", "From Z", "Constant" }),
+    numberRow("Elevation", "", OptionType::Real, 0.0, kLowestLineElevation, kHighestLineElevation),
+  };
+  return rows;
+}
+
 } // namespace tsynth

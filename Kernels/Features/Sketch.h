@@ -81,6 +81,26 @@ struct Polyline
   FeatureType type = FeatureType::Ridge;
 };
 
+// Drawn poly-lines marked as a sketch (the Terrain Sketch Lines filter sets a
+// Polyline's type and elevation as arrays on ParaView's lines): where their
+// heights come from.
+enum class LineElevation
+{
+  None = 0,    // the synthesis chooses (elevation NaN)
+  FromZ = 1,   // each point's z coordinate; the lines are then laid flat
+  Constant = 2 // one height for every point
+};
+// A constant line height lies between the deepest sea floor (the Challenger
+// Deep, about 10,935 m down) and the highest summit (Everest, 8,849 m), rounded
+// out: a height past them is a slip of the keyboard.
+constexpr double kLowestLineElevation = -11000.0;
+constexpr double kHighestLineElevation = 9000.0;
+
+// The Terrain Sketch Lines filter's options as a table: FeatureType (ridge +1,
+// valley -1, a Polyline's type), ElevationMode (none, z or constant:
+// LineElevation) and Elevation (metres, the constant height).
+const std::vector<OptionRow>& sketchLineOptionRows();
+
 // The part [t0, t1] of the segment a + t (b - a), 0 <= t <= 1, that lies on a
 // grid of width x height cells (cell coordinates -0.5 to width - 0.5, likewise
 // in y), by Liang and Barsky's clipping; t0 > t1 when the segment misses it.

@@ -145,4 +145,13 @@ std::vector<std::uint8_t> featureCore(const std::vector<std::uint8_t>& line,
   return core;
 }
 
+const std::vector<OptionRow>& patchExtractionOptionRows()
+{
+  static const std::vector<OptionRow> rows = {
+    numberRow("Rank", "", OptionType::Integer, 0, 0, kUnbounded),
+    switchRow("VerticalOffset", "", true),
+  };
+  return rows;
+}
+
 } // namespace tsynth

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "../Core/Heightfield.h"
+#include "../Core/OptionTable.h"
 #include "../Matching/PatchMatcher.h"
 
 #include <cstdint>
@@ -67,5 +68,10 @@ constexpr double kCoreDiscInPatches = 0.125;
 // ... and its lines (the drawn one and its own) this far from the centre; so
 // far Placement::lineOffset looks at them.
 constexpr double kLineOffsetReachInPatches = 0.25;
+
+// The Terrain Patch Extractor's options as a table: Rank (the row of the
+// matcher's table to cut, 0 the best; at least 0) and VerticalOffset (fit the
+// patch's shift, fitPatchOffset: on, as the synthesis does).
+const std::vector<OptionRow>& patchExtractionOptionRows();
 
 } // namespace tsynth

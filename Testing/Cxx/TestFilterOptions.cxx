@@ -9,11 +9,14 @@
 #include "vtkTerrainGraphCutMerger.h"
 #include "vtkTerrainHillshade.h"
 #include "vtkTerrainOptimisation.h"
+#include "vtkTerrainPatchExtractor.h"
 #include "vtkTerrainPatchMatcher.h"
 #include "vtkTerrainPitRemoval.h"
 #include "vtkTerrainPoissonSolver.h"
 #include "vtkTerrainReader.h"
 #include "vtkTerrainSketchFeatures.h"
+#include "vtkTerrainSketchLines.h"
+#include "vtkTerrainSketchReader.h"
 #include "vtkTerrainSynthesis.h"
 #include "vtkTerrainTileWriter.h"
 
@@ -29,6 +32,7 @@
 #include "Matching/PatchMatcher.h"
 #include "Merging/PoissonEditing.h"
 #include "Optimisation/TerrainOptimisation.h"
+#include "Synthesis/PatchExtraction.h"
 #include "Synthesis/SynthesisRequest.h"
 
 #include <vtkNew.h>
@@ -279,7 +283,7 @@ void expectDeclaredAsRow(const std::string& xmlFile, const tsynth::OptionRow& ro
       ASSERT_EQ(d.entries.size(), row.labels.size());
       for (std::size_t i = 0; i < row.labels.size(); ++i)
       {
-        EXPECT_EQ(d.entries[i].first, static_cast<int>(i));
+        EXPECT_EQ(d.entries[i].first, row.choices.valueAt(i));
         EXPECT_EQ(d.entries[i].second, row.labels[i]);
       }
       break;
@@ -694,4 +698,54 @@ TEST(FilterOptions, TheGraphCutMergerStartsAtTheMergersTable)
   // The synthesis offers the same modes under the same labels.
   EXPECT_EQ(tsynth::synthesisOption("MergeMode").labels,
     tsynth::optionRow(tsynth::mergeOptionRows(), "Mode").labels);
+}
+
+TEST(FilterOptions, TheSketchLinesFilterAndItsXmlAreItsTable)
+{
+  const std::vector<tsynth::OptionRow>& rows = tsynth::sketchLineOptionRows();
+  for (const tsynth::OptionRow& row : rows)
+  {
+    expectDeclaredAsRow("TerrainSketchLines.xml", row);
+  }
+  using L = vtkTerrainSketchLines;
+  const std::map<std::string, FilterProperty<L>> properties = {
+    { "FeatureType", countProperty(&L::GetFeatureType, &L::SetFeatureType) },
+    { "ElevationMode", countProperty(&L::GetElevationMode, &L::SetElevationMode) },
+    { "Elevation", realProperty(&L::GetElevation, &L::SetElevation) },
+  };
+  expectDefaultsAndClamps<L>(rows, properties, {});
+  // The filter's values are the kernel's feature types, by word.
+  const tsynth::Choices& types = tsynth::optionRow(rows, "FeatureType").choices;
+  EXPECT_EQ(types.valueOf("valley", "type"), L::VALLEY);
+  EXPECT_EQ(types.valueOf("ridge", "type"), L::RIDGE);
+  EXPECT_THROW(types.wordOf(0, "Feature type"), tsynth::Error);
+}
+
+TEST(FilterOptions, TheSketchReaderTakesTheSketchTablesCellSize)
+{
+  const tsynth::OptionRow& cell = tsynth::optionRow(tsynth::sketchOptionRows(), "CellSize");
+  expectDeclaredAsRow("TerrainSketchReader.xml", cell);
+  using R = vtkTerrainSketchReader;
+  const std::map<std::string, FilterProperty<R>> properties = {
+    { "CellSize", realProperty(&R::GetCellSize, &R::SetCellSize) },
+  };
+  expectDefaultsAndClamps<R>({ cell }, properties, {});
+}
+
+TEST(FilterOptions, ThePatchExtractorAndItsXmlAreItsTable)
+{
+  const std::vector<tsynth::OptionRow>& rows = tsynth::patchExtractionOptionRows();
+  for (const tsynth::OptionRow& row : rows)
+  {
+    expectDeclaredAsRow("TerrainPatchExtractor.xml", row);
+  }
+  // It shifts patches as the synthesis places them.
+  EXPECT_EQ(tsynth::optionRow(rows, "VerticalOffset").defaultValue,
+    tsynth::synthesisOption("VerticalOffset").defaultValue);
+  using X = vtkTerrainPatchExtractor;
+  const std::map<std::string, FilterProperty<X>> properties = {
+    { "Rank", countProperty(&X::GetRank, &X::SetRank) },
+    { "VerticalOffset", onOffProperty(&X::GetVerticalOffset, &X::SetVerticalOffset) },
+  };
+  expectDefaultsAndClamps<X>(rows, properties, {});
 }

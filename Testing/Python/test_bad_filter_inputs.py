@@ -249,6 +249,9 @@ class BadFilterInputTest(unittest.TestCase):
             ("sketch-features-blank", lambda: self.single("vtkTerrainSketchFeatures", self.tiny_strokes()),
              r"smaller than one patch"),
             ("sketch-lines-no-lines", lambda: self.single("vtkTerrainSketchLines", vtkPolyData()), r"no lines"),
+            # Between the clamp's ends, but neither a ridge nor a valley.
+            ("sketch-lines-type-zero", lambda: self.single("vtkTerrainSketchLines", line, FeatureType=0),
+             r"Feature type 0 is none of 1 ridge or -1 valley\."),
             ("reader-fifo", lambda: self.make("vtkTerrainReader", FileName=self.fifo), r"not a regular file"),
             # A state loaded by hand names its files relative to the repository: say where the
             # name was looked for and how ParaView looks elsewhere.

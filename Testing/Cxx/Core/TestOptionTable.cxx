@@ -39,6 +39,25 @@ TEST(OptionTable, ChoicesNumberTheirWordsInOrder)
   EXPECT_EQ(choiceOf<int>(weather, 2, "Weather"), 2);
 }
 
+TEST(OptionTable, ChoicesWithValuesStandForThemNotForTheirPositions)
+{
+  const char* const words[] = { "up", "down" };
+  const int values[] = { 1, -1 };
+  const Choices slope = choicesOf(words, values);
+  EXPECT_EQ(slope.valueAt(0), 1);
+  EXPECT_EQ(slope.valueAt(1), -1);
+  EXPECT_EQ(slope.valueOf("down", "--slope"), -1);
+  EXPECT_STREQ(slope.wordOf(1, "Slope"), "up");
+  EXPECT_STREQ(slope.wordOf(-1, "Slope"), "down");
+  EXPECT_EQ(errorOf([&] { slope.wordOf(0, "Slope"); }), "Slope 0 is none of 1 up or -1 down.");
+  const OptionRow row = choiceRow("Slope", "--slope", 1, slope, { "Up", "Down" });
+  EXPECT_EQ(row.min, -1.0) << "the range runs over the values, not the positions";
+  EXPECT_EQ(row.max, 1.0);
+  const OptionRow weather = choiceRow("Weather", "", 0, choicesOf(kWeather), { "S", "R", "N" });
+  EXPECT_EQ(weather.min, 0.0);
+  EXPECT_EQ(weather.max, 2.0);
+}
+
 TEST(OptionTable, ARowRefusesValuesOutsideItsRangeAndFractionsOfWholeNumbers)
 {
   OptionRow count;
