@@ -23,6 +23,8 @@
 #include <vtkWarpScalar.h>
 #include <vtkWindowToImageFilter.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace tsynth
@@ -30,7 +32,25 @@ namespace tsynth
 namespace
 {
 
-// Keeps the mesh to about 1000 cells a side: more adds nothing at 1600 pixels.
+// The mesh keeps to about this many cells a side: more adds nothing at 1600 pixels.
+constexpr int kMaxMeshSide = 1000;
+// Colour stops along the height range: enough that the ramp shows no bands.
+constexpr int kColourStops = 20;
+// The surface takes a little ambient light, so shadowed slopes keep their colour, and no
+// shine, which bare rock and soil lack.
+constexpr double kAmbient = 0.15;
+constexpr double kDiffuse = 0.9;
+// The sun stands this far to the right of the camera and this high: the slopes facing the
+// viewer are lit from the side, so relief reads clearly.
+constexpr double kSunRightOfViewDeg = 70.0;
+constexpr double kSunElevationDeg = 40.0;
+// A moderate lens, and the fitted terrain brought closer to fill the frame.
+constexpr double kViewAngleDeg = 30.0;
+constexpr double kFillZoom = 1.35;
+// Antialiasing samples per pixel.
+constexpr int kMultiSamples = 8;
+constexpr double kRadiansPerDegree = kPi / 180.0;
+
 Heightfield subsampled(const Heightfield& hf, int maxSide)
 {
   const int step = std::max(1, (std::max(hf.width, hf.height) + maxSide - 1) / maxSide);
@@ -59,13 +79,9 @@ Heightfield subsampled(const Heightfield& hf, int maxSide)
   return out;
 }
 
-} // namespace
-
-void render3D(const Heightfield& input, const std::string& pngPath, const Render3DOptions& options)
+// Nodata drawn flat at the lowest height, so the mesh stays finite.
+void flattenNodata(Heightfield& hf, const HeightRange& range)
 {
-  Heightfield hf = subsampled(input, 1000);
-  const HeightRange range = computeHeightRange(hf);
-  // Nodata is drawn flat at the lowest height so the mesh stays finite.
   for (std::size_t k = 0; k < hf.size(); ++k)
   {
     if (!hf.isValid(k))
@@ -74,14 +90,18 @@ void render3D(const Heightfield& input, const std::string& pngPath, const Render
     }
   }
   hf.valid.clear();
+}
 
+// The surface, raised by the exaggeration and coloured by height.
+vtkNew<vtkActor> terrainActor(const Heightfield& hf, const HeightRange& range, double exaggeration)
+{
   vtkNew<vtkImageData> image;
   heightfieldToImage(hf, image);
   vtkNew<vtkImageDataGeometryFilter> surface;
   surface->SetInputData(image);
   vtkNew<vtkWarpScalar> warp;
   warp->SetInputConnection(surface->GetOutputPort());
-  warp->SetScaleFactor(options.exaggeration);
+  warp->SetScaleFactor(exaggeration);
   warp->UseNormalOn();
   warp->SetNormal(0.0, 0.0, 1.0);
   vtkNew<vtkPolyDataNormals> normals;
@@ -90,9 +110,9 @@ void render3D(const Heightfield& input, const std::string& pngPath, const Render
 
   vtkNew<vtkColorTransferFunction> colours;
   const double span = range.max > range.min ? range.max - range.min : 1.0;
-  for (int s = 0; s <= 20; ++s)
+  for (int s = 0; s <= kColourStops; ++s)
   {
-    const double t = s / 20.0;
+    const double t = static_cast<double>(s) / kColourStops;
     const auto c = terrainColour(t);
     colours->AddRGBPoint(range.min + t * span, c[0], c[1], c[2]);
   }
@@ -107,58 +127,63 @@ void render3D(const Heightfield& input, const std::string& pngPath, const Render
 
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
-  actor->GetProperty()->SetAmbient(0.15);
-  actor->GetProperty()->SetDiffuse(0.9);
+  actor->GetProperty()->SetAmbient(kAmbient);
+  actor->GetProperty()->SetDiffuse(kDiffuse);
   actor->GetProperty()->SetSpecular(0.0);
+  return actor;
+}
 
-  vtkNew<vtkRenderer> renderer;
-  renderer->AddActor(actor);
-  renderer->GradientBackgroundOn();
-  renderer->SetBackground(0.93, 0.95, 0.98);
-  renderer->SetBackground2(0.55, 0.70, 0.88);
+// The point a direction (azimuth clockwise from north, elevation) reaches at `distance` from
+// `centre`.
+std::array<double, 3> towards(const double centre[3],
+  double azimuthDeg,
+  double elevationDeg,
+  double distance)
+{
+  const double az = azimuthDeg * kRadiansPerDegree;
+  const double el = elevationDeg * kRadiansPerDegree;
+  return { centre[0] + distance * std::cos(el) * std::sin(az),
+    centre[1] + distance * std::cos(el) * std::cos(az),
+    centre[2] + distance * std::sin(el) };
+}
+
+// One distant sun, to the camera's right (kSunRightOfViewDeg) and kSunElevationDeg high.
+void addSun(vtkRenderer* renderer, const double centre[3], const Render3DOptions& options)
+{
   renderer->AutomaticLightCreationOff();
   vtkNew<vtkLight> sun;
   sun->SetLightTypeToSceneLight();
   sun->SetPositional(false);
-  const double width = hf.width * hf.cellX;
-  const double depth = hf.height * hf.cellY;
-  const double centre[3] = { 0.5 * (hf.width - 1) * hf.cellX,
-    0.5 * (hf.height - 1) * hf.cellY,
-    range.min * options.exaggeration };
-  // Sun 70 degrees to the right of the camera and 40 degrees high: the slopes
-  // facing the viewer are lit from the side, so relief reads clearly.
-  constexpr double kRad = kPi / 180.0;
-  const double sunAz = (options.viewAzimuthDeg + 70.0) * kRad;
-  const double sunEl = 40.0 * kRad;
   sun->SetFocalPoint(centre);
-  sun->SetPosition(centre[0] + std::cos(sunEl) * std::sin(sunAz),
-    centre[1] + std::cos(sunEl) * std::cos(sunAz),
-    centre[2] + std::sin(sunEl));
+  const std::array<double, 3> position =
+    towards(centre, options.viewAzimuthDeg + kSunRightOfViewDeg, kSunElevationDeg, 1.0);
+  sun->SetPosition(position.data());
   sun->SetIntensity(1.0);
   renderer->AddLight(sun);
+}
 
+// The camera looking at `centre` from the options' direction, the terrain filling the frame.
+void aimCamera(vtkRenderer* renderer,
+  const double centre[3],
+  double distance,
+  const Render3DOptions& options)
+{
   vtkCamera* camera = renderer->GetActiveCamera();
-  const double az = options.viewAzimuthDeg * kRad;
-  const double el = options.viewElevationDeg * kRad;
-  const double distance = std::max(width, depth);
   camera->SetFocalPoint(centre);
-  camera->SetPosition(centre[0] + distance * std::cos(el) * std::sin(az),
-    centre[1] + distance * std::cos(el) * std::cos(az),
-    centre[2] + distance * std::sin(el));
+  const std::array<double, 3> position =
+    towards(centre, options.viewAzimuthDeg, options.viewElevationDeg, distance);
+  camera->SetPosition(position.data());
   camera->SetViewUp(0.0, 0.0, 1.0);
-  camera->SetViewAngle(30.0);
+  camera->SetViewAngle(kViewAngleDeg);
   // Fit the terrain's bounding sphere from this direction, then fill the frame.
   renderer->ResetCamera();
-  camera->Zoom(1.35);
+  camera->Zoom(kFillZoom);
   renderer->ResetCameraClippingRange();
+}
 
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(8);
-  window->SetSize(options.width, options.height);
-  window->AddRenderer(renderer);
-  window->Render();
-
+// The window's pixels as a PNG at `pngPath`, complete or not at all.
+void writeWindowPng(vtkRenderWindow* window, const std::string& pngPath)
+{
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
   grab->ReadFrontBufferOff();
@@ -174,6 +199,34 @@ void render3D(const Heightfield& input, const std::string& pngPath, const Render
     throw Error("Cannot write " + pngPath + ".");
   }
   file.commit();
+}
+
+} // namespace
+
+void render3D(const Heightfield& input, const std::string& pngPath, const Render3DOptions& options)
+{
+  Heightfield hf = subsampled(input, kMaxMeshSide);
+  const HeightRange range = computeHeightRange(hf);
+  flattenNodata(hf, range);
+
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddActor(terrainActor(hf, range, options.exaggeration));
+  renderer->GradientBackgroundOn();
+  renderer->SetBackground(0.93, 0.95, 0.98);  // a pale sky overhead ...
+  renderer->SetBackground2(0.55, 0.70, 0.88); // ... bluer towards the top of the frame
+  const double centre[3] = { 0.5 * (hf.width - 1) * hf.cellX,
+    0.5 * (hf.height - 1) * hf.cellY,
+    range.min * options.exaggeration };
+  addSun(renderer, centre, options);
+  aimCamera(renderer, centre, std::max(hf.width * hf.cellX, hf.height * hf.cellY), options);
+
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(kMultiSamples);
+  window->SetSize(options.width, options.height);
+  window->AddRenderer(renderer);
+  window->Render();
+  writeWindowPng(window, pngPath);
 }
 
 } // namespace tsynth
