@@ -1,6 +1,7 @@
 # Terrain optimisation (Scott & Dodgson 2021): pyramids, oriented PatchMatch,
 # the EM loop with pit removal, determinism and input checks.
 add_executable(tsynth_optimisation_tests
+  Optimisation/TestOptimisationGuide.cxx
   Optimisation/TestPatchMatch.cxx
   Optimisation/TestPyramid.cxx
   Optimisation/TestTerrainOptimisation.cxx)
