@@ -2,6 +2,7 @@
 # removal, D8 directions, flow accumulation.
 add_executable(tsynth_hydrology_tests
   Hydrology/TestRadixHeap.cxx
+  Hydrology/TestBreach.cxx
   Hydrology/TestFlow.cxx
   Hydrology/TestPitRemoval.cxx
   Hydrology/TestMultiscalePitRemoval.cxx)
