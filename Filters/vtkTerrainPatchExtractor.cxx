@@ -176,6 +176,19 @@ int vtkTerrainPatchExtractor::RequestData(vtkInformation*,
       patch.cellX = terrain.cellX;
       patch.cellY = terrain.cellY;
       const std::vector<std::uint8_t> filled = tsynth::filledCells(terrainImage, terrain);
+      const std::vector<std::uint8_t> line = tsynth::pointFlags(terrainImage, "Line", 0);
+      if (!match.feature)
+      {
+        // As the synthesis tries a fill patch: the lines laid stay as they are.
+        tsynth::protectKeptCells(patch,
+          x0,
+          y0,
+          { line,
+            tsynth::pointFlags(terrainImage, "Frozen", 0),
+            filled,
+            terrain.width,
+            terrain.height });
+      }
       const float offset = this->VerticalOffset
         ? tsynth::fitPatchOffset(patch, x0, y0, { terrain, filled, tsynth::Heightfield(), {} })
         : 0.0f;
@@ -184,12 +197,7 @@ int vtkTerrainPatchExtractor::RequestData(vtkInformation*,
         z += offset;
       }
       const std::vector<std::uint8_t> core = match.feature
-        ? tsynth::featureCore(tsynth::pointFlags(terrainImage, "Line", 0),
-            terrain.width,
-            terrain.height,
-            x0,
-            y0,
-            patchSize)
+        ? tsynth::featureCore(line, terrain.width, terrain.height, x0, y0, patchSize)
         : std::vector<std::uint8_t>(patch.size(), 0);
       this->UpdateProgress(0.8);
 

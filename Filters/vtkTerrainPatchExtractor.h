@@ -5,14 +5,17 @@
  *
  * Input port 0: the terrain so far (2D image, "Elevation"; an optional uint8
  * point array "Filled" marks the cells patches wrote, else every valid cell
- * counts; an optional uint8 "Line" marks sketched line cells). Input port 1: the
+ * counts; an optional uint8 "Line" marks sketched line cells, and "Frozen" the
+ * cells earlier tiles settled). Input port 1: the
  * exemplar heightfields, in the order the matcher had them. Input port 2: the
  * Terrain Patch Matcher's table of matches (vtkTerrainPatchMatcher output 0).
  *
  * The match of row Rank is cut from its exemplar as its variant (rotation or
  * mirror) sees it, patch size square, centred on the match's centre (the
  * table's CellX, CellY), exactly as the synthesis cuts its patches; cells off
- * the exemplar or on its nodata are invalid. With VerticalOffset, the patch is
+ * the exemplar or on its nodata are invalid, and so, for a fill (non-feature)
+ * match, are the filled Line and Frozen cells under it, which the synthesis'
+ * fill patches leave as they are (protectKeptCells). With VerticalOffset, the patch is
  * shifted to continue what it overlaps: the mean difference over the filled
  * cells under it (with under 5% of the patch on filled cells, none; the
  * synthesis then leans on its target, which this stage does not have). Output: the patch as an
@@ -23,8 +26,8 @@
  * within a quarter patch; all 0 for a non-feature match); field data
  * VerticalOffset (metres), Exemplar, Variant, Rank.
  *
- * Kernel: Kernels/Synthesis/PatchExtraction.h (extractPatch, fitPatchOffset,
- * featureCore), which the synthesis' placement uses for every patch.
+ * Kernel: Kernels/Synthesis/PatchExtraction.h (extractPatch, protectKeptCells,
+ * fitPatchOffset, featureCore), which the synthesis' placement uses for every patch.
  */
 #pragma once
 

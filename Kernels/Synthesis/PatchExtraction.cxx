@@ -1,5 +1,6 @@
 #include "PatchExtraction.h"
 
+#include "../Core/Grid.h"
 #include "../Matching/Orientation.h"
 
 #include <algorithm>
@@ -143,6 +144,35 @@ std::vector<std::uint8_t> featureCore(const std::vector<std::uint8_t>& line,
     }
   }
   return core;
+}
+
+void protectKeptCells(Heightfield& patch, int x0, int y0, const KeptCells& kept)
+{
+  bool any = false;
+  for (int j = 0; j < patch.height; ++j)
+  {
+    for (int i = 0; i < patch.width; ++i)
+    {
+      const int x = x0 + i;
+      const int y = y0 + j;
+      if (x < 0 || y < 0 || x >= kept.width || y >= kept.height)
+      {
+        continue;
+      }
+      const std::size_t c = rowMajor(x, y, kept.width);
+      const bool keep = kept.line[c] != 0 || (!kept.frozen.empty() && kept.frozen[c] != 0);
+      if (keep && kept.filled[c] != 0)
+      {
+        if (!any)
+        {
+          patch.valid.resize(patch.size(), 1);
+          any = true;
+        }
+        patch.valid[patch.index(i, j)] = 0;
+        patch.at(i, j) = std::numeric_limits<float>::quiet_NaN();
+      }
+    }
+  }
 }
 
 const std::vector<OptionRow>& patchExtractionOptionRows()

@@ -63,6 +63,23 @@ std::vector<std::uint8_t> featureCore(const std::vector<std::uint8_t>& line,
   int y0,
   int patchSize);
 
+// The cells a fill patch leaves as they are, where already filled: the
+// sketched lines' (1 in `line`, on the output grid) and, in a tile, those the
+// tiles before settled (1 in `frozen`; empty: none).
+struct KeptCells
+{
+  const std::vector<std::uint8_t>& line;
+  const std::vector<std::uint8_t>& frozen;
+  const std::vector<std::uint8_t>& filled;
+  int width; // the output grid's
+  int height;
+};
+
+// The patch placed at (x0, y0) made invalid (NaN) on the kept cells under it:
+// a fill patch never overwrites a line the feature patches laid, and its seam
+// goes round them. The synthesis does this to every fill patch it tries.
+void protectKeptCells(Heightfield& patch, int x0, int y0, const KeptCells& kept);
+
 // A feature patch owns a disc of this radius (in patches) round its centre ...
 constexpr double kCoreDiscInPatches = 0.125;
 // ... and its lines (the drawn one and its own) this far from the centre; so

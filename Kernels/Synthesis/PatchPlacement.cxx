@@ -288,29 +288,7 @@ float PatchPlacement::fitOffset(const Heightfield& patch, int x0, int y0) const
 
 void PatchPlacement::protectLines(Heightfield& patch, int x0, int y0) const
 {
-  bool any = false;
-  for (int j = 0; j < P_; ++j)
-  {
-    for (int i = 0; i < P_; ++i)
-    {
-      const int x = x0 + i;
-      const int y = y0 + j;
-      if (x >= 0 && y >= 0 && x < out_.width && y < out_.height)
-      {
-        const std::size_t c = out_.index(x, y);
-        if ((line_[c] != 0 || (!frozen_.empty() && frozen_[c] != 0)) && filled_[c] != 0)
-        {
-          if (!any)
-          {
-            patch.valid.resize(patch.size(), 1);
-            any = true;
-          }
-          patch.valid[patch.index(i, j)] = 0;
-          patch.at(i, j) = std::numeric_limits<float>::quiet_NaN();
-        }
-      }
-    }
-  }
+  protectKeptCells(patch, x0, y0, { line_, frozen_, filled_, out_.width, out_.height });
 }
 
 const std::vector<int>* PatchPlacement::regionExemplars(int x0, int y0) const

@@ -15,7 +15,9 @@
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
+#include <vtkSmartPointer.h>
 #include <vtkTable.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <gtest/gtest.h>
 
@@ -170,6 +172,69 @@ TEST(PatchExtractor, ALesserMatchIsShiftedByItsMeanDifferenceToTheFilledTerrain)
   EXPECT_NEAR(pointValue(shifted, "Elevation", 40, 40) - offset,
     pointValue(chain.patch(), "Elevation", 40, 40),
     1e-3);
+}
+
+namespace
+{
+
+// The chain's terrain with a uint8 point array `name`, 1 where `on(i, j)`.
+template<class On>
+vtkSmartPointer<vtkImageData> markedTerrain(Chain& chain, const char* name, On on)
+{
+  auto marked = vtkSmartPointer<vtkImageData>::New();
+  marked->DeepCopy(chain.terrain());
+  int dims[3];
+  marked->GetDimensions(dims);
+  vtkNew<vtkUnsignedCharArray> flags;
+  flags->SetName(name);
+  flags->SetNumberOfTuples(static_cast<vtkIdType>(dims[0]) * dims[1]);
+  for (int j = 0; j < dims[1]; ++j)
+  {
+    for (int i = 0; i < dims[0]; ++i)
+    {
+      flags->SetValue(static_cast<vtkIdType>(j) * dims[0] + i, on(i, j) ? 1 : 0);
+    }
+  }
+  marked->GetPointData()->AddArray(flags);
+  return marked;
+}
+
+} // namespace
+
+TEST(PatchExtractor, AFillMatchLeavesTheLinesLaidAsTheSynthesisDoes)
+{
+  Chain chain(vtkTerrainPatchMatcher::NON_FEATURE);
+  chain.matcher->Update();
+  const int x0 = chain.patchCell(0);
+  const int y0 = chain.patchCell(1);
+  // A line across the window's middle row, and a frozen corner (a tile before).
+  auto lined = markedTerrain(chain, "Line", [&](int, int j) { return j == y0 + 40; });
+  auto marked =
+    markedTerrain(chain, "Frozen", [&](int i, int j) { return i < x0 + 10 && j < y0 + 10; });
+  marked->GetPointData()->AddArray(lined->GetPointData()->GetArray("Line"));
+  chain.extractor->SetInputData(0, marked);
+  chain.extractor->Update();
+  ASSERT_EQ(chain.errors, "");
+  for (int j = 0; j < 80; ++j)
+  {
+    for (int i = 0; i < 80; ++i)
+    {
+      const bool kept = j == 40 || (i < 10 && j < 10);
+      const double z = pointValue(chain.patch(), "Elevation", i, j);
+      ASSERT_EQ(std::isnan(z), kept) << i << ", " << j;
+      ASSERT_EQ(pointValue(chain.patch(), "Valid", i, j), kept ? 0.0 : 1.0) << i << ", " << j;
+    }
+  }
+  // A feature match lays lines: none of its cells is kept out.
+  Chain feature(vtkTerrainPatchMatcher::FEATURE);
+  feature.matcher->Update();
+  const int fy0 = feature.patchCell(1);
+  feature.extractor->SetInputData(
+    0, markedTerrain(feature, "Line", [&](int, int j) { return j == fy0 + 40; }));
+  feature.extractor->Update();
+  ASSERT_EQ(feature.errors, "");
+  EXPECT_TRUE(std::isfinite(pointValue(feature.patch(), "Elevation", 20, 40)));
+  EXPECT_EQ(pointValue(feature.patch(), "Core", 50, 40), 1.0) << "the line within a quarter patch";
 }
 
 TEST(PatchExtractor, TheMergerPlacesTheExtractedPatchOnTheMatchedWindow)

@@ -7,7 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <numeric>
+#include <vector>
 
 namespace
 {
@@ -122,4 +124,40 @@ TEST(PatchExtraction, AFeaturePatchOwnsADiscAndTheLineWithinReach)
   EXPECT_EQ(at(20 + 11, 20), 0); // on the line, past a quarter patch
   EXPECT_EQ(at(20, 20 + 8), 0);  // off the line, past the disc
   EXPECT_EQ(std::accumulate(core.begin(), core.end(), 0.0), discCells + 20 - 10);
+}
+
+TEST(PatchExtraction, AFillPatchKeepsOutOfFilledLinesAndFrozenCells)
+{
+  // An 8 x 8 output with a line along row 3 (filled except at column 4) and a
+  // frozen cell at (6, 5); a 4 x 4 patch placed at (3, 2) covers columns 3-6,
+  // rows 2-5.
+  const int w = 8, h = 8;
+  std::vector<std::uint8_t> line(w * h, 0), frozen(w * h, 0), filled(w * h, 1);
+  for (int i = 0; i < w; ++i)
+  {
+    line[3 * w + i] = 1;
+  }
+  filled[3 * w + 4] = 0;
+  frozen[5 * w + 6] = 1;
+  tsynth::Heightfield patch(4, 4, 10.0f);
+  tsynth::protectKeptCells(patch, 3, 2, { line, frozen, filled, w, h });
+  ASSERT_TRUE(patch.hasMask());
+  for (int j = 0; j < 4; ++j)
+  {
+    for (int i = 0; i < 4; ++i)
+    {
+      const int x = 3 + i, y = 2 + j;
+      const bool kept = (y == 3 && x != 4) || (x == 6 && y == 5);
+      EXPECT_EQ(patch.isValid(i, j), !kept) << x << ", " << y;
+      EXPECT_EQ(std::isnan(patch.at(i, j)), kept) << x << ", " << y;
+    }
+  }
+  // Nothing kept under it: the patch stays without a mask.
+  tsynth::Heightfield clear(4, 4, 10.0f);
+  tsynth::protectKeptCells(clear, 0, 5, { line, {}, filled, w, h });
+  EXPECT_FALSE(clear.hasMask());
+  // Past the grid's edge nothing is read.
+  tsynth::Heightfield over(4, 4, 10.0f);
+  tsynth::protectKeptCells(over, 6, -2, { line, frozen, filled, w, h });
+  EXPECT_FALSE(over.hasMask());
 }
