@@ -5,6 +5,9 @@
 #include "TerrainImageConversion.h"
 
 #include "Core/Error.h"
+#include "Features/ChainPointGrid.h"
+#include "Features/Ppa.h"
+#include "Synthesis/ExemplarCache.h"
 #include "Synthesis/PatchExtraction.h"
 
 #include <vtkDataArray.h>
@@ -79,6 +82,41 @@ tsynth::PatchCandidate matchOfRow(vtkTable* matches, vtkIdType row, std::size_t 
       ", not one of the 10: connect the Terrain Patch Matcher's first output.");
   }
   return c;
+}
+
+// The ridge (+1) or valley (-1) a feature match brings, from the matches'
+// FeatureType column; 0 for a fill match or a table without the column.
+int featureTypeOf(vtkTable* matches, vtkIdType row)
+{
+  auto* column = vtkDataArray::SafeDownCast(matches->GetColumnByName("FeatureType"));
+  return column != nullptr ? static_cast<int>(column->GetComponent(row, 0)) : 0;
+}
+
+// The cells a feature match owns whatever the seam, as the synthesis gives
+// them: the disc and the drawn lines near its centre (featureCore), and a strip
+// along its own ridge or valley (`type`), read from its exemplar with the
+// synthesis' PPA settings.
+std::vector<std::uint8_t> featureMatchCore(const tsynth::Heightfield& exemplar,
+  const tsynth::PatchCandidate& match,
+  int type,
+  const std::vector<std::uint8_t>& line,
+  const tsynth::Heightfield& terrain,
+  int x0,
+  int y0,
+  int patchSize)
+{
+  std::vector<std::uint8_t> core =
+    tsynth::featureCore(line, terrain.width, terrain.height, x0, y0, patchSize);
+  if (type != 0)
+  {
+    const tsynth::ChainPointGrid lines(
+      tsynth::ridgesAndValleys(exemplar, tsynth::exemplarPpaOptions()),
+      tsynth::kLineOffsetReachInPatches * patchSize);
+    const tsynth::FeatureType t =
+      type > 0 ? tsynth::FeatureType::Ridge : tsynth::FeatureType::Valley;
+    tsynth::addOwnLineStrip(core, tsynth::ownLineOffsets(lines, t, match, patchSize), patchSize);
+  }
+  return core;
 }
 
 void addField(vtkImageData* image, const char* name, double value)
@@ -197,7 +235,8 @@ int vtkTerrainPatchExtractor::RequestData(vtkInformation*,
         z += offset;
       }
       const std::vector<std::uint8_t> core = match.feature
-        ? tsynth::featureCore(line, terrain.width, terrain.height, x0, y0, patchSize)
+        ? featureMatchCore(
+            exemplar, match, featureTypeOf(matches, this->Rank), line, terrain, x0, y0, patchSize)
         : std::vector<std::uint8_t>(patch.size(), 0);
       this->UpdateProgress(0.8);
 

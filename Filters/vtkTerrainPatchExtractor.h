@@ -22,12 +22,15 @@
  * image on the terrain's cell size, with its origin on the window the matcher matched (the table's
  * PatchCell), so the merger places it there; point arrays Elevation, Valid (where cells are
  * invalid) and Core (uint8, 1 on the cells a feature patch owns whatever the
- * seam: a disc of an eighth of a patch round its centre and the Line cells
- * within a quarter patch; all 0 for a non-feature match); field data
+ * seam: a disc of an eighth of a patch round its centre, the Line cells within
+ * a quarter patch and, when the matches give its FeatureType, a strip along its
+ * own ridge or valley within a quarter patch (found in its exemplar with the
+ * synthesis' PPA settings); all 0 for a non-feature match); field data
  * VerticalOffset (metres), Exemplar, Variant, Rank.
  *
  * Kernel: Kernels/Synthesis/PatchExtraction.h (extractPatch, protectKeptCells,
- * fitPatchOffset, featureCore), which the synthesis' placement uses for every patch.
+ * fitPatchOffset, featureCore, ownLineOffsets, addOwnLineStrip), which the
+ * synthesis' placement uses for every patch.
  */
 #pragma once
 

@@ -192,13 +192,14 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
       const std::vector<tsynth::PatchCandidate>& found = match.candidates;
 
       // Table of matches.
-      vtkNew<vtkIntArray> rank, exemplar, variantColumn, feature;
+      vtkNew<vtkIntArray> rank, exemplar, variantColumn, feature, featureType;
       vtkNew<vtkDoubleArray> x, y, cellX, cellY;
       vtkNew<vtkFloatArray> cost;
       rank->SetName("Rank");
       exemplar->SetName("Exemplar");
       variantColumn->SetName("Variant");
       feature->SetName("Feature");
+      featureType->SetName("FeatureType");
       x->SetName("X");
       y->SetName("Y");
       cellX->SetName("CellX");
@@ -211,6 +212,9 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
         exemplar->InsertNextValue(found[r].exemplar);
         variantColumn->InsertNextValue(found[r].variant);
         feature->InsertNextValue(found[r].feature ? 1 : 0);
+        // The ridge or valley a feature match brings (+1, -1; 0 for a fill match).
+        const bool inPool = found[r].feature && found[r].poolIndex < matcher.pool().size();
+        featureType->InsertNextValue(inPool ? matcher.pool().type[found[r].poolIndex] : 0);
         x->InsertNextValue(in.originX[e] + found[r].centreX * in.heights[e].cellX);
         y->InsertNextValue(in.originY[e] + found[r].centreY * in.heights[e].cellY);
         cellX->InsertNextValue(found[r].centreX);
@@ -224,6 +228,7 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
       table->AddColumn(y);
       table->AddColumn(cost);
       table->AddColumn(feature);
+      table->AddColumn(featureType);
       table->AddColumn(cellX);
       table->AddColumn(cellY);
       // Where the patch goes: the lower-left target cell of the window matched.

@@ -17,7 +17,8 @@
  * every variant by masked SSD (coarse-to-fine). Both run on OpenCL (any device,
  * PoCL on a CPU) or on the CPU reference; Auto falls back to the CPU with a
  * warning. Output 0: a table of the K best per exemplar (Rank, Exemplar,
- * Variant, X, Y in the exemplar's metres, Cost, Feature, CellX, CellY: the
+ * Variant, X, Y in the exemplar's metres, Cost, Feature, FeatureType (+1 a
+ * ridge, -1 a valley, 0 a fill match), CellX, CellY: the
  * centre in the exemplar's cells, exactly; field data PatchCell, the target
  * cell the window's lower-left corner lies on, and PatchSize): what the Terrain
  * Patch Extractor cuts a patch from. Output 1: a cost map

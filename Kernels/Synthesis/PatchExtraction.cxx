@@ -146,6 +146,58 @@ std::vector<std::uint8_t> featureCore(const std::vector<std::uint8_t>& line,
   return core;
 }
 
+std::vector<Point2> ownLineOffsets(const ChainPointGrid& lines,
+  FeatureType type,
+  const PatchCandidate& candidate,
+  int patchSize)
+{
+  std::vector<Point2> offsets;
+  const Variant v = variant(candidate.variant);
+  const double det = v.m[0] * v.m[3] - v.m[1] * v.m[2];
+  const double reach = kLineOffsetReachInPatches * patchSize;
+  lines.forEachNear(type,
+    candidate.centreX,
+    candidate.centreY,
+    reach,
+    [&](const Point2& q)
+    {
+      const double dx = q.x - candidate.centreX;
+      const double dy = q.y - candidate.centreY;
+      if (std::hypot(dx, dy) <= reach)
+      {
+        // Source offset = m (u, v): the placed offset is m^-1 times the source one.
+        offsets.push_back(
+          { (v.m[3] * dx - v.m[1] * dy) / det, (-v.m[2] * dx + v.m[0] * dy) / det });
+      }
+    });
+  return offsets;
+}
+
+void addOwnLineStrip(std::vector<std::uint8_t>& core,
+  const std::vector<Point2>& ownLine,
+  int patchSize)
+{
+  // As wide as the drawn line's: a one-cell strip forced into the old content
+  // left seams along the crest.
+  const int half = static_cast<int>(kLineHalfWidth);
+  const int P = patchSize;
+  for (const Point2& q : ownLine)
+  {
+    const int ci = static_cast<int>(std::lround(q.x)) + P / 2;
+    const int cj = static_cast<int>(std::lround(q.y)) + P / 2;
+    for (int j = std::max(0, cj - half); j <= std::min(P - 1, cj + half); ++j)
+    {
+      for (int i = std::max(0, ci - half); i <= std::min(P - 1, ci + half); ++i)
+      {
+        if ((i - ci) * (i - ci) + (j - cj) * (j - cj) <= half * half)
+        {
+          core[rowMajor(i, j, P)] = 1;
+        }
+      }
+    }
+  }
+}
+
 void protectKeptCells(Heightfield& patch, int x0, int y0, const KeptCells& kept)
 {
   bool any = false;

@@ -7,6 +7,7 @@
 
 #include "../Core/Heightfield.h"
 #include "../Core/OptionTable.h"
+#include "../Features/ChainPointGrid.h"
 #include "../Matching/PatchMatcher.h"
 
 #include <cstdint>
@@ -85,6 +86,27 @@ constexpr double kCoreDiscInPatches = 0.125;
 // ... and its lines (the drawn one and its own) this far from the centre; so
 // far Placement::lineOffset looks at them.
 constexpr double kLineOffsetReachInPatches = 0.25;
+
+// The sketched lines' cells: this far (cells) each side of a drawn line. A
+// feature patch's own line gets a strip as wide in its core.
+constexpr float kLineHalfWidth = 3.0f;
+
+// A feature candidate's own ridge or valley (of `type`, from its exemplar's
+// `lines`) within kLineOffsetReachInPatches of its centre, as offsets (cells)
+// from the placed patch's centre: the exemplar's offsets turned back by the
+// candidate's variant.
+std::vector<Point2> ownLineOffsets(const ChainPointGrid& lines,
+  FeatureType type,
+  const PatchCandidate& candidate,
+  int patchSize);
+
+// Adds to a feature patch's core (patchSize^2, row-major) a strip
+// kLineHalfWidth each side along its own line (ownLineOffsets): where the
+// candidate's crest strays from the drawn line the patch owns both, so the
+// crest stays one line, not two.
+void addOwnLineStrip(std::vector<std::uint8_t>& core,
+  const std::vector<Point2>& ownLine,
+  int patchSize);
 
 // The Terrain Patch Extractor's options as a table: Rank (the row of the
 // matcher's table to cut, 0 the best; at least 0) and VerticalOffset (fit the

@@ -22,7 +22,6 @@ namespace tsynth
 namespace
 {
 
-constexpr float kLineHalfWidth = 3.0f; // cells each side of a sketched line
 // The merge spreads the seam's gradient mismatch this far, in patches: a
 // tenth, as Tasse's code does (8 cells at 80; the peer's patch_merging is
 // called with bsize / 10). Spread over a quarter (20 cells), the correction
@@ -174,26 +173,8 @@ PatchPlacement::OwnLine PatchPlacement::ownLine(const PatchCandidate& c) const
     return own;
   }
   own.type = pool.type[c.poolIndex];
-  const Variant v = variant(c.variant);
-  const double det = v.m[0] * v.m[3] - v.m[1] * v.m[2];
-  const double reach = kLineOffsetReachInPatches * P_;
   const FeatureType type = own.type > 0 ? FeatureType::Ridge : FeatureType::Valley;
-  const ChainPointGrid& lines = byId(linePoints_, c.exemplar);
-  lines.forEachNear(type,
-    c.centreX,
-    c.centreY,
-    reach,
-    [&](const Point2& q)
-    {
-      const double dx = q.x - c.centreX;
-      const double dy = q.y - c.centreY;
-      if (std::hypot(dx, dy) <= reach)
-      {
-        // Source offset = m (u, v): the placed offset is m^-1 times the source one.
-        own.cells.push_back(
-          { (v.m[3] * dx - v.m[1] * dy) / det, (-v.m[2] * dx + v.m[0] * dy) / det });
-      }
-    });
+  own.cells = ownLineOffsets(byId(linePoints_, c.exemplar), type, c, P_);
   return own;
 }
 
@@ -404,24 +385,7 @@ void PatchPlacement::prepareTrial(const PatchCandidate& candidate,
     // The patch also owns its own ridge or valley near the centre, where it
     // strays from the drawn line: the crest stays one line, not two.
     t.core = strokeCells;
-    // A strip as wide as the drawn line's (kLineHalfWidth each side): a
-    // one-cell strip forced into the old content left seams along the crest.
-    const int half = static_cast<int>(kLineHalfWidth);
-    for (const Point2& q : t.own.cells)
-    {
-      const int ci = static_cast<int>(std::lround(q.x)) + P_ / 2;
-      const int cj = static_cast<int>(std::lround(q.y)) + P_ / 2;
-      for (int j = std::max(0, cj - half); j <= std::min(P_ - 1, cj + half); ++j)
-      {
-        for (int i = std::max(0, ci - half); i <= std::min(P_ - 1, ci + half); ++i)
-        {
-          if ((i - ci) * (i - ci) + (j - cj) * (j - cj) <= half * half)
-          {
-            t.core[windowCell(i, j, P_)] = 1;
-          }
-        }
-      }
-    }
+    addOwnLineStrip(t.core, t.own.cells, P_);
   }
 }
 

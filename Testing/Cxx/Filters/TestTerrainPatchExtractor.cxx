@@ -8,6 +8,12 @@
 #include "vtkTerrainPatchMatcher.h"
 #include "vtkTerrainReader.h"
 
+#include "Features/ChainPointGrid.h"
+#include "Features/Ppa.h"
+#include "Synthesis/ExemplarCache.h"
+#include "Synthesis/PatchExtraction.h"
+#include "TerrainImageConversion.h"
+
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
@@ -22,6 +28,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numeric>
 #include <string>
 
 namespace
@@ -150,19 +157,40 @@ TEST(PatchExtractor, ALesserMatchIsShiftedByItsMeanDifferenceToTheFilledTerrain)
   ASSERT_GT(n, 0.5 * 80 * 80);
   EXPECT_NEAR(offset, sum / n, 1e-3);
   EXPECT_GT(std::abs(offset), 0.01); // another place of the exemplar: another level
-  // A feature match owns the disc of an eighth of a patch round its centre.
-  ASSERT_EQ(chain.matcher->GetMatches()->GetColumnByName("Feature")->GetVariantValue(1).ToInt(), 1);
+  // A feature match owns the disc of an eighth of a patch round its centre
+  // (there are no drawn lines here) and a strip along its own ridge or valley,
+  // as the synthesis' trial does: the same cells as the kernels give.
+  vtkTable* matches = chain.matcher->GetMatches();
+  ASSERT_EQ(matches->GetColumnByName("Feature")->GetVariantValue(1).ToInt(), 1);
+  const int type = matches->GetColumnByName("FeatureType")->GetVariantValue(1).ToInt();
+  ASSERT_TRUE(type == 1 || type == -1);
+  tsynth::PatchCandidate match;
+  match.variant = matches->GetColumnByName("Variant")->GetVariantValue(1).ToInt();
+  match.centreX = matches->GetColumnByName("CellX")->GetVariantValue(1).ToDouble();
+  match.centreY = matches->GetColumnByName("CellY")->GetVariantValue(1).ToDouble();
+  const tsynth::Heightfield exemplar = tsynth::imageToHeightfield(chain.terrain());
+  const std::vector<tsynth::Point2> own = tsynth::ownLineOffsets(
+    tsynth::ChainPointGrid(tsynth::ridgesAndValleys(exemplar, tsynth::exemplarPpaOptions()),
+      tsynth::kLineOffsetReachInPatches * 80),
+    type > 0 ? tsynth::FeatureType::Ridge : tsynth::FeatureType::Valley,
+    match,
+    80);
+  ASSERT_GT(own.size(), 10u) << "a feature candidate sits on its own line";
+  std::vector<std::uint8_t> expected = tsynth::featureCore({}, 0, 0, 0, 0, 80); // the disc
+  const double disc = std::accumulate(expected.begin(), expected.end(), 0.0);
+  EXPECT_NEAR(disc, M_PI * 10.0 * 10.0, 0.1 * M_PI * 10.0 * 10.0);
+  tsynth::addOwnLineStrip(expected, own, 80);
   double core = 0.0;
   for (int j = 0; j < 80; ++j)
   {
     for (int i = 0; i < 80; ++i)
     {
-      core += pointValue(chain.patch(), "Core", i, j);
+      const double c = pointValue(chain.patch(), "Core", i, j);
+      ASSERT_EQ(c, expected[static_cast<std::size_t>(j * 80 + i)]) << i << ", " << j;
+      core += c;
     }
   }
-  EXPECT_EQ(pointValue(chain.patch(), "Core", 40, 40), 1.0);
-  EXPECT_EQ(pointValue(chain.patch(), "Core", 40, 52), 0.0);
-  EXPECT_NEAR(core, M_PI * 10.0 * 10.0, 0.1 * M_PI * 10.0 * 10.0);
+  EXPECT_GT(core, disc + 2 * 3 * 10) << "the strip reaches past the disc along the line";
   // Without the shift, the same heights less it.
   vtkNew<vtkImageData> shifted;
   shifted->DeepCopy(chain.patch());

@@ -1,6 +1,8 @@
 // Tests of Kernels/Synthesis/PatchExtraction.cxx.
 // Kernels/Synthesis/PatchExtraction.h: the cut, the shift and the core of a
 // patch, as the synthesis and the Terrain Patch Extractor make them.
+#include "Features/ChainPointGrid.h"
+#include "Features/FeatureGraph.h"
 #include "Matching/Orientation.h"
 #include "Synthesis/PatchExtraction.h"
 
@@ -160,4 +162,53 @@ TEST(PatchExtraction, AFillPatchKeepsOutOfFilledLinesAndFrozenCells)
   tsynth::Heightfield over(4, 4, 10.0f);
   tsynth::protectKeptCells(over, 6, -2, { line, frozen, filled, w, h });
   EXPECT_FALSE(over.hasMask());
+}
+
+TEST(PatchExtraction, AFeaturePatchOwnsAStripAlongItsOwnLineTurnedByItsVariant)
+{
+  // An exemplar ridge along y = 50 from x = 0 to 100 and a valley along x = 10;
+  // a candidate centred on the ridge at (50, 50), patch 40 (reach 10 cells).
+  tsynth::FeatureGraph g;
+  g.width = 100;
+  g.height = 100;
+  g.nodes.resize(4);
+  tsynth::FeatureChain ridge;
+  ridge.type = tsynth::FeatureType::Ridge;
+  tsynth::FeatureChain valley;
+  valley.type = tsynth::FeatureType::Valley;
+  for (int x = 0; x <= 100; ++x)
+  {
+    ridge.points.push_back({ static_cast<double>(x), 50.0 });
+    valley.points.push_back({ 10.0, static_cast<double>(x) });
+  }
+  g.chains = { ridge, valley };
+  const tsynth::ChainPointGrid lines(g, 10.0);
+  tsynth::PatchCandidate c;
+  c.centreX = 50.0;
+  c.centreY = 50.0;
+  c.variant = 0;
+  const std::vector<tsynth::Point2> same =
+    tsynth::ownLineOffsets(lines, tsynth::FeatureType::Ridge, c, 40);
+  ASSERT_EQ(same.size(), 21u) << "x = 40 to 60: within 10 cells of the centre";
+  for (const tsynth::Point2& q : same)
+  {
+    EXPECT_NEAR(q.y, 0.0, 1e-12);
+    EXPECT_LE(std::abs(q.x), 10.0);
+  }
+  EXPECT_TRUE(tsynth::ownLineOffsets(lines, tsynth::FeatureType::Valley, c, 40).empty())
+    << "the valley is 40 cells off";
+  // A quarter turn (variant 2) lays the ridge across: offsets along y.
+  c.variant = 2;
+  for (const tsynth::Point2& q : tsynth::ownLineOffsets(lines, tsynth::FeatureType::Ridge, c, 40))
+  {
+    EXPECT_NEAR(q.x, 0.0, 1e-9);
+  }
+  // The strip: 3 cells each side of the offsets, round the patch's centre cell (20, 20).
+  std::vector<std::uint8_t> core(40 * 40, 0);
+  tsynth::addOwnLineStrip(core, same, 40);
+  EXPECT_EQ(core[20 * 40 + 20], 1);
+  EXPECT_EQ(core[23 * 40 + 10], 1) << "3 cells above the line";
+  EXPECT_EQ(core[24 * 40 + 20], 0) << "4 cells above it";
+  EXPECT_EQ(core[20 * 40 + 33], 1) << "3 past the last offset";
+  EXPECT_EQ(core[20 * 40 + 34], 0);
 }
