@@ -7,6 +7,7 @@
 #include "Core/Error.h"
 #include "Features/ChainPointGrid.h"
 #include "Features/Ppa.h"
+#include "Matching/LandformTerm.h"
 #include "Synthesis/ExemplarCache.h"
 #include "Synthesis/PatchExtraction.h"
 
@@ -119,6 +120,36 @@ std::vector<std::uint8_t> featureMatchCore(const tsynth::Heightfield& exemplar,
   return core;
 }
 
+// What the synthesis fits a patch's shift to besides the filled cells: its
+// target through the landform term's low-pass and the confidence in it, from
+// the terrain's "Target" and "TargetConfidence" point arrays (the Terrain
+// Synthesis filter's construction output has both); none without Target.
+struct OffsetTarget
+{
+  tsynth::Heightfield low;
+  std::vector<float> confidence;
+};
+
+OffsetTarget offsetTargetOf(vtkImageData* terrain, int patchSize)
+{
+  OffsetTarget t;
+  vtkDataArray* target = terrain->GetPointData()->GetArray("Target");
+  if (target == nullptr)
+  {
+    return t;
+  }
+  t.low = tsynth::landformImage(tsynth::imageToHeightfield(terrain, target), patchSize);
+  t.confidence.assign(t.low.size(), 1.0f);
+  if (vtkDataArray* weight = terrain->GetPointData()->GetArray("TargetConfidence"))
+  {
+    for (std::size_t k = 0; k < t.confidence.size(); ++k)
+    {
+      t.confidence[k] = static_cast<float>(weight->GetComponent(static_cast<vtkIdType>(k), 0));
+    }
+  }
+  return t;
+}
+
 void addField(vtkImageData* image, const char* name, double value)
 {
   vtkNew<vtkDoubleArray> a;
@@ -227,8 +258,9 @@ int vtkTerrainPatchExtractor::RequestData(vtkInformation*,
             terrain.width,
             terrain.height });
       }
+      const OffsetTarget target = offsetTargetOf(terrainImage, patchSize);
       const float offset = this->VerticalOffset
-        ? tsynth::fitPatchOffset(patch, x0, y0, { terrain, filled, tsynth::Heightfield(), {} })
+        ? tsynth::fitPatchOffset(patch, x0, y0, { terrain, filled, target.low, target.confidence })
         : 0.0f;
       for (float& z : patch.z)
       {

@@ -15,10 +15,13 @@
  * table's CellX, CellY), exactly as the synthesis cuts its patches; cells off
  * the exemplar or on its nodata are invalid, and so, for a fill (non-feature)
  * match, are the filled Line and Frozen cells under it, which the synthesis'
- * fill patches leave as they are (protectKeptCells). With VerticalOffset, the patch is
- * shifted to continue what it overlaps: the mean difference over the filled
- * cells under it (with under 5% of the patch on filled cells, none; the
- * synthesis then leans on its target, which this stage does not have). Output: the patch as an
+ * fill patches leave as they are (protectKeptCells). With VerticalOffset, the
+ * patch is shifted to continue what it overlaps, as the synthesis shifts it
+ * (fitPatchOffset): least squares over the filled cells under it and, where
+ * the terrain has the "Target" (and "TargetConfidence") point arrays the
+ * Terrain Synthesis filter's construction output carries, the target's
+ * low-pass on the empty part; without a target, the mean difference over the
+ * filled cells (with under 5% of the patch on filled cells, none). Output: the patch as an
  * image on the terrain's cell size, with its origin on the window the matcher matched (the table's
  * PatchCell), so the merger places it there; point arrays Elevation, Valid (where cells are
  * invalid) and Core (uint8, 1 on the cells a feature patch owns whatever the

@@ -10,6 +10,7 @@
 
 #include "Features/ChainPointGrid.h"
 #include "Features/Ppa.h"
+#include "Matching/LandformTerm.h"
 #include "Synthesis/ExemplarCache.h"
 #include "Synthesis/PatchExtraction.h"
 #include "TerrainImageConversion.h"
@@ -263,6 +264,52 @@ TEST(PatchExtractor, AFillMatchLeavesTheLinesLaidAsTheSynthesisDoes)
   ASSERT_EQ(feature.errors, "");
   EXPECT_TRUE(std::isfinite(pointValue(feature.patch(), "Elevation", 20, 40)));
   EXPECT_EQ(pointValue(feature.patch(), "Core", 50, 40), 1.0) << "the line within a quarter patch";
+}
+
+TEST(PatchExtractor, AGivenTargetPullsTheShiftAsInTheSynthesis)
+{
+  Chain chain(vtkTerrainPatchMatcher::FEATURE);
+  chain.extractor->SetRank(1);
+  chain.matcher->Update();
+  const int x0 = chain.patchCell(0);
+  const int y0 = chain.patchCell(1);
+  // A quarter of the window filled (its west 20 columns), and a target 500 m
+  // above the terrain, as the construction output's Target and TargetConfidence.
+  auto marked = markedTerrain(chain, "Filled", [&](int i, int) { return i < x0 + 20; });
+  const tsynth::Heightfield terrain = tsynth::imageToHeightfield(chain.terrain());
+  tsynth::Heightfield target = terrain;
+  for (float& z : target.z)
+  {
+    z += 500.0f;
+  }
+  std::vector<float> confidence(terrain.size(), 1.0f);
+  vtkNew<vtkImageData> targetImage;
+  tsynth::heightfieldToImage(target, targetImage);
+  vtkDataArray* targetArray = targetImage->GetPointData()->GetArray("Elevation");
+  targetArray->SetName("Target");
+  marked->GetPointData()->AddArray(targetArray);
+  tsynth::addPointArray(marked, "TargetConfidence", confidence.data());
+  chain.extractor->SetInputData(0, marked);
+  chain.extractor->Update();
+  ASSERT_EQ(chain.errors, "");
+  const double pulled = chain.field("VerticalOffset");
+
+  // The kernel's fit of the same patch to the same grid.
+  vtkTable* matches = chain.matcher->GetMatches();
+  tsynth::PatchCandidate match;
+  match.variant = matches->GetColumnByName("Variant")->GetVariantValue(1).ToInt();
+  match.centreX = matches->GetColumnByName("CellX")->GetVariantValue(1).ToDouble();
+  match.centreY = matches->GetColumnByName("CellY")->GetVariantValue(1).ToDouble();
+  const tsynth::Heightfield patch = tsynth::extractPatch(terrain, match, 80);
+  const std::vector<std::uint8_t> filled = tsynth::filledCells(marked, terrain);
+  const tsynth::Heightfield low = tsynth::landformImage(target, 80);
+  EXPECT_EQ(pulled, tsynth::fitPatchOffset(patch, x0, y0, { terrain, filled, low, confidence }));
+  // Without the target, only the filled quarter counts: the target's 500 m pull is gone.
+  marked->GetPointData()->RemoveArray("Target");
+  marked->Modified();
+  chain.extractor->Update();
+  const double unpulled = chain.field("VerticalOffset");
+  EXPECT_GT(pulled - unpulled, 100.0) << pulled << " against " << unpulled;
 }
 
 TEST(PatchExtractor, TheMergerPlacesTheExtractedPatchOnTheMatchedWindow)
