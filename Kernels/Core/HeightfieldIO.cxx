@@ -848,7 +848,7 @@ ColourImage readColourImage(const std::string& path)
   // The pixels, and one 16-bit band at a time on the way.
   checkReadFits(path, img.width, img.height, img.channels + sizeof(std::uint16_t));
   const std::size_t n = cellCount(img.width, img.height);
-  img.data.assign(n * static_cast<std::size_t>(img.channels), 0);
+  img.data.assign(cellCount(n, img.channels), 0);
   QuietGdal quiet;
   if (ds->GetRasterCount() == 1 && first->GetColorTable() != nullptr)
   {
@@ -900,8 +900,7 @@ ColourImage readColourImage(const std::string& path)
     const int shift = type == GDT_UInt16 ? 8 : 0;
     for (std::size_t k = 0; k < n; ++k)
     {
-      img.data[k * static_cast<std::size_t>(img.channels) + static_cast<std::size_t>(b)] =
-        static_cast<std::uint8_t>(values[k] >> shift);
+      img.data[rowMajor(b, k, img.channels)] = static_cast<std::uint8_t>(values[k] >> shift);
     }
   }
   return img;

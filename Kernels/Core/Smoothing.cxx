@@ -1,5 +1,7 @@
 #include "Smoothing.h"
 
+#include "Grid.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -25,9 +27,9 @@ std::array<int, kBoxPasses> boxWidths(double sigma)
   const double m = std::round(
     (12.0 * sigma * sigma - n * lower * lower - 4.0 * n * lower - 3.0 * n) / (-4.0 * lower - 4.0));
   std::array<int, kBoxPasses> widths{};
-  for (int k = 0; k < kBoxPasses; ++k)
+  for (std::size_t k = 0; k < widths.size(); ++k)
   {
-    widths[static_cast<std::size_t>(k)] = k < m ? lower : lower + 2;
+    widths[k] = k < m ? lower : lower + 2;
   }
   return widths;
 }
@@ -139,13 +141,8 @@ Heightfield smoothLarge(const Heightfield& hf, double sigma)
     {
       for (int width : widths)
       {
-        boxLine(value.data() + static_cast<std::size_t>(j) * w,
-          weight.data() + static_cast<std::size_t>(j) * w,
-          w,
-          1,
-          width,
-          v,
-          s);
+        boxLine(
+          value.data() + rowMajor(0, j, w), weight.data() + rowMajor(0, j, w), w, 1, width, v, s);
       }
     }
   }

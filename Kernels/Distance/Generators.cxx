@@ -379,9 +379,9 @@ std::vector<float> fbmCosts(int width, int height, const FbmOptions& options, st
   const double stepX = options.domain / width;
   const double stepY = options.domain / height;
   std::vector<double> amplitude(static_cast<std::size_t>(options.octaves)); // lacunarity^(-H i)
-  for (int i = 0; i < options.octaves; ++i)
+  for (std::size_t i = 0; i < amplitude.size(); ++i)
   {
-    amplitude[static_cast<std::size_t>(i)] = std::pow(options.lacunarity, -options.h * i);
+    amplitude[i] = std::pow(options.lacunarity, -options.h * i);
   }
 #pragma omp parallel for schedule(static)
   for (int row = 0; row < height; ++row)
@@ -391,9 +391,9 @@ std::vector<float> fbmCosts(int width, int height, const FbmOptions& options, st
       double x = (col + 0.5) * stepX; // cell centres: noise is 0 at integer points
       double y = (row + 0.5) * stepY;
       double sum = 0.0;
-      for (int i = 0; i < options.octaves; ++i)
+      for (const double a : amplitude)
       {
-        sum += noise(x, y) * amplitude[static_cast<std::size_t>(i)];
+        sum += noise(x, y) * a;
         x *= options.lacunarity;
         y *= options.lacunarity;
       }
@@ -449,8 +449,7 @@ std::vector<DistanceRegion> enclosedRegions(const std::vector<DistanceFeature>& 
     {
       const std::size_t k = stack.back();
       stack.pop_back();
-      const int col = static_cast<int>(k % static_cast<std::size_t>(bw));
-      const int row = static_cast<int>(k / static_cast<std::size_t>(bw));
+      const auto [col, row] = cellOf(k, bw);
       const std::array<std::array<int, 2>, 4> steps = {
         { { 1, 0 }, { -1, 0 }, { 0, 1 }, { 0, -1 } }
       };

@@ -78,7 +78,7 @@ Lattice Lattice::random(int width, int height, const LatticeOptions& options)
     {
       for (std::size_t d = 0; d < kDirectionCount; d += 2)
       {
-        weights[kDirectionCount * static_cast<std::size_t>(k) + d] =
+        weights[rowMajor(d, k, kDirectionCount)] =
           edgeWeight(k, static_cast<int>(d / 2)) * factor[d];
       }
     }
@@ -90,8 +90,7 @@ Lattice Lattice::random(int width, int height, const LatticeOptions& options)
         const std::ptrdiff_t o = k + owner[d];
         if (o >= 0 && o < n) // edges off the grid are never read
         {
-          weights[kDirectionCount * static_cast<std::size_t>(k) + d] =
-            weights[kDirectionCount * static_cast<std::size_t>(o) + d - 1];
+          weights[rowMajor(d, k, kDirectionCount)] = weights[rowMajor(d - 1, o, kDirectionCount)];
         }
       }
     }

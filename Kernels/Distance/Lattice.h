@@ -67,7 +67,7 @@ public:
   // Weight of the edge from `node` in direction `d`; the neighbour must exist.
   float weight(std::size_t node, Direction d) const
   {
-    return weights_[kDirectionCount * node + static_cast<std::size_t>(d)];
+    return weights_[rowMajor(d, node, kDirectionCount)];
   }
   // The eight weights of a node's outgoing edges, in Direction order.
   const float* weights(std::size_t node) const { return weights_.data() + kDirectionCount * node; }

@@ -345,8 +345,7 @@ void propagate(const Search& s,
     const std::int32_t source = f.source[u];
     const Source& g = s.sources[static_cast<std::size_t>(source)];
     const float ws = s.scalingAt(u, c, g);
-    const int col = static_cast<int>(u % static_cast<std::size_t>(w));
-    const int row = static_cast<int>(u / static_cast<std::size_t>(w));
+    const auto [col, row] = cellOf(u, w);
     const bool interior = col > 0 && row > 0 && col + 1 < w && row + 1 < h;
     const float* weights = s.lattice.weights(u);
     for (std::size_t d = 0; d < kDirectionCount; ++d)
@@ -360,7 +359,7 @@ void propagate(const Search& s,
           continue;
         }
       }
-      const auto v = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(u) + offset[d]);
+      const std::size_t v = offsetCell(u, offset[d]);
       const float next = c + weights[d] * ws;
       if (next < s.seaCost && next < f.cost[v] && !s.blocked(v, g.feature))
       {
@@ -649,7 +648,7 @@ bool expandCell(const Search& s,
     {
       continue;
     }
-    const auto v = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(u) + nb.offset[d]);
+    const std::size_t v = offsetCell(u, nb.offset[d]);
     const float next = c + weights[d] * ws;
     if (!(next < s.seaCost) || next > f.cost[v] || (Regions && s.blocked(v, feature)))
     {

@@ -98,6 +98,7 @@ bool readSection(const Heightfield& hf,
   std::vector<double>& z)
 {
   z.resize(static_cast<std::size_t>(2 * half + 1));
+  double* const centre = z.data() + half; // centre[s]: sample s, -half..half
   for (int s = -half; s <= half; ++s)
   {
     const float v = sampleBilinear(hf, x + s * nx, y + s * ny);
@@ -105,7 +106,7 @@ bool readSection(const Heightfield& hf,
     {
       return false;
     }
-    z[static_cast<std::size_t>(s + half)] = v;
+    centre[s] = v;
   }
   return true;
 }
@@ -139,12 +140,13 @@ double sectionSlope(const std::vector<double>& z)
   {
     return 0.0;
   }
+  const double* const centre = z.data() + half; // centre[s]: sample s, -half..half
   double moment = 0.0;
   double spread = 0.0;
   for (int s = -half; s <= half; ++s)
   {
     const double w = std::exp(-0.5 * s * s / (sigma * sigma));
-    moment += w * s * z[static_cast<std::size_t>(s + half)];
+    moment += w * s * centre[s];
     spread += w * s * s;
   }
   return std::abs(moment / spread);

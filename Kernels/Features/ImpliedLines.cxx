@@ -75,8 +75,7 @@ Mask withoutShortPieces(const Mask& grownMask, const Mask& axis, int w, int h, d
     {
       const std::size_t k = piece[n];
       cells += axis[k] != 0 ? 1.0 : 0.0;
-      const int i = static_cast<int>(k % static_cast<std::size_t>(w));
-      const int j = static_cast<int>(k / static_cast<std::size_t>(w));
+      const auto [i, j] = cellOf(k, w);
       for (int y = std::max(0, j - 1); y <= std::min(h - 1, j + 1); ++y)
       {
         for (int x = std::max(0, i - 1); x <= std::min(w - 1, i + 1); ++x)

@@ -27,14 +27,8 @@ public:
   int height() const { return height_; }
   std::size_t size() const { return links_.size(); }
   std::size_t index(int i, int j) const { return rowMajor(i, j, width_); }
-  int column(std::size_t idx) const
-  {
-    return static_cast<int>(idx % static_cast<std::size_t>(width_));
-  }
-  int row(std::size_t idx) const
-  {
-    return static_cast<int>(idx / static_cast<std::size_t>(width_));
-  }
+  int column(std::size_t idx) const { return cellOf(idx, width_).i; }
+  int row(std::size_t idx) const { return cellOf(idx, width_).j; }
 
   // The neighbour of cell idx in direction k, or SIZE_MAX outside the grid.
   std::size_t neighbour(std::size_t idx, int k) const;

@@ -102,9 +102,10 @@ Heightfield gaussianSmooth(const Heightfield& hf, double sigma)
   }
   const int r = std::max(1, static_cast<int>(std::ceil(3.0 * sigma)));
   std::vector<double> kernel(static_cast<std::size_t>(2 * r + 1));
+  double* const tap = kernel.data() + r; // tap[t]: the weight at offset t, -r..r
   for (int t = -r; t <= r; ++t)
   {
-    kernel[static_cast<std::size_t>(t + r)] = std::exp(-0.5 * t * t / (sigma * sigma));
+    tap[t] = std::exp(-0.5 * t * t / (sigma * sigma));
   }
   const int w = hf.width;
   const int h = hf.height;
@@ -122,7 +123,7 @@ Heightfield gaussianSmooth(const Heightfield& hf, double sigma)
         {
           if (hf.isValid(i + t, j))
           {
-            const double k = kernel[static_cast<std::size_t>(t + r)];
+            const double k = tap[t];
             s += k * hf.at(i + t, j);
             ws += k;
           }
@@ -145,7 +146,7 @@ Heightfield gaussianSmooth(const Heightfield& hf, double sigma)
         double ws = 0.0;
         for (int t = std::max(-r, -j); t <= std::min(r, h - 1 - j); ++t)
         {
-          const double k = kernel[static_cast<std::size_t>(t + r)];
+          const double k = tap[t];
           s += k * pass[hf.index(i, j + t)];
           ws += k * weight[hf.index(i, j + t)];
         }
@@ -280,10 +281,9 @@ double cellNoise(const Heightfield& hf)
   residuals.reserve(interior / stride + 1);
   for (std::size_t n = 0; n < interior; n += stride)
   {
-    const int i = 1 + static_cast<int>(n % static_cast<std::size_t>(w - 2));
-    const int j = 1 + static_cast<int>(n / static_cast<std::size_t>(w - 2));
+    const GridCell c = cellOf(n, w - 2); // of the interior, one cell in from each edge
     double r = 0.0;
-    if (block(i, j, r))
+    if (block(1 + c.i, 1 + c.j, r))
     {
       residuals.push_back(static_cast<float>(r));
     }
@@ -311,11 +311,10 @@ bool descendsFirst(const Heightfield& hf,
   float drop)
 {
   const float centre = hf.z[idx];
-  auto k = static_cast<std::ptrdiff_t>(idx);
+  std::size_t cell = idx;
   for (int t = 0; t < steps; ++t)
   {
-    k += stride;
-    const auto cell = static_cast<std::size_t>(k);
+    cell = offsetCell(cell, stride);
     if (Masked && hf.valid[cell] == 0)
     {
       continue;

@@ -39,8 +39,8 @@ public:
   {
   }
   std::size_t index(int i, int j) const { return rowMajor(i, j, w_); }
-  int column(std::size_t k) const { return static_cast<int>(k % static_cast<std::size_t>(w_)); }
-  int row(std::size_t k) const { return static_cast<int>(k / static_cast<std::size_t>(w_)); }
+  int column(std::size_t k) const { return cellOf(k, w_).i; }
+  int row(std::size_t k) const { return cellOf(k, w_).j; }
   bool inside(int i, int j) const { return i >= 0 && j >= 0 && i < w_ && j < h_; }
   double metres(std::size_t a, std::size_t b) const
   {

@@ -237,7 +237,7 @@ private:
 
   std::size_t neighbour(std::size_t p, std::size_t code) const
   {
-    return static_cast<std::size_t>(static_cast<std::ptrdiff_t>(p) + offsets_[code]);
+    return offsetCell(p, offsets_[code]);
   }
 
   std::size_t parent(std::size_t q) const

@@ -422,7 +422,7 @@ DenseMatcher::Oriented DenseMatcher::orient(const Heightfield& ex,
     for (int a = 0; a + 1 < r.coarseWidth; ++a)
     {
       const std::size_t k = rowMajor(a, b, r.coarseStride);
-      const std::size_t up = k + static_cast<std::size_t>(r.coarseStride);
+      const std::size_t up = rowMajor(a, b + 1, r.coarseStride);
       r.pairs[k] = 0.25f * (r.coarse[k] + r.coarse[k + 1] + r.coarse[up] + r.coarse[up + 1]);
     }
   }
@@ -432,7 +432,7 @@ DenseMatcher::Oriented DenseMatcher::orient(const Heightfield& ex,
     for (int a = 0; a + 3 < r.coarseWidth; ++a)
     {
       const std::size_t k = rowMajor(a, b, r.coarseStride);
-      const std::size_t down = k + 2 * static_cast<std::size_t>(r.coarseStride);
+      const std::size_t down = rowMajor(a, b + 2, r.coarseStride);
       r.quads[k] = 0.25f * (r.pairs[k] + r.pairs[k + 2] + r.pairs[down] + r.pairs[down + 2]);
     }
   }
@@ -490,8 +490,8 @@ CoarseQuery DenseMatcher::coarseQuery(const DenseQuery& q) const
   const int f = std::max(1, options_.coarseFactor);
   CoarseQuery c;
   c.side = P / f;
-  c.heights.assign(static_cast<std::size_t>(c.side * c.side), 0.0f);
-  c.weights.assign(static_cast<std::size_t>(c.side * c.side), 0.0f);
+  c.heights.assign(cellCount(c.side, c.side), 0.0f);
+  c.weights.assign(cellCount(c.side, c.side), 0.0f);
   for (int b = 0; b < c.side; ++b)
   {
     for (int a = 0; a < c.side; ++a)
@@ -502,7 +502,7 @@ CoarseQuery DenseMatcher::coarseQuery(const DenseQuery& q) const
       {
         for (int i = a * f; i < (a + 1) * f; ++i)
         {
-          const std::size_t k = static_cast<std::size_t>(j * P + i);
+          const std::size_t k = rowMajor(i, j, P);
           if (q.known[k] != 0)
           {
             s += q.heights[k];
@@ -510,7 +510,7 @@ CoarseQuery DenseMatcher::coarseQuery(const DenseQuery& q) const
           }
         }
       }
-      const std::size_t k = static_cast<std::size_t>(b * c.side + a);
+      const std::size_t k = rowMajor(a, b, c.side);
       c.heights[k] = n > 0 ? static_cast<float>(s / n) : 0.0f;
       c.weights[k] = static_cast<float>(n / (f * f));
       if (n > 0)
@@ -523,10 +523,9 @@ CoarseQuery DenseMatcher::coarseQuery(const DenseQuery& q) const
   {
     for (int a = 0; a + 1 < c.side; a += 2)
     {
-      const std::size_t k = static_cast<std::size_t>(b * c.side + a);
-      const std::size_t group[4] = {
-        k, k + 1, k + static_cast<std::size_t>(c.side), k + static_cast<std::size_t>(c.side) + 1
-      };
+      const std::size_t k = rowMajor(a, b, c.side);
+      const std::size_t up = rowMajor(a, b + 1, c.side);
+      const std::size_t group[4] = { k, k + 1, up, up + 1 };
       const float w = c.weights[k];
       if (w > 0.0f &&
         std::all_of(group, group + 4, [&](std::size_t g) { return c.weights[g] == w; }))
@@ -541,14 +540,14 @@ CoarseQuery DenseMatcher::coarseQuery(const DenseQuery& q) const
   {
     for (int a = 0; a + 3 < c.side; a += 4)
     {
-      const float w = c.weights[static_cast<std::size_t>(b * c.side + a)];
+      const float w = c.weights[rowMajor(a, b, c.side)];
       double sum = 0.0;
       bool equal = w > 0.0f;
       for (int j = b; j < b + 4; ++j)
       {
         for (int i = a; i < a + 4; ++i)
         {
-          const std::size_t k = static_cast<std::size_t>(j * c.side + i);
+          const std::size_t k = rowMajor(i, j, c.side);
           equal = equal && c.weights[k] == w;
           sum += c.heights[k];
         }
@@ -575,7 +574,7 @@ CoarseQuery DenseMatcher::coarseQuery(const DenseQuery& q) const
   {
     for (int a = 0; a < kLandformSide; a += kCoarseLandformStep)
     {
-      const std::size_t k = static_cast<std::size_t>(b * kLandformSide + a);
+      const std::size_t k = rowMajor(a, b, kLandformSide);
       const float w = q.landform.weights[k];
       if (w > 0.0f)
       {
@@ -651,7 +650,7 @@ std::vector<std::vector<float>> DenseMatcher::coarseSsd(const CoarseTerms& q,
       for (int l = 0; l < 16 && x0 + l < r.offsetsX; ++l)
       {
         const std::size_t k = rowMajor(x0 + l, y, r.offsetsX);
-        costs[k] = r.coarseValid[k] != 0 ? acc[n * 16 + static_cast<std::size_t>(l)] : kInf;
+        costs[k] = r.coarseValid[k] != 0 ? acc[rowMajor(l, n, 16)] : kInf;
       }
     }
   }
@@ -1003,7 +1002,7 @@ DenseMatcher::LandformCells DenseMatcher::landformCells(const DenseQuery& q, int
   {
     for (int a = 0; a < kLandformSide; ++a)
     {
-      const std::size_t k = static_cast<std::size_t>(b * kLandformSide + a);
+      const std::size_t k = rowMajor(a, b, kLandformSide);
       if (q.landform.weights[k] > 0.0f)
       {
         cells.offset.push_back(landformCell(b, P, f) * stride + landformCell(a, P, f));
@@ -1086,7 +1085,7 @@ void knownCells(const DenseQuery& q,
   {
     for (int i = 0; i < patch; ++i)
     {
-      const std::size_t k = static_cast<std::size_t>(j * patch + i);
+      const std::size_t k = rowMajor(i, j, patch);
       if (q.known[k] != 0)
       {
         cells.push_back(j * stride + i);
@@ -1137,8 +1136,9 @@ std::vector<Seed> bestCoarseOffsets(const std::vector<float>& costs,
     {
       break;
     }
-    const int cx = static_cast<int>(idx % static_cast<std::size_t>(offsetsX));
-    const int cy = static_cast<int>(idx / static_cast<std::size_t>(offsetsX));
+    const GridCell at = cellOf(idx, offsetsX);
+    const int cx = at.i;
+    const int cy = at.j;
     const bool near = std::any_of(chosen.begin(),
       chosen.end(),
       [&](const Seed& c) { return std::abs(c.cx - cx) <= 1 && std::abs(c.cy - cy) <= 1; });
@@ -1363,21 +1363,21 @@ std::array<float, kNoiseLevels> DenseMatcher::typicalNoise() const
       for (int x = P / 2; x + P / 2 <= size[0]; x += P / 2)
       {
         const auto v = noise_[e].window(x, y, P);
-        for (int l = 0; l < kNoiseLevels; ++l)
+        for (std::size_t l = 0; l < samples.size(); ++l)
         {
-          samples[static_cast<std::size_t>(l)].push_back(v[static_cast<std::size_t>(l)]);
+          samples[l].push_back(v[l]);
         }
       }
     }
   }
   std::array<float, kNoiseLevels> typical{};
-  for (int l = 0; l < kNoiseLevels; ++l)
+  for (std::size_t l = 0; l < samples.size(); ++l)
   {
-    auto& v = samples[static_cast<std::size_t>(l)];
+    auto& v = samples[l];
     if (!v.empty())
     {
       std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-      typical[static_cast<std::size_t>(l)] = v[v.size() / 2];
+      typical[l] = v[v.size() / 2];
     }
   }
   return typical;

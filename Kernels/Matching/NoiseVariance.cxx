@@ -10,10 +10,9 @@ namespace tsynth
 
 NoiseVariance::NoiseVariance(const Heightfield& hf)
 {
-  const std::size_t stride = static_cast<std::size_t>(hf.width + 1);
-  const std::size_t n = stride * static_cast<std::size_t>(hf.height + 1);
-  auto at = [stride](int i, int j)
-  { return static_cast<std::size_t>(j) * stride + static_cast<std::size_t>(i); };
+  // Summed-area tables: one row and one column more than the heights.
+  const std::size_t n = cellCount(hf.width + 1, hf.height + 1);
+  auto at = [&hf](int i, int j) { return rowMajor(i, j, hf.width + 1); };
   if (hf.hasMask())
   {
     count_.assign(n, 0.0);
@@ -30,10 +29,10 @@ NoiseVariance::NoiseVariance(const Heightfield& hf)
   // Band l = G_l - G_{l+1}, with G_l the heights blurred by sigma 2^l (all at full
   // resolution, so windows are read at the same cells on every level).
   Heightfield finer = hf;
-  for (int l = 0; l < kNoiseLevels; ++l)
+  for (std::size_t l = 0; l < levels_.size(); ++l)
   {
     const Heightfield coarser = gaussianSmooth(hf, std::pow(2.0, l));
-    Table& t = levels_[static_cast<std::size_t>(l)];
+    Table& t = levels_[l];
     t.width = hf.width;
     t.height = hf.height;
     t.sum.assign(n, 0.0);
@@ -61,9 +60,9 @@ NoiseVariance::NoiseVariance(const Heightfield& hf)
 std::array<float, kNoiseLevels> NoiseVariance::window(double cx, double cy, int size) const
 {
   std::array<float, kNoiseLevels> out{};
-  for (int l = 0; l < kNoiseLevels; ++l)
+  for (std::size_t l = 0; l < levels_.size(); ++l)
   {
-    const Table& t = levels_[static_cast<std::size_t>(l)];
+    const Table& t = levels_[l];
     if (t.width == 0)
     {
       continue;
@@ -72,21 +71,16 @@ std::array<float, kNoiseLevels> NoiseVariance::window(double cx, double cy, int 
     const int j0 = std::clamp(static_cast<int>(std::lround(cy - 0.5 * size)), 0, t.height);
     const int i1 = std::clamp(i0 + size, 0, t.width);
     const int j1 = std::clamp(j0 + size, 0, t.height);
-    const std::size_t stride = static_cast<std::size_t>(t.width + 1);
+    const std::size_t stride = static_cast<std::size_t>(t.width + 1); // a row of the table
+    auto at = [stride](int i, int j) { return rowMajor(i, j, stride); };
     auto rect = [&](const std::vector<double>& a)
-    {
-      return a[static_cast<std::size_t>(j1) * stride + static_cast<std::size_t>(i1)] -
-        a[static_cast<std::size_t>(j0) * stride + static_cast<std::size_t>(i1)] -
-        a[static_cast<std::size_t>(j1) * stride + static_cast<std::size_t>(i0)] +
-        a[static_cast<std::size_t>(j0) * stride + static_cast<std::size_t>(i0)];
-    };
+    { return a[at(i1, j1)] - a[at(i1, j0)] - a[at(i0, j1)] + a[at(i0, j0)]; };
     const double n =
       count_.empty() ? static_cast<double>(i1 - i0) * static_cast<double>(j1 - j0) : rect(count_);
     if (n > 1.0)
     {
       const double mean = rect(t.sum) / n;
-      out[static_cast<std::size_t>(l)] =
-        static_cast<float>(std::max(0.0, rect(t.square) / n - mean * mean));
+      out[l] = static_cast<float>(std::max(0.0, rect(t.square) / n - mean * mean));
     }
   }
   return out;

@@ -23,8 +23,8 @@ DenseQuery windowAround(const Heightfield& target,
   int size)
 {
   DenseQuery q;
-  q.heights.assign(static_cast<std::size_t>(size * size), 0.0f);
-  q.known.assign(static_cast<std::size_t>(size * size), 0);
+  q.heights.assign(cellCount(size, size), 0.0f);
+  q.known.assign(cellCount(size, size), 0);
   const int x0 = windowCorner(cx, size);
   const int y0 = windowCorner(cy, size);
   for (int j = 0; j < size; ++j)
@@ -37,7 +37,7 @@ DenseQuery windowAround(const Heightfield& target,
       {
         continue;
       }
-      const std::size_t k = static_cast<std::size_t>(j * size + i);
+      const std::size_t k = rowMajor(i, j, size);
       q.heights[k] = target.at(x, y);
       q.known[k] = known[target.index(x, y)];
     }
@@ -105,7 +105,7 @@ void mapDenseCosts(const DenseMatcher& dense,
     {
       for (int bx = 0; bx < oriented[r].offsetsX; ++bx)
       {
-        const float v = coarse[r][static_cast<std::size_t>(by * oriented[r].offsetsX + bx)];
+        const float v = coarse[r][rowMajor(bx, by, oriented[r].offsetsX)];
         for (int j = 0; j < f; ++j)
         {
           for (int i = 0; i < f; ++i)

@@ -566,9 +566,7 @@ bool PatchMerger::freeBorderOutside(float lowest, float highest) const
 bool PatchMerger::onFreeBorder(std::size_t k) const
 {
   // Column and row of window cell k (the window is at most an int wide).
-  const std::size_t width = static_cast<std::size_t>(fw_);
-  const int i = static_cast<int>(k % width);
-  const int j = static_cast<int>(k / width);
+  const auto [i, j] = cellOf(k, fw_);
   for (int d = 0; d < 4; ++d)
   {
     const int ni = i + Di[d];

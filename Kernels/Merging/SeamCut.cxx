@@ -23,7 +23,7 @@ std::vector<SeamConstraint> buildSeamConstraints(int width,
   {
     for (int i = 0; i < width; ++i)
     {
-      const std::size_t k = static_cast<std::size_t>(j) * width + i;
+      const std::size_t k = rowMajor(i, j, width);
       if (!oldMask[k] || !newMask[k])
       {
         continue;
@@ -40,7 +40,7 @@ std::vector<SeamConstraint> buildSeamConstraints(int width,
         {
           continue;
         }
-        const std::size_t m = static_cast<std::size_t>(nj) * width + ni;
+        const std::size_t m = rowMajor(ni, nj, width);
         nextToOld = nextToOld || oldOnly(m);
         nextToNew = nextToNew || newOnly(m);
       }
@@ -121,7 +121,7 @@ void SeamCut::computeWeights(int width,
   {
     for (int i = 0; i < width; ++i)
     {
-      const std::size_t s = static_cast<std::size_t>(j) * width + i;
+      const std::size_t s = rowMajor(i, j, width);
       if (!inOverlap(s))
       {
         continue;
@@ -155,7 +155,7 @@ void SeamCut::computeWeights(int width,
   {
     for (int i = 0; i < width; ++i)
     {
-      const std::size_t s = static_cast<std::size_t>(j) * width + i;
+      const std::size_t s = rowMajor(i, j, width);
       for (int axis = 0; axis < 2; ++axis)
       {
         double& w = (axis == 0 ? out.wx : out.wy)[s];
@@ -201,7 +201,7 @@ const SeamCutResult& SeamCut::cut(int width,
   {
     for (int i = 0; i < width; ++i)
     {
-      if (constraints_[static_cast<std::size_t>(j) * width + i] == SeamConstraint::Free)
+      if (constraints_[rowMajor(i, j, width)] == SeamConstraint::Free)
       {
         bx0 = std::min(bx0, i);
         by0 = std::min(by0, j);
@@ -219,7 +219,7 @@ const SeamCutResult& SeamCut::cut(int width,
   {
     for (int i = 0; i < width; ++i)
     {
-      const std::size_t s = static_cast<std::size_t>(j) * width + i;
+      const std::size_t s = rowMajor(i, j, width);
       for (int axis = 0; axis < 2; ++axis)
       {
         const double w = axis == 0 ? weights_.wx[s] : weights_.wy[s];
@@ -261,7 +261,7 @@ const SeamCutResult& SeamCut::cut(int width,
   {
     for (int i = 0; i < width; ++i)
     {
-      const std::size_t k = static_cast<std::size_t>(j) * width + i;
+      const std::size_t k = rowMajor(i, j, width);
       const SeamConstraint c = constraints_[k];
       result_.takeNew[k] = c == SeamConstraint::ForceNew ||
         (c == SeamConstraint::Free && flow_.sourceSide(node(i, j)));

@@ -1,6 +1,7 @@
 #include "PatchMatch.h"
 
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 #include "../Core/Random.h"
 #include "../Matching/Vectorise.h"
 
@@ -73,7 +74,7 @@ void fillTargetPatch(const SourceLevel& s, const TargetGrid& g, int x, int y, Ta
       const int tx = x - s.half + l;
       const bool inside = l < s.patch && tx >= 0 && tx < g.width && ty >= 0 && ty < g.height;
       const std::size_t o = sz(r * s.lanes + l);
-      p.q[o] = inside ? g.z[sz(ty) * sz(g.width) + sz(tx)] : 0.0f;
+      p.q[o] = inside ? g.z[rowMajor(tx, ty, g.width)] : 0.0f;
       p.m[o] = inside ? 1.0f : 0.0f;
     }
   }
@@ -144,7 +145,7 @@ bool centreValid(const SourceLevel& s, const Match& c)
 {
   const OrientedCopy& copy = s.copies[sz(c.t)];
   return c.x >= 0 && c.y >= 0 && c.x < copy.width && c.y < copy.height &&
-    copy.centreOk[sz(c.y) * sz(copy.width) + sz(c.x)] != 0;
+    copy.centreOk[rowMajor(c.x, c.y, copy.width)] != 0;
 }
 
 // One cell's search state during a visit.
@@ -212,7 +213,7 @@ void randomSearch(const Sweep& w, Visit& v, std::uint64_t hash)
 
 void visitCell(const Sweep& w, int x, int y, int y0, int y1, TargetPatch& patch)
 {
-  const std::size_t p = sz(y) * sz(w.g.width) + sz(x);
+  const std::size_t p = rowMajor(x, y, w.g.width);
   fillTargetPatch(w.s, w.g, x, y, patch);
   Visit v{ w.s, patch, w.plain, w.map[p], w.cost[p] };
   const int dir = w.forward ? 1 : -1;
@@ -220,14 +221,14 @@ void visitCell(const Sweep& w, int x, int y, int y0, int y1, TargetPatch& patch)
   const int nx = x - dir;
   if (nx >= 0 && nx < w.g.width)
   {
-    Match c = w.map[sz(y) * sz(w.g.width) + sz(nx)];
+    Match c = w.map[rowMajor(nx, y, w.g.width)];
     c.x += dir;
     v.consider(c);
   }
   const int ny = y - dir;
   if (ny >= 0 && ny < w.g.height)
   {
-    const std::size_t n = sz(ny) * sz(w.g.width) + sz(x);
+    const std::size_t n = rowMajor(x, ny, w.g.width);
     Match c = ny >= y0 && ny < y1 ? w.map[n] : w.before[n];
     c.y += dir;
     v.consider(c);
@@ -272,7 +273,7 @@ TSYNTH_VECTOR_CLONES void costRow(const SourceLevel& s,
   TargetPatch patch;
   for (int x = 0; x < g.width; ++x)
   {
-    const std::size_t p = sz(y) * sz(g.width) + sz(x);
+    const std::size_t p = rowMajor(x, y, g.width);
     fillTargetPatch(s, g, x, y, patch);
     cost[p] = plain ? plainSsd(s, patch, map[p])
                     : lanesSsd(s, patch, map[p], std::numeric_limits<float>::infinity());
@@ -299,7 +300,7 @@ OrientedCopy makeCopy(const Heightfield& src, const Orientation& o, int patch, i
       if (src.isValid(k) && std::isfinite(src.z[k]))
       {
         c.z[sz(v) * c.stride + sz(u)] = src.z[k];
-        valid[sz(v) * sz(c.width) + sz(u)] = 1;
+        valid[rowMajor(u, v, c.width)] = 1;
       }
     }
   }
@@ -310,7 +311,7 @@ OrientedCopy makeCopy(const Heightfield& src, const Orientation& o, int patch, i
   {
     for (int u = 0; u < c.width; ++u)
     {
-      sat[sz(v + 1) * w1 + sz(u + 1)] = valid[sz(v) * sz(c.width) + sz(u)] +
+      sat[sz(v + 1) * w1 + sz(u + 1)] = valid[rowMajor(u, v, c.width)] +
         sat[sz(v) * w1 + sz(u + 1)] + sat[sz(v + 1) * w1 + sz(u)] - sat[sz(v) * w1 + sz(u)];
     }
   }
@@ -326,7 +327,7 @@ OrientedCopy makeCopy(const Heightfield& src, const Orientation& o, int patch, i
         sat[y1 * w1 + x1] - sat[y0 * w1 + x1] - sat[y1 * w1 + x0] + sat[y0 * w1 + x0];
       if (n == patch * patch)
       {
-        const std::size_t k = sz(v) * sz(c.width) + sz(u);
+        const std::size_t k = rowMajor(u, v, c.width);
         c.centreOk[k] = 1;
         c.centres.push_back(static_cast<std::int32_t>(k));
       }
@@ -436,7 +437,7 @@ std::vector<Match> randomMatches(const SourceLevel& s,
   {
     for (int x = 0; x < width; ++x)
     {
-      const std::size_t p = sz(y) * sz(width) + sz(x);
+      const std::size_t p = rowMajor(x, y, width);
       map[p] = randomMatch(s, visitHash(seed, stream, p));
     }
   }
@@ -465,8 +466,8 @@ std::vector<Match> randomRegions(const SourceLevel& s,
       m.y += y % block;
       const OrientedCopy& c = s.copies[sz(m.t)];
       const bool inside = m.x < c.width && m.y < c.height;
-      map[sz(y) * sz(width) + sz(x)] =
-        inside && c.centreOk[sz(m.y) * sz(c.width) + sz(m.x)] != 0 ? m : start;
+      map[rowMajor(x, y, width)] =
+        inside && c.centreOk[rowMajor(m.x, m.y, c.width)] != 0 ? m : start;
     }
   }
   return map;
@@ -499,7 +500,7 @@ std::vector<Match> upsampleMatches(const std::vector<Match>& coarse,
       const OrientedCopy& copy = fineSource.copies[sz(m.t)];
       c.x = std::clamp(c.x, fineSource.half, copy.width - 1 - fineSource.half);
       c.y = std::clamp(c.y, fineSource.half, copy.height - 1 - fineSource.half);
-      const std::size_t p = sz(y) * sz(width) + sz(x);
+      const std::size_t p = rowMajor(x, y, width);
       map[p] = centreValid(fineSource, c) ? c : randomMatch(fineSource, visitHash(seed, stream, p));
     }
   }
@@ -582,7 +583,7 @@ void reconstruct(const SourceLevel& s,
           ++count;
         }
       }
-      const std::size_t p = sz(y) * sz(width) + sz(x);
+      const std::size_t p = rowMajor(x, y, width);
       const double mean = sum / count;
       const double w = guideWeight.empty() ? weight : weight * guideWeight[p];
       out[p] = static_cast<float>(w > 0.0 ? w * guide[p] + (1.0 - w) * mean : mean);

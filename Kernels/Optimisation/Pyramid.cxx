@@ -21,6 +21,12 @@ constexpr std::array<double, kTaps> kBinomial = { 1.0 / 16,
   4.0 / 16,
   1.0 / 16 };
 
+// The kernel's weight at tap t (-kRadius..kRadius).
+double binomial(int t)
+{
+  return kBinomial[static_cast<std::size_t>(t + kRadius)];
+}
+
 bool usable(const Heightfield& hf, std::size_t k)
 {
   return hf.isValid(k) && std::isfinite(hf.z[k]);
@@ -41,7 +47,6 @@ Heightfield downsampleHalf(const Heightfield& fine)
 {
   const int w = levelSide(fine.width, 1);
   const int h = levelSide(fine.height, 1);
-  const std::size_t fw = static_cast<std::size_t>(fine.width);
   // Horizontal pass at every fine row, every second column: value and weight sums.
   std::vector<double> value(cellCount(w, fine.height));
   std::vector<double> weight(value.size());
@@ -58,10 +63,10 @@ Heightfield downsampleHalf(const Heightfield& fine)
         {
           continue;
         }
-        const std::size_t k = static_cast<std::size_t>(j) * fw + static_cast<std::size_t>(x);
+        const std::size_t k = fine.index(x, j);
         if (usable(fine, k))
         {
-          const double c = kBinomial[static_cast<std::size_t>(t + kRadius)];
+          const double c = binomial(t);
           v += c * fine.z[k];
           s += c;
         }
@@ -104,7 +109,7 @@ Heightfield downsampleHalf(const Heightfield& fine)
           continue;
         }
         const std::size_t o = rowMajor(i, y, w);
-        const double c = kBinomial[static_cast<std::size_t>(t + kRadius)];
+        const double c = binomial(t);
         v += c * value[o];
         s += c * weight[o];
       }

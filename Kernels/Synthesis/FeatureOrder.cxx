@@ -1,5 +1,6 @@
 #include "FeatureOrder.h"
 
+#include "../Core/Grid.h"
 #include "../Core/Random.h"
 #include "Finishing.h"
 
@@ -91,11 +92,11 @@ std::vector<FeatureSite> spacedOut(const std::vector<FeatureSite>& sites,
 {
   const int columns = std::max(1, static_cast<int>(std::ceil(width / clearance)) + 1);
   const int rows = std::max(1, static_cast<int>(std::ceil(height / clearance)) + 1);
-  std::vector<std::vector<Point2>> buckets(static_cast<std::size_t>(columns) * rows);
+  std::vector<std::vector<Point2>> buckets(cellCount(columns, rows));
   auto bucketOf = [&](double v, int count)
   { return std::clamp(static_cast<int>(std::floor(v / clearance)), 0, count - 1); };
   auto bucket = [&](int x, int y) -> std::vector<Point2>&
-  { return buckets[static_cast<std::size_t>(y) * columns + x]; };
+  { return buckets[rowMajor(x, y, columns)]; };
   std::vector<FeatureSite> kept;
   for (const FeatureSite& site : sites)
   {

@@ -33,8 +33,8 @@ std::size_t nearestSeed(const NearestSeeds& near, std::size_t k)
 // (rowMajor's inverse).
 Point2 cellPoint(std::size_t k, int width)
 {
-  const std::size_t w = static_cast<std::size_t>(width); // a grid width is never negative
-  return { static_cast<double>(k % w), static_cast<double>(k / w) };
+  const GridCell c = cellOf(k, width);
+  return { static_cast<double>(c.i), static_cast<double>(c.j) };
 }
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();

@@ -122,7 +122,7 @@ std::vector<std::uint8_t> featureCore(const std::vector<std::uint8_t>& line,
   int patchSize)
 {
   const int P = patchSize;
-  std::vector<std::uint8_t> core(static_cast<std::size_t>(P) * static_cast<std::size_t>(P), 0);
+  std::vector<std::uint8_t> core(cellCount(P, P), 0);
   for (int j = 0; j < P; ++j)
   {
     for (int i = 0; i < P; ++i)

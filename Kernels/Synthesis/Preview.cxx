@@ -1,6 +1,7 @@
 #include "Preview.h"
 
 #include "../Core/Error.h"
+#include "../Core/Grid.h"
 
 #include <algorithm>
 #include <chrono>
@@ -93,15 +94,15 @@ SynthesisOptions previewOptions(const SynthesisOptions& full, const PreviewPlan&
   }
   if (!full.regionLabels.empty())
   {
-    o.regionLabels.assign(static_cast<std::size_t>(plan.coarse.width) * plan.coarse.height, -1);
+    o.regionLabels.assign(cellCount(plan.coarse.width, plan.coarse.height), -1);
     for (int j = 0; j < plan.coarse.height; ++j)
     {
       const int fj = std::min(plan.full.height - 1, j * plan.factor);
       for (int i = 0; i < plan.coarse.width; ++i)
       {
         const int fi = std::min(plan.full.width - 1, i * plan.factor);
-        o.regionLabels[static_cast<std::size_t>(j) * plan.coarse.width + i] =
-          full.regionLabels[static_cast<std::size_t>(fj) * plan.full.width + fi];
+        o.regionLabels[rowMajor(i, j, plan.coarse.width)] =
+          full.regionLabels[rowMajor(fi, fj, plan.full.width)];
       }
     }
   }

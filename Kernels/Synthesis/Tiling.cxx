@@ -24,8 +24,8 @@ std::vector<T> regionCells(const std::vector<T>& all, int width, const Synthesis
   part.reserve(cellCount(t.regionWidth, t.regionHeight));
   for (int j = 0; j < t.regionHeight; ++j)
   {
-    const auto row = all.begin() +
-      static_cast<std::ptrdiff_t>(static_cast<std::size_t>(t.regionY0 + j) * width + t.regionX0);
+    const auto row =
+      all.begin() + static_cast<std::ptrdiff_t>(rowMajor(t.regionX0, t.regionY0 + j, width));
     part.insert(part.end(), row, row + t.regionWidth);
   }
   return part;
