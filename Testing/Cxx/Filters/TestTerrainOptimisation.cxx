@@ -3,6 +3,7 @@
 // optimisation) from a source DEM and a DEM guide, and refuses a source with
 // nothing to copy.
 #include "FilterTesting.h"
+#include "Optimisation/OptimisationTestData.h"
 #include "TestData.h"
 #include "vtkTerrainOptimisation.h"
 
@@ -23,21 +24,7 @@ namespace tsynth
 namespace
 {
 
-Heightfield crop(const Heightfield& hf, int x0, int y0, int w, int h)
-{
-  Heightfield out(w, h);
-  out.cellX = hf.cellX;
-  out.cellY = hf.cellY;
-  out.cellSizeKnown = hf.cellSizeKnown;
-  for (int j = 0; j < h; ++j)
-  {
-    for (int i = 0; i < w; ++i)
-    {
-      out.at(i, j) = hf.at(x0 + i, y0 + j);
-    }
-  }
-  return out;
-}
+using test::optimisation::crop;
 
 // Two parts of Colorado (90 m cells): a source of 128 x 128 cells and a guide of 96 x 96.
 const Heightfield& colorado()
