@@ -45,14 +45,15 @@ Run "tsynth COMMAND --help" for a command's options.
 //   here). A 1024^2 synthesis touches 270 MB of fresh memory; in 4 KB pages
 //   that was 67,000 page faults and 0.3-0.4 s of a 5.7 s run, in 2 MB pages
 //   4,000. Left alone if the user set the tunable either way.
-// - OMP_WAIT_POLICY=passive unless the user chose a policy or --backend cpu:
-//   libgomp's threads spin for milliseconds after each parallel region and
-//   took the cores PoCL's threads need (fill 20% faster passive), and on a
-//   machine busy with other work the cores everything else needs (a preview,
-//   all small parallel regions, took 2.9 s instead of 0.2 s beside another
-//   run with spinning threads). On an idle machine spinning gains a few
-//   percent on the CPU backend, which --backend cpu keeps.
-void tuneRuntimes(const std::vector<std::string>& args, char** argv)
+// - OMP_WAIT_POLICY=passive unless the user chose a policy: libgomp's
+//   threads spin for milliseconds after each parallel region and took the
+//   cores PoCL's threads need (fill 20% faster passive), and on a machine busy
+//   with other work the cores everything else needs (a preview, all small
+//   parallel regions, took 2.9 s instead of 0.2 s beside another run with
+//   spinning threads; Norway as a DEM target on the CPU backend, beside a
+//   build and a test run, 26.7 s instead of 8.3 s). On an idle machine
+//   spinning gained 2% there (7.5 s against 7.7 s): not worth the risk.
+void tuneRuntimes(char** argv)
 {
   bool changed = false;
   const char* tunables = std::getenv("GLIBC_TUNABLES");
@@ -63,12 +64,7 @@ void tuneRuntimes(const std::vector<std::string>& args, char** argv)
     setenv("GLIBC_TUNABLES", (given.empty() ? hugePages : given + ":" + hugePages).c_str(), 1);
     changed = true;
   }
-  bool cpu = false;
-  for (std::size_t k = 0; k + 1 < args.size(); ++k)
-  {
-    cpu = cpu || (args[k] == "--backend" && args[k + 1] == "cpu");
-  }
-  if (!cpu && std::getenv("OMP_WAIT_POLICY") == nullptr)
+  if (std::getenv("OMP_WAIT_POLICY") == nullptr)
   {
     setenv("OMP_WAIT_POLICY", "passive", 1);
     changed = true;
@@ -104,7 +100,7 @@ int dispatch(const std::string& command,
   }
   if (command == "synth")
   {
-    tuneRuntimes(args, argv);
+    tuneRuntimes(argv);
     return tsynth::cli::runSynth(std::move(args));
   }
   if (command == "pits")
