@@ -31,6 +31,7 @@ PatchMatcher::PatchMatcher(const std::vector<const Heightfield*>& exemplars,
     po.variants = options.variants;
     pool_ = std::make_shared<const CandidatePool>(buildCandidatePool(exemplars, graphs, po, names));
   }
+  ranker_ = std::make_unique<FeatureRanker>(*pool_);
   warnings_ = pool_->warnings;
   DenseOptions dopt;
   dopt.patchSize = options.patchSize;
@@ -81,9 +82,12 @@ std::vector<float> PatchMatcher::featureCosts(const FeatureQuery& query)
 std::vector<PatchCandidate> PatchMatcher::matchFeature(const FeatureQuery& query,
   const DenseQuery* window)
 {
-  const std::vector<float> costs = featureCosts(query);
+  // The CPU scores only what can be among the k best; OpenCL scores all.
+  const std::vector<RankedCandidate> ranked = featureScorer_
+    ? topKPerExemplar(*pool_, featureCosts(query), options_.k)
+    : ranker_->rank(query, options_.weights, options_.k);
   std::vector<PatchCandidate> out;
-  for (const RankedCandidate& r : topKPerExemplar(*pool_, costs, options_.k))
+  for (const RankedCandidate& r : ranked)
   {
     if (r.cost >= kMismatchPenalty)
     {

@@ -6,6 +6,7 @@
 #include "CandidatePool.h"
 #include "DenseSearch.h"
 #include "FeatureCost.h"
+#include "FeatureRanking.h"
 #include "MatcherLimits.h"
 #include "OpenClMatcher.h"
 
@@ -81,6 +82,7 @@ private:
   Backend backend_ = Backend::Cpu;
   std::vector<std::string> warnings_;
   std::shared_ptr<const CandidatePool> pool_;
+  std::unique_ptr<FeatureRanker> ranker_; // feature matching on the CPU
   std::unique_ptr<DenseMatcher> dense_;
   std::shared_ptr<OpenClDevice> device_;
   std::unique_ptr<OpenClFeatureScorer> featureScorer_;

@@ -2,6 +2,7 @@ set(TSYNTH_MATCHING_SOURCES
   Matching/CandidatePool.cxx
   Matching/DenseSearch.cxx
   Matching/FeatureCost.cxx
+  Matching/FeatureRanking.cxx
   Matching/LandformTerm.cxx
   Matching/NoiseVariance.cxx
   Matching/OpenClMatcher.cxx

@@ -3,6 +3,9 @@
 //     OpenCL (PoCL) vs the CPU reference (2 threads) vs the CPU reference on 1 thread;
 //   - dense non-feature search, 64 x 64 window over a 1024 x 1024 exemplar in all
 //     10 variants: coarse-to-fine on OpenCL and on the CPU vs exhaustive search;
+//   - feature matching as the synthesis does it on the CPU, Mont Blanc's ridge and
+//     valley sites against Colorado's pool at patch 32: the bounded ranking vs
+//     scoring every candidate and taking the k best;
 //   - the synthesiser's fill query (80 x 80, L-shaped known part) over five
 //     648 x 648 exemplars: the pruned coarse pass (lower bound first) vs the full one.
 // Usage: tsynth_bench_matching [DEM]
@@ -12,6 +15,8 @@
 #include "Matching/CandidatePool.h"
 #include "Matching/DenseSearch.h"
 #include "Matching/FeatureCost.h"
+#include "Matching/FeatureRanking.h"
+#include "Matching/LandformTerm.h"
 #include "Matching/OpenClMatcher.h"
 
 #include <omp.h>
@@ -40,6 +45,112 @@ double bestOf(int n, const std::function<void()>& f)
     best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
   }
   return best;
+}
+
+// Feature matching as the synthesis does it, with a DEM as the target.
+void benchFeatureRanking(const Heightfield& exemplar)
+{
+  const Heightfield target =
+    readHeightfield(std::string(TSYNTH_BUNDLED_DATA) + "/dems/alps-montblanc.png");
+  constexpr int kPatch = 32;
+  constexpr std::size_t kKept = 8;
+  PoolOptions po;
+  po.patchSize = kPatch;
+  const FeatureExtraction ridges = extractFeatures(exemplar, FeatureType::Ridge, {});
+  const FeatureExtraction valleys = extractFeatures(exemplar, FeatureType::Valley, {});
+  const CandidatePool pool =
+    buildCandidatePool({ &exemplar, &exemplar }, { &ridges.graph, &valleys.graph }, po);
+  // The target's sites, with the output known over its west half (the target
+  // itself there) and the landform asked, as mid-way through a synthesis.
+  const NoiseVariance noise(target);
+  const Heightfield smooth = landformImage(target, kPatch);
+  const std::vector<float> sure(target.size(), 1.0f);
+  std::vector<std::uint8_t> known(target.size(), 0);
+  for (int j = 0; j < target.height; ++j)
+  {
+    for (int i = 0; i < target.width / 2; ++i)
+    {
+      known[target.index(i, j)] = 1;
+    }
+  }
+  std::vector<FeatureQuery> queries;
+  for (const FeatureType type : { FeatureType::Ridge, FeatureType::Valley })
+  {
+    const FeatureExtraction f = extractFeatures(target, type, {});
+    const CandidatePool sites = buildCandidatePool({ &target }, { &f.graph }, po);
+    for (std::size_t s = 0; s < sites.sites.size();
+         s += std::max<std::size_t>(1, sites.sites.size() / 100))
+    {
+      queries.push_back(
+        makeFeatureQuery(sites.sites[s], target, noise, &target, &known, kPatch, &smooth, &sure));
+    }
+  }
+  const MatchWeights w;
+  std::vector<std::vector<RankedCandidate>> full(queries.size());
+  std::vector<std::vector<RankedCandidate>> ranked(queries.size());
+  const double reference = bestOf(3,
+    [&]
+    {
+      for (std::size_t i = 0; i < queries.size(); ++i)
+      {
+        full[i] = topKPerExemplar(pool, scoreFeatureCandidates(pool, queries[i], w), kKept);
+        full[i].erase(std::remove_if(full[i].begin(),
+                        full[i].end(),
+                        [](const RankedCandidate& r) { return r.cost >= kMismatchPenalty; }),
+          full[i].end());
+      }
+    });
+  FeatureRanker ranker(pool);
+  RankingCounts counts;
+  const double bounded = bestOf(3,
+    [&]
+    {
+      counts = {};
+      for (std::size_t i = 0; i < queries.size(); ++i)
+      {
+        RankingCounts one;
+        ranked[i] = ranker.rank(queries[i], w, kKept, &one);
+        counts.shaped += one.shaped;
+        counts.beforeMoments += one.beforeMoments;
+        counts.beforeArms += one.beforeArms;
+        counts.beforeOverlap += one.beforeOverlap;
+        counts.scored += one.scored;
+      }
+    });
+  std::size_t same = 0;
+  for (std::size_t i = 0; i < queries.size(); ++i)
+  {
+    same += std::equal(full[i].begin(),
+      full[i].end(),
+      ranked[i].begin(),
+      ranked[i].end(),
+      [](const RankedCandidate& a, const RankedCandidate& b)
+      { return a.index == b.index && a.cost == b.cost; });
+  }
+  std::printf(
+    "\nFeature matching, %zu Mont Blanc sites against Colorado's pool (%zu candidates, patch %d, "
+    "k %zu):\n",
+    queries.size(),
+    pool.size(),
+    kPatch,
+    kKept);
+  std::printf("  score every candidate + top k: %.3f ms per site\n",
+    1e3 * reference / static_cast<double>(queries.size()));
+  std::printf("  bounded ranking:               %.3f ms per site (ratio %.2fx); the same %zu of "
+              "%zu rankings\n",
+    1e3 * bounded / static_cast<double>(queries.size()),
+    reference / bounded,
+    same,
+    queries.size());
+  const double shaped = static_cast<double>(counts.shaped);
+  std::printf(
+    "  of %zu candidates of the sites' shapes: %.0f%% left on roughness and landform, %.0f%% on "
+    "the profiles' moments, %.0f%% on the arms, %.1f%% scored in full\n",
+    counts.shaped,
+    100.0 * static_cast<double>(counts.beforeMoments) / shaped,
+    100.0 * static_cast<double>(counts.beforeArms) / shaped,
+    100.0 * static_cast<double>(counts.beforeOverlap) / shaped,
+    100.0 * static_cast<double>(counts.scored) / shaped);
 }
 
 } // namespace
@@ -109,6 +220,8 @@ int main(int argc, char** argv)
         cpu / gpu);
     }
   }
+
+  benchFeatureRanking(dem);
 
   // Dense search on a 1024 x 1024 exemplar.
   {

@@ -5,6 +5,7 @@ add_executable(tsynth_matching_tests
   Matching/TestLandformTerm.cxx
   Matching/TestNoiseVariance.cxx
   Matching/TestFeatureCost.cxx
+  Matching/TestFeatureRanking.cxx
   Matching/TestCandidatePool.cxx
   Matching/TestDenseSearch.cxx
   Matching/TestOpenClMatcher.cxx
