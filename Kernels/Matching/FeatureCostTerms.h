@@ -129,16 +129,13 @@ inline float overlapTerm(const float* d,
 // a_n c_n: roughness, scale-free as the fill's roughnessMisfit: per noise level
 // the squared relative difference of the variances asked and found; a level
 // asked as 0 is left out.
-inline float noiseTerm(const CandidatePool& pool,
-  std::size_t c,
-  const FeatureQuery& q,
-  const MatchWeights& w)
+inline float noiseTerm(const float* found, const FeatureQuery& q, const MatchWeights& w)
 {
   float cn = 0.0f;
   for (int l = 0; l < kNoiseLevels; ++l)
   {
     const float a = queryAt(q.noise, l);
-    const float f = pool.noise[rowMajor(l, c, kNoiseLevels)];
+    const float f = found[l];
     if (a > 0.0f)
     {
       const float relative = (a - f) / (a + f);
@@ -329,9 +326,15 @@ struct ScoredQuery
   // Roughness and landform: a few hundred bytes of the candidate.
   CostTerms cheapTermsOf(std::size_t c) const
   {
+    return cheapTermsAt(
+      pool.noise.data() + c * kNoiseLevels, pool.landform.data() + c * kLandformStride);
+  }
+  // The same from the candidate's kNoiseLevels variances and kLandformStride samples.
+  CostTerms cheapTermsAt(const float* noise, const float* landform) const
+  {
     CostTerms t;
-    t.noise = noiseTerm(pool, c, q, w);
-    t.landform = landformTerm(pool.landform.data() + c * kLandformStride, q, w, invScale2);
+    t.noise = noiseTerm(noise, q, w);
+    t.landform = landformTerm(landform, q, w, invScale2);
     return t;
   }
   // The overlap: a kilobyte of the candidate's summaries.

@@ -111,6 +111,7 @@ public:
   {
   }
   bool full() const { return heap_.size() >= k_; }
+  std::size_t capacity() const { return k_; }
   float dearestCost() const { return heap_.front().cost; }
   void offer(const RankedCandidate& r)
   {
@@ -147,34 +148,54 @@ std::vector<RankedCandidate> cheapestOf(const std::vector<const KeptCandidates*>
   return all;
 }
 
-// How many of an exemplar's candidates, those whose roughness and landform
-// cost least, are scored in full before the others, per candidate kept: the
-// k-th cheapest of them is the bar the rest must come under from the start.
+// What the bounds read of a candidate, kept per group member: its kNoiseLevels
+// noise variances, then its kLandformStride landform samples.
+constexpr std::size_t kCheapStride = kNoiseLevels + kLandformStride;
+// Its profiles' moments: kArmMoments per arm.
+constexpr std::size_t kMomentStride = kMaxArms * FeatureRanker::kArmMoments;
+
+// How many of a thread's share of an exemplar's candidates, those whose
+// roughness and landform cost least, are scored in full before the others,
+// per candidate kept: the k-th cheapest of them is the bar the rest must come
+// under from the start.
 constexpr std::size_t kWarmUpPerKept = 4;
 
 } // namespace
 
 FeatureRanker::FeatureRanker(const CandidatePool& pool)
   : pool_(pool)
-  , descriptorRange_(pool.size())
-  , moments_(pool.size() * kMaxArms * kArmMoments)
 {
   for (std::size_t c = 0; c < pool.size(); ++c)
   {
-    groups_[{ pool.type[c], pool.kind[c], pool.arms[c] }].push_back(c);
-    const auto first = pool.descriptor.begin() + static_cast<long>(c * kDescriptorSize);
-    const auto range = std::minmax_element(first, first + kDescriptorSize);
-    descriptorRange_[c] = { *range.first, *range.second };
-    for (int b = 0; b < kMaxArms; ++b)
+    Group& group = groups_[{ pool.type[c], pool.kind[c], pool.arms[c] }];
+    // Candidates ascend, and each exemplar's are one run of indices.
+    if (group.members.empty() || pool.exemplar[group.members.back()] != pool.exemplar[c])
     {
-      const std::size_t row = rowMajor(b, c, kMaxArms);
-      const auto along = momentsOf(pool.along.data() + row * kAlongSamples, kAlongSamples);
-      const auto across = momentsOf(pool.across.data() + row * kAcrossSamples, kAcrossSamples);
-      float* m = moments_.data() + row * kArmMoments;
-      m[0] = static_cast<float>(along[0]);
-      m[1] = static_cast<float>(along[1]);
-      m[2] = static_cast<float>(across[0]);
-      m[3] = static_cast<float>(across[1]);
+      group.runs.push_back({ group.members.size(), group.members.size() });
+    }
+    group.members.push_back(c);
+    group.runs.back().second = group.members.size();
+    addBoundData(group, c);
+  }
+}
+
+void FeatureRanker::addBoundData(Group& group, std::size_t c) const
+{
+  const float* noise = pool_.noise.data() + c * kNoiseLevels;
+  group.cheap.insert(group.cheap.end(), noise, noise + kNoiseLevels);
+  const float* landform = pool_.landform.data() + c * kLandformStride;
+  group.cheap.insert(group.cheap.end(), landform, landform + kLandformStride);
+  const auto first = pool_.descriptor.begin() + static_cast<long>(c * kDescriptorSize);
+  const auto range = std::minmax_element(first, first + kDescriptorSize);
+  group.ranges.push_back({ *range.first, *range.second });
+  for (int b = 0; b < kMaxArms; ++b)
+  {
+    const std::size_t row = rowMajor(b, c, kMaxArms);
+    const auto along = momentsOf(pool_.along.data() + row * kAlongSamples, kAlongSamples);
+    const auto across = momentsOf(pool_.across.data() + row * kAcrossSamples, kAcrossSamples);
+    for (const double m : { along[0], along[1], across[0], across[1] })
+    {
+      group.moments.push_back(static_cast<float>(m));
     }
   }
 }
@@ -185,112 +206,93 @@ struct FeatureRanker::Scratch
   std::vector<float> least;     // the cost with the rest at their least
   std::vector<std::size_t> order;
   std::vector<char> warmed;
-  std::vector<float> warmCosts;
 };
 
 FeatureRanker::~FeatureRanker() = default;
 
-// Ranks the candidates of one exemplar of the query's shape.
+// Ranks a run of candidates of one exemplar, all of the query's shape, on one
+// thread. Every thread ranks its own share of each exemplar's candidates in
+// one parallel region: with passive OpenMP waits (tsynth's default) each
+// parallel region costs a wake-up, which the ranking's work per query does
+// not pay for three times over.
 class FeatureRanker::ExemplarRanking
 {
 public:
   ExemplarRanking(const FeatureRanker& ranker,
     const ScoredQuery& scored,
-    std::size_t k,
-    Scratch& scratch)
+    const QueryMoments& moments)
     : r_(ranker)
     , s_(scored)
-    , moments_(queryMoments(scored.q, scored.armsQuery))
-    , k_(k)
+    , moments_(moments)
     , bounded_(scored.w.feature >= 0.0 && scored.w.angle >= 0.0 && scored.w.overlap >= 0.0)
-    , x_(scratch)
   {
   }
 
-  std::vector<RankedCandidate> rank(const std::size_t* members,
+  // Offers the run's candidates to `kept`, leaving those that cannot be among its k.
+  void rank(const Group& group,
+    std::size_t from,
     std::size_t n,
-    RankingCounts& counts)
+    KeptCandidates& kept,
+    Scratch& x,
+    RankingCounts& counts) const
   {
-    members_ = members;
-    boundTerms(n);
-    const KeptCandidates warm = warmUp(n);
-    const float bar = bounded_ && warm.full() ? warm.dearestCost() : kUnbounded;
-    std::vector<KeptCandidates> perThread;
-    std::size_t beforeMoments = 0;
-    std::size_t beforeArms = 0;
-    std::size_t beforeOverlap = 0;
-#pragma omp parallel reduction(+ : beforeMoments, beforeArms, beforeOverlap)
+    const std::size_t* members = group.members.data() + from;
+    boundTerms(group, from, n, x);
+    warmUp(members, n, kept, x);
+    // Dearer than k candidates already at its least: never among the k cheapest.
+    auto outranked = [&](float least)
+    { return bounded_ && kept.full() && least > kept.dearestCost(); };
+    for (std::size_t i = 0; i < n; ++i)
     {
-#pragma omp single
-      perThread.assign(static_cast<std::size_t>(omp_get_num_threads()), KeptCandidates(k_));
-      KeptCandidates& kept = perThread[static_cast<std::size_t>(omp_get_thread_num())];
-      // Dearer than k candidates already at its least: never among the k cheapest.
-      auto outranked = [&](float least)
-      { return least > bar || (bounded_ && kept.full() && least > kept.dearestCost()); };
-#pragma omp for schedule(static)
-      for (std::size_t i = 0; i < n; ++i)
+      if (x.warmed[i] != 0)
       {
-        if (x_.warmed[i] != 0)
-        {
-          continue;
-        }
-        if (outranked(x_.least[i]))
-        {
-          ++beforeMoments;
-          continue;
-        }
-        const std::size_t c = members_[i];
-        CostTerms terms = x_.terms[i];
-        if (outranked(totalCost(profileFloor(c), terms)))
-        {
-          ++beforeArms;
-          continue;
-        }
-        const float arms = s_.armsOf(c);
-        if (outranked(totalCost(arms, terms)))
-        {
-          ++beforeOverlap;
-          continue;
-        }
-        terms.overlap = s_.overlapOf(c);
-        kept.offer({ c, totalCost(arms, terms) });
+        continue;
       }
+      if (outranked(x.least[i]))
+      {
+        ++counts.beforeMoments;
+        continue;
+      }
+      const std::size_t c = members[i];
+      CostTerms terms = x.terms[i];
+      if (outranked(
+            totalCost(profileFloor(group.moments.data() + (from + i) * kMomentStride), terms)))
+      {
+        ++counts.beforeArms;
+        continue;
+      }
+      const float arms = s_.armsOf(c);
+      if (outranked(totalCost(arms, terms)))
+      {
+        ++counts.beforeOverlap;
+        continue;
+      }
+      terms.overlap = s_.overlapOf(c);
+      kept.offer({ c, totalCost(arms, terms) });
+      ++counts.scored;
     }
     counts.shaped += n;
-    counts.beforeMoments += beforeMoments;
-    counts.beforeArms += beforeArms;
-    counts.beforeOverlap += beforeOverlap;
-    counts.scored += n - beforeMoments - beforeArms - beforeOverlap;
-    std::vector<const KeptCandidates*> sets{ &warm };
-    for (const KeptCandidates& kept : perThread)
-    {
-      sets.push_back(&kept);
-    }
-    return cheapestOf(sets, k_);
   }
 
 private:
-  static constexpr float kUnbounded = std::numeric_limits<float>::infinity();
-
   // Each candidate's roughness and landform, the overlap at its floor, and so its least cost.
-  void boundTerms(std::size_t n)
+  void boundTerms(const Group& group, std::size_t from, std::size_t n, Scratch& x) const
   {
-    x_.terms.resize(n);
-    x_.least.resize(n);
-#pragma omp parallel for schedule(static)
+    x.terms.resize(n);
+    x.least.resize(n);
     for (std::size_t i = 0; i < n; ++i)
     {
-      const std::size_t c = members_[i];
-      CostTerms t = s_.cheapTermsOf(c);
-      t.overlap = overlapFloor(r_.descriptorRange_[c], s_.overlap, s_.w, s_.invScale2);
-      x_.terms[i] = t;
-      x_.least[i] = totalCost(0.0f, t);
+      const float* cheap = group.cheap.data() + (from + i) * kCheapStride;
+      CostTerms t = s_.cheapTermsAt(cheap, cheap + kNoiseLevels);
+      t.overlap = overlapFloor(group.ranges[from + i], s_.overlap, s_.w, s_.invScale2);
+      x.terms[i] = t;
+      x.least[i] = totalCost(0.0f, t);
     }
   }
 
   // The least a_f c_f + a_a c_a of a candidate can be: the angles at 0 and
   // each arm's profiles at the distance of their moments.
-  float profileFloor(std::size_t c) const
+  float profileFloor(const float* candidateMoments) const
   {
     const int arms = s_.q.arms;
     if (arms == 0 || !(s_.armsQuery.samples > 0.0f))
@@ -305,7 +307,7 @@ private:
       {
         const auto arm = static_cast<std::size_t>(a);
         const auto& q = moments_.moments[arm];
-        const float* m = r_.moments_.data() + rowMajor((a + s) % arms, c, kMaxArms) * kArmMoments;
+        const float* m = candidateMoments + ((a + s) % arms) * kArmMoments;
         if (moments_.along[arm])
         {
           sum += gapSquared(q[0], m[0]) + gapSquared(q[1], m[1]);
@@ -321,48 +323,38 @@ private:
       s_.w.feature * least / s_.armsQuery.samples * s_.invScale2 * (1.0 - kProfileRounding));
   }
 
-  // The candidates of least bound, scored in full.
-  KeptCandidates warmUp(std::size_t n)
+  // Scores in full the candidates of least bound and offers them first, so
+  // the bar the rest must come under is low from the start.
+  void warmUp(const std::size_t* members, std::size_t n, KeptCandidates& kept, Scratch& x) const
   {
-    x_.warmed.assign(n, 0);
-    KeptCandidates warm(k_);
+    x.warmed.assign(n, 0);
     if (!bounded_)
     {
-      return warm;
+      return;
     }
-    x_.order.resize(n);
-    std::iota(x_.order.begin(), x_.order.end(), 0);
-    const std::size_t count = std::min(n, kWarmUpPerKept * k_);
-    const std::vector<float>& least = x_.least;
-    std::nth_element(x_.order.begin(),
-      x_.order.begin() + static_cast<long>(count),
-      x_.order.end(),
+    x.order.resize(n);
+    std::iota(x.order.begin(), x.order.end(), 0);
+    const std::size_t count = std::min(n, kWarmUpPerKept * kept.capacity());
+    const std::vector<float>& least = x.least;
+    std::nth_element(x.order.begin(),
+      x.order.begin() + static_cast<long>(count),
+      x.order.end(),
       [&](std::size_t a, std::size_t b)
       { return least[a] < least[b] || (least[a] == least[b] && a < b); });
-    x_.warmCosts.resize(count);
-#pragma omp parallel for schedule(static)
     for (std::size_t j = 0; j < count; ++j)
     {
-      const std::size_t c = members_[x_.order[j]];
-      CostTerms terms = x_.terms[x_.order[j]];
-      terms.overlap = s_.overlapOf(c);
-      x_.warmCosts[j] = totalCost(s_.armsOf(c), terms);
+      const std::size_t i = x.order[j];
+      CostTerms terms = x.terms[i];
+      terms.overlap = s_.overlapOf(members[i]);
+      kept.offer({ members[i], totalCost(s_.armsOf(members[i]), terms) });
+      x.warmed[i] = 1;
     }
-    for (std::size_t j = 0; j < count; ++j)
-    {
-      x_.warmed[x_.order[j]] = 1;
-      warm.offer({ members_[x_.order[j]], x_.warmCosts[j] });
-    }
-    return warm;
   }
 
   const FeatureRanker& r_;
   const ScoredQuery& s_;
-  QueryMoments moments_;
-  std::size_t k_;
+  const QueryMoments& moments_;
   bool bounded_;
-  Scratch& x_;
-  const std::size_t* members_ = nullptr;
 };
 
 std::vector<RankedCandidate> FeatureRanker::rank(const FeatureQuery& query,
@@ -371,35 +363,65 @@ std::vector<RankedCandidate> FeatureRanker::rank(const FeatureQuery& query,
   RankingCounts* counts)
 {
   const auto found = groups_.find({ query.type, query.kind, query.arms });
-  RankingCounts tally;
-  std::vector<RankedCandidate> ranked;
-  if (k > 0 && found != groups_.end())
+  if (k == 0 || found == groups_.end())
   {
-    const std::vector<std::size_t>& members = found->second;
-    if (!scratch_)
+    if (counts != nullptr)
     {
-      scratch_ = std::make_unique<Scratch>();
+      *counts = {};
     }
-    const ScoredQuery scored(pool_, query, weights);
-    ExemplarRanking ranking(*this, scored, k, *scratch_);
-    // Members ascend, and each exemplar's candidates are one run of indices.
-    for (std::size_t first = 0; first < members.size();)
-    {
-      const int exemplar = pool_.exemplar[members[first]];
-      std::size_t last = first;
-      while (last < members.size() && pool_.exemplar[members[last]] == exemplar)
-      {
-        ++last;
-      }
-      const std::vector<RankedCandidate> mine = ranking.rank(&members[first], last - first, tally);
-      ranked.insert(ranked.end(), mine.begin(), mine.end());
-      first = last;
-    }
-    std::sort(ranked.begin(), ranked.end(), cheaper);
+    return {};
   }
+  const Group& group = found->second;
+  const ScoredQuery scored(pool_, query, weights);
+  const QueryMoments moments = queryMoments(query, scored.armsQuery);
+  const ExemplarRanking ranking(*this, scored, moments);
+  const std::size_t runs = group.runs.size();
+  std::vector<std::vector<KeptCandidates>> perThread;
+  std::vector<RankingCounts> tallies;
+#pragma omp parallel
+  {
+#pragma omp single
+    {
+      const auto threads = static_cast<std::size_t>(omp_get_num_threads());
+      perThread.assign(threads, std::vector<KeptCandidates>(runs, KeptCandidates(k)));
+      tallies.assign(threads, {});
+      scratch_.resize(std::max(scratch_.size(), threads));
+    }
+    const auto thread = static_cast<std::size_t>(omp_get_thread_num());
+    const auto threads = perThread.size();
+    // Each thread its own share of every exemplar's run, whatever the count:
+    // the k cheapest of the shares' k cheapest are those of the run.
+    for (std::size_t r = 0; r < runs; ++r)
+    {
+      const auto [first, last] = group.runs[r];
+      const std::size_t from = first + (last - first) * thread / threads;
+      const std::size_t to = first + (last - first) * (thread + 1) / threads;
+      ranking.rank(group, from, to - from, perThread[thread][r], scratch_[thread], tallies[thread]);
+    }
+  }
+  std::vector<RankedCandidate> ranked;
+  for (std::size_t r = 0; r < runs; ++r)
+  {
+    std::vector<const KeptCandidates*> shares;
+    for (const std::vector<KeptCandidates>& thread : perThread)
+    {
+      shares.push_back(&thread[r]);
+    }
+    const std::vector<RankedCandidate> mine = cheapestOf(shares, k);
+    ranked.insert(ranked.end(), mine.begin(), mine.end());
+  }
+  std::sort(ranked.begin(), ranked.end(), cheaper);
   if (counts != nullptr)
   {
-    *counts = tally;
+    *counts = {};
+    for (const RankingCounts& t : tallies)
+    {
+      counts->shaped += t.shaped;
+      counts->beforeMoments += t.beforeMoments;
+      counts->beforeArms += t.beforeArms;
+      counts->beforeOverlap += t.beforeOverlap;
+      counts->scored += t.scored;
+    }
   }
   return ranked;
 }

@@ -19,7 +19,7 @@
 
 #include <array>
 #include <map>
-#include <memory>
+#include <utility>
 #include <vector>
 
 namespace tsynth
@@ -42,7 +42,8 @@ public:
   ~FeatureRanker();
 
   // The k cheapest candidates of each exemplar, merged in cost order (ties by
-  // index). One query at a time: the ranker keeps its working space.
+  // index). One query at a time: the ranker keeps its working space. The
+  // same for any number of threads.
   std::vector<RankedCandidate> rank(const FeatureQuery& query,
     const MatchWeights& weights,
     std::size_t k,
@@ -58,10 +59,23 @@ private:
   struct Scratch; // a query's working space, kept for the next
 
   const CandidatePool& pool_;
-  std::map<std::array<int, 3>, std::vector<std::size_t>> groups_; // by type, kind, arms
-  std::vector<std::array<float, 2>> descriptorRange_;             // per candidate
-  std::vector<float> moments_; // per candidate and arm, kArmMoments
-  std::unique_ptr<Scratch> scratch_;
+  // The candidates of one type, kind and number of arms, index ascending, and
+  // the runs of them [first, last) of one exemplar each. What the bounds read
+  // of each is copied in the same order, so a ranking streams through it.
+  struct Group
+  {
+    std::vector<std::size_t> members;
+    std::vector<std::pair<std::size_t, std::size_t>> runs;
+    std::vector<float> cheap;                 // per member: noise variances, landform samples
+    std::vector<float> moments;               // per member and arm: kArmMoments
+    std::vector<std::array<float, 2>> ranges; // per member: its descriptor's least and greatest
+  };
+  void addBoundData(Group& group, std::size_t c) const;
+
+  std::map<std::array<int, 3>, Group> groups_;        // by type, kind, arms
+  std::vector<std::array<float, 2>> descriptorRange_; // per candidate
+  std::vector<float> moments_;                        // per candidate and arm, kArmMoments
+  std::vector<Scratch> scratch_;                      // per thread
 };
 
 } // namespace tsynth
