@@ -7,6 +7,7 @@ least as well as Tasse's code follows it; strokes finer than the patches draw ge
 import os
 import re
 import shutil
+import subprocess
 import sys
 import tempfile
 import unittest
@@ -169,6 +170,70 @@ class DemTargetTest(unittest.TestCase):
                         self.assertGreaterEqual(ours, theirs)
                     for ours, theirs in zip(before[:2], peer[:2]):
                         self.assertGreaterEqual(ours, theirs)
+        finally:
+            shutil.rmtree(tmp)
+
+
+class SketchOverlay(unittest.TestCase):
+    """Examples/legibility/overlay.py draws a stroke map's outlines over hillshades, side by side."""
+
+    SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Examples", "legibility",
+                          "overlay.py")
+
+    def write_rgb(self, path, rgb):
+        from osgeo import gdal
+        d = gdal.GetDriverByName("MEM").Create("", rgb.shape[2], rgb.shape[1], 3, gdal.GDT_Byte)
+        for i in range(3):
+            d.GetRasterBand(i + 1).WriteArray(rgb[i])
+        gdal.GetDriverByName("PNG").CreateCopy(path, d)
+
+    def overlay(self, *args):
+        return subprocess.run([sys.executable, self.SCRIPT, *args], capture_output=True, text=True)
+
+    def test_outlines_lie_on_the_strokes_edges_over_each_hillshade(self):
+        import numpy as np
+        from osgeo import gdal
+        tmp = tempfile.mkdtemp()
+        try:
+            sketch = np.full((3, 40, 60), 255, np.uint8)
+            sketch[:, 10:20, 5:55] = np.array([230, 20, 20], np.uint8)[:, None, None]  # a red ridge bar
+            sketch[:, 22:38, 20:30] = np.array([20, 20, 230], np.uint8)[:, None, None]  # a blue valley bar
+            shade = np.full((3, 80, 120), 128, np.uint8)  # twice the sketch's size, mid grey
+            self.write_rgb(os.path.join(tmp, "sketch.png"), sketch)
+            self.write_rgb(os.path.join(tmp, "shade.png"), shade)
+            out = os.path.join(tmp, "out.png")
+            done = self.overlay(out, os.path.join(tmp, "sketch.png"), os.path.join(tmp, "shade.png"),
+                                os.path.join(tmp, "shade.png"))
+            self.assertEqual(done.returncode, 0, done.stderr)
+            sheet = gdal.Open(out).ReadAsArray()
+            self.assertEqual(sheet.shape, (3, 40, 2 * 60 + 8))
+            for left in (0, 68):
+                panel = sheet[:, :, left:left + 60]
+                red = (panel[0] == 255) & (panel[1] == 0)
+                blue = (panel[2] == 255) & (panel[0] == 0)
+                # Two cells deep along each edge of the 10 x 50 bar: 2 * (50 + 10) * 2 - 16 cells.
+                self.assertEqual(int(red.sum()), 2 * (50 + 10) * 2 - 16)
+                self.assertTrue(red[10, 5] and red[11, 6] and not red[12, 7] and not red[15, 30])
+                self.assertTrue(blue[22, 20] and not blue[30, 25])
+                grey = ~red & ~blue
+                self.assertTrue((panel[:, grey] == 128).all())
+            self.assertTrue((sheet[:, :, 60:68] == 255).all())  # the gutter
+        finally:
+            shutil.rmtree(tmp)
+
+    def test_refuses_a_sketch_without_strokes_and_an_output_that_is_an_input(self):
+        import numpy as np
+        tmp = tempfile.mkdtemp()
+        try:
+            grey = os.path.join(tmp, "grey.png")
+            self.write_rgb(grey, np.full((3, 20, 20), 90, np.uint8))
+            done = self.overlay(os.path.join(tmp, "out.png"), grey, grey)
+            self.assertNotEqual(done.returncode, 0)
+            self.assertIn("not a stroke map", done.stderr)
+            self.assertFalse(os.path.exists(os.path.join(tmp, "out.png")))
+            done = self.overlay(grey, grey, grey)
+            self.assertNotEqual(done.returncode, 0)
+            self.assertIn("is one of the inputs", done.stderr)
         finally:
             shutil.rmtree(tmp)
 
