@@ -16,10 +16,10 @@ namespace
 {
 
 // The overlap up to a vertical offset, sum(w d^2) - sum(w d)^2 / sum(w) over
-// sum(w), is never below 0, but in floats it may round below by a few units in
-// the last place of sum(w d^2) / sum(w) <= R^2, R the largest |d| (about 70
-// float roundings of 2^-24 for 256 summaries in 16 lanes: 4.2e-6 R^2). The
-// floor allows 24 times that.
+// sum(w), is never below 0, but in floats it may round below: the two sums
+// take up to 34 roundings of 2^-24 each and the square and quotients a few
+// more, so it lies above -140 * 2^-24 (8.3e-6) of sum(w d^2) / sum(w), which
+// is at most R^2, R the largest |d|. The floor allows 12 times that.
 constexpr double kOffsetOverlapRounding = 1.0e-4;
 
 // The least a candidate's a_o c_o can come out in floats, from the ranges of
