@@ -97,6 +97,7 @@ QueryMoments queryMoments(const FeatureQuery& q, const ArmsQuery& aq)
   return m;
 }
 
+// Orders ranked candidates by cost, ties by index: the order topK ranks in.
 bool cheaper(const RankedCandidate& a, const RankedCandidate& b)
 {
   return a.cost < b.cost || (a.cost == b.cost && a.index < b.index);

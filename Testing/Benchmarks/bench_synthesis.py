@@ -282,9 +282,10 @@ def cases(options, tsynth, tmp):
                ["--exemplar", colorado, "--sketch", y_ridges, "--size", "1024x1024"],
                ["auto", "opencl", "cpu"], sketch=y_ridges, size=(1024, 1024))
     if options.dense:
+        montblanc = os.path.join(DATA, "dems", "alps-montblanc.png")
         yield Case("a DEM as the target (alps-montblanc, 647x647), colorado exemplar",
-                   ["--exemplar", colorado, "--sketch",
-                    os.path.join(DATA, "dems", "alps-montblanc.png")], ["auto"])
+                   ["--exemplar", colorado, "--sketch", montblanc], ["auto"],
+                   sketch=montblanc, size=(647, 647))
         yield Case("Mount Jackson's feature tree as the sketch, colorado exemplar",
                    ["--exemplar", colorado, "--sketch", tree_sketch(tsynth, tmp)], ["auto"])
 
