@@ -1,11 +1,11 @@
 #include "FeatureRanking.h"
 
 #include "FeatureCostTerms.h"
+#include "Vectorise.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <omp.h>
 
 namespace tsynth
@@ -15,28 +15,35 @@ using namespace featurecost;
 namespace
 {
 
-// The overlap up to a vertical offset, sum(w d^2) - sum(w d)^2 / sum(w) over
-// sum(w), is never below 0, but in floats it may round below: the two sums
-// take up to 34 roundings of 2^-24 each and the square and quotients a few
-// more, so it lies above -140 * 2^-24 (8.3e-6) of sum(w d^2) / sum(w), which
-// is at most R^2, R the largest |d|. The floor allows 12 times that.
-constexpr double kOffsetOverlapRounding = 1.0e-4;
-
-// The least a candidate's a_o c_o can come out in floats, from the ranges of
-// its summaries and of the query's weighted ones alone.
-float overlapFloor(const std::array<float, 2>& range,
-  const OverlapQuery& oq,
-  const MatchWeights& w,
-  float invScale2)
+// What the bounds need of one query, worked out once: the constants of every
+// candidate's roughness, landform, overlap floor and profile floor.
+struct BoundQuery
 {
-  if (!(oq.weightSum > 0.0f) || !w.verticalOffset)
-  {
-    return 0.0f; // no overlap, or a weighted mean of squares: at least 0
-  }
-  const double reach =
-    std::max(static_cast<double>(oq.highest) - range[0], static_cast<double>(range[1]) - oq.lowest);
-  return static_cast<float>(-w.overlap * invScale2 * reach * reach * kOffsetOverlapRounding);
-}
+  // Roughness: the variances asked (a level asked as 0 is left out) and a_n.
+  std::array<float, kNoiseLevels> noise{};
+  float noiseWeight = 0.0f;
+  // Landform: the samples asked, their weights, a_l and the height scale.
+  std::array<float, kLandformStride> landform{};
+  std::array<float, kLandformStride> landformWeight{};
+  float landformWeightAll = 0.0f;
+  float invScale2 = 0.0f;
+  // The overlap up to a vertical offset: its floor from the summaries' ranges.
+  bool offsetOverlap = false;
+  double highest = 0.0;
+  double lowest = 0.0;
+  double overlapFloorScale = 0.0;
+  // The profiles: each arm's moments, which of its profiles it has, and the
+  // factor from a squared distance of profiles to a_f c_f.
+  int arms = 0;
+  std::array<std::array<double, FeatureRanker::kArmMoments>, kMaxArms> moments{};
+  std::array<bool, kMaxArms> along{};
+  std::array<bool, kMaxArms> across{};
+  double profileScale = 0.0; // 0: no profile, the floor is 0
+  // The angles: each arm's, and the factor from a sum of squared angle
+  // differences (in half turns) to a_a c_a.
+  std::array<float, kMaxArms> angles{};
+  double angleScale = 0.0;
+};
 
 // A profile's first two coordinates in an orthonormal basis of its samples:
 // the constant and the straight ramp. Their squared differences between two
@@ -57,6 +64,12 @@ std::array<double, FeatureRanker::kMoments> momentsOf(const float* v, int n)
   return { sum / std::sqrt(static_cast<double>(n)), ramp / std::sqrt(rampNorm) };
 }
 
+// The overlap up to a vertical offset, sum(w d^2) - sum(w d)^2 / sum(w) over
+// sum(w), is never below 0, but in floats it may round below: the two sums
+// take up to 34 roundings of 2^-24 each and the square and quotients a few
+// more, so it lies above -140 * 2^-24 (8.3e-6) of sum(w d^2) / sum(w), which
+// is at most R^2, R the largest |d|. The floor allows 12 times that.
+constexpr double kOffsetOverlapRounding = 1.0e-4;
 // The moments are kept in floats, rounded by at most 2^-24 of their size; a
 // gap is narrowed by 2^-20 of the sizes to stay below the true one.
 constexpr double kMomentRounding = 1.0e-6;
@@ -64,37 +77,319 @@ constexpr double kMomentRounding = 1.0e-6;
 // at most about 140 roundings of 2^-24 (8.3e-6 of it); the bound gives up 120
 // times that.
 constexpr double kProfileRounding = 1.0e-3;
+// The float angle term (up to 4 squares of a quotient, added and divided)
+// rounds below its true value by under 10 roundings of 2^-24, and a_f c_f +
+// a_a c_a takes 3 more; the bound gives up over 1000 times that.
+constexpr double kAngleRounding = 1.0e-3;
 
-// The squared gap between two moments, at its least.
-double gapSquared(double query, float candidate)
+BoundQuery boundQuery(const ScoredQuery& s)
 {
-  const double gap =
-    std::abs(query - candidate) - kMomentRounding * (std::abs(query) + std::abs(candidate));
-  return gap > 0.0 ? gap * gap : 0.0;
-}
-
-// The query's profile moments, per arm; an arm with a sample off the target
-// has none (its profile then bounds nothing but 0).
-struct QueryMoments
-{
-  std::array<std::array<double, FeatureRanker::kArmMoments>, kMaxArms> moments{};
-  std::array<bool, kMaxArms> along{};
-  std::array<bool, kMaxArms> across{};
-};
-
-QueryMoments queryMoments(const FeatureQuery& q, const ArmsQuery& aq)
-{
-  QueryMoments m;
+  BoundQuery b;
+  const FeatureQuery& q = s.q;
+  for (int l = 0; l < kNoiseLevels; ++l)
+  {
+    b.noise[static_cast<std::size_t>(l)] = queryAt(q.noise, l);
+  }
+  b.noiseWeight = static_cast<float>(s.w.noise);
+  for (int k = 0; k < kLandformStride; ++k)
+  {
+    b.landform[static_cast<std::size_t>(k)] = queryAt(q.landform, k);
+    b.landformWeight[static_cast<std::size_t>(k)] = queryAt(q.landformWeight, k);
+  }
+  b.landformWeightAll = static_cast<float>(s.w.landform);
+  b.invScale2 = s.invScale2;
+  // Without overlap, or as a weighted mean of squares, the overlap is at least 0.
+  b.offsetOverlap = s.overlap.weightSum > 0.0f && s.w.verticalOffset;
+  b.highest = s.overlap.highest;
+  b.lowest = s.overlap.lowest;
+  b.overlapFloorScale = -s.w.overlap * s.invScale2 * kOffsetOverlapRounding;
+  b.arms = q.arms;
   for (int a = 0; a < q.arms; ++a)
   {
     const auto arm = static_cast<std::size_t>(a);
     const auto along = momentsOf(q.along.data() + a * kAlongSamples, kAlongSamples);
     const auto across = momentsOf(q.across.data() + a * kAcrossSamples, kAcrossSamples);
-    m.moments[arm] = { along[0], along[1], across[0], across[1] };
-    m.along[arm] = aq.along[arm].size() == kAlongSamples;
-    m.across[arm] = aq.across[arm].size() == kAcrossSamples;
+    b.moments[arm] = { along[0], along[1], across[0], across[1] };
+    b.along[arm] = s.armsQuery.along[arm].size() == kAlongSamples;
+    b.across[arm] = s.armsQuery.across[arm].size() == kAcrossSamples;
   }
-  return m;
+  if (q.arms > 0 && s.armsQuery.samples > 0.0f)
+  {
+    b.profileScale = s.w.feature / s.armsQuery.samples * s.invScale2 * (1.0 - kProfileRounding);
+  }
+  for (int a = 0; a < q.arms; ++a)
+  {
+    b.angles[static_cast<std::size_t>(a)] = queryAt(q.angles, a);
+  }
+  if (q.arms > 0)
+  {
+    b.angleScale = static_cast<float>(s.w.angle) / q.arms * (1.0 - kAngleRounding);
+  }
+  return b;
+}
+
+// The overlap's floor for a candidate whose summaries lie in [lowest, highest].
+TSYNTH_INLINE_IN_CLONES float overlapFloorOf(const BoundQuery& b, float lowest, float highest)
+{
+  const double above = b.highest - lowest;
+  const double below = highest - b.lowest;
+  const double reach = above < below ? below : above;
+  return static_cast<float>(b.overlapFloorScale * reach * reach);
+}
+
+// The squared gap between two moments, at its least.
+TSYNTH_INLINE_IN_CLONES double gapSquared(double query, float candidate)
+{
+  double gap =
+    std::abs(query - candidate) - kMomentRounding * (std::abs(query) + std::abs(candidate));
+  gap = gap > 0.0 ? gap : 0.0;
+  return gap * gap;
+}
+
+// Members per block of a group's bound data, one per vector lane: four
+// 16-float vectors (AVX-512; eight AVX2 ones, sixteen SSE ones). The compiler
+// vectorises loops over this many; it unrolls loops of 16 into scalar code.
+constexpr std::size_t kBlockLanes = 64;
+using Lanes = float[kBlockLanes];
+using WideLanes = double[kBlockLanes];
+
+// Where a field lies in a group's blocks (FeatureRanker::Group): its kNoiseLevels
+// noise variances, its landform samples (the padding left out when it is 0 in
+// every member), its kArmMoments per arm, its descriptor's least and greatest.
+struct BlockFields
+{
+  std::size_t landform = 0; // landform samples kept
+  std::size_t moments = 0;  // moments kept: kArmMoments per arm of the group
+  std::size_t arms = 0;     // the group's arms: one angle each
+  std::size_t landformAt() const { return kNoiseLevels; }
+  std::size_t momentsAt() const { return landformAt() + landform; }
+  std::size_t anglesAt() const { return momentsAt() + moments; }
+  std::size_t lowestAt() const { return anglesAt() + arms; }
+  std::size_t highestAt() const { return lowestAt() + 1; }
+  std::size_t count() const { return highestAt() + 1; }
+};
+
+// Where the fields of a group (FeatureRanker::Group) lie.
+template<class Group>
+BlockFields blockFieldsOf(const Group& group)
+{
+  return { group.landformFields, group.momentFields, static_cast<std::size_t>(group.arms) };
+}
+
+// One block's roughness and landform (bit for bit as noiseTerm and
+// landformTerm: each member's sums keep their lanes and order) and its least
+// cost with the overlap and the arms' profiles at their floors, one member
+// per vector lane.
+class BlockBound
+{
+public:
+  BlockBound(const BoundQuery& b, const BlockFields& f)
+    : b_(b)
+    , f_(f)
+  {
+  }
+
+  TSYNTH_INLINE_IN_CLONES void operator()(const float* block,
+    float* noise,
+    float* landform,
+    float* least) const
+  {
+    Lanes profile;
+    armsFloor(block, profile);
+    noiseTerm(block, noise);
+    landformTerm(block, landform);
+    Lanes overlap;
+    overlapFloor(block, overlap);
+    for (std::size_t i = 0; i < kBlockLanes; ++i)
+    {
+      least[i] = totalCost(profile[i], { noise[i], overlap[i], landform[i] });
+    }
+  }
+
+private:
+  TSYNTH_INLINE_IN_CLONES const float* field(const float* block, std::size_t f) const
+  {
+    return block + f * kBlockLanes;
+  }
+
+  TSYNTH_INLINE_IN_CLONES void noiseTerm(const float* block, float* noise) const
+  {
+    Lanes sum = {};
+    for (std::size_t l = 0; l < kNoiseLevels; ++l)
+    {
+      const float asked = b_.noise[l];
+      if (!(asked > 0.0f))
+      {
+        continue;
+      }
+      const float* found = field(block, l);
+      for (std::size_t i = 0; i < kBlockLanes; ++i)
+      {
+        const float relative = (asked - found[i]) / (asked + found[i]);
+        sum[i] += relative * relative;
+      }
+    }
+    for (std::size_t i = 0; i < kBlockLanes; ++i)
+    {
+      noise[i] = b_.noiseWeight * sum[i];
+    }
+  }
+
+  TSYNTH_INLINE_IN_CLONES void landformTerm(const float* block, float* landform) const
+  {
+    Lanes sum = {};
+    for (std::size_t m = 0; m < static_cast<std::size_t>(kLanes); ++m)
+    {
+      Lanes lane = {};
+      for (std::size_t k = m; k < static_cast<std::size_t>(kLandformStride); k += kLanes)
+      {
+        const float asked = b_.landform[k];
+        const float weight = b_.landformWeight[k];
+        if (k >= f_.landform)
+        {
+          // Left out: 0 in every member, the same square for each.
+          const float square = (weight * asked) * asked;
+          for (std::size_t i = 0; i < kBlockLanes; ++i)
+          {
+            lane[i] += square;
+          }
+          continue;
+        }
+        const float* found = field(block, f_.landformAt() + k);
+        for (std::size_t i = 0; i < kBlockLanes; ++i)
+        {
+          const float diff = asked - found[i];
+          lane[i] += (weight * diff) * diff;
+        }
+      }
+      for (std::size_t i = 0; i < kBlockLanes; ++i)
+      {
+        sum[i] += lane[i];
+      }
+    }
+    for (std::size_t i = 0; i < kBlockLanes; ++i)
+    {
+      landform[i] =
+        b_.landformWeightAll * (sum[i] / static_cast<float>(kLandformSamples) * b_.invScale2);
+    }
+  }
+
+  // a_f c_f + a_a c_a at its least: per cyclic alignment of the arms, the
+  // profiles at the distance of their moments and the angles as they are.
+  TSYNTH_INLINE_IN_CLONES void armsFloor(const float* block, float* floor) const
+  {
+    if (b_.arms == 0)
+    {
+      std::fill(floor, floor + kBlockLanes, 0.0f);
+      return;
+    }
+    WideLanes least;
+    std::fill(least, least + kBlockLanes, std::numeric_limits<double>::infinity());
+    const auto arms = static_cast<std::size_t>(b_.arms);
+    for (std::size_t s = 0; s < arms; ++s)
+    {
+      WideLanes profile = {};
+      WideLanes angle = {};
+      for (std::size_t a = 0; a < arms; ++a)
+      {
+        const std::size_t arm = (a + s) % arms;
+        addProfileGaps(block, a, arm, profile);
+        addAngleGap(block, a, arm, angle);
+      }
+      for (std::size_t i = 0; i < kBlockLanes; ++i)
+      {
+        const double aligned = b_.profileScale * profile[i] + b_.angleScale * angle[i];
+        least[i] = aligned < least[i] ? aligned : least[i];
+      }
+    }
+    for (std::size_t i = 0; i < kBlockLanes; ++i)
+    {
+      floor[i] = static_cast<float>(least[i]);
+    }
+  }
+
+  // The squared gaps of the query's arm a's moments to the candidate's arm `arm`'s.
+  TSYNTH_INLINE_IN_CLONES void addProfileGaps(const float* block,
+    std::size_t a,
+    std::size_t arm,
+    double* sum) const
+  {
+    if (!(b_.profileScale > 0.0))
+    {
+      return;
+    }
+    const std::size_t first = f_.momentsAt() + arm * FeatureRanker::kArmMoments;
+    for (std::size_t j = 0; j < FeatureRanker::kArmMoments; ++j)
+    {
+      if (!(j < FeatureRanker::kMoments ? b_.along[a] : b_.across[a]))
+      {
+        continue;
+      }
+      const double asked = b_.moments[a][j];
+      const float* found = field(block, first + j);
+      for (std::size_t i = 0; i < kBlockLanes; ++i)
+      {
+        sum[i] += gapSquared(asked, found[i]);
+      }
+    }
+  }
+
+  // The squared difference of the query's arm a's angle and the candidate's
+  // arm `arm`'s, the nearest way round, in half turns, as the cost takes it.
+  TSYNTH_INLINE_IN_CLONES void addAngleGap(const float* block,
+    std::size_t a,
+    std::size_t arm,
+    double* sum) const
+  {
+    // Adding and taking away 1.5 * 2^52 rounds a double of magnitude under
+    // 2^51 to the nearest integer, ties to even, as std::remainder does.
+    constexpr double kRoundingShift = 6755399441055744.0;
+    const double turn = 2.0 * static_cast<double>(kPiF);
+    const float asked = b_.angles[a];
+    const float* found = field(block, f_.anglesAt() + arm);
+    for (std::size_t i = 0; i < kBlockLanes; ++i)
+    {
+      const double d = asked - found[i]; // in floats, as the cost
+      const double turns = (d / turn + kRoundingShift) - kRoundingShift;
+      const double r = (d - turns * turn) / static_cast<double>(kPiF);
+      sum[i] += r * r;
+    }
+  }
+
+  TSYNTH_INLINE_IN_CLONES void overlapFloor(const float* block, float* floor) const
+  {
+    if (!b_.offsetOverlap)
+    {
+      std::fill(floor, floor + kBlockLanes, 0.0f);
+      return;
+    }
+    const float* lowest = field(block, f_.lowestAt());
+    const float* highest = field(block, f_.highestAt());
+    for (std::size_t i = 0; i < kBlockLanes; ++i)
+    {
+      floor[i] = overlapFloorOf(b_, lowest[i], highest[i]);
+    }
+  }
+
+  const BoundQuery& b_;
+  const BlockFields& f_;
+};
+
+// Bounds `blocks` consecutive blocks: kBlockLanes results each.
+TSYNTH_VECTOR_CLONES void boundBlocks(const BoundQuery& b,
+  const BlockFields& f,
+  const float* blocks,
+  std::size_t count,
+  float* noise,
+  float* landform,
+  float* least)
+{
+  const BlockBound bound(b, f);
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const std::size_t at = k * kBlockLanes;
+    bound(blocks + k * f.count() * kBlockLanes, noise + at, landform + at, least + at);
+  }
 }
 
 // Orders ranked candidates by cost, ties by index: the order topK ranks in.
@@ -110,6 +405,12 @@ public:
   explicit KeptCandidates(std::size_t k)
     : k_(k)
   {
+  }
+  // Empty, to keep k (its storage kept for the next use).
+  void reset(std::size_t k)
+  {
+    k_ = k;
+    heap_.clear();
   }
   bool full() const { return heap_.size() >= k_; }
   std::size_t capacity() const { return k_; }
@@ -149,16 +450,9 @@ std::vector<RankedCandidate> cheapestOf(const std::vector<const KeptCandidates*>
   return all;
 }
 
-// What the bounds read of a candidate, kept per group member: its kNoiseLevels
-// noise variances, then its kLandformStride landform samples.
-constexpr std::size_t kCheapStride = kNoiseLevels + kLandformStride;
-// Its profiles' moments: kArmMoments per arm.
-constexpr std::size_t kMomentStride = kMaxArms * FeatureRanker::kArmMoments;
-
-// How many of a thread's share of an exemplar's candidates, those whose
-// roughness and landform cost least, are scored in full before the others,
-// per candidate kept: the k-th cheapest of them is the bar the rest must come
-// under from the start.
+// How many of a thread's share of an exemplar's candidates, those of least
+// bound, are scored in full before the others, per candidate kept: the k-th cheapest of them is the
+// bar the rest must come under from the start.
 constexpr std::size_t kWarmUpPerKept = 4;
 
 } // namespace
@@ -169,6 +463,7 @@ FeatureRanker::FeatureRanker(const CandidatePool& pool)
   for (std::size_t c = 0; c < pool.size(); ++c)
   {
     Group& group = groups_[{ pool.type[c], pool.kind[c], pool.arms[c] }];
+    group.arms = pool.arms[c];
     // Candidates ascend, and each exemplar's are one run of indices.
     if (group.members.empty() || pool.exemplar[group.members.back()] != pool.exemplar[c])
     {
@@ -176,37 +471,78 @@ FeatureRanker::FeatureRanker(const CandidatePool& pool)
     }
     group.members.push_back(c);
     group.runs.back().second = group.members.size();
-    addBoundData(group, c);
+  }
+  for (auto& entry : groups_)
+  {
+    layOutBoundData(entry.second);
   }
 }
 
-void FeatureRanker::addBoundData(Group& group, std::size_t c) const
+void FeatureRanker::layOutBoundData(Group& group) const
 {
-  const float* noise = pool_.noise.data() + c * kNoiseLevels;
-  group.cheap.insert(group.cheap.end(), noise, noise + kNoiseLevels);
-  const float* landform = pool_.landform.data() + c * kLandformStride;
-  group.cheap.insert(group.cheap.end(), landform, landform + kLandformStride);
-  const auto first = pool_.descriptor.begin() + static_cast<long>(c * kDescriptorSize);
-  const auto range = std::minmax_element(first, first + kDescriptorSize);
-  group.ranges.push_back({ *range.first, *range.second });
-  for (int b = 0; b < kMaxArms; ++b)
+  const std::size_t n = group.members.size();
+  auto landformAt = [&](std::size_t i, std::size_t k)
+  { return pool_.landform[group.members[i] * kLandformStride + k]; };
+  // The landform's padding is kept only where some member has it other than 0.
+  group.landformFields = static_cast<std::size_t>(kLandformSamples);
+  for (std::size_t i = 0; i < n; ++i)
   {
-    const std::size_t row = rowMajor(b, c, kMaxArms);
-    const auto along = momentsOf(pool_.along.data() + row * kAlongSamples, kAlongSamples);
-    const auto across = momentsOf(pool_.across.data() + row * kAcrossSamples, kAcrossSamples);
-    for (const double m : { along[0], along[1], across[0], across[1] })
+    for (std::size_t k = group.landformFields; k < kLandformStride; ++k)
     {
-      group.moments.push_back(static_cast<float>(m));
+      group.landformFields = landformAt(i, k) != 0.0f ? kLandformStride : group.landformFields;
     }
+  }
+  group.momentFields = static_cast<std::size_t>(group.arms) * kArmMoments;
+  const BlockFields fields = blockFieldsOf(group);
+  const std::size_t blocks = (n + kBlockLanes - 1) / kBlockLanes;
+  group.blocks.assign(blocks * fields.count() * kBlockLanes, 0.0f); // the last block padded with 0
+  auto at = [&](std::size_t i, std::size_t field) -> float&
+  {
+    const std::size_t block = i / kBlockLanes;
+    return group.blocks[(block * fields.count() + field) * kBlockLanes + i % kBlockLanes];
+  };
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::size_t c = group.members[i];
+    for (std::size_t l = 0; l < kNoiseLevels; ++l)
+    {
+      at(i, l) = pool_.noise[c * kNoiseLevels + l];
+    }
+    for (std::size_t k = 0; k < fields.landform; ++k)
+    {
+      at(i, fields.landformAt() + k) = landformAt(i, k);
+    }
+    for (std::size_t b = 0; b < static_cast<std::size_t>(group.arms); ++b)
+    {
+      const std::size_t row = rowMajor(b, c, kMaxArms);
+      const auto along = momentsOf(pool_.along.data() + row * kAlongSamples, kAlongSamples);
+      const auto across = momentsOf(pool_.across.data() + row * kAcrossSamples, kAcrossSamples);
+      std::size_t field = fields.momentsAt() + b * kArmMoments;
+      for (const double m : { along[0], along[1], across[0], across[1] })
+      {
+        at(i, field++) = static_cast<float>(m);
+      }
+      at(i, fields.anglesAt() + b) = pool_.angles[row];
+    }
+    const auto first = pool_.descriptor.begin() + static_cast<long>(c * kDescriptorSize);
+    const auto range = std::minmax_element(first, first + kDescriptorSize);
+    at(i, fields.lowestAt()) = *range.first;
+    at(i, fields.highestAt()) = *range.second;
   }
 }
 
 struct FeatureRanker::Scratch
 {
-  std::vector<CostTerms> terms; // roughness, landform, the overlap at its floor
-  std::vector<float> least;     // the cost with the rest at their least
-  std::vector<std::size_t> order;
+  std::vector<float> noise;       // each candidate's roughness term
+  std::vector<float> landform;    // and landform term
+  std::vector<float> least;       // its cost with the rest at their least
+  KeptCandidates leastBound{ 0 }; // the warm-up: indices i of leastOf(i), least costs
   std::vector<char> warmed;
+  std::size_t first = 0; // where the ranked members start in the arrays above
+  // Member `from + i`'s terms and least cost.
+  float noiseOf(std::size_t i) const { return noise[first + i]; }
+  float landformOf(std::size_t i) const { return landform[first + i]; }
+  float leastOf(std::size_t i) const { return least[first + i]; }
 };
 
 FeatureRanker::~FeatureRanker() = default;
@@ -219,12 +555,9 @@ FeatureRanker::~FeatureRanker() = default;
 class FeatureRanker::ExemplarRanking
 {
 public:
-  ExemplarRanking(const FeatureRanker& ranker,
-    const ScoredQuery& scored,
-    const QueryMoments& moments)
-    : r_(ranker)
-    , s_(scored)
-    , moments_(moments)
+  ExemplarRanking(const ScoredQuery& scored, const BoundQuery& bounds)
+    : s_(scored)
+    , b_(bounds)
     , bounded_(scored.w.feature >= 0.0 && scored.w.angle >= 0.0 && scored.w.overlap >= 0.0)
   {
   }
@@ -238,7 +571,7 @@ public:
     RankingCounts& counts) const
   {
     const std::size_t* members = group.members.data() + from;
-    boundTerms(group, from, n, x);
+    bound(group, from, n, x);
     warmUp(members, n, kept, x);
     // Dearer than k candidates already at its least: never among the k cheapest.
     auto outranked = [&](float least)
@@ -249,20 +582,15 @@ public:
       {
         continue;
       }
-      if (outranked(x.least[i]))
-      {
-        ++counts.beforeMoments;
-        continue;
-      }
-      const std::size_t c = members[i];
-      CostTerms terms = x.terms[i];
-      if (outranked(
-            totalCost(profileFloor(group.moments.data() + (from + i) * kMomentStride), terms)))
+      if (outranked(x.leastOf(i)))
       {
         ++counts.beforeArms;
         continue;
       }
+      const std::size_t c = members[i];
+      CostTerms terms{ x.noiseOf(i), 0.0f, x.landformOf(i) };
       const float arms = s_.armsOf(c);
+      terms.overlap = overlapFloor(group, from + i);
       if (outranked(totalCost(arms, terms)))
       {
         ++counts.beforeOverlap;
@@ -276,85 +604,76 @@ public:
   }
 
 private:
-  // Each candidate's roughness and landform, the overlap at its floor, and so its least cost.
-  void boundTerms(const Group& group, std::size_t from, std::size_t n, Scratch& x) const
+  // Each candidate's roughness and landform, and its least cost, from the
+  // blocks holding members [from, from + n): x's arrays start at the first
+  // block's first member, x.first before `from`.
+  void bound(const Group& group, std::size_t from, std::size_t n, Scratch& x) const
   {
-    x.terms.resize(n);
-    x.least.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const float* cheap = group.cheap.data() + (from + i) * kCheapStride;
-      CostTerms t = s_.cheapTermsAt(cheap, cheap + kNoiseLevels);
-      t.overlap = overlapFloor(group.ranges[from + i], s_.overlap, s_.w, s_.invScale2);
-      x.terms[i] = t;
-      x.least[i] = totalCost(0.0f, t);
-    }
+    const std::size_t first = from / kBlockLanes;
+    const std::size_t last = (from + n + kBlockLanes - 1) / kBlockLanes;
+    const std::size_t lanes = (last - first) * kBlockLanes;
+    x.first = from - first * kBlockLanes;
+    x.noise.resize(lanes);
+    x.landform.resize(lanes);
+    x.least.resize(lanes);
+    const BlockFields fields = blockFieldsOf(group);
+    boundBlocks(b_,
+      fields,
+      group.blocks.data() + first * fields.count() * kBlockLanes,
+      last - first,
+      x.noise.data(),
+      x.landform.data(),
+      x.least.data());
   }
 
-  // The least a_f c_f + a_a c_a of a candidate can be: the angles at 0 and
-  // each arm's profiles at the distance of their moments.
-  float profileFloor(const float* candidateMoments) const
+  // The overlap's floor for member `member` of the group, as the bounds take it.
+  float overlapFloor(const Group& group, std::size_t member) const
   {
-    const int arms = s_.q.arms;
-    if (arms == 0 || !(s_.armsQuery.samples > 0.0f))
+    if (!b_.offsetOverlap)
     {
       return 0.0f;
     }
-    double least = std::numeric_limits<double>::infinity();
-    for (int s = 0; s < arms; ++s)
-    {
-      double sum = 0.0;
-      for (int a = 0; a < arms; ++a)
-      {
-        const auto arm = static_cast<std::size_t>(a);
-        const auto& q = moments_.moments[arm];
-        const float* m = candidateMoments + ((a + s) % arms) * kArmMoments;
-        if (moments_.along[arm])
-        {
-          sum += gapSquared(q[0], m[0]) + gapSquared(q[1], m[1]);
-        }
-        if (moments_.across[arm])
-        {
-          sum += gapSquared(q[2], m[2]) + gapSquared(q[3], m[3]);
-        }
-      }
-      least = std::min(least, sum);
-    }
-    return static_cast<float>(
-      s_.w.feature * least / s_.armsQuery.samples * s_.invScale2 * (1.0 - kProfileRounding));
+    const BlockFields fields = blockFieldsOf(group);
+    const float* block =
+      group.blocks.data() + (member / kBlockLanes) * fields.count() * kBlockLanes;
+    const std::size_t lane = member % kBlockLanes;
+    return overlapFloorOf(b_,
+      block[fields.lowestAt() * kBlockLanes + lane],
+      block[fields.highestAt() * kBlockLanes + lane]);
   }
 
   // Scores in full the candidates of least bound and offers them first, so
-  // the bar the rest must come under is low from the start.
+  // the bar the rest must come under is low from the start: the count of
+  // least bound, ties by index.
   void warmUp(const std::size_t* members, std::size_t n, KeptCandidates& kept, Scratch& x) const
   {
     x.warmed.assign(n, 0);
-    if (!bounded_)
+    const std::size_t count = std::min(n, kWarmUpPerKept * kept.capacity());
+    if (!bounded_ || count == 0)
     {
       return;
     }
-    x.order.resize(n);
-    std::iota(x.order.begin(), x.order.end(), 0);
-    const std::size_t count = std::min(n, kWarmUpPerKept * kept.capacity());
-    const std::vector<float>& least = x.least;
-    std::nth_element(x.order.begin(),
-      x.order.begin() + static_cast<long>(count),
-      x.order.end(),
-      [&](std::size_t a, std::size_t b)
-      { return least[a] < least[b] || (least[a] == least[b] && a < b); });
-    for (std::size_t j = 0; j < count; ++j)
+    // The count of least bound, ties by index, in one pass: a candidate
+    // enters only when it beats the dearest of those held.
+    x.leastBound.reset(count);
+    for (std::size_t i = 0; i < n; ++i)
     {
-      const std::size_t i = x.order[j];
-      CostTerms terms = x.terms[i];
-      terms.overlap = s_.overlapOf(members[i]);
+      if (!std::isnan(x.leastOf(i))) // never outranked: the main loop scores it
+      {
+        x.leastBound.offer({ i, x.leastOf(i) });
+      }
+    }
+    for (const RankedCandidate& r : x.leastBound.kept())
+    {
+      const std::size_t i = r.index;
+      CostTerms terms{ x.noiseOf(i), s_.overlapOf(members[i]), x.landformOf(i) };
       kept.offer({ members[i], totalCost(s_.armsOf(members[i]), terms) });
       x.warmed[i] = 1;
     }
   }
 
-  const FeatureRanker& r_;
   const ScoredQuery& s_;
-  const QueryMoments& moments_;
+  const BoundQuery& b_;
   bool bounded_;
 };
 
@@ -374,8 +693,8 @@ std::vector<RankedCandidate> FeatureRanker::rank(const FeatureQuery& query,
   }
   const Group& group = found->second;
   const ScoredQuery scored(pool_, query, weights);
-  const QueryMoments moments = queryMoments(query, scored.armsQuery);
-  const ExemplarRanking ranking(*this, scored, moments);
+  const BoundQuery bounds = boundQuery(scored);
+  const ExemplarRanking ranking(scored, bounds);
   const std::size_t runs = group.runs.size();
   std::vector<std::vector<KeptCandidates>> perThread;
   std::vector<RankingCounts> tallies;
@@ -418,7 +737,6 @@ std::vector<RankedCandidate> FeatureRanker::rank(const FeatureQuery& query,
     for (const RankingCounts& t : tallies)
     {
       counts->shaped += t.shaped;
-      counts->beforeMoments += t.beforeMoments;
       counts->beforeArms += t.beforeArms;
       counts->beforeOverlap += t.beforeOverlap;
       counts->scored += t.scored;

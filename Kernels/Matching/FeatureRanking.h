@@ -9,9 +9,10 @@
 // bounds the cost from below, and a candidate whose bound is already dearer
 // than k candidates of its exemplar cannot be among the k cheapest: it is left
 // before its dearer terms are worked out. The terms, from cheap to dear:
-// roughness and landform (a few samples); the arms' profiles at their least
-// from two moments of each profile; the arms' profiles and angles; the
-// overlap's 256 summaries.
+// roughness, landform, and the arms' angles with their profiles at their
+// least from two moments of each profile (a few dozen numbers, bounded for
+// many candidates at once, one per vector lane); the arms' profiles in full;
+// the overlap's 256 summaries.
 #pragma once
 
 #include "CandidatePool.h"
@@ -29,8 +30,7 @@ namespace tsynth
 struct RankingCounts
 {
   std::size_t shaped = 0;        // candidates of the query's type, kind and arms
-  std::size_t beforeMoments = 0; // left on roughness and landform alone
-  std::size_t beforeArms = 0;    // left on the profiles' moments
+  std::size_t beforeArms = 0;    // left on roughness, landform, angles and profiles' moments
   std::size_t beforeOverlap = 0; // left on the arms
   std::size_t scored = 0;        // scored in full
 };
@@ -61,21 +61,23 @@ private:
   const CandidatePool& pool_;
   // The candidates of one type, kind and number of arms, index ascending, and
   // the runs of them [first, last) of one exemplar each. What the bounds read
-  // of each is copied in the same order, so a ranking streams through it.
+  // of them is copied in blocks of 64 members: in a block, each field (a noise
+  // variance, a landform sample, a moment...) holds its 64 members' numbers
+  // side by side, so they fill a vector's lanes, and a ranking streams
+  // through the blocks in order.
   struct Group
   {
     std::vector<std::size_t> members;
     std::vector<std::pair<std::size_t, std::size_t>> runs;
-    std::vector<float> cheap;                 // per member: noise variances, landform samples
-    std::vector<float> moments;               // per member and arm: kArmMoments
-    std::vector<std::array<float, 2>> ranges; // per member: its descriptor's least and greatest
+    int arms = 0;
+    std::size_t landformFields = 0; // landform samples kept per member
+    std::size_t momentFields = 0;   // moments kept per member
+    std::vector<float> blocks;      // the last block padded with zeros
   };
-  void addBoundData(Group& group, std::size_t c) const;
+  void layOutBoundData(Group& group) const;
 
-  std::map<std::array<int, 3>, Group> groups_;        // by type, kind, arms
-  std::vector<std::array<float, 2>> descriptorRange_; // per candidate
-  std::vector<float> moments_;                        // per candidate and arm, kArmMoments
-  std::vector<Scratch> scratch_;                      // per thread
+  std::map<std::array<int, 3>, Group> groups_; // by type, kind, arms
+  std::vector<Scratch> scratch_;               // per thread
 };
 
 } // namespace tsynth

@@ -11,3 +11,11 @@
 #else
 #define TSYNTH_VECTOR_CLONES
 #endif
+
+// For the helpers of a cloned function: built into each clone, with its
+// instruction set, rather than once for the baseline and called.
+#if defined(__GNUC__)
+#define TSYNTH_INLINE_IN_CLONES __attribute__((always_inline)) inline
+#else
+#define TSYNTH_INLINE_IN_CLONES inline
+#endif

@@ -111,7 +111,6 @@ void benchFeatureRanking(const Heightfield& exemplar)
         RankingCounts one;
         ranked[i] = ranker.rank(queries[i], w, kKept, &one);
         counts.shaped += one.shaped;
-        counts.beforeMoments += one.beforeMoments;
         counts.beforeArms += one.beforeArms;
         counts.beforeOverlap += one.beforeOverlap;
         counts.scored += one.scored;
@@ -143,11 +142,9 @@ void benchFeatureRanking(const Heightfield& exemplar)
     same,
     queries.size());
   const double shaped = static_cast<double>(counts.shaped);
-  std::printf(
-    "  of %zu candidates of the sites' shapes: %.0f%% left on roughness and landform, %.0f%% on "
-    "the profiles' moments, %.0f%% on the arms, %.1f%% scored in full\n",
+  std::printf("  of %zu candidates of the sites' shapes: %.0f%% left on their bounds (roughness, "
+              "landform, angles, profiles' moments), %.0f%% on the arms, %.1f%% scored in full\n",
     counts.shaped,
-    100.0 * static_cast<double>(counts.beforeMoments) / shaped,
     100.0 * static_cast<double>(counts.beforeArms) / shaped,
     100.0 * static_cast<double>(counts.beforeOverlap) / shaped,
     100.0 * static_cast<double>(counts.scored) / shaped);

@@ -165,6 +165,35 @@ TEST(FeatureRanking, FindsTheCandidatesAndCostsOfScoringEveryCandidate)
   EXPECT_GT(total.beforeArms, 0u);
 }
 
+TEST(FeatureRanking, BoundsTheArmsAnglesWithoutLosingTheCheapest)
+{
+  // Where the arms' angles weigh most, the bound's angle part decides which
+  // candidates are left: one that rounds above the cost's, or turns the wrong
+  // way round, drops the cheapest.
+  const CandidatePool& pool = exemplars().pool;
+  FeatureRanker ranker(pool);
+  MatchWeights w;
+  w.angle = 20.0;
+  w.feature = 0.5;
+  w.noise = w.landform = 0.1;
+  std::size_t leftEarly = 0;
+  std::size_t shaped = 0;
+  for (const std::size_t k : { std::size_t{ 1 }, std::size_t{ 8 } })
+  {
+    for (std::size_t i = 0; i < queries().all.size(); ++i)
+    {
+      RankingCounts counts;
+      expectSameRanking(ranker.rank(queries().all[i], w, k, &counts),
+        reference(pool, queries().all[i], w, k),
+        "query " + std::to_string(i) + ", k " + std::to_string(k));
+      leftEarly += counts.beforeArms;
+      shaped += counts.shaped;
+    }
+  }
+  // Most are left before their arms are compared in full.
+  EXPECT_GT(leftEarly * 2, shaped) << leftEarly << " of " << shaped;
+}
+
 TEST(FeatureRanking, DoesNotDependOnTheThreadCount)
 {
   const CandidatePool& pool = exemplars().pool;
