@@ -9,7 +9,8 @@ Cases (each a `tsynth synth` run; the per-stage split comes from --report):
             (--both: on all three).
   --dense   dense feature sets (on auto): a DEM as the target (alps-montblanc, 647 x 647)
             and a real DEM's own feature tree as a poly-line sketch (Mount
-            Jackson's ridges and valleys from `tsynth features --both`).
+            Jackson's ridges and valleys from `tsynth features --both`), at the
+            size the tree gives (957 x 1235) and at 648 x 648.
 Comparisons (the figures that count on a shared, noisy machine):
   --vs BUILD    runs BUILD/bin/tsynth (for example the previous landing) on the
                 same case, alternating with ours, --runs times; prints both
@@ -286,8 +287,12 @@ def cases(options, tsynth, tmp):
         yield Case("a DEM as the target (alps-montblanc, 647x647), colorado exemplar",
                    ["--exemplar", colorado, "--sketch", montblanc], ["auto"],
                    sketch=montblanc, size=(647, 647))
+        tree = tree_sketch(tsynth, tmp)
         yield Case("Mount Jackson's feature tree as the sketch, colorado exemplar",
-                   ["--exemplar", colorado, "--sketch", tree_sketch(tsynth, tmp)], ["auto"])
+                   ["--exemplar", colorado, "--sketch", tree], ["auto"])
+        # The size issue 21's dense-feature goal is stated at.
+        yield Case("Mount Jackson's feature tree as the sketch at 648x648, colorado exemplar",
+                   ["--exemplar", colorado, "--sketch", tree, "--size", "648x648"], ["auto"])
 
 
 def main():
