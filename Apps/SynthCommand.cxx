@@ -17,7 +17,6 @@
 #include "Core/PatchSize.h"
 #include "Core/Resample.h"
 #include "Features/Sketch.h"
-#include "Matching/OpenClMatcher.h"
 #include "Metrics/LandformMetrics.h"
 #include "Metrics/Legibility.h"
 #include "Metrics/TerrainMetrics.h"
@@ -721,10 +720,6 @@ int runSynth(std::vector<std::string> args)
     return 0;
   }
   SynthArguments a = parseSynthArguments(std::move(args));
-  if (a.request.options.backend == Backend::Auto)
-  {
-    startOpenClProbe(); // while the inputs are read
-  }
   const InterruptGuard interrupt; // from here on Ctrl-C stops the run cleanly
   const auto t0 = std::chrono::steady_clock::now();
   SynthesisSetup setup;

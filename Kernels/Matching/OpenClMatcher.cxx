@@ -11,9 +11,6 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <future>
-#include <mutex>
-#include <system_error>
 #include <limits>
 
 namespace tsynth
@@ -139,10 +136,7 @@ Backend parseBackend(const std::string& text)
   return static_cast<Backend>(choicesOf(kBackendWords).valueOf(text, "The backend"));
 }
 
-namespace
-{
-
-bool probeForAccelerator()
+bool openClHasAccelerator()
 {
   cl_uint platforms = 0;
   if (clGetPlatformIDs(0, nullptr, &platforms) != CL_SUCCESS || platforms == 0)
@@ -162,38 +156,6 @@ bool probeForAccelerator()
     }
   }
   return false;
-}
-
-// The probe's answer, the probe started on a thread of its own on first use.
-const std::shared_future<bool>& acceleratorAnswer()
-{
-  static std::once_flag started;
-  static std::shared_future<bool> answer;
-  std::call_once(started,
-    []
-    {
-      try
-      {
-        answer = std::async(std::launch::async, probeForAccelerator).share();
-      }
-      catch (const std::system_error&)
-      {
-        answer = std::async(std::launch::deferred, probeForAccelerator).share(); // no thread to spare
-      }
-    });
-  return answer;
-}
-
-} // namespace
-
-void startOpenClProbe()
-{
-  acceleratorAnswer();
-}
-
-bool openClHasAccelerator()
-{
-  return acceleratorAnswer().get();
 }
 
 bool matchesOnOpenCl(Backend backend)

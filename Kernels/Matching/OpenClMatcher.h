@@ -39,13 +39,7 @@ Backend parseBackend(const std::string& text);
 // is installed). Where OpenCL's only device is a CPU (PoCL), it runs the same
 // kernels on the same cores as the CPU backend, which is quicker there (a
 // 1024^2 synthesis 5.4 s against 6.4 s, here), so Backend::Auto takes the CPU.
-// The answer is worked out once per process.
 bool openClHasAccelerator();
-
-// Starts working out openClHasAccelerator() on a thread of its own. Asking
-// loads the OpenCL platforms' libraries (PoCL with LLVM: 0.1-0.15 s here),
-// which a caller can overlap with reading its inputs.
-void startOpenClProbe();
 
 // Whether the matcher will run on OpenCL with this backend choice (for Auto,
 // whether there is an accelerator): what the memory estimate counts.
