@@ -242,6 +242,41 @@ TEST(FeatureRanking, FindsACandidateOfZeroCostAmongItsTwins)
   EXPECT_GE(found, asked / 2) << found << " of " << asked;
 }
 
+TEST(FeatureRanking, TakesTheLandformsPaddingAsTheScoringDoes)
+{
+  // The landform is stored padded to kLandformStride samples. The ranker
+  // leaves out the padding when every candidate holds 0 there (as the pool
+  // builds it) and must then count a query's padding as against 0; it keeps
+  // the padding of a pool whose candidates hold something there.
+  const CandidatePool& pool = exemplars().pool;
+  const float height = static_cast<float>(pool.heightScale);
+  CandidatePool padded = pool;
+  for (std::size_t c = 0; c < padded.size(); c += 7)
+  {
+    padded.landform[c * kLandformStride + kLandformSamples + 2] = 0.3f * height;
+  }
+  const MatchWeights w;
+  std::size_t changed = 0;
+  for (const CandidatePool* p : { &pool, static_cast<const CandidatePool*>(&padded) })
+  {
+    FeatureRanker ranker(*p);
+    for (std::size_t i = 0; i < queries().all.size(); i += 2)
+    {
+      FeatureQuery q = queries().all[i];
+      for (int k = kLandformSamples; k < kLandformStride; ++k)
+      {
+        q.landform[k] = 0.1f * height * static_cast<float>(k - kLandformSamples);
+        q.landformWeight[k] = 0.5f;
+      }
+      const auto want = reference(*p, q, w, 3);
+      expectSameRanking(ranker.rank(q, w, 3), want, "query " + std::to_string(i));
+      const auto unpadded = reference(*p, queries().all[i], w, 3);
+      changed += !want.empty() && !unpadded.empty() && want[0].cost != unpadded[0].cost;
+    }
+  }
+  EXPECT_GT(changed, 0u); // the padding counts in the cost
+}
+
 TEST(FeatureRanking, RanksNothingForNoCandidateOrNoneAsked)
 {
   FeatureRanker ranker(exemplars().pool);
