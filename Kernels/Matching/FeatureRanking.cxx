@@ -155,7 +155,8 @@ using WideLanes = double[kBlockLanes];
 
 // Where a field lies in a group's blocks (FeatureRanker::Group): its kNoiseLevels
 // noise variances, its landform samples (the padding left out when it is 0 in
-// every member), its kArmMoments per arm, its descriptor's least and greatest.
+// every member), its kArmMoments per arm, its arms' angles, its descriptor's
+// least and greatest.
 struct BlockFields
 {
   std::size_t landform = 0; // landform samples kept
@@ -178,8 +179,8 @@ BlockFields blockFieldsOf(const Group& group)
 
 // One block's roughness and landform (bit for bit as noiseTerm and
 // landformTerm: each member's sums keep their lanes and order) and its least
-// cost with the overlap and the arms' profiles at their floors, one member
-// per vector lane.
+// cost with the overlap and the arms (angles, profiles) at their floors, one
+// member per vector lane.
 class BlockBound
 {
 public:
@@ -194,15 +195,15 @@ public:
     float* landform,
     float* least) const
   {
-    Lanes profile;
-    armsFloor(block, profile);
+    Lanes arms;
+    armsFloor(block, arms);
     noiseTerm(block, noise);
     landformTerm(block, landform);
     Lanes overlap;
     overlapFloor(block, overlap);
     for (std::size_t i = 0; i < kBlockLanes; ++i)
     {
-      least[i] = totalCost(profile[i], { noise[i], overlap[i], landform[i] });
+      least[i] = totalCost(arms[i], { noise[i], overlap[i], landform[i] });
     }
   }
 
