@@ -128,15 +128,6 @@ BoundQuery boundQuery(const ScoredQuery& s)
   return b;
 }
 
-// The overlap's floor for a candidate whose summaries lie in [lowest, highest].
-TSYNTH_INLINE_IN_CLONES float overlapFloorOf(const BoundQuery& b, float lowest, float highest)
-{
-  const double above = b.highest - lowest;
-  const double below = highest - b.lowest;
-  const double reach = above < below ? below : above;
-  return static_cast<float>(b.overlapFloorScale * reach * reach);
-}
-
 // The squared gap between two moments, at its least.
 TSYNTH_INLINE_IN_CLONES double gapSquared(double query, float candidate)
 {
@@ -174,8 +165,23 @@ struct BlockFields
 template<class Group>
 BlockFields blockFieldsOf(const Group& group)
 {
-  return { group.landformFields, group.momentFields, static_cast<std::size_t>(group.arms) };
+  const auto arms = static_cast<std::size_t>(group.arms);
+  return { group.landformFields, arms * FeatureRanker::kArmMoments, arms };
 }
+
+// What the bound pass gives per candidate: the exact roughness and landform
+// terms, the overlap's floor, and the least cost.
+struct BoundTerms
+{
+  float* noise;
+  float* landform;
+  float* overlap;
+  float* least;
+  BoundTerms from(std::size_t k) const
+  {
+    return { noise + k, landform + k, overlap + k, least + k };
+  }
+};
 
 // One block's roughness and landform (bit for bit as noiseTerm and
 // landformTerm: each member's sums keep their lanes and order) and its least
@@ -190,20 +196,16 @@ public:
   {
   }
 
-  TSYNTH_INLINE_IN_CLONES void operator()(const float* block,
-    float* noise,
-    float* landform,
-    float* least) const
+  TSYNTH_INLINE_IN_CLONES void operator()(const float* block, const BoundTerms& out) const
   {
     Lanes arms;
     armsFloor(block, arms);
-    noiseTerm(block, noise);
-    landformTerm(block, landform);
-    Lanes overlap;
-    overlapFloor(block, overlap);
+    noiseTerm(block, out.noise);
+    landformTerm(block, out.landform);
+    overlapFloor(block, out.overlap);
     for (std::size_t i = 0; i < kBlockLanes; ++i)
     {
-      least[i] = totalCost(arms[i], { noise[i], overlap[i], landform[i] });
+      out.least[i] = totalCost(arms[i], { out.noise[i], out.overlap[i], out.landform[i] });
     }
   }
 
@@ -357,6 +359,8 @@ private:
     }
   }
 
+  // The overlap's floor (kOffsetOverlapRounding) from the candidate's
+  // summaries' range and the query's.
   TSYNTH_INLINE_IN_CLONES void overlapFloor(const float* block, float* floor) const
   {
     if (!b_.offsetOverlap)
@@ -368,7 +372,10 @@ private:
     const float* highest = field(block, f_.highestAt());
     for (std::size_t i = 0; i < kBlockLanes; ++i)
     {
-      floor[i] = overlapFloorOf(b_, lowest[i], highest[i]);
+      const double above = b_.highest - lowest[i];
+      const double below = highest[i] - b_.lowest;
+      const double reach = above < below ? below : above;
+      floor[i] = static_cast<float>(b_.overlapFloorScale * reach * reach);
     }
   }
 
@@ -381,15 +388,12 @@ TSYNTH_VECTOR_CLONES void boundBlocks(const BoundQuery& b,
   const BlockFields& f,
   const float* blocks,
   std::size_t count,
-  float* noise,
-  float* landform,
-  float* least)
+  const BoundTerms& out)
 {
   const BlockBound bound(b, f);
   for (std::size_t k = 0; k < count; ++k)
   {
-    const std::size_t at = k * kBlockLanes;
-    bound(blocks + k * f.count() * kBlockLanes, noise + at, landform + at, least + at);
+    bound(blocks + k * f.count() * kBlockLanes, out.from(k * kBlockLanes));
   }
 }
 
@@ -493,7 +497,6 @@ void FeatureRanker::layOutBoundData(Group& group) const
       group.landformFields = landformAt(i, k) != 0.0f ? kLandformStride : group.landformFields;
     }
   }
-  group.momentFields = static_cast<std::size_t>(group.arms) * kArmMoments;
   const BlockFields fields = blockFieldsOf(group);
   const std::size_t blocks = (n + kBlockLanes - 1) / kBlockLanes;
   group.blocks.assign(blocks * fields.count() * kBlockLanes, 0.0f); // the last block padded with 0
@@ -536,6 +539,7 @@ struct FeatureRanker::Scratch
 {
   std::vector<float> noise;       // each candidate's roughness term
   std::vector<float> landform;    // and landform term
+  std::vector<float> overlap;     // the overlap's floor
   std::vector<float> least;       // its cost with the rest at their least
   KeptCandidates leastBound{ 0 }; // the warm-up: indices i of leastOf(i), least costs
   std::vector<char> warmed;
@@ -543,6 +547,7 @@ struct FeatureRanker::Scratch
   // Member `from + i`'s terms and least cost.
   float noiseOf(std::size_t i) const { return noise[first + i]; }
   float landformOf(std::size_t i) const { return landform[first + i]; }
+  float overlapFloorOf(std::size_t i) const { return overlap[first + i]; }
   float leastOf(std::size_t i) const { return least[first + i]; }
 };
 
@@ -589,9 +594,8 @@ public:
         continue;
       }
       const std::size_t c = members[i];
-      CostTerms terms{ x.noiseOf(i), 0.0f, x.landformOf(i) };
+      CostTerms terms{ x.noiseOf(i), x.overlapFloorOf(i), x.landformOf(i) };
       const float arms = s_.armsOf(c);
-      terms.overlap = overlapFloor(group, from + i);
       if (outranked(totalCost(arms, terms)))
       {
         ++counts.beforeOverlap;
@@ -605,7 +609,7 @@ public:
   }
 
 private:
-  // Each candidate's roughness and landform, and its least cost, from the
+  // Each candidate's roughness, landform, overlap floor and least cost, from the
   // blocks holding members [from, from + n): x's arrays start at the first
   // block's first member, x.first before `from`.
   void bound(const Group& group, std::size_t from, std::size_t n, Scratch& x) const
@@ -616,31 +620,14 @@ private:
     x.first = from - first * kBlockLanes;
     x.noise.resize(lanes);
     x.landform.resize(lanes);
+    x.overlap.resize(lanes);
     x.least.resize(lanes);
     const BlockFields fields = blockFieldsOf(group);
     boundBlocks(b_,
       fields,
       group.blocks.data() + first * fields.count() * kBlockLanes,
       last - first,
-      x.noise.data(),
-      x.landform.data(),
-      x.least.data());
-  }
-
-  // The overlap's floor for member `member` of the group, as the bounds take it.
-  float overlapFloor(const Group& group, std::size_t member) const
-  {
-    if (!b_.offsetOverlap)
-    {
-      return 0.0f;
-    }
-    const BlockFields fields = blockFieldsOf(group);
-    const float* block =
-      group.blocks.data() + (member / kBlockLanes) * fields.count() * kBlockLanes;
-    const std::size_t lane = member % kBlockLanes;
-    return overlapFloorOf(b_,
-      block[fields.lowestAt() * kBlockLanes + lane],
-      block[fields.highestAt() * kBlockLanes + lane]);
+      { x.noise.data(), x.landform.data(), x.overlap.data(), x.least.data() });
   }
 
   // Scores in full the candidates of least bound and offers them first, so

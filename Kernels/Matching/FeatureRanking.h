@@ -71,7 +71,6 @@ private:
     std::vector<std::pair<std::size_t, std::size_t>> runs;
     int arms = 0;
     std::size_t landformFields = 0; // landform samples kept per member
-    std::size_t momentFields = 0;   // moments kept per member
     std::vector<float> blocks;      // the last block padded with zeros
   };
   void layOutBoundData(Group& group) const;
