@@ -52,4 +52,9 @@ private:
   std::uint64_t h_ = 0;
 };
 
+// The code that computes what is keyed: a hash of the bytes of the file this
+// function was loaded from (the kernels library, or a static executable), read
+// once; 0 if it cannot be read, and then nothing keyed by it may be reused.
+std::uint64_t codeHash();
+
 } // namespace tsynth

@@ -11,12 +11,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <dlfcn.h>
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
-#include <mutex>
 #include <optional>
 #include <sstream>
 #include <sys/mman.h>
@@ -52,33 +50,6 @@ static_assert(sizeof(LandformStatistics) == 288, "update ExemplarCache.cxx's Lan
 static_assert(sizeof(ExemplarStatistics) == 328, "update ExemplarCache.cxx's ExemplarStatistics");
 
 using Hasher = ContentHasher;
-
-// The code that computes an entry: the bytes of the file this function was
-// loaded from (the kernels library, or a static executable); 0 if it cannot
-// be read, and then no cache is used.
-std::uint64_t codeHash()
-{
-  static std::once_flag once;
-  static std::uint64_t hash = 0;
-  std::call_once(once,
-    []
-    {
-      Dl_info info{};
-      if (dladdr(reinterpret_cast<void*>(&codeHash), &info) == 0 || info.dli_fname == nullptr)
-      {
-        return;
-      }
-      std::ifstream in(info.dli_fname, std::ios::binary);
-      std::vector<char> buffer(std::size_t{ 1 } << 20);
-      Hasher h;
-      while (in.read(buffer.data(), static_cast<std::streamsize>(buffer.size())) || in.gcount() > 0)
-      {
-        h.bytes(buffer.data(), static_cast<std::size_t>(in.gcount()));
-      }
-      hash = in.bad() ? 0 : h.digest() | 1; // never 0 once read
-    });
-  return hash;
-}
 
 // No entry under that name (none yet, or just removed by another process).
 struct EntryAbsent
