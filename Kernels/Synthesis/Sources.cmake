@@ -15,4 +15,5 @@ set(TSYNTH_SYNTHESIS_SOURCES
   Synthesis/SynthesisRequest.cxx
   Synthesis/Synthesiser.cxx
   Synthesis/Target.cxx
+  Synthesis/TileRecord.cxx
   Synthesis/Tiling.cxx)

@@ -4,6 +4,7 @@
 #include "../Core/Grid.h"
 #include "../Core/Random.h"
 #include "PatchPlacement.h"
+#include "TileRecord.h"
 #include "Tiling.h"
 
 #include <algorithm>
@@ -69,13 +70,6 @@ SynthesisOptions tileOptions(const SynthesisOptions& o,
 // sentence that says why (outcomes never start with it: they start with a count).
 const std::string kFailedTile = "tsynth: failed tile\n";
 
-// The two passes of a tiled synthesis over its tiles.
-enum class TilePass
-{
-  Features,
-  Fill
-};
-
 // Everything the tiles of one tiled synthesis share.
 struct TiledRun
 {
@@ -91,18 +85,69 @@ struct TiledRun
   std::vector<TileTiming> tileTimings;
   double waited = 0.0;
 
-  // Places tile k in this pass, on the whole output as it stands.
+  // This run's record (SynthesisOptions::keepRecord), else null.
+  std::shared_ptr<PlacementRecord> record;
+  std::size_t takenOver = 0;
+
+  // The previous run's outcome of tile k in this pass (packOutcome's bytes),
+  // if its inputs were these (TileRecord.h); else null.
+  const std::string* recorded(TilePass pass, std::size_t k, std::uint64_t inputs) const
+  {
+    if (o.previous == nullptr)
+    {
+      return nullptr;
+    }
+    const std::vector<RecordedTile>& done = o.previous->tiles[static_cast<std::size_t>(pass)];
+    return k < done.size() && done[k].inputs == inputs ? &done[k].outcome : nullptr;
+  }
+
+  // Places tile k in this pass, on the whole output as it stands, or takes its
+  // outcome over from the previous run's record when its inputs are the same.
   TileOutcome place(TilePass pass, std::size_t k)
   {
     const SynthesisTile& t = tiles[k];
     const auto start = Clock::now();
     const std::clock_t cpuStart = std::clock();
-    auto t0 = start;
     const SynthesisTarget part = regionTarget(target, t);
     const Heightfield known = whole.knownIn(t);
+    const std::vector<FeatureSite> own =
+      pass == TilePass::Features ? whole.sitesOf(t, sites) : std::vector<FeatureSite>();
     const std::size_t done = (pass == TilePass::Fill ? tiles.size() : 0) + k;
     const SynthesisOptions to =
       tileOptions(o, t, target.field.width, done, kTiledPasses * tiles.size());
+    const bool keyed = record != nullptr || o.previous != nullptr;
+    const std::uint64_t inputs =
+      keyed ? tileInputsKey(pass, t, part, known, own, to.regionLabels, o.patchSize) : 0;
+    const std::string* previous = recorded(pass, k, inputs);
+    TileOutcome outcome =
+      previous != nullptr ? unpackOutcome(*previous) : placeAnew(pass, t, k, part, known, own, to);
+    takenOver += previous != nullptr ? 1 : 0;
+    if (record != nullptr)
+    {
+      record->tiles[static_cast<std::size_t>(pass)][k] = { inputs,
+        previous != nullptr ? *previous : packOutcome(outcome) };
+    }
+    tileTimings.push_back({ t.column,
+      t.row,
+      t.colour,
+      pass == TilePass::Fill,
+      secondsSince(start),
+      static_cast<double>(std::clock() - cpuStart) / CLOCKS_PER_SEC,
+      previous != nullptr });
+    return outcome;
+  }
+
+  // Places tile t (number k) in this pass on its part of the target, with
+  // the known cells of its region and its own feature sites.
+  TileOutcome placeAnew(TilePass pass,
+    const SynthesisTile& t,
+    std::size_t k,
+    const SynthesisTarget& part,
+    const Heightfield& known,
+    const std::vector<FeatureSite>& own,
+    const SynthesisOptions& to)
+  {
+    auto t0 = Clock::now();
     PatchPlacement tile(part, &matcher, graphs, to, &known);
     tile.boundHeights(exemplars);
     tile.setTypicalNoise(matcher.dense().typicalNoise());
@@ -111,7 +156,7 @@ struct TiledRun
     std::vector<std::uint8_t> border;
     if (pass == TilePass::Features)
     {
-      tile.placeFeatures(whole.sitesOf(t, sites));
+      tile.placeFeatures(own);
     }
     else
     {
@@ -130,12 +175,6 @@ struct TiledRun
     }
     TileOutcome outcome = tile.outcome(k, border);
     (pass == TilePass::Features ? timings.features : timings.fill) += secondsSince(t0);
-    tileTimings.push_back({ t.column,
-      t.row,
-      t.colour,
-      pass == TilePass::Fill,
-      secondsSince(start),
-      static_cast<double>(std::clock() - cpuStart) / CLOCKS_PER_SEC });
     return outcome;
   }
 
@@ -232,7 +271,17 @@ SynthesisResult synthesiseTiled(const SynthesisTarget& target,
     whole.sitesInOrder(),
     {},
     {},
-    0.0 };
+    0.0,
+    nullptr,
+    0 };
+  if (o.keepRecord)
+  {
+    run.record = std::make_shared<PlacementRecord>(emptyRecord(target, exemplars, o));
+    for (std::vector<RecordedTile>& pass : run.record->tiles)
+    {
+      pass.resize(run.tiles.size());
+    }
+  }
   run.timings.setup = secondsSince(t0);
   for (TilePass pass : { TilePass::Features, TilePass::Fill })
   {
@@ -259,10 +308,33 @@ SynthesisResult synthesiseTiled(const SynthesisTarget& target,
   r.timings = run.timings;
   r.tiles = std::move(run.tileTimings);
   r.waitedSeconds = run.waited;
+  r.record = std::move(run.record);
+  r.tilesTakenOver = run.takenOver;
   r.backend = backend;
   r.warnings.insert(r.warnings.begin(), matcherWarnings.begin(), matcherWarnings.end());
   r.warnings.insert(r.warnings.begin(), target.warnings.begin(), target.warnings.end());
   return r;
+}
+
+// Throws tsynth::Error if the options' tile records cannot be used: shared
+// among processes, or a previous record made for another run (recordMismatch).
+void checkRecordUse(const SynthesisTarget& target,
+  const std::vector<const Heightfield*>& exemplars,
+  const SynthesisOptions& o)
+{
+  if ((o.previous != nullptr || o.keepRecord) && o.sharing.ranks > 1)
+  {
+    throw Error("Re-synthesising an edit from a tile record runs in one process, not " +
+      std::to_string(o.sharing.ranks) + ".");
+  }
+  if (o.previous != nullptr)
+  {
+    const std::string why = recordMismatch(*o.previous, target, exemplars, o);
+    if (!why.empty())
+    {
+      throw Error(why);
+    }
+  }
 }
 
 } // namespace
@@ -308,12 +380,17 @@ SynthesisResult synthesise(const SynthesisTarget& target,
       }
     }
   }
+  if (o.tileSize == 0 && (o.previous != nullptr || o.keepRecord))
+  {
+    throw Error("Re-synthesising an edit works tile by tile: give a tile size.");
+  }
   if (o.tileSize > 0)
   {
     if (o.placementLimit != kAllPlacements)
     {
       throw Error("Stepping through the placements works on one piece: give a tile size of 0.");
     }
+    checkRecordUse(target, exemplars, o);
     return synthesiseTiled(target, exemplars, graphs, o);
   }
   auto t0 = Clock::now();

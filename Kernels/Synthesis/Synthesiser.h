@@ -28,6 +28,8 @@
 namespace tsynth
 {
 
+struct PlacementRecord; // TileRecord.h
+
 // SynthesisOptions::placementLimit of a whole synthesis: every placement, then the finishing.
 constexpr std::size_t kAllPlacements = std::numeric_limits<std::size_t>::max();
 // The placement limit a front end's number asks for (kAllPlacementsNumber,
@@ -100,6 +102,13 @@ struct SynthesisOptions
   // bit. kAllPlacements: every placement, then the finishing. One piece only
   // (tileSize 0).
   std::size_t placementLimit = kAllPlacements;
+  // Local re-synthesis of an edited sketch (TileRecord.h; tiled, one process):
+  // the record of an earlier run, from which each tile whose placement would
+  // read the same inputs takes its outcome instead of being placed again.
+  // Null: none. A record that cannot serve this run (recordMismatch) is refused.
+  std::shared_ptr<const PlacementRecord> previous;
+  // Tiled: keep this run's own record in SynthesisResult::record.
+  bool keepRecord = false;
   // The exemplars' feature candidate pool at this patch size, prepared before
   // (SynthesisSetup::pool, perhaps read from the exemplar cache); null: built here.
   std::shared_ptr<const CandidatePool> pool;
@@ -151,6 +160,7 @@ struct TileTiming
   bool fill = false;       // the fill pass; else the feature pass
   double seconds = 0.0;    // wall clock
   double cpuSeconds = 0.0; // this process's CPU time meanwhile, all its threads
+  bool takenOver = false;  // from the previous run's record, not placed
 };
 
 struct SynthesisResult
@@ -169,6 +179,10 @@ struct SynthesisResult
   // the time it waited for the other processes' tiles after each step.
   std::vector<TileTiming> tiles;
   double waitedSeconds = 0.0;
+  // SynthesisOptions::keepRecord: this run's record (null otherwise), and how
+  // many tile passes were taken over from SynthesisOptions::previous.
+  std::shared_ptr<const PlacementRecord> record;
+  std::size_t tilesTakenOver = 0;
   std::vector<std::string> warnings;
   std::string backend;
 };

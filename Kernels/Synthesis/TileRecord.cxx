@@ -1,0 +1,516 @@
+#include "TileRecord.h"
+
+#include "../Core/ContentHash.h"
+#include "../Core/Error.h"
+#include "../Core/OutputFile.h"
+#include "FeatureOrder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <sstream>
+
+namespace tsynth
+{
+namespace
+{
+
+// The record file's first bytes, and its layout's version: a record of
+// another layout is refused, never misread.
+const std::string kRecordMagic = "TerrainSynthesis tile record\n";
+constexpr std::uint64_t kRecordVersion = 1;
+constexpr std::size_t kBitsPerByte = 8;
+
+void hashField(ContentHasher& h, const Heightfield& f)
+{
+  h.value(f.width);
+  h.value(f.height);
+  h.value(f.cellX);
+  h.value(f.cellY);
+  h.value(f.cellSizeKnown);
+  h.values(f.z);
+  h.values(f.valid);
+}
+
+std::uint64_t exemplarsKey(const std::vector<const Heightfield*>& exemplars)
+{
+  ContentHasher h;
+  h.value(exemplars.size());
+  for (const Heightfield* e : exemplars)
+  {
+    hashField(h, *e);
+  }
+  return h.digest();
+}
+
+// The options a tile's placement reads besides the patch size, the seed and
+// the tile grid (kept apart, to name them when they differ). The backend is
+// left out (every backend gives the same bits), and so are the finishing's
+// options: the finishing runs anew over the whole terrain.
+std::uint64_t optionsKey(const SynthesisOptions& o)
+{
+  ContentHasher h;
+  h.value(o.merge);
+  h.value(o.fill);
+  h.value(o.k);
+  h.value(o.fillK);
+  h.value(o.fillSpacing);
+  h.value(o.verticalOffset);
+  h.value(o.repetitionPenalty);
+  h.value(o.regionLabels.empty());
+  h.value(o.regionExemplars.size());
+  for (const std::vector<int>& served : o.regionExemplars)
+  {
+    h.values(served);
+  }
+  return h.digest();
+}
+
+// The lines of one type (or of every type) as rasteriseChains lays them on the
+// part's grid: all a tile's placement reads of the target's graph.
+std::vector<std::uint8_t> linesOfType(const SynthesisTarget& part, const FeatureType* type)
+{
+  FeatureGraph lines = part.graph;
+  if (type != nullptr)
+  {
+    lines.chains.erase(std::remove_if(lines.chains.begin(),
+                         lines.chains.end(),
+                         [&](const FeatureChain& c) { return c.type != *type; }),
+      lines.chains.end());
+  }
+  return rasteriseChains(lines, part.field.width, part.field.height);
+}
+
+// A site's place and shape. Its node and chain numbers are left out: no
+// placement reads them, and an edit elsewhere in the sketch renumbers them.
+void hashSite(ContentHasher& h, const FeatureSite& s)
+{
+  h.value(s.centre.x);
+  h.value(s.centre.y);
+  h.value(s.type);
+  h.value(s.kind);
+  h.value(s.arms.size());
+  for (const ControlPoint& arm : s.arms)
+  {
+    h.value(arm.position.x);
+    h.value(arm.position.y);
+    h.value(arm.angle);
+    h.value(arm.reached);
+  }
+}
+
+// Bytes in native order, as Tiling.cxx shares outcomes between processes.
+class RecordWriter
+{
+public:
+  template<class T>
+  void value(const T& v)
+  {
+    static_assert(std::is_trivially_copyable_v<T>);
+    out_.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  template<class T>
+  void values(const std::vector<T>& v)
+  {
+    value(static_cast<std::uint64_t>(v.size()));
+    out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  std::string& bytes() { return out_; }
+
+private:
+  std::string out_;
+};
+
+class RecordReader
+{
+public:
+  RecordReader(const std::string& bytes, std::size_t end, std::string source)
+    : bytes_(bytes)
+    , end_(end)
+    , source_(std::move(source))
+  {
+  }
+  template<class T>
+  T value()
+  {
+    T v{};
+    take(&v, sizeof v);
+    return v;
+  }
+  template<class T>
+  std::vector<T> values()
+  {
+    const auto n = value<std::uint64_t>();
+    if (n > (end_ - at_) / sizeof(T))
+    {
+      damaged();
+    }
+    std::vector<T> v(n);
+    take(v.data(), n * sizeof(T));
+    return v;
+  }
+  void skip(std::size_t n)
+  {
+    if (n > end_ - at_)
+    {
+      damaged();
+    }
+    at_ += n;
+  }
+  bool atEnd() const { return at_ == end_; }
+  [[noreturn]] void damaged() const
+  {
+    throw Error("The tile record " + source_ +
+      " is damaged or cut short: synthesise the terrain anew, without it.");
+  }
+
+private:
+  void take(void* to, std::size_t n)
+  {
+    if (n > end_ - at_)
+    {
+      damaged();
+    }
+    std::copy_n(bytes_.data() + at_, n, static_cast<char*>(to));
+    at_ += n;
+  }
+
+  const std::string& bytes_;
+  std::size_t end_;
+  std::string source_;
+  std::size_t at_ = 0;
+};
+
+} // namespace
+
+// A tile's outcome: its kept cells as bits, then only those cells' values.
+std::string packOutcome(const TileOutcome& o)
+{
+  RecordWriter w;
+  const std::size_t cells = o.kept.size();
+  std::vector<std::uint8_t> bits((cells + kBitsPerByte - 1) / kBitsPerByte, 0);
+  std::vector<float> heights;
+  std::vector<std::int32_t> ids;
+  std::vector<std::uint8_t> seam;
+  std::vector<float> cost;
+  for (std::size_t c = 0; c < cells; ++c)
+  {
+    if (o.kept[c] == 0)
+    {
+      continue;
+    }
+    bits[c / kBitsPerByte] |= static_cast<std::uint8_t>(1u << (c % kBitsPerByte));
+    heights.push_back(o.heights[c]);
+    ids.push_back(o.patchId[c]);
+    seam.push_back(o.seam[c]);
+    cost.push_back(o.matchCost[c]);
+  }
+  w.value(static_cast<std::uint64_t>(o.tile));
+  w.value(static_cast<std::uint64_t>(cells));
+  w.values(bits);
+  w.values(heights);
+  w.values(ids);
+  w.values(seam);
+  w.values(cost);
+  w.values(o.placements);
+  w.value(o.anchoredMerges);
+  return std::move(w.bytes());
+}
+
+TileOutcome unpackOutcome(const std::string& bytes)
+{
+  RecordReader in(bytes, bytes.size(), "in memory");
+  TileOutcome o;
+  o.tile = in.value<std::uint64_t>();
+  const auto cells = in.value<std::uint64_t>();
+  const std::vector<std::uint8_t> bits = in.values<std::uint8_t>();
+  const std::vector<float> heights = in.values<float>();
+  const std::vector<std::int32_t> ids = in.values<std::int32_t>();
+  const std::vector<std::uint8_t> seam = in.values<std::uint8_t>();
+  const std::vector<float> cost = in.values<float>();
+  const std::size_t kept = heights.size();
+  if (bits.size() != (cells + kBitsPerByte - 1) / kBitsPerByte || ids.size() != kept ||
+    seam.size() != kept || cost.size() != kept)
+  {
+    in.damaged();
+  }
+  constexpr float kNone = std::numeric_limits<float>::quiet_NaN();
+  o.kept.assign(cells, 0);
+  o.heights.assign(cells, kNone);
+  o.patchId.assign(cells, -1);
+  o.seam.assign(cells, 0);
+  o.matchCost.assign(cells, kNone);
+  std::size_t k = 0;
+  for (std::size_t c = 0; c < cells; ++c)
+  {
+    if ((bits[c / kBitsPerByte] >> (c % kBitsPerByte) & 1u) == 0)
+    {
+      continue;
+    }
+    if (k == kept)
+    {
+      in.damaged();
+    }
+    o.kept[c] = 1;
+    o.heights[c] = heights[k];
+    o.patchId[c] = ids[k];
+    o.seam[c] = seam[k];
+    o.matchCost[c] = cost[k];
+    ++k;
+  }
+  if (k != kept)
+  {
+    in.damaged();
+  }
+  o.placements = in.values<Placement>();
+  o.anchoredMerges = in.value<std::uint64_t>();
+  if (!in.atEnd())
+  {
+    in.damaged();
+  }
+  return o;
+}
+
+namespace
+{
+
+std::string cellsText(double x, double y)
+{
+  std::ostringstream s;
+  s << x;
+  if (y != x)
+  {
+    s << " x " << y;
+  }
+  return s.str() + " m";
+}
+
+} // namespace
+
+PlacementRecord emptyRecord(const SynthesisTarget& target,
+  const std::vector<const Heightfield*>& exemplars,
+  const SynthesisOptions& o)
+{
+  PlacementRecord r;
+  r.width = target.field.width;
+  r.height = target.field.height;
+  r.cellX = target.field.cellX;
+  r.cellY = target.field.cellY;
+  r.tileSize = o.tileSize;
+  r.patchSize = o.patchSize;
+  r.seed = o.seed;
+  r.exemplars = exemplarsKey(exemplars);
+  r.options = optionsKey(o);
+  r.code = codeHash();
+  return r;
+}
+
+std::string recordMismatch(const PlacementRecord& r,
+  const SynthesisTarget& target,
+  const std::vector<const Heightfield*>& exemplars,
+  const SynthesisOptions& o)
+{
+  const Heightfield& f = target.field;
+  if (r.width != f.width || r.height != f.height)
+  {
+    return "The previous terrain is " + std::to_string(r.width) + " x " + std::to_string(r.height) +
+      " cells and this one " + std::to_string(f.width) + " x " + std::to_string(f.height) +
+      ": re-synthesising an edit keeps the terrain's size.";
+  }
+  if (r.cellX != f.cellX || r.cellY != f.cellY)
+  {
+    return "The previous terrain's cells are " + cellsText(r.cellX, r.cellY) + " and this one's " +
+      cellsText(f.cellX, f.cellY) + ": re-synthesising an edit keeps the cell size.";
+  }
+  if (r.tileSize != o.tileSize)
+  {
+    return "The previous terrain was synthesised in tiles of " + std::to_string(r.tileSize) +
+      " cells, this run asks for " + std::to_string(o.tileSize) +
+      ": re-synthesising an edit keeps the tile grid.";
+  }
+  if (r.patchSize != o.patchSize)
+  {
+    return "The previous terrain was synthesised with patches of " + std::to_string(r.patchSize) +
+      " cells, this run with " + std::to_string(o.patchSize) +
+      ": re-synthesising an edit keeps the patch size.";
+  }
+  if (r.seed != o.seed)
+  {
+    return "The previous terrain was synthesised with seed " + std::to_string(r.seed) +
+      ", this run with " + std::to_string(o.seed) + ": re-synthesising an edit keeps the seed.";
+  }
+  if (r.exemplars != exemplarsKey(exemplars))
+  {
+    return "The previous terrain was synthesised from other exemplars (or the same at another "
+           "cell size): re-synthesising an edit keeps the exemplars.";
+  }
+  if (r.options != optionsKey(o))
+  {
+    return "The previous terrain was synthesised with other placement options (merge, fill "
+           "order, candidates, fill spacing, vertical offset, repetition or style regions): "
+           "re-synthesising an edit keeps them.";
+  }
+  if (r.code == 0 || r.code != codeHash())
+  {
+    return "The previous terrain's tile record was written by another build of "
+           "TerrainSynthesis, whose tiles may differ: synthesise the terrain anew.";
+  }
+  return {};
+}
+
+std::uint64_t tileInputsKey(TilePass pass,
+  const SynthesisTile& tile,
+  const SynthesisTarget& part,
+  const Heightfield& known,
+  const std::vector<FeatureSite>& sites,
+  const std::vector<int>& regionLabels,
+  int patchSize)
+{
+  ContentHasher h;
+  h.value(pass);
+  h.value(tile.index);
+  h.value(tile.regionX0);
+  h.value(tile.regionY0);
+  h.value(tile.regionWidth);
+  h.value(tile.regionHeight);
+  hashField(h, part.field);
+  h.values(part.weight);
+  h.values(part.halfWidth);
+  h.values(part.downstream);
+  // Of the target's scalars a placement reads whether its sites crowd (from
+  // the lines' spacing, a statistic of the whole sketch) and whether the field
+  // is a DEM's; the raise factors only shaped the field, hashed above.
+  h.value(featureSitesCrowd(part, patchSize));
+  h.value(part.detailed);
+  h.values(linesOfType(part, nullptr));
+  for (FeatureType type : { FeatureType::Ridge, FeatureType::Valley })
+  {
+    h.values(linesOfType(part, &type));
+  }
+  hashField(h, known);
+  h.value(sites.size());
+  for (const FeatureSite& s : sites)
+  {
+    hashSite(h, s);
+  }
+  h.values(regionLabels);
+  return h.digest();
+}
+
+std::string writeRecord(const PlacementRecord& r)
+{
+  RecordWriter w;
+  w.bytes() = kRecordMagic;
+  w.value(kRecordVersion);
+  w.value(r.width);
+  w.value(r.height);
+  w.value(r.cellX);
+  w.value(r.cellY);
+  w.value(r.tileSize);
+  w.value(r.patchSize);
+  w.value(r.seed);
+  w.value(r.exemplars);
+  w.value(r.options);
+  w.value(r.code);
+  for (const std::vector<RecordedTile>& pass : r.tiles)
+  {
+    w.value(static_cast<std::uint64_t>(pass.size()));
+    for (const RecordedTile& t : pass)
+    {
+      w.value(t.inputs);
+      w.values(std::vector<char>(t.outcome.begin(), t.outcome.end()));
+    }
+  }
+  ContentHasher check;
+  check.bytes(w.bytes().data(), w.bytes().size());
+  w.value(check.digest());
+  return std::move(w.bytes());
+}
+
+PlacementRecord readRecord(const std::string& bytes, const std::string& source)
+{
+  if (bytes.compare(0, kRecordMagic.size(), kRecordMagic) != 0)
+  {
+    throw Error(source + " is not a TerrainSynthesis tile record.");
+  }
+  const std::size_t body = bytes.size() - std::min(bytes.size(), sizeof(std::uint64_t));
+  RecordReader in(bytes, bytes.size(), source);
+  in.skip(body);
+  const auto checksum = in.value<std::uint64_t>();
+  ContentHasher check;
+  check.bytes(bytes.data(), body);
+  if (bytes.size() < kRecordMagic.size() + sizeof checksum || check.digest() != checksum)
+  {
+    in.damaged();
+  }
+  RecordReader r(bytes, body, source);
+  r.skip(kRecordMagic.size());
+  if (r.value<std::uint64_t>() != kRecordVersion)
+  {
+    throw Error("The tile record " + source +
+      " was written by another version of TerrainSynthesis: synthesise the terrain anew.");
+  }
+  PlacementRecord rec;
+  rec.width = r.value<int>();
+  rec.height = r.value<int>();
+  rec.cellX = r.value<double>();
+  rec.cellY = r.value<double>();
+  rec.tileSize = r.value<int>();
+  rec.patchSize = r.value<int>();
+  rec.seed = r.value<std::uint64_t>();
+  rec.exemplars = r.value<std::uint64_t>();
+  rec.options = r.value<std::uint64_t>();
+  rec.code = r.value<std::uint64_t>();
+  for (std::vector<RecordedTile>& pass : rec.tiles)
+  {
+    const auto count = r.value<std::uint64_t>();
+    if (count > body)
+    {
+      r.damaged();
+    }
+    pass.resize(count);
+    for (RecordedTile& t : pass)
+    {
+      t.inputs = r.value<std::uint64_t>();
+      const std::vector<char> packed = r.values<char>();
+      t.outcome.assign(packed.begin(), packed.end());
+    }
+  }
+  if (!r.atEnd())
+  {
+    r.damaged();
+  }
+  return rec;
+}
+
+std::string recordPathOf(const std::string& terrainPath)
+{
+  return std::filesystem::path(terrainPath).replace_extension(".tiles").string();
+}
+
+void saveRecord(const PlacementRecord& record, const std::string& path)
+{
+  OutputFile file(path);
+  file.write(writeRecord(record));
+  file.commit();
+}
+
+PlacementRecord loadRecord(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+  {
+    throw Error("Cannot read the tile record " + path + ".");
+  }
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad())
+  {
+    throw Error("Cannot read the tile record " + path + ".");
+  }
+  return readRecord(bytes, path);
+}
+
+} // namespace tsynth
