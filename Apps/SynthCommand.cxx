@@ -26,6 +26,7 @@
 #include "Synthesis/SynthesisFigures.h"
 #include "Synthesis/SynthesisRequest.h"
 #include "Synthesis/Synthesiser.h"
+#include "Synthesis/TileRecord.h"
 #include "Synthesis/Tiling.h"
 
 #include <nlohmann/json.hpp>
@@ -100,6 +101,16 @@ writes them: its output works directly as a sketch of the same DEM.
                          finish the whole terrain at once: the placement's memory follows the
                          tile, and the same tile grid gives the same terrain whoever runs it
                          (default: one piece)
+  --keep-tiles           with --tile-size: also write OUT.tiles (OUT with its extension
+                         replaced), the record of every tile's placement, for --previous
+  --previous OLD         re-synthesise an edit of OLD's sketch: each tile whose placement
+                         would read the same inputs as in OLD's run (its part of the
+                         sketch's target, the cells the tiles before it left, its feature
+                         sites) is taken from OLD.tiles instead of placed again, so only the
+                         tiles an edit reaches are; the terrain is the same bits as a full
+                         synthesis of the edited sketch. The tile size, patch and seed default
+                         to OLD's; exemplars, size, cells and placement options must be OLD's.
+                         Writes OUT.tiles for the next edit
   --placements N         stop after N placements and write the terrain as those patches made
                          it, unfinished (nodata where no patch is yet): the whole synthesis'
                          first N, to step through it; one piece only (default: all, finished)
@@ -132,7 +143,8 @@ nlohmann::json tileTimingsJson(const std::vector<TileTiming>& tiles)
       { "colour", t.colour },
       { "pass", t.fill ? "fill" : "features" },
       { "seconds", t.seconds },
-      { "cpu_seconds", t.cpuSeconds } });
+      { "cpu_seconds", t.cpuSeconds },
+      { "taken_over", t.takenOver } });
   }
   return out;
 }
@@ -150,6 +162,10 @@ struct SynthArguments
   std::vector<std::string> regionMaps;
   SynthesisRequest request; // every option of the synthesis itself
   bool progress = true;
+  // --keep-tiles: write OUT.tiles, the tiles' record (TileRecord.h); --previous
+  // OLD: take unchanged tiles from OLD.tiles (and write OUT.tiles).
+  bool keepTiles = false;
+  std::optional<std::string> previous;
 };
 
 // The files --debug-dir writes (writeDebug), for the check that they replace no input.
@@ -217,6 +233,14 @@ void checkPaths(const SynthArguments& a)
     files.input(*a.regions, "--regions");
   }
   files.output(a.output, "-o");
+  if (a.previous)
+  {
+    files.input(recordPathOf(*a.previous), "--previous's tile record", false);
+  }
+  if (a.keepTiles)
+  {
+    files.output(recordPathOf(a.output), "the tile record of -o", FileRoles::Content::Other);
+  }
   if (a.preview)
   {
     files.output(*a.preview, "--preview");
@@ -343,9 +367,38 @@ void takeCacheOptions(CommandLine& cl, SynthesisRequest& r)
   r.cacheDirectory = cache.value_or("");
 }
 
+// Which of these options the command line gives.
+struct GivenOptions
+{
+  bool patch = false;
+  bool seed = false;
+  bool tileSize = false;
+};
+
+// --previous OLD: OLD's tile record read into the request's options, whose
+// tile size, patch size and seed default to the record's.
+void takePreviousRecord(SynthArguments& a, const GivenOptions& given)
+{
+  const std::string path = recordPathOf(*a.previous);
+  if (!std::filesystem::exists(path))
+  {
+    throw UsageError(*a.previous + " has no tile record beside it (" + path +
+      "): synthesise it with --keep-tiles and --tile-size first.");
+  }
+  auto record = std::make_shared<PlacementRecord>(loadRecord(path));
+  SynthesisOptions& o = a.request.options;
+  o.tileSize = given.tileSize ? o.tileSize : record->tileSize;
+  o.patchSize = given.patch ? o.patchSize : record->patchSize;
+  o.seed = given.seed ? o.seed : record->seed;
+  o.previous = std::move(record);
+}
+
 SynthArguments parseSynthArguments(std::vector<std::string> args)
 {
   SynthArguments a;
+  auto gives = [&](const char* option)
+  { return std::find(args.begin(), args.end(), option) != args.end(); };
+  const GivenOptions given{ gives("--patch"), gives("--seed"), gives("--tile-size") };
   CommandLine cl(std::move(args));
   a.exemplars = cl.takeAll("--exemplar");
   a.regionMaps = cl.takeAll("--region");
@@ -356,8 +409,18 @@ SynthArguments parseSynthArguments(std::vector<std::string> args)
   a.preview = cl.take("--preview");
   a.debugDir = cl.take("--debug-dir");
   a.progress = !cl.takeFlag("--no-progress");
+  a.previous = cl.take("--previous");
+  a.keepTiles = cl.takeFlag("--keep-tiles") || a.previous.has_value();
   takeCacheOptions(cl, a.request);
   takeSynthesisOptions(cl, a.request.options);
+  if (a.previous)
+  {
+    takePreviousRecord(a, given);
+  }
+  else if (a.keepTiles && a.request.options.tileSize == 0)
+  {
+    throw UsageError("--keep-tiles keeps a record tile by tile: give --tile-size N too.");
+  }
   takeGridOptions(cl, a.request);
   if (!cl.positionals().empty())
   {
@@ -425,6 +488,7 @@ SynthesisResult runWithProgress(const SynthesisSetup& setup,
   const InterruptGuard& interrupt)
 {
   SynthesisOptions o = optionsOnGrid(a, setup.grid, setup.exemplars.size());
+  o.keepRecord = a.keepTiles;
   ProgressBar bar(a.progress);
   o.progress = [&](double f, const std::string& stage)
   {
@@ -502,6 +566,13 @@ void printSummary(const SynthesisSetup& setup,
             << run.measure << " s"
             << (setup.cache.hit ? " (the exemplars' preparation read from the cache)" : "")
             << ".\n";
+  if (r.record)
+  {
+    std::cout << "Tiles: " << r.tilesTakenOver << " of " << r.tiles.size()
+              << " tile passes taken over from the previous record, "
+              << r.tiles.size() - r.tilesTakenOver << " placed; record kept in "
+              << recordPathOf(output) << ".\n";
+  }
   if (r.finishing.drained)
   {
     std::cout << "Drainage: " << r.finishing.pitsBefore << " pits before, " << r.finishing.pitsAfter
@@ -648,6 +719,7 @@ void writeReport(const std::string& path,
   if (!r.tiles.empty())
   {
     report["tiles"] = tileTimingsJson(r.tiles);
+    report["tiles_taken_over"] = r.tilesTakenOver;
   }
   if (run.preview)
   {
@@ -749,6 +821,10 @@ int runSynth(std::vector<std::string> args)
   { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count(); };
   auto t1 = std::chrono::steady_clock::now();
   writeTerrainFile(a.output, r.terrain);
+  if (r.record)
+  {
+    saveRecord(*r.record, recordPathOf(a.output));
+  }
   run.write = since(t1);
   t1 = std::chrono::steady_clock::now();
   const SynthesisFigures figures = measureSynthesis(setup, r, a.request.options.patchSize);

@@ -389,6 +389,53 @@ class SynthTest(unittest.TestCase):
         untiled = self.synth("colorado.png", sketch, self.path("untiled.tif"), "--size", "320x320")
         self.assertNotIn("tiles", untiled)
 
+    def test_an_edit_resynthesised_from_the_previous_tile_record_is_a_full_synthesis(self):
+        # Two ridges far apart on 384 x 256 cells; the edit moves the east one 10 cells.
+        def draw(name, shift):
+            canvas = sketch_drawing.Canvas(384, 256)
+            canvas.polyline([(50, 40), (60, 215)], sketch_drawing.RIDGE, pen=3)
+            canvas.polyline([(320 + shift, 40), (330 + shift, 215)], sketch_drawing.RIDGE, pen=3)
+            return canvas.save(self.path(name))
+        before, after = draw("before.png", 0), draw("after.png", 10)
+        grid = ("--patch", "32", "--backend", "cpu")
+        self.synth("colorado.png", before, self.path("v1.tif"), *grid, "--tile-size", "64", "--keep-tiles")
+        self.assertTrue(os.path.exists(self.path("v1.tiles")))
+        full = self.synth("colorado.png", after, self.path("full.tif"), *grid, "--tile-size", "64")
+        self.assertFalse(os.path.exists(self.path("full.tiles")))
+        # The tile size comes from v1's record; the result is the full synthesis' bits.
+        edited = self.synth("colorado.png", after, self.path("v2.tif"), *grid, "--previous", self.path("v1.tif"))
+        self.assertTrue(filecmp.cmp(self.path("full.tif"), self.path("v2.tif"), shallow=False))
+        self.assertTrue(os.path.exists(self.path("v2.tiles")))
+        passes = len(edited["tiles"])
+        self.assertEqual(passes, len(full["tiles"]))
+        self.assertGreaterEqual(edited["tiles_taken_over"], passes // 3, edited["tiles"])
+        self.assertLess(edited["tiles_taken_over"], passes)
+        self.assertEqual(edited["tiles_taken_over"], sum(t["taken_over"] for t in edited["tiles"]))
+        # Refused, each in one sentence, with nothing written: another seed than the record's,
+        # a record that is not there, -o onto the previous terrain's record, a record without tiles.
+        for extra, out, words in ((("--previous", self.path("v1.tif"), "--seed", "3"), "seed.tif", "seed 0"),
+                                  (("--previous", self.path("full.tif")), "none.tif", "--keep-tiles"),
+                                  (("--previous", self.path("v1.tif")), "v1.png", "tile record"),
+                                  (("--keep-tiles",), "untiled.tif", "--tile-size")):
+            with self.subTest(extra=extra):
+                result = tsynth("synth", "--exemplar", os.path.join(self.dems, "colorado.png"), "--sketch", after,
+                                "-o", self.path(out), "--no-progress", *grid, *extra)
+                self.assertNotEqual(result.returncode, 0)
+                self.assertIn(words, result.stderr)
+                self.assertEqual(result.stderr.strip().count("\n"), 0, result.stderr)
+                self.assertFalse(os.path.exists(self.path(out)))
+        # A damaged record is refused, never used.
+        with open(self.path("v2.tiles"), "r+b") as f:
+            f.seek(4000)
+            byte = f.read(1)
+            f.seek(4000)
+            f.write(bytes([byte[0] ^ 0x20]))
+        result = tsynth("synth", "--exemplar", os.path.join(self.dems, "colorado.png"), "--sketch", after,
+                        "-o", self.path("v3.tif"), "--no-progress", *grid, "--previous", self.path("v2.tif"))
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn("damaged", result.stderr)
+        self.assertFalse(os.path.exists(self.path("v3.tif")))
+
     def test_preview_comes_first_draws_the_sketch_and_leaves_the_terrain_unchanged(self):
         sketch = os.path.join(self.sketches, "strokes_y_ridges.png")
         colorado = os.path.join(self.dems, "colorado.png")
