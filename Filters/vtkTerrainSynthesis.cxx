@@ -21,6 +21,7 @@
 #include "Synthesis/SynthesisFigures.h"
 #include "Synthesis/SynthesisRequest.h"
 #include "Synthesis/Synthesiser.h"
+#include "Synthesis/TileRecord.h"
 
 #include <vtkAlgorithmOutput.h>
 #include <vtkCellArray.h>
@@ -544,6 +545,8 @@ public:
   tsynth::SynthesisSetup setup;
   tsynth::SynthesisResult result;
   std::string error; // why it failed ("": it did not)
+  // The filter's last tile record, which the synthesis takes tiles from if it serves.
+  std::shared_ptr<const tsynth::PlacementRecord> lastRecord;
 
   void start(tsynth::SetupInputs in, tsynth::SynthesisOptions o)
   {
@@ -555,6 +558,8 @@ public:
         {
           const tsynth::CancellationScope scope([this] { return this->stop.load(); });
           this->setup = tsynth::prepareSynthesis(std::move(in));
+          tsynth::useRecordIfItServes(
+            o, std::move(this->lastRecord), this->setup.target, this->setup.exemplarPointers());
           this->result = tsynth::synthesise(this->setup, o);
         }
         catch (const tsynth::Cancelled&)
@@ -812,8 +817,11 @@ void vtkTerrainSynthesis::SynthesiseOrCut(vtkInformationVector** inputVector,
   }
   this->UpdateProgress(kSetupProgress);
   tsynth::shareTilesAmongRanks(o);
+  tsynth::useRecordIfItServes(o, this->TileRecord, setup.target, setup.exemplarPointers());
+  this->TileRecord = nullptr; // its memory goes to the new one
   const tsynth::SynthesisResult r = tsynth::synthesise(setup, o);
   tsynth::reportRankWork(o, r);
+  this->KeepRecord(r);
   this->BackendUsed = r.backend;
   writeOutputs(this, setup, r, ex, outputVector);
   auto whole = copyWholeOutputs(key, outputVector);
@@ -863,6 +871,7 @@ void vtkTerrainSynthesis::PreviewOrRefined(vtkInformationVector** inputVector,
     {
       throw tsynth::Error(r->error);
     }
+    this->KeepRecord(r->result);
     this->BackendUsed = r->result.backend;
     writeOutputs(this, r->setup, r->result, r->exemplars, outputVector);
     this->OutputLevel = "final";
@@ -875,7 +884,9 @@ void vtkTerrainSynthesis::PreviewOrRefined(vtkInformationVector** inputVector,
                     << " (its coarser level would be under " << tsynth::kMinSynthesisPatch
                     << " cells): the whole synthesis is done at once.");
     const tsynth::SynthesisSetup setup = tsynth::prepareSynthesis(std::move(in));
+    tsynth::useRecordIfItServes(o, this->TileRecord, setup.target, setup.exemplarPointers());
     const tsynth::SynthesisResult r = tsynth::synthesise(setup, o);
+    this->KeepRecord(r);
     this->BackendUsed = r.backend;
     writeOutputs(this, setup, r, ex, outputVector);
     this->OutputLevel = "final";
@@ -892,8 +903,15 @@ void vtkTerrainSynthesis::PreviewOrRefined(vtkInformationVector** inputVector,
   showPreview(*r, outputVector);
   this->OutputLevel = "preview";
   r->exemplars = std::move(ex);
+  r->lastRecord = this->TileRecord;
   r->start(std::move(in), std::move(o));
   this->Refinement = r.release();
+}
+
+void vtkTerrainSynthesis::KeepRecord(const tsynth::SynthesisResult& r)
+{
+  this->TileRecord = r.record;
+  this->TilesTakenOver = static_cast<vtkIdType>(r.tilesTakenOver);
 }
 
 void vtkTerrainSynthesis::PrintSelf(ostream& os, vtkIndent indent)
@@ -927,4 +945,6 @@ void vtkTerrainSynthesis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RegionMaps: " << this->RegionMaps.size() << "\n";
   os << indent << "BackendUsed: " << (this->BackendUsed.empty() ? "(none yet)" : this->BackendUsed)
      << "\n";
+  os << indent << "TileRecord: " << (this->TileRecord != nullptr ? "kept" : "(none)") << "\n";
+  os << indent << "TilesTakenOver: " << this->TilesTakenOver << "\n";
 }

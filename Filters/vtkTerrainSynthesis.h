@@ -48,8 +48,15 @@
 
 #include <vtkImageAlgorithm.h>
 
+#include <memory>
 #include <string>
 #include <vector>
+
+namespace tsynth
+{
+struct PlacementRecord; // Synthesis/TileRecord.h
+struct SynthesisResult; // Synthesis/Synthesiser.h
+}
 
 class vtkImageData;
 class vtkPolyData;
@@ -119,7 +126,9 @@ public:
   /// Tiled synthesis (Kernels/Synthesis/Tiling.h): square tiles of this many
   /// cells, at least two patches (smaller is refused), each synthesised with a
   /// halo of one patch in an order fixed by the tile grid, then the whole
-  /// terrain finished at once (default 0: one piece).
+  /// terrain finished at once (default 0: one piece). In one process the filter keeps each
+  /// tiled synthesis' record, and the next takes over the tiles it finds unchanged
+  /// (GetTilesTakenOver).
   vtkSetClampMacro(TileSize, int, 0, VTK_INT_MAX);
   vtkGetMacro(TileSize, int);
   /// Stop after this many placements and show the terrain as those patches made it, unfinished
@@ -208,6 +217,11 @@ public:
     this->SetInputConnection(3, output);
   }
   const char* GetBackendUsed() { return this->BackendUsed.c_str(); }
+  /// With a TileSize, in one process: how many tile passes the last synthesis took over from
+  /// the one before it instead of placing them (Kernels/Synthesis/TileRecord.h). The filter
+  /// keeps each tiled synthesis' record, so after an edit of the sketch only the tiles the
+  /// edit reaches are placed again; the terrain is the same bits as a fresh filter's.
+  vtkGetMacro(TilesTakenOver, vtkIdType);
 
   vtkImageData* GetTerrain();
   /// The terrain, as VTK's image filters name their output.
@@ -238,6 +252,8 @@ protected:
   // The non-preview update: the kept whole outputs cut to this request's piece if they answer
   // it, else a synthesis (whose whole outputs are kept if the outputs hold only a piece).
   void SynthesiseOrCut(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+  // Keeps a synthesis' tile record (null if it kept none) for the next, and its count.
+  void KeepRecord(const tsynth::SynthesisResult& r);
 
   // The synthesis options' defaults are the options table's (tsynth::synthesisOptionRows), set
   // in the constructor.
@@ -262,6 +278,9 @@ protected:
   std::string ExemplarCacheDirectory;
   std::string BackendUsed;
   std::vector<std::string> RegionMaps;
+  // The last tiled synthesis' record, for the next (null: none), and what it took over.
+  std::shared_ptr<const tsynth::PlacementRecord> TileRecord;
+  vtkIdType TilesTakenOver = 0;
 
 public:
   class vtkRefinement;   // the whole synthesis under way in the background (PreviewFirst)

@@ -361,6 +361,17 @@ std::string recordMismatch(const PlacementRecord& r,
   return {};
 }
 
+void useRecordIfItServes(SynthesisOptions& o,
+  std::shared_ptr<const PlacementRecord> last,
+  const SynthesisTarget& target,
+  const std::vector<const Heightfield*>& exemplars)
+{
+  o.keepRecord = o.tileSize > 0 && o.sharing.ranks <= 1;
+  const bool serves =
+    o.keepRecord && last != nullptr && recordMismatch(*last, target, exemplars, o).empty();
+  o.previous = serves ? std::move(last) : nullptr;
+}
+
 std::uint64_t tileInputsKey(TilePass pass,
   const SynthesisTile& tile,
   const SynthesisTarget& part,

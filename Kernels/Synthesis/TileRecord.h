@@ -17,6 +17,7 @@
 #include "Tiling.h"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,16 @@ std::string recordMismatch(const PlacementRecord& record,
   const SynthesisTarget& target,
   const std::vector<const Heightfield*>& exemplars,
   const SynthesisOptions& o);
+
+// A front end's automatic re-synthesis (the Terrain Synthesis filter, which
+// keeps its last record): a tiled run in one process keeps its own record,
+// and takes tiles from `last` when that record can serve it; any other run
+// neither keeps nor takes one. Never refuses: a record that cannot serve is
+// left unused, and the run is a full synthesis.
+void useRecordIfItServes(SynthesisOptions& o,
+  std::shared_ptr<const PlacementRecord> last,
+  const SynthesisTarget& target,
+  const std::vector<const Heightfield*>& exemplars);
 
 // What a tile's placement in this pass reads besides the run's exemplars and
 // options: its part of the target, the known cells of its region, its feature

@@ -119,3 +119,91 @@ TEST(TerrainSynthesisFilter, APatchSizeItCannotUseFailsTheRequestNamingIt)
 }
 
 } // namespace tsynth
+
+namespace tsynth
+{
+namespace
+{
+
+// Two ridges far apart on a 384 x 256 sketch, the east one shifted by `shift` pixels.
+std::string twoRidgesSketch(int shift)
+{
+  constexpr int kWidth = 384;
+  constexpr int kHeight = 256;
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(kWidth) * kHeight * 3, 255);
+  auto ridge = [&](int x0, int x1)
+  {
+    for (int row = 40; row <= 215; ++row)
+    {
+      const int centre = x0 + (x1 - x0) * (row - 40) / (215 - 40);
+      for (int column = centre - 1; column <= centre + 1; ++column)
+      {
+        std::uint8_t* p = rgb.data() + (static_cast<std::size_t>(row) * kWidth + column) * 3;
+        p[0] = 230;
+        p[1] = 20;
+        p[2] = 20;
+      }
+    }
+  };
+  ridge(50, 60);
+  ridge(320 + shift, 330 + shift);
+  const std::string path =
+    (test::scratchDir() / ("two-ridges-" + std::to_string(shift) + ".png")).string();
+  writeRgbPng(path, kWidth, kHeight, rgb);
+  return path;
+}
+
+struct TiledFilter
+{
+  vtkNew<vtkTerrainReader> exemplar;
+  vtkNew<vtkTerrainSketchReader> sketch;
+  vtkNew<vtkTerrainSynthesis> synthesis;
+  test::FilterErrors errors{ synthesis };
+
+  explicit TiledFilter(const std::string& sketchPath)
+  {
+    exemplar->SetFileName(coloradoPath().c_str());
+    sketch->SetFileName(sketchPath.c_str());
+    sketch->SetExemplarFileName(coloradoPath().c_str());
+    synthesis->AddInputConnection(0, exemplar->GetOutputPort());
+    synthesis->SetSketchConnection(sketch->GetOutputPort());
+    synthesis->SetOutputSize(384, 256);
+    synthesis->SetPatchSize(kPatch);
+    synthesis->SetTileSize(2 * kPatch);
+    synthesis->SetBackend(vtkTerrainSynthesis::CPU);
+    synthesis->SetUseExemplarCache(false);
+  }
+  std::vector<double> heights()
+  {
+    synthesis->Update();
+    return test::pointValues(synthesis->GetTerrain(), "Elevation");
+  }
+};
+
+} // namespace
+
+TEST(TerrainSynthesisFilter, AnEditedSketchPlacesAgainOnlyTheTilesItReaches)
+{
+  const std::string before = twoRidgesSketch(0);
+  const std::string after = twoRidgesSketch(10);
+  TiledFilter filter(before);
+  filter.heights();
+  ASSERT_TRUE(filter.errors.text.empty()) << filter.errors.text;
+  EXPECT_EQ(filter.synthesis->GetTilesTakenOver(), 0);
+  filter.sketch->SetFileName(after.c_str());
+  const std::vector<double> edited = filter.heights();
+  ASSERT_TRUE(filter.errors.text.empty()) << filter.errors.text;
+  // 24 tiles in two passes; the west ridge's third of them lies past the edit's reach.
+  EXPECT_GE(filter.synthesis->GetTilesTakenOver(), 16);
+  EXPECT_LT(filter.synthesis->GetTilesTakenOver(), 48);
+  TiledFilter fresh(after);
+  EXPECT_EQ(edited, fresh.heights());
+  EXPECT_EQ(fresh.synthesis->GetTilesTakenOver(), 0);
+  // Another seed: the record cannot serve it, and the synthesis is a full one.
+  filter.synthesis->SetSeed(3);
+  filter.heights();
+  ASSERT_TRUE(filter.errors.text.empty()) << filter.errors.text;
+  EXPECT_EQ(filter.synthesis->GetTilesTakenOver(), 0);
+}
+
+} // namespace tsynth
