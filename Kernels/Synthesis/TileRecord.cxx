@@ -24,24 +24,13 @@ const std::string kRecordMagic = "TerrainSynthesis tile record\n";
 constexpr std::uint64_t kRecordVersion = 1;
 constexpr std::size_t kBitsPerByte = 8;
 
-void hashField(ContentHasher& h, const Heightfield& f)
-{
-  h.value(f.width);
-  h.value(f.height);
-  h.value(f.cellX);
-  h.value(f.cellY);
-  h.value(f.cellSizeKnown);
-  h.values(f.z);
-  h.values(f.valid);
-}
-
 std::uint64_t exemplarsKey(const std::vector<const Heightfield*>& exemplars)
 {
   ContentHasher h;
   h.value(exemplars.size());
   for (const Heightfield* e : exemplars)
   {
-    hashField(h, *e);
+    hashHeightfield(h, *e);
   }
   return h.digest();
 }
@@ -387,7 +376,7 @@ std::uint64_t tileInputsKey(TilePass pass,
   h.value(tile.regionY0);
   h.value(tile.regionWidth);
   h.value(tile.regionHeight);
-  hashField(h, part.field);
+  hashHeightfield(h, part.field);
   h.values(part.weight);
   h.values(part.halfWidth);
   h.values(part.downstream);
@@ -401,7 +390,7 @@ std::uint64_t tileInputsKey(TilePass pass,
   {
     h.values(linesOfType(part, &type));
   }
-  hashField(h, known);
+  hashHeightfield(h, known);
   h.value(sites.size());
   for (const FeatureSite& s : sites)
   {
