@@ -1,5 +1,6 @@
 #include "CommandLine.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
@@ -74,6 +75,13 @@ std::optional<double> CommandLine::takeNumber(const std::string& name)
     throw UsageError(name + " expects a number, not \"" + *text + "\".");
   }
   return v;
+}
+
+bool CommandLine::gives(const std::string& name) const
+{
+  return std::any_of(args_.begin(),
+    args_.end(),
+    [&](const std::string& a) { return a == name || a.rfind(name + "=", 0) == 0; });
 }
 
 std::vector<std::string> CommandLine::positionals() const

@@ -34,6 +34,8 @@ public:
   bool takeFlag(const std::string& name);
   // Numeric options, with a clear message when the value is not a number.
   std::optional<double> takeNumber(const std::string& name);
+  // Whether "--name V" or "--name=V" is among the arguments, taken or not.
+  bool gives(const std::string& name) const;
   // Returns the positional arguments; throws UsageError for an unknown option.
   std::vector<std::string> positionals() const;
 

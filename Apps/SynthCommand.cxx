@@ -396,10 +396,8 @@ void takePreviousRecord(SynthArguments& a, const GivenOptions& given)
 SynthArguments parseSynthArguments(std::vector<std::string> args)
 {
   SynthArguments a;
-  auto gives = [&](const char* option)
-  { return std::find(args.begin(), args.end(), option) != args.end(); };
-  const GivenOptions given{ gives("--patch"), gives("--seed"), gives("--tile-size") };
   CommandLine cl(std::move(args));
+  const GivenOptions given{ cl.gives("--patch"), cl.gives("--seed"), cl.gives("--tile-size") };
   a.exemplars = cl.takeAll("--exemplar");
   a.regionMaps = cl.takeAll("--region");
   a.regions = cl.take("--regions");

@@ -411,9 +411,10 @@ class SynthTest(unittest.TestCase):
         self.assertGreaterEqual(edited["tiles_taken_over"], passes // 3, edited["tiles"])
         self.assertLess(edited["tiles_taken_over"], passes)
         self.assertEqual(edited["tiles_taken_over"], sum(t["taken_over"] for t in edited["tiles"]))
-        # Refused, each in one sentence, with nothing written: another seed than the record's,
+        # Refused, each in one sentence, with nothing written: another seed than the record's (given
+        # as --seed=3: a given option is never overridden by the record),
         # a record that is not there, -o onto the previous terrain's record, a record without tiles.
-        for extra, out, words in ((("--previous", self.path("v1.tif"), "--seed", "3"), "seed.tif", "seed 0"),
+        for extra, out, words in ((("--previous", self.path("v1.tif"), "--seed=3"), "seed.tif", "seed 0"),
                                   (("--previous", self.path("full.tif")), "none.tif", "--keep-tiles"),
                                   (("--previous", self.path("v1.tif")), "v1.png", "tile record"),
                                   (("--keep-tiles",), "untiled.tif", "--tile-size")):
