@@ -128,7 +128,7 @@ def main():
                  ("drainage only", y_with_valley_moved(path("d0.png"), 0), path("d0.png"), ("--drainage", "breach"))]
         for label, before, after, extra in cases:
             synth(tsynth, before, path("before.tif"), "--tile-size", str(TILE), "--keep-tiles")
-            full, local, ratios, taken = [], [], [], []
+            full, local, ratios, taken, same = [], [], [], [], True
             for _ in range(options.runs):
                 f, _ = synth(tsynth, after, path("full.tif"), "--tile-size", str(TILE), *extra)
                 e, report = synth(tsynth, after, path("edit.tif"), "--previous", path("before.tif"), *extra)
@@ -136,8 +136,8 @@ def main():
                 local.append(e)
                 ratios.append(e / f)
                 taken.append((report["tiles_taken_over"], len(report["tiles"])))
-                same = filecmp.cmp(path("full.tif"), path("edit.tif"), shallow=False)
-                different |= not same
+                same &= filecmp.cmp(path("full.tif"), path("edit.tif"), shallow=False)
+            different |= not same
             print(f"{label:14s} full {statistics.median(full):6.2f} s, re-synthesis {statistics.median(local):6.2f} s, "
                   f"ratio {statistics.median(ratios):.2f} ({min(ratios):.2f}-{max(ratios):.2f}); "
                   f"{taken[0][0]} of {taken[0][1]} tile passes taken over; "

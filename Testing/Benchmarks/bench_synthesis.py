@@ -25,6 +25,9 @@ Comparisons (the figures that count on a shared, noisy machine):
                 synthesis and, with --vs, to the baseline's preview.
   --rss         samples our resident memory every 0.25 s and says when, in
                 which stage, it peaked (on with --large).
+  --edit        also times the re-synthesis of edits (tsynth synth --previous)
+                against full tiled syntheses of the same edited sketches, pair by
+                pair, and checks their bits: bench_local_edit.py's cases.
   --cache       ours reads the exemplars' preparation back from an exemplar
                 cache (in the temporary folder, filled by one untimed run):
                 a redrawn sketch. Without it every build that has a cache
@@ -32,7 +35,7 @@ Comparisons (the figures that count on a shared, noisy machine):
 Timings are reported, never asserted.
 
 Usage: bench_synthesis.sh [--large [--both]] [--dense] [--vs BUILD] [--peer DIR]
-                          [--cache] [--preview] [--rss] [--runs N] [build dir]
+                          [--cache] [--preview] [--rss] [--edit] [--runs N] [build dir]
 """
 import argparse
 import json
@@ -309,6 +312,8 @@ def main():
                         help="each run writes --preview first; its seconds are reported")
     parser.add_argument("--rss", action="store_true",
                         help="sample our resident memory over each run (on with --large)")
+    parser.add_argument("--edit", action="store_true",
+                        help="also bench_local_edit.py: --previous against a full synthesis")
     parser.add_argument("--runs", type=int, default=3, help="runs per case and backend (default 3)")
     options = parser.parse_args()
     if options.runs < 1:
@@ -326,6 +331,12 @@ def main():
                              options.preview, options.rss or options.large)
             if options.peer:
                 run_peer(options.peer, case, ours, tmp)
+    if options.edit:
+        edit = subprocess.run([sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                                            "bench_local_edit.py"),
+                               "--runs", str(options.runs), options.build])
+        if edit.returncode != 0:
+            fail("a re-synthesised edit differs from the full synthesis")
 
 
 if __name__ == "__main__":
