@@ -411,6 +411,7 @@ SynthArguments parseSynthArguments(std::vector<std::string> args)
   a.keepTiles = cl.takeFlag("--keep-tiles") || a.previous.has_value();
   takeCacheOptions(cl, a.request);
   takeSynthesisOptions(cl, a.request.options);
+  a.request.options.keepRecord = a.keepTiles;
   if (a.previous)
   {
     takePreviousRecord(a, given);
@@ -486,7 +487,6 @@ SynthesisResult runWithProgress(const SynthesisSetup& setup,
   const InterruptGuard& interrupt)
 {
   SynthesisOptions o = optionsOnGrid(a, setup.grid, setup.exemplars.size());
-  o.keepRecord = a.keepTiles;
   ProgressBar bar(a.progress);
   o.progress = [&](double f, const std::string& stage)
   {

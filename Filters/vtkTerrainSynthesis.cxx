@@ -793,7 +793,7 @@ int vtkTerrainSynthesis::RequestData(vtkInformation*,
 void vtkTerrainSynthesis::SynthesiseOrCut(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  tsynth::SynthesisRequest request = synthesisRequest(this);
+  tsynth::SynthesisRequest request = this->RequestWithRecord();
   tsynth::ExemplarInputs ex;
   tsynth::SetupInputs in = setupInputs(this, request, inputVector, ex);
   tsynth::SynthesisOptions o = optionsOnGrid(
@@ -851,7 +851,7 @@ void showPreview(const vtkTerrainSynthesis::vtkRefinement& r, vtkInformationVect
 void vtkTerrainSynthesis::PreviewOrRefined(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  tsynth::SynthesisRequest request = synthesisRequest(this);
+  tsynth::SynthesisRequest request = this->RequestWithRecord();
   tsynth::ExemplarInputs ex;
   tsynth::SetupInputs in = setupInputs(this, request, inputVector, ex);
   const tsynth::PreviewPlan plan = tsynth::planPreview(in);
@@ -906,6 +906,15 @@ void vtkTerrainSynthesis::PreviewOrRefined(vtkInformationVector** inputVector,
   r->lastRecord = this->TileRecord;
   r->start(std::move(in), std::move(o));
   this->Refinement = r.release();
+}
+
+tsynth::SynthesisRequest vtkTerrainSynthesis::RequestWithRecord()
+{
+  tsynth::SynthesisRequest request = synthesisRequest(this);
+  // What the memory estimate counts; useRecordIfItServes decides once the target is made.
+  request.options.keepRecord = this->TileSize > 0;
+  request.options.previous = this->TileRecord;
+  return request;
 }
 
 void vtkTerrainSynthesis::KeepRecord(const tsynth::SynthesisResult& r)

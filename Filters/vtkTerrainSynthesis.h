@@ -54,8 +54,9 @@
 
 namespace tsynth
 {
-struct PlacementRecord; // Synthesis/TileRecord.h
-struct SynthesisResult; // Synthesis/Synthesiser.h
+struct PlacementRecord;  // Synthesis/TileRecord.h
+struct SynthesisResult;  // Synthesis/Synthesiser.h
+struct SynthesisRequest; // Synthesis/SynthesisRequest.h
 }
 
 class vtkImageData;
@@ -252,6 +253,9 @@ protected:
   // The non-preview update: the kept whole outputs cut to this request's piece if they answer
   // it, else a synthesis (whose whole outputs are kept if the outputs hold only a piece).
   void SynthesiseOrCut(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+  // The properties' request, with the tile record the synthesis would keep and the last one
+  // it may take tiles from (for the memory estimate).
+  tsynth::SynthesisRequest RequestWithRecord();
   // Keeps a synthesis' tile record (null if it kept none) for the next, and its count.
   void KeepRecord(const tsynth::SynthesisResult& r);
 

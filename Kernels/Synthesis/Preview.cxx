@@ -87,7 +87,9 @@ SynthesisOptions previewOptions(const SynthesisOptions& full, const PreviewPlan&
   o.backend = kPreviewBackend;
   o.fillK = std::min(o.fillK, kPreviewFillCandidates);
   o.fillSpacing = std::max(o.fillSpacing, kPreviewFillSpacing);
-  o.pool = nullptr; // the preview set-up's, at its patch size
+  o.pool = nullptr;     // the preview set-up's, at its patch size
+  o.previous = nullptr; // tile records are the whole synthesis', at its patch size
+  o.keepRecord = false;
   if (o.correctionScale > 0.0)
   {
     o.correctionScale /= plan.factor; // given in the full grid's cells

@@ -1,6 +1,7 @@
 #include "Setup.h"
 
 #include "Synthesiser.h"
+#include "TileRecord.h"
 
 #include "../Core/Cancellation.h"
 #include "../Core/ContentHash.h"
@@ -200,7 +201,10 @@ void checkMemory(const SetupInputs& in, const OutputGrid& g, SynthesisSetup& s)
   {
     cells.push_back(cellsAtOutputSize(hf, g));
   }
-  s.memoryEstimate = synthesisMemoryEstimate(g.width, g.height, cells, in.openClMatcher);
+  s.memoryEstimate = synthesisMemoryEstimate(g.width, g.height, cells, in.openClMatcher) +
+    in.previousRecordBytes +
+    (in.recordedTileSize > 0 ? tileRecordBytes(g.width, g.height, in.recordedTileSize, in.patchSize)
+                             : 0.0);
   s.memoryBudget = checkMemoryBudget(s.memoryEstimate,
     in.memoryBudget,
     "This synthesis of " + sizeText(g.width, g.height) + " cells from " +

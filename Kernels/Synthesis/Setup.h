@@ -178,6 +178,11 @@ struct SetupInputs
   // Where what is computed from the exemplars alone is kept between runs
   // (ExemplarCache.h; defaultExemplarCacheDirectory()); empty: no cache.
   std::string cacheDirectory;
+  // Tile records held while the synthesis runs (TileRecord.h), for the memory
+  // estimate: its own record at this tile size (0: none kept), and the bytes of
+  // the previous run's record it takes tiles from.
+  int recordedTileSize = 0;
+  double previousRecordBytes = 0.0;
   SetupOptionNames names;
 };
 

@@ -3,6 +3,7 @@
 #include "../Core/Memory.h"
 #include "../Core/PatchSize.h"
 #include "ExemplarCache.h"
+#include "TileRecord.h"
 #include "Tiling.h"
 
 #include <utility>
@@ -53,6 +54,9 @@ SetupInputs setupInputs(const SynthesisRequest& request,
   in.cacheDirectory = !request.useExemplarCache ? std::string()
     : request.cacheDirectory.empty()            ? defaultExemplarCacheDirectory()
                                                 : request.cacheDirectory;
+  in.recordedTileSize = request.options.keepRecord ? request.options.tileSize : 0;
+  in.previousRecordBytes =
+    request.options.previous != nullptr ? tileRecordBytes(*request.options.previous) : 0.0;
   in.names = std::move(optionNames);
   return in;
 }

@@ -61,6 +61,12 @@ struct PlacementRecord
   std::vector<RecordedTile> tiles[kTilePasses];
 };
 
+// What a record holds in memory and on disk, in bytes: of a tiled synthesis
+// of width x height cells (an estimate, for the memory estimate), and of a
+// record at hand.
+double tileRecordBytes(int width, int height, int tileSize, int patchSize);
+double tileRecordBytes(const PlacementRecord& record);
+
 // An empty record of a tiled run with these exemplars and options on this target.
 PlacementRecord emptyRecord(const SynthesisTarget& target,
   const std::vector<const Heightfield*>& exemplars,

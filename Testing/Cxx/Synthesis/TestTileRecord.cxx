@@ -305,3 +305,24 @@ TEST(TileRecord, KeysEverythingATilesPlacementReads)
   const std::vector<int> styled(part.field.size(), 1);
   EXPECT_NE(tileInputsKey(TilePass::Features, tile, part, known, sites, styled, kPatch), base);
 }
+
+TEST(TileRecord, TheMemoryEstimateCountsTheRecordsAsLargeAsTheyAre)
+{
+  const SynthesisResult r = tiled(0, true);
+  const double actual = tileRecordBytes(*r.record);
+  const double estimated = tileRecordBytes(kWidth, kHeight, kTile, kPatch);
+  EXPECT_GT(estimated, 0.9 * actual);
+  EXPECT_LT(estimated, 1.6 * actual);
+
+  SetupInputs in;
+  in.exemplars.push_back(readHeightfield(test::realDem("colorado.png")));
+  in.sketch = twoRidges(0);
+  in.grid.width = kWidth;
+  in.grid.height = kHeight;
+  in.patchSize = kPatch;
+  in.openClMatcher = false;
+  const double without = prepareSynthesis(in).memoryEstimate;
+  in.recordedTileSize = kTile;
+  in.previousRecordBytes = actual;
+  EXPECT_DOUBLE_EQ(prepareSynthesis(in).memoryEstimate, without + estimated + actual);
+}
