@@ -402,8 +402,11 @@ class SynthTest(unittest.TestCase):
         self.assertTrue(os.path.exists(self.path("v1.tiles")))
         full = self.synth("colorado.png", after, self.path("full.tif"), *grid, "--tile-size", "64")
         self.assertFalse(os.path.exists(self.path("full.tiles")))
-        # The tile size comes from v1's record; the result is the full synthesis' bits.
-        edited = self.synth("colorado.png", after, self.path("v2.tif"), *grid, "--previous", self.path("v1.tif"))
+        # The tile size comes from v1's record; the result is the full synthesis' bits (a preview
+        # first, at its own patch size, neither takes from the record nor keeps one).
+        edited = self.synth("colorado.png", after, self.path("v2.tif"), *grid, "--previous", self.path("v1.tif"),
+                            "--preview", self.path("v2-preview.tif"))
+        self.assertFalse(os.path.exists(self.path("v2-preview.tiles")))
         self.assertTrue(filecmp.cmp(self.path("full.tif"), self.path("v2.tif"), shallow=False))
         self.assertTrue(os.path.exists(self.path("v2.tiles")))
         passes = len(edited["tiles"])
