@@ -866,6 +866,9 @@ double segmentDistance2(double i,
 // it less than a tenth of a cell too long, where the cross-sections change
 // slowly.
 constexpr int kMostPiecesSearched = 8;
+// Cells a thread takes at a time in exactLineDistances (a cell far from its
+// line searches more pieces, so the work is dealt out as it goes).
+constexpr std::size_t kCellsPerTask = 4096;
 
 // The distance from each cell off the lines to the drawn line through its
 // nearest seed: to that seed's piece of chain and the pieces either side of
@@ -886,6 +889,8 @@ void exactLineDistances(NearestSeeds& near,
     return;
   }
   const int w = near.width;
+  // Each cell reads its own nearest seed and writes its own distance.
+#pragma omp parallel for schedule(dynamic, kCellsPerTask)
   for (std::size_t k = 0; k < near.distance.size(); ++k)
   {
     const std::int32_t piece = lines.piece[nearestSeed(near, k)];
