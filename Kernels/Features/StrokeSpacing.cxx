@@ -138,47 +138,80 @@ public:
 
 private:
   // One raster sweep in direction `dir` (1: rows and columns ascending);
-  // true when a distance fell.
+  // true when a distance fell. Each row takes the three cells of the row
+  // before beside each cell, then the cell behind it in the row, in the
+  // sweep's order: each cell's distance is the least of the same sums a
+  // cell-by-cell sweep takes, so the sweeps and their result are the same.
   bool sweep(std::vector<float>& d, int dir) const
   {
-    // The neighbours a sweep has passed: behind in the row, and three in the
-    // row before.
-    const int di[4] = { -dir, -dir, 0, dir };
-    const int dj[4] = { 0, -dir, -dir, -dir };
     bool changed = false;
     for (int r = 0; r < h_; ++r)
     {
       const int j = dir > 0 ? r : h_ - 1 - r;
-      for (int c = 0; c < w_; ++c)
+      if (r > 0)
       {
-        const int i = dir > 0 ? c : w_ - 1 - c;
-        const std::size_t k = g_.index(i, j);
-        for (int s = 0; s < 4; ++s)
+        changed = fromRowBefore(d, j, j - dir) || changed;
+      }
+      changed = alongRow(d, j, dir) || changed;
+    }
+    return changed;
+  }
+
+  // Relaxes row j from the cells of row y (the row before it in the sweep)
+  // straight and diagonally across.
+  bool fromRowBefore(std::vector<float>& d, int j, int y) const
+  {
+    float* row = d.data() + g_.index(0, j);
+    const float* before = d.data() + g_.index(0, y);
+    const std::uint8_t* rowStroke = strokes_.data() + g_.index(0, j);
+    const std::uint8_t* beforeStroke = strokes_.data() + g_.index(0, y);
+    // A step from column x of row y passes the distance on unless that cell
+    // is a stroke, or has none yet.
+    const auto passes = [&](int x) { return beforeStroke[x] == 0 && before[x] < kInfinity; };
+    bool changed = false;
+    for (int i = 0; i < w_; ++i)
+    {
+      float best = row[i];
+      if (passes(i))
+      {
+        best = std::min(best, static_cast<float>(before[i] + straight_[1]));
+      }
+      for (const int x : { i - 1, i + 1 })
+      {
+        // Not between two stroke cells touching at a corner.
+        if (x >= 0 && x < w_ && passes(x) && !(rowStroke[x] != 0 && beforeStroke[i] != 0))
         {
-          const int x = i + di[s];
-          const int y = j + dj[s];
-          if (!g_.inside(x, y))
-          {
-            continue;
-          }
-          const std::size_t m = g_.index(x, y);
-          if (strokes_[m] != 0 || !(d[m] < kInfinity))
-          {
-            continue;
-          }
-          const bool diagonal = di[s] != 0 && dj[s] != 0;
-          if (diagonal && strokes_[g_.index(x, j)] != 0 && strokes_[g_.index(i, y)] != 0)
-          {
-            continue; // between two stroke cells touching at a corner
-          }
-          const double step = diagonal ? diagonal_ : straight_[di[s] != 0 ? 0 : 1];
-          const float next = static_cast<float>(d[m] + step);
-          if (next < d[k])
-          {
-            d[k] = next;
-            changed = true;
-          }
+          best = std::min(best, static_cast<float>(before[x] + diagonal_));
         }
+      }
+      if (best < row[i])
+      {
+        row[i] = best;
+        changed = true;
+      }
+    }
+    return changed;
+  }
+
+  // Relaxes row j from the cell behind each cell in the sweep's direction.
+  bool alongRow(std::vector<float>& d, int j, int dir) const
+  {
+    float* row = d.data() + g_.index(0, j);
+    const std::uint8_t* rowStroke = strokes_.data() + g_.index(0, j);
+    bool changed = false;
+    for (int c = 1; c < w_; ++c)
+    {
+      const int i = dir > 0 ? c : w_ - 1 - c;
+      const int x = i - dir;
+      if (rowStroke[x] != 0 || !(row[x] < kInfinity))
+      {
+        continue;
+      }
+      const float next = static_cast<float>(row[x] + straight_[0]);
+      if (next < row[i])
+      {
+        row[i] = next;
+        changed = true;
       }
     }
     return changed;

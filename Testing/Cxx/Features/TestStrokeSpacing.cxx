@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
+#include <queue>
 #include <vector>
 
 using namespace tsynth;
@@ -176,4 +178,105 @@ TEST(StrokeSpacing, LengthsReadOnceLimitAsTheLinesDo)
   limitByStrokeLength(fromLengths, nearestStrokeLength(g, cellX, cellY));
   EXPECT_EQ(fromLengths.halfSpacing, fromLines.halfSpacing);
   EXPECT_NEAR(at(fromLengths, 170, 30), 30.0 * cellX / kStrokeLengthPerHalfWidth, 1e-3);
+}
+
+namespace
+{
+
+// Metres to the nearest medial cell over the same graph as strokeSpacing's
+// (8-connected, stroke cells reached but passing nothing on, no diagonal
+// between two stroke cells touching at a corner; each step's sum rounded to
+// float), by Dijkstra's search: the least of those sums over every path,
+// whatever order a method relaxes the cells in.
+std::vector<float> dijkstraToMedial(const std::vector<std::uint8_t>& strokes,
+  const std::vector<std::uint8_t>& medial,
+  int w,
+  int h,
+  double cx,
+  double cy)
+{
+  const float inf = std::numeric_limits<float>::infinity();
+  std::vector<float> d(strokes.size(), inf);
+  using Entry = std::pair<float, std::size_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+  for (std::size_t k = 0; k < d.size(); ++k)
+  {
+    if (medial[k] != 0 && strokes[k] == 0)
+    {
+      d[k] = 0.0f;
+      open.emplace(0.0f, k);
+    }
+  }
+  const auto index = [w](int i, int j) { return static_cast<std::size_t>(j * w + i); };
+  while (!open.empty())
+  {
+    const auto [dm, m] = open.top();
+    open.pop();
+    if (dm > d[m] || strokes[m] != 0)
+    {
+      continue; // stale, or a wall
+    }
+    const int x = static_cast<int>(m) % w;
+    const int y = static_cast<int>(m) / w;
+    for (int dj = -1; dj <= 1; ++dj)
+    {
+      for (int di = -1; di <= 1; ++di)
+      {
+        const int i = x + di;
+        const int j = y + dj;
+        if ((di == 0 && dj == 0) || i < 0 || j < 0 || i >= w || j >= h)
+        {
+          continue;
+        }
+        const bool diagonal = di != 0 && dj != 0;
+        if (diagonal && strokes[index(x, j)] != 0 && strokes[index(i, y)] != 0)
+        {
+          continue;
+        }
+        const double step = std::hypot(di * cx, dj * cy);
+        const float next = static_cast<float>(d[m] + step);
+        if (next < d[index(i, j)])
+        {
+          d[index(i, j)] = next;
+          open.emplace(next, index(i, j));
+        }
+      }
+    }
+  }
+  return d;
+}
+
+} // namespace
+
+// The medial distance is found by raster sweeps until nothing changes: on a
+// spiral (a path round it turns many times), crossing strokes and strokes
+// touching at corners, on cells longer than they are wide, every cell's half
+// spacing is the one Dijkstra's search over the same graph gives, to the bit.
+TEST(StrokeSpacing, SweepsFindTheShortestPathsToTheMedialAxisToTheBit)
+{
+  const int w = 150, h = 130;
+  const double cx = 30.0, cy = 45.0;
+  const std::vector<std::uint8_t> strokes = cells(w,
+    h,
+    [](int i, int j)
+    {
+      const double dx = i - 60.0, dy = j - 60.0;
+      const double r = std::hypot(dx, dy);
+      const double turn = std::atan2(dy, dx) / (2.0 * M_PI);
+      const bool spiral =
+        r > 4.0 && r < 58.0 && std::abs(std::fmod(r / 9.0 - turn + 10.0, 1.0) - 0.5) < 0.06;
+      const bool diagonal = i - j == 80 && i > 100; // cells touching at corners only
+      const bool cross = (i == 130 && j > 20) || (j == 110 && i > 90);
+      return spiral || diagonal || cross;
+    });
+  const StrokeSpacing s = strokeSpacing(strokes, w, h, cx, cy);
+  const std::vector<float> toMedial = dijkstraToMedial(strokes, s.medial, w, h, cx, cy);
+  std::size_t finite = 0;
+  for (std::size_t k = 0; k < strokes.size(); ++k)
+  {
+    const float want = strokes[k] != 0 ? toMedial[k] : s.toStroke[k] + toMedial[k];
+    ASSERT_EQ(s.halfSpacing[k], want) << "cell " << k;
+    finite += std::isfinite(want) ? 1 : 0;
+  }
+  EXPECT_GT(finite, strokes.size() / 2); // the medial axis reaches most of the map
 }
