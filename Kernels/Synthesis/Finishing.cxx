@@ -571,12 +571,22 @@ std::vector<float> throughClosedOutlets(const Heightfield& out,
   const std::vector<float>& downstream)
 {
   std::vector<float> flow = downstream;
+  const auto closed = [&](std::size_t c) { return downstream[c] <= 0.0f && !onTheEdge(out, c); };
+  bool anyClosed = false;
+  for (std::size_t c = 0; c < out.size() && !anyClosed; ++c)
+  {
+    anyClosed = closed(c);
+  }
+  if (!anyClosed)
+  {
+    return flow; // every outlet lets its water leave the map: no way out to find
+  }
   const Heightfield breached = breachDepressions(out);
   const std::vector<std::int8_t> dir = flowDirections(breached);
   const std::vector<std::uint32_t> network = labelNetworks(out, downstream);
   for (std::size_t c = 0; c < out.size(); ++c)
   {
-    if (!(downstream[c] <= 0.0f) || onTheEdge(out, c))
+    if (!closed(c))
     {
       continue; // not an outlet, or one whose water leaves the map
     }
