@@ -118,6 +118,27 @@ public:
     value(static_cast<std::uint64_t>(v.size()));
     out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
   }
+  // For transferRecord: a value, a string (its length, then its bytes), and
+  // a vector's elements after their count, each written by `item`.
+  template<class T>
+  void operator()(const T& v)
+  {
+    value(v);
+  }
+  void operator()(const std::string& s)
+  {
+    value(static_cast<std::uint64_t>(s.size()));
+    out_.append(s);
+  }
+  template<class T, class F>
+  void each(const std::vector<T>& v, F&& item)
+  {
+    value(static_cast<std::uint64_t>(v.size()));
+    for (const T& x : v)
+    {
+      item(x);
+    }
+  }
   std::string& bytes() { return out_; }
 
 private:
@@ -152,6 +173,26 @@ public:
     take(v.data(), n * sizeof(T));
     return v;
   }
+  // For transferRecord: what RecordWriter's operator() and each() wrote.
+  template<class T>
+  void operator()(T& v)
+  {
+    v = value<T>();
+  }
+  void operator()(std::string& s)
+  {
+    s.resize(count());
+    take(s.data(), s.size());
+  }
+  template<class T, class F>
+  void each(std::vector<T>& v, F&& item)
+  {
+    v.resize(count());
+    for (T& x : v)
+    {
+      item(x);
+    }
+  }
   void skip(std::size_t n)
   {
     if (n > end_ - at_)
@@ -168,6 +209,17 @@ public:
   }
 
 private:
+  // A stored count of elements of a byte at least, refused when more than
+  // the bytes left.
+  std::size_t count()
+  {
+    const auto n = value<std::uint64_t>();
+    if (n > end_ - at_)
+    {
+      damaged();
+    }
+    return static_cast<std::size_t>(n);
+  }
   void take(void* to, std::size_t n)
   {
     if (n > end_ - at_)
@@ -434,30 +486,43 @@ std::uint64_t tileInputsKey(TilePass pass,
   return h.digest();
 }
 
+namespace
+{
+
+// The record's fields in one order, for writing (S = RecordWriter, R = const
+// PlacementRecord) and reading (S = RecordReader, R = PlacementRecord).
+template<class S, class R>
+void transferRecord(S& s, R& r)
+{
+  s(r.width);
+  s(r.height);
+  s(r.cellX);
+  s(r.cellY);
+  s(r.tileSize);
+  s(r.patchSize);
+  s(r.seed);
+  s(r.exemplars);
+  s(r.options);
+  s(r.code);
+  for (auto& pass : r.tiles)
+  {
+    s.each(pass,
+      [&](auto& t)
+      {
+        s(t.inputs);
+        s(t.outcome);
+      });
+  }
+}
+
+} // namespace
+
 std::string writeRecord(const PlacementRecord& r)
 {
   RecordWriter w;
   w.bytes() = kRecordMagic;
   w.value(kRecordVersion);
-  w.value(r.width);
-  w.value(r.height);
-  w.value(r.cellX);
-  w.value(r.cellY);
-  w.value(r.tileSize);
-  w.value(r.patchSize);
-  w.value(r.seed);
-  w.value(r.exemplars);
-  w.value(r.options);
-  w.value(r.code);
-  for (const std::vector<RecordedTile>& pass : r.tiles)
-  {
-    w.value(static_cast<std::uint64_t>(pass.size()));
-    for (const RecordedTile& t : pass)
-    {
-      w.value(t.inputs);
-      w.values(std::vector<char>(t.outcome.begin(), t.outcome.end()));
-    }
-  }
+  transferRecord(w, r);
   ContentHasher check;
   check.bytes(w.bytes().data(), w.bytes().size());
   w.value(check.digest());
@@ -488,31 +553,7 @@ PlacementRecord readRecord(const std::string& bytes, const std::string& source)
       " was written by another version of TerrainSynthesis: synthesise the terrain anew.");
   }
   PlacementRecord rec;
-  rec.width = r.value<int>();
-  rec.height = r.value<int>();
-  rec.cellX = r.value<double>();
-  rec.cellY = r.value<double>();
-  rec.tileSize = r.value<int>();
-  rec.patchSize = r.value<int>();
-  rec.seed = r.value<std::uint64_t>();
-  rec.exemplars = r.value<std::uint64_t>();
-  rec.options = r.value<std::uint64_t>();
-  rec.code = r.value<std::uint64_t>();
-  for (std::vector<RecordedTile>& pass : rec.tiles)
-  {
-    const auto count = r.value<std::uint64_t>();
-    if (count > body)
-    {
-      r.damaged();
-    }
-    pass.resize(count);
-    for (RecordedTile& t : pass)
-    {
-      t.inputs = r.value<std::uint64_t>();
-      const std::vector<char> packed = r.values<char>();
-      t.outcome.assign(packed.begin(), packed.end());
-    }
-  }
+  transferRecord(r, rec);
   if (!r.atEnd())
   {
     r.damaged();
