@@ -27,24 +27,10 @@
 #include <vector>
 
 using namespace tsynth;
-using Clock = std::chrono::steady_clock;
+using bench::bestSeconds;
 
 namespace
 {
-
-// Best wall-clock seconds of `repetitions` calls.
-double bestSeconds(int repetitions, const std::function<void()>& f)
-{
-  double best = std::numeric_limits<double>::infinity();
-  for (int r = 0; r < repetitions; ++r)
-  {
-    const auto t0 = Clock::now();
-    f();
-    best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
-  }
-  return best;
-}
-
 // The textbook epsilon fill: one std::priority_queue of (height, cell), border
 // cells as seeds, every reached cell raised to at least one float step above
 // the cell it was reached from. Assumes every cell is valid (a mirror tile is).

@@ -18,31 +18,19 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <functional>
 #include <limits>
 #include <string>
 #include <vector>
 
 using namespace tsynth;
-using Clock = std::chrono::steady_clock;
+using bench::bestSeconds;
 
 namespace
 {
 
 constexpr int kPasses = 3;
-
-double bestSeconds(int repetitions, const std::function<void()>& f)
-{
-  double best = std::numeric_limits<double>::infinity();
-  for (int r = 0; r < repetitions; ++r)
-  {
-    const auto t0 = Clock::now();
-    f();
-    best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
-  }
-  return best;
-}
-
 // The box widths smoothLarge takes (the same formula).
 std::array<int, kPasses> widthsFor(double sigma)
 {
@@ -202,7 +190,16 @@ int main(int argc, char** argv)
   const std::string path =
     argc > 1 ? argv[1] : std::string(TSYNTH_BUNDLED_DATA) + "/dems/colorado.png";
   const int repetitions = argc > 2 ? std::max(1, std::atoi(argv[2])) : 5;
-  const Heightfield dem = readHeightfield(path);
+  Heightfield dem;
+  try
+  {
+    dem = readHeightfield(path);
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "tsynth_bench_smoothing: %s\n", e.what());
+    return 1;
+  }
   std::printf("smoothLarge against the reference (weights in a plane, columns on one thread), "
               "best of %d, %d threads\n",
     repetitions,

@@ -3,6 +3,11 @@
 
 #include "Core/Heightfield.h"
 
+#include <algorithm>
+#include <chrono>
+#include <functional>
+#include <limits>
+
 namespace tsynth::bench
 {
 
@@ -27,6 +32,20 @@ inline Heightfield mirrorTile(const Heightfield& src, int size)
     }
   }
   return out;
+}
+
+// The best wall-clock seconds of `repetitions` calls of f.
+inline double bestSeconds(int repetitions, const std::function<void()>& f)
+{
+  double best = std::numeric_limits<double>::infinity();
+  for (int r = 0; r < repetitions; ++r)
+  {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    best =
+      std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  return best;
 }
 
 } // namespace tsynth::bench
