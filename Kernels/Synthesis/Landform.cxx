@@ -1219,12 +1219,20 @@ std::vector<double> lineValueField(const RasterLines& lines,
   const double widestAllowed = kLineValueSmoothingInPatches * patchSize;
   auto sigmaAt = [&](std::size_t k)
   { return std::min(kLineValueSmoothingShare * near.distance[k] / cell, widestAllowed); };
-  double widest = 0.0;
-  for (std::size_t k = 0; k < n; ++k)
-  {
-    raw.z[k] = lines.value[nearestSeed(near, k)];
-    widest = std::max(widest, sigmaAt(k));
-  }
+  // Per row, its widest smoothing (a maximum: the same in any order).
+  std::vector<double> widestInRow(static_cast<std::size_t>(h), 0.0);
+  forRowBands(h,
+    [&](int j)
+    {
+      double& widestHere = widestInRow[static_cast<std::size_t>(j)];
+      for (int i = 0; i < w; ++i)
+      {
+        const std::size_t k = rowMajor(i, j, w);
+        raw.z[k] = lines.value[nearestSeed(near, k)];
+        widestHere = std::max(widestHere, sigmaAt(k));
+      }
+    });
+  const double widest = *std::max_element(widestInRow.begin(), widestInRow.end());
   // Smoothed at sigmas kLineValueLevelStep apart, interpolated between them in
   // log sigma: each cell between the first level at least its sigma and the
   // one before (the last level is the widest sigma). The levels are made one
@@ -1250,16 +1258,24 @@ std::vector<double> lineValueField(const RasterLines& lines,
     const double lo = levels[l - 1];
     const double hi = levels[l];
     const bool last = l + 1 == levels.size();
-    for (std::size_t k = 0; k < n; ++k)
+    const auto blendLevels = [&](std::size_t k)
     {
       const double s = sigmaAt(k);
       if (s <= 0.0 || (l > 1 && !(lo < s)) || !(hi >= s || last))
       {
-        continue; // done raw, or blended at another pair of levels
+        return; // done raw, or blended at another pair of levels
       }
       const double t = s >= hi ? 1.0 : lo <= 0.0 ? s / hi : std::log(s / lo) / std::log(hi / lo);
       field[k] = (1.0 - t) * previous.z[k] + t * current.z[k];
-    }
+    };
+    forRowBands(h,
+      [&](int j)
+      {
+        for (int i = 0; i < w; ++i)
+        {
+          blendLevels(rowMajor(i, j, w));
+        }
+      });
     previous = std::move(current);
   }
   return field;
@@ -1453,9 +1469,10 @@ LandformField landformField(const FeatureGraph& sketch,
   const double valleyConfident = s.valley.section.reach(kConfidentReach);
   const double ridgeSoft2 = std::pow(kRidgeSoftening * cell, 2.0);
   const double valleySoft2 = std::pow(kValleySoftening * cell, 2.0);
-  for (std::size_t k = 0; k < n; ++k)
+  // Each cell's blend of its nearest lines' terms, row by row on every
+  // thread (each cell reads shared inputs and writes only its own outputs).
+  const auto blend = [&](std::size_t k)
   {
-    pollCancellation();
     const double b = out.field.z[k];
     const double room = spacing.halfSpacing[k];
     double sum = 0.0;
@@ -1510,7 +1527,15 @@ LandformField landformField(const FeatureGraph& sketch,
     {
       out.downstream[k] = flow.value[k];
     }
-  }
+  };
+  forRowBands(h,
+    [&](int j)
+    {
+      for (int i = 0; i < w; ++i)
+      {
+        blend(rowMajor(i, j, w));
+      }
+    });
   return out;
 }
 
