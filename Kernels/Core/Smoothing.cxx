@@ -8,12 +8,7 @@
 
 namespace tsynth
 {
-namespace
-{
 
-constexpr int kBoxPasses = 3;
-
-// Odd box widths whose variances add up to sigma^2 (as near as odd widths allow).
 std::array<int, kBoxPasses> boxWidths(double sigma)
 {
   const double n = kBoxPasses;
@@ -33,6 +28,9 @@ std::array<int, kBoxPasses> boxWidths(double sigma)
   }
   return widths;
 }
+
+namespace
+{
 
 // One box pass along a line of n values read and written with a stride: a
 // running sum, the window clipped at the ends (`sum`: n + 1 prefix sums).

@@ -6,8 +6,17 @@
 
 #include "Heightfield.h"
 
+#include <array>
+
 namespace tsynth
 {
+
+// smoothLarge's box filters per axis.
+constexpr int kBoxPasses = 3;
+
+// The odd widths of those boxes whose variances add up to sigma^2, as near as
+// odd widths allow (the smallest is 1).
+std::array<int, kBoxPasses> boxWidths(double sigma);
 
 // Close to a Gaussian of standard deviation `sigma` cells: a smooth bell made of
 // three boxes of odd widths, whose variance is the nearest such widths allow,

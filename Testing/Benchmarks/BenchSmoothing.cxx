@@ -30,23 +30,6 @@ using bench::bestSeconds;
 namespace
 {
 
-constexpr int kPasses = 3;
-// The box widths smoothLarge takes (the same formula).
-std::array<int, kPasses> widthsFor(double sigma)
-{
-  const double n = kPasses;
-  int lower = static_cast<int>(std::floor(std::sqrt(12.0 * sigma * sigma / n + 1.0)));
-  lower = std::max(1, lower % 2 == 0 ? lower - 1 : lower);
-  const double m = std::round(
-    (12.0 * sigma * sigma - n * lower * lower - 4.0 * n * lower - 3.0 * n) / (-4.0 * lower - 4.0));
-  std::array<int, kPasses> widths{};
-  for (std::size_t k = 0; k < widths.size(); ++k)
-  {
-    widths[k] = k < m ? lower : lower + 2;
-  }
-  return widths;
-}
-
 void referenceLine(double* v, std::size_t n, std::size_t stride, int width)
 {
   std::vector<double> sum(n + 1, 0.0);
@@ -111,7 +94,7 @@ Heightfield referenceSmooth(const Heightfield& hf, double sigma)
     value[k] = ok ? hf.z[k] : 0.0;
     weight[k] = ok ? 1.0 : 0.0;
   }
-  const std::array<int, kPasses> widths = widthsFor(sigma);
+  const std::array<int, kBoxPasses> widths = boxWidths(sigma); // the same boxes
 #pragma omp parallel for schedule(static)
   for (std::size_t j = 0; j < h; ++j)
   {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -123,6 +124,27 @@ TEST(SmoothLarge, ADeltaSpreadsWithTheGaussianVariance)
   }
   EXPECT_GT(r.at(c + 10, c), 0.0f);
   EXPECT_EQ(r.at(c + 11, c), 0.0f);
+}
+
+TEST(SmoothLarge, BoxWidthsAreOddAndTheirVariancesAddUpToSigmaSquared)
+{
+  // The widths the delta above spreads with, read directly.
+  EXPECT_EQ(boxWidths(4.0), (std::array<int, kBoxPasses>{ 7, 7, 9 }));
+  EXPECT_EQ(boxWidths(10.0), (std::array<int, kBoxPasses>{ 19, 19, 21 }));
+  EXPECT_EQ(boxWidths(40.0), (std::array<int, kBoxPasses>{ 79, 79, 81 }));
+  for (double sigma = 1.0; sigma <= 400.0; sigma *= 1.07)
+  {
+    const std::array<int, kBoxPasses> widths = boxWidths(sigma);
+    double variance = 0.0;
+    for (int w : widths)
+    {
+      EXPECT_EQ(w % 2, 1) << sigma;
+      variance += (w * w - 1.0) / 12.0;
+    }
+    EXPECT_LE(widths.back() - widths.front(), 2) << sigma;
+    const double bound = 1.0 / (3.0 * sigma) + 1.0 / (6.0 * sigma * sigma);
+    EXPECT_NEAR(variance / (sigma * sigma), 1.0, bound) << sigma;
+  }
 }
 
 TEST(SmoothLarge, ConstantStaysConstantAndNodataNeverLeaks)
