@@ -1295,6 +1295,21 @@ void releaseLineValues(RasterLines& lines, NearestSeeds& near, bool nearestToo =
   }
 }
 
+// Lets go of a raster's line pieces, which only exactLineDistances reads.
+void keepValuesOnly(RasterLines& lines)
+{
+  std::vector<std::int32_t>().swap(lines.piece);
+  std::vector<std::pair<int, int>>().swap(lines.pieces);
+}
+
+// Lets go of the distances to the strokes and the medial axis, which only the
+// half spacing's making reads.
+void keepHalfSpacingOnly(StrokeSpacing& s)
+{
+  std::vector<float>().swap(s.toStroke);
+  std::vector<std::uint8_t>().swap(s.medial);
+}
+
 // The statistics with each kind's relief raised by its factor.
 LandformStatistics withReliefs(const LandformStatistics& s, double ridge, double valley)
 {
@@ -1338,17 +1353,21 @@ LandformField landformField(const FeatureGraph& sketch,
   // A short stroke's landform is held to a share of its length
   // (kStrokeLengthPerHalfWidth), the drawn strokes' alone: an implied divide
   // is as long as the valleys it parts.
-  const std::vector<float> drawnLength = nearestStrokeLength(drawn, cellX, cellY);
-  limitByStrokeLength(spacing, drawnLength);
-  checkCancellation();
   const bool anyImplied = drawn.chains.size() < graph.chains.size();
-  StrokeSpacing drawnSpacing = anyImplied
-    ? strokeSpacing(chainCells(drawn, w, h, nullptr), w, h, cellX, cellY)
-    : StrokeSpacing();
-  if (anyImplied)
+  StrokeSpacing drawnSpacing;
   {
-    limitByStrokeLength(drawnSpacing, drawnLength);
+    const std::vector<float> drawnLength = nearestStrokeLength(drawn, cellX, cellY);
+    limitByStrokeLength(spacing, drawnLength);
+    checkCancellation();
+    if (anyImplied)
+    {
+      drawnSpacing = strokeSpacing(chainCells(drawn, w, h, nullptr), w, h, cellX, cellY);
+      limitByStrokeLength(drawnSpacing, drawnLength);
+    }
   }
+  // Only the half spacings are read from here on.
+  keepHalfSpacingOnly(spacing);
+  keepHalfSpacingOnly(drawnSpacing);
   const StrokeSpacing& drawnRoom = anyImplied ? drawnSpacing : spacing;
   LandformField out;
   // Each kind's relief raised to stand out at the room the drawing leaves it.
@@ -1378,9 +1397,6 @@ LandformField landformField(const FeatureGraph& sketch,
   out.field.cellY = cellY;
   out.field.cellSizeKnown = true;
   const std::size_t n = out.field.size();
-  out.weight.assign(n, 0.0f);
-  out.halfWidth.assign(n, 0.0f);
-  out.downstream.assign(n, kNaN);
   if (base != nullptr)
   {
     for (std::size_t k = 0; k < n; ++k)
@@ -1446,8 +1462,6 @@ LandformField landformField(const FeatureGraph& sketch,
   releaseLineValues(ridgeCells, nearRidge);
   checkCancellation();
   RasterLines valleyCells = rasteriseNetwork(graph, valleys, floors.floor, w, h);
-  RasterLines valleyRims = rasteriseNetwork(graph, valleys, floors.rim, w, h);
-  const RasterLines flow = rasteriseNetwork(graph, valleys, floors.downstream, w, h);
   checkCancellation();
   NearestSeeds nearValley = nearestSeeds(valleyCells.seeds, w, h, cellX, cellY);
   exactLineDistances(nearValley, valleyCells, graph, cellX, cellY);
@@ -1456,8 +1470,18 @@ LandformField landformField(const FeatureGraph& sketch,
   const std::vector<double> floorAt =
     lineValueField(valleyCells, nearValley, w, h, cell, o.patchSize);
   releaseLineValues(valleyCells, nearValley, false);
+  // The rims and the flow lie on the floors' cells: each raster is made when
+  // it is read, and only its values are kept.
+  RasterLines valleyRims = rasteriseNetwork(graph, valleys, floors.rim, w, h);
+  keepValuesOnly(valleyRims);
   const std::vector<double> rimAt = lineValueField(valleyRims, nearValley, w, h, cell, o.patchSize);
   releaseLineValues(valleyRims, nearValley);
+  RasterLines flow = rasteriseNetwork(graph, valleys, floors.downstream, w, h);
+  keepValuesOnly(flow);
+  // The outputs' planes besides the field, made when the blend fills them.
+  out.weight.assign(n, 0.0f);
+  out.halfWidth.assign(n, 0.0f);
+  out.downstream.assign(n, kNaN);
   const MonotoneProfile ridgeShape = s.ridge.section.normalised();
   const MonotoneProfile valleyShape = s.valley.section.normalised();
   const CrossSection ridgeSection(ridgeShape, s.ridge.width, narrowest);
