@@ -39,6 +39,16 @@ void reuseFreedWorkMemory()
     });
 }
 
+void returnFreedMemory()
+{
+#if defined(__GLIBC__)
+  if (mallinfo2().fordblks > static_cast<std::size_t>(kKeptFreeBytes))
+  {
+    malloc_trim(0);
+  }
+#endif
+}
+
 double physicalMemory()
 {
   return static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));

@@ -583,6 +583,7 @@ SynthesisSetup prepareSynthesis(SetupInputs in)
   {
     s.target.warnings.push_back(*warning);
   }
+  returnFreedMemory(); // the target's making held the most; the placement holds less
   return s;
 }
 

@@ -2,6 +2,7 @@
 
 #include "../Core/Error.h"
 #include "../Core/Grid.h"
+#include "../Core/Memory.h"
 #include "../Core/Random.h"
 #include "PatchPlacement.h"
 #include "TileRecord.h"
@@ -303,6 +304,7 @@ SynthesisResult synthesiseTiled(const SynthesisTarget& target,
   matcher.reset();
   whole.report(kTiledPlacementShare, "finishing");
   whole.releasePlacement(); // as untiled: the finishing's fields take that memory
+  returnFreedMemory();
   SynthesisResult r = whole.finish();
   run.timings.finish = secondsSince(t0);
   r.timings = run.timings;
@@ -414,6 +416,7 @@ SynthesisResult synthesise(const SynthesisTarget& target,
   const std::vector<std::string> matcherWarnings = matcher->warnings();
   state.releasePlacement();
   matcher.reset();
+  returnFreedMemory(); // the finishing's fields take what the placement held
   SynthesisResult r = o.placementLimit == kAllPlacements ? state.finish() : state.unfinished();
   r.timings = { setup, features, fill, secondsSince(t0) };
   r.backend = backend;

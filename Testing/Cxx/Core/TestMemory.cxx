@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <string>
 #include <sys/resource.h>
 #include <unistd.h>
@@ -180,4 +181,68 @@ TEST(MemoryReuse, FieldsAboveAnyMappingThresholdAreReusedToo)
   faultsOfRepeatedArrays(kBytes, kArrays, 1); // the heap grows once
   const long faults = faultsOfRepeatedArrays(kBytes, kArrays, kUses);
   EXPECT_LT(faults, pages) << faults << " faults for " << kUses << " uses of " << pages << " pages";
+}
+
+namespace
+{
+
+long residentBytes()
+{
+  std::ifstream statm("/proc/self/statm");
+  long size = 0;
+  long resident = 0;
+  statm >> size >> resident;
+  return resident * sysconf(_SC_PAGESIZE);
+}
+
+struct Resident
+{
+  long beforeReturning = 0;
+  long afterReturning = 0;
+};
+
+// Resident memory before and after returnFreedMemory(), once `arrays` work
+// arrays of `bytes` are freed under a small block still held above them on
+// the heap (so that freeing them trims nothing by itself).
+Resident residentAroundReturning(std::size_t bytes, int arrays)
+{
+  std::vector<std::vector<char>> work;
+  for (int a = 0; a < arrays; ++a)
+  {
+    work.emplace_back(bytes, static_cast<char>(a + 1));
+  }
+  std::vector<char> held(1u << 20, 7);
+  // The premise: the held block lies above every array.
+  for (const std::vector<char>& w : work)
+  {
+    EXPECT_GT(held.data(), w.data() + w.size()) << "the held block is not above the arrays";
+  }
+  std::vector<std::vector<char>>().swap(work);
+  Resident r;
+  r.beforeReturning = residentBytes();
+  returnFreedMemory();
+  r.afterReturning = residentBytes();
+  EXPECT_EQ(held[held.size() / 2], 7);
+  return r;
+}
+
+} // namespace
+
+TEST(MemoryReuse, FreedMemoryUnderAHeldBlockGoesBackOnlyWhenMuchOfItIsFree)
+{
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer's allocator replaces glibc's; its tuning does not apply";
+#endif
+  constexpr std::size_t kBytes = 64u << 20;
+  constexpr long kSlack = 16L << 20; // what other allocations may move meanwhile
+  reuseFreedWorkMemory();
+  // 128 MB free: under kKeptFreeBytes, kept for the next stage to reuse.
+  const Resident few = residentAroundReturning(kBytes, 2);
+  EXPECT_GT(few.afterReturning, few.beforeReturning - kSlack)
+    << few.beforeReturning << " -> " << few.afterReturning;
+  // More than kKeptFreeBytes free: handed back, though a block above them is held.
+  const int many = static_cast<int>(kKeptFreeBytes / static_cast<long>(kBytes)) + 2;
+  const Resident lots = residentAroundReturning(kBytes, many);
+  EXPECT_LT(lots.afterReturning, lots.beforeReturning - (many - 1) * static_cast<long>(kBytes))
+    << lots.beforeReturning << " -> " << lots.afterReturning;
 }
