@@ -780,6 +780,23 @@ void writeDebug(const std::string& dir, const SynthesisSetup& setup, const Synth
   writeTerrainFile(dir + "/seams.tif", seams);
 }
 
+// Lets go of what neither the figures nor the summary and report read once
+// the terrain and the debug files are written: the placement's per-cell planes
+// (patch ids, seams, match costs), the target's besides its field, and the
+// exemplars' candidate pool. The figures' own planes come on top of what is
+// held, and at 4096 x 4096 these are 350 MB of it.
+void releaseWrittenPlanes(SynthesisSetup& setup, SynthesisResult& r)
+{
+  std::vector<int>().swap(r.patchId);
+  std::vector<std::uint8_t>().swap(r.seam);
+  std::vector<float>().swap(r.matchCost);
+  std::vector<float>().swap(setup.target.weight);
+  std::vector<float>().swap(setup.target.halfWidth);
+  std::vector<float>().swap(setup.target.downstream);
+  setup.pool.reset();
+  returnFreedMemory();
+}
+
 } // namespace
 
 int runSynth(std::vector<std::string> args)
@@ -824,6 +841,11 @@ int runSynth(std::vector<std::string> args)
     saveRecord(*r.record, recordPathOf(a.output));
   }
   run.write = since(t1);
+  if (a.debugDir)
+  {
+    writeDebug(*a.debugDir, setup, r);
+  }
+  releaseWrittenPlanes(setup, r);
   t1 = std::chrono::steady_clock::now();
   const SynthesisFigures figures = measureSynthesis(setup, r, a.request.options.patchSize);
   run.measure = since(t1);
@@ -831,10 +853,6 @@ int runSynth(std::vector<std::string> args)
   if (a.report)
   {
     writeReport(*a.report, a, setup, r, figures, run);
-  }
-  if (a.debugDir)
-  {
-    writeDebug(*a.debugDir, setup, r);
   }
   return 0;
 }
