@@ -651,7 +651,13 @@ DrainageReport drainValleys(Heightfield& out,
     order.end(),
     [&](std::size_t a, std::size_t b)
     { return downstream[a] > downstream[b] || (downstream[a] == downstream[b] && a < b); });
-  const Heightfield before = out;
+  // The line cells' heights before, for the report (the rest of the terrain
+  // is not asked for).
+  std::vector<float> before(order.size());
+  for (std::size_t n = 0; n < order.size(); ++n)
+  {
+    before[n] = out.z[order[n]];
+  }
 
   // 1. The floors the lines should have: each line cell below the cells beside
   // it (a channel), and descending towards the outlet with the least change in
@@ -667,15 +673,20 @@ DrainageReport drainValleys(Heightfield& out,
   // without creasing.
   for (int round = 0; round < kSmoothingRounds; ++round)
   {
-    const std::vector<double> floors =
-      monotoneFloors(out, order, line, network, downstream, depth, maxCut, o.minimumGradient);
+    // Each plane of doubles is let go once the next is made from it: at
+    // 4096 x 4096 each is 134 MB, and they set the finishing's peak.
     std::vector<double> change(out.size(), 0.0);
-    for (std::size_t c : order)
     {
-      change[c] = floors[c] - out.z[c];
+      const std::vector<double> floors =
+        monotoneFloors(out, order, line, network, downstream, depth, maxCut, o.minimumGradient);
+      for (std::size_t c : order)
+      {
+        change[c] = floors[c] - out.z[c];
+      }
     }
     const double radius = 0.5 * o.reach / static_cast<double>(1 << round);
-    const std::vector<double> smooth = meanAlongLines(change, line, out.width, out.height, radius);
+    std::vector<double> smooth = meanAlongLines(change, line, out.width, out.height, radius);
+    std::vector<double>().swap(change);
     Heightfield spread(out.width, out.height, 0.0f);
     for (std::size_t c = 0; c < out.size(); ++c)
     {
@@ -692,6 +703,7 @@ DrainageReport drainValleys(Heightfield& out,
     // Laplacian of a valley network on Colorado 1.10 times the exemplar's;
     // 0.92 smoothed). Smoothed across as along the line, and faded again so
     // that nothing leaks past the reach.
+    std::vector<double>().swap(smooth);
     spread = smoothLarge(spread, std::max(1.0, radius));
     for (std::size_t c = 0; c < out.size(); ++c)
     {
@@ -710,14 +722,15 @@ DrainageReport drainValleys(Heightfield& out,
   widenCuts(out, smoothed, line, near, depth, kCutWideningCells);
 
   double sum = 0.0;
-  for (std::size_t c : order)
+  for (std::size_t n = 0; n < order.size(); ++n)
   {
+    const std::size_t c = order[n];
     if (!std::isfinite(drawnDownstream[c]))
     {
       continue; // a way out of a closed basin, not a drawn line
     }
     ++report.cells;
-    const double lowered = before.z[c] - out.z[c];
+    const double lowered = before[n] - out.z[c];
     report.lowered += lowered > 0.0 ? 1 : 0;
     report.largest = std::max(report.largest, lowered);
     sum += lowered;
