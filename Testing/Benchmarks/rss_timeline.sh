@@ -2,7 +2,7 @@
 # Resident memory of a command over time, to see which stage sets its peak.
 #   bash Testing/Benchmarks/rss_timeline.sh LOG -- tsynth synth ... --report R.json
 # Writes "milliseconds kB" every 0.25 s to LOG and prints the peak and when it came; compare the
-# time with the report's times_s (prepare, setup, features, fill, finish, measure, write, in order).
+# time with the report's times_s, or let rss_stages.py REPORT LOG print each stage's peak.
 # At 4096^2 from five exemplars in tiles of 1024 the placement held 1.5 GB, the target's set-up
 # peaked at 2.6 GB (10 s) and the finishing at 2.7 GB (160 s). Untiled, after the landform target
 # and smoothLarge kept fewer planes: set-up 2.16 GB (12 s), placement 1.88 GB, finishing 2.54 GB.
