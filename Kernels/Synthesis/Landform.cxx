@@ -4,6 +4,7 @@
 #include "../Core/Constants.h"
 #include "../Core/Error.h"
 #include "../Core/Grid.h"
+#include "../Core/Memory.h"
 #include "../Core/Random.h"
 #include "../Core/Smoothing.h"
 #include "../Distance/DistanceField.h"
@@ -1198,7 +1199,8 @@ double reliefFactor(const LandformProfile& p,
 // meet. Taken from the nearest line cell alone, the value stepped where that
 // changed from one arm of a corner to the other or from one network to the
 // next, and the landform stepped with it (cliffs of up to 160 m in one cell
-// along the inner corners of letters drawn as valleys).
+// along the inner corners of letters drawn as valleys). Empty when there is
+// no line of the kind (near.empty()): the blend reads none of it then.
 std::vector<double> lineValueField(const RasterLines& lines,
   const NearestSeeds& near,
   int w,
@@ -1207,12 +1209,12 @@ std::vector<double> lineValueField(const RasterLines& lines,
   int patchSize)
 {
   checkCancellation();
-  const std::size_t n = cellCount(w, h);
-  std::vector<double> field(n, 0.0);
   if (near.empty())
   {
-    return field;
+    return {};
   }
+  const std::size_t n = cellCount(w, h);
+  std::vector<double> field(n, 0.0);
   Heightfield raw(w, h, 0.0f);
   // Each cell's smoothing (cells), worked out where it is needed rather than
   // held: a plane of doubles at the peak of a large target's set-up.
@@ -1251,7 +1253,10 @@ std::vector<double> lineValueField(const RasterLines& lines,
       field[k] = raw.z[k];
     }
   }
-  Heightfield previous = raw;
+  // The level below: the raw values at first (read in place, not copied),
+  // then the last smoothed level.
+  Heightfield previousSmoothed;
+  const Heightfield* previous = &raw;
   for (std::size_t l = 1; l < levels.size(); ++l)
   {
     Heightfield current = smoothLarge(raw, levels[l]);
@@ -1266,7 +1271,7 @@ std::vector<double> lineValueField(const RasterLines& lines,
         return; // done raw, or blended at another pair of levels
       }
       const double t = s >= hi ? 1.0 : lo <= 0.0 ? s / hi : std::log(s / lo) / std::log(hi / lo);
-      field[k] = (1.0 - t) * previous.z[k] + t * current.z[k];
+      field[k] = (1.0 - t) * previous->z[k] + t * current.z[k];
     };
     forRowBands(h,
       [&](int j)
@@ -1276,23 +1281,10 @@ std::vector<double> lineValueField(const RasterLines& lines,
           blendLevels(rowMajor(i, j, w));
         }
       });
-    previous = std::move(current);
+    previousSmoothed = std::move(current);
+    previous = &previousSmoothed;
   }
   return field;
-}
-
-// Lets go of what only lineValueField reads: the raster's values and seeds,
-// and (unless another raster still needs them) the map's nearest cells.
-void releaseLineValues(RasterLines& lines, NearestSeeds& near, bool nearestToo = true)
-{
-  std::vector<float>().swap(lines.value);
-  std::vector<std::uint8_t>().swap(lines.seeds);
-  std::vector<std::int32_t>().swap(lines.piece);
-  std::vector<std::pair<int, int>>().swap(lines.pieces);
-  if (nearestToo)
-  {
-    std::vector<std::int32_t>().swap(near.nearest);
-  }
 }
 
 // Lets go of a raster's line pieces, which only exactLineDistances reads.
@@ -1300,6 +1292,28 @@ void keepValuesOnly(RasterLines& lines)
 {
   std::vector<std::int32_t>().swap(lines.piece);
   std::vector<std::pair<int, int>>().swap(lines.pieces);
+}
+
+// Lets go of the whole raster once lineValueField has read its values and seeds,
+// and (unless another raster still needs them) the map's nearest cells. The
+// map's distances are kept for the blend, unless there is no line of the kind
+// (then the blend reads none of them).
+void releaseLineValues(RasterLines& lines, NearestSeeds& near, bool nearestToo = true)
+{
+  keepValuesOnly(lines);
+  std::vector<float>().swap(lines.value);
+  std::vector<std::uint8_t>().swap(lines.seeds);
+  if (near.empty())
+  {
+    std::vector<float>().swap(near.distance);
+  }
+  if (nearestToo)
+  {
+    std::vector<std::int32_t>().swap(near.nearest);
+  }
+  // At 4096^2 each kind frees hundreds of MB that the next kind's planes,
+  // made in another order and size, only partly reuse.
+  returnFreedMemory();
 }
 
 // Lets go of the distances to the strokes and the medial axis, which only the
