@@ -507,17 +507,16 @@ double correctLandformAtScales(Heightfield& out,
   const auto correctionAt = [&](double level)
   {
     const Heightfield lowOut = smoothLarge(out, level);
-    const Heightfield lowTarget =
+    Heightfield lowTarget =
       smoothLarge(target, targetSigma > 0.0 ? std::min(level, targetSigma) : level);
-    std::vector<float> change(out.size(), 0.0f);
+    // The change is written over the low-passed target, cell by cell after
+    // reading it: one plane fewer at the finishing's peak.
     for (std::size_t c = 0; c < out.size(); ++c)
     {
-      if (out.isValid(c) && lowTarget.isValid(c) && lowOut.isValid(c))
-      {
-        change[c] = lowTarget.z[c] - lowOut.z[c];
-      }
+      const bool known = out.isValid(c) && lowTarget.isValid(c) && lowOut.isValid(c);
+      lowTarget.z[c] = known ? lowTarget.z[c] - lowOut.z[c] : 0.0f;
     }
-    return change;
+    return std::move(lowTarget.z);
   };
   std::vector<float> corrected = out.z;
   double largest = 0.0;
@@ -907,12 +906,14 @@ FinishingReport finishSynthesis(Heightfield& out,
     correctionScale(plan),
     kFinestCorrectionInPatches * P,
     target.detailed ? 0.0 : kDrawnTargetSigmaCells);
-  // Free land: only the drift at the scale of several patches.
-  std::vector<float> free(confidence.size());
-  std::transform(
-    confidence.begin(), confidence.end(), free.begin(), [](float w) { return 1.0f - w; });
-  const double drift = kDriftScaleInPatches * P;
-  correctLandform(out, smoothLarge(target.field, drift), free, drift);
+  {
+    // Free land: only the drift at the scale of several patches.
+    std::vector<float> free(confidence.size());
+    std::transform(
+      confidence.begin(), confidence.end(), free.begin(), [](float w) { return 1.0f - w; });
+    const double drift = kDriftScaleInPatches * P;
+    correctLandform(out, smoothLarge(target.field, drift), free, drift);
+  } // the weights go before the drainage's planes come
   if (plan.drainValleys)
   {
     DrainageOptions d;
