@@ -482,7 +482,7 @@ SynthesisOptions optionsOnGrid(const SynthArguments& a,
   return o;
 }
 
-SynthesisResult runWithProgress(const SynthesisSetup& setup,
+SynthesisResult runWithProgress(SynthesisSetup& setup,
   const SynthArguments& a,
   const InterruptGuard& interrupt)
 {
@@ -493,7 +493,7 @@ SynthesisResult runWithProgress(const SynthesisSetup& setup,
     bar(f, stage);
     interrupt.reclaim(); // PoCL's LLVM takes the signals when it compiles the matcher
   };
-  SynthesisResult r = synthesise(setup, o);
+  SynthesisResult r = synthesiseTakingPool(setup, o);
   interrupt.reclaim();
   bar(1.0, "done");
   printWarnings(r.warnings);
@@ -782,9 +782,10 @@ void writeDebug(const std::string& dir, const SynthesisSetup& setup, const Synth
 
 // Lets go of what neither the figures nor the summary and report read once
 // the terrain and the debug files are written: the placement's per-cell planes
-// (patch ids, seams, match costs), the target's besides its field, and the
-// exemplars' candidate pool. The figures' own planes come on top of what is
-// held, and at 4096 x 4096 these are 350 MB of it.
+// (patch ids, seams, match costs) and the target's besides its field (the
+// candidate pool went with the placement: synthesiseTakingPool). The figures'
+// own planes come on top of what is held, and at 4096 x 4096 these are 350 MB
+// of it.
 void releaseWrittenPlanes(SynthesisSetup& setup, SynthesisResult& r)
 {
   std::vector<int>().swap(r.patchId);
@@ -793,7 +794,6 @@ void releaseWrittenPlanes(SynthesisSetup& setup, SynthesisResult& r)
   std::vector<float>().swap(setup.target.weight);
   std::vector<float>().swap(setup.target.halfWidth);
   std::vector<float>().swap(setup.target.downstream);
-  setup.pool.reset();
   returnFreedMemory();
 }
 

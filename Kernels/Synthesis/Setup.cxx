@@ -712,7 +712,13 @@ std::uint64_t synthesisRequestKey(const SetupInputs& in, const SynthesisOptions&
   return h.digest();
 }
 
-SynthesisResult synthesise(const SynthesisSetup& setup, SynthesisOptions options)
+namespace
+{
+
+// Throws tsynth::Error unless the options ask for what the set-up was
+// prepared for (the pool, the target's valley outlets and the seed's streams
+// would disagree).
+void checkPreparedFor(const SynthesisSetup& setup, const SynthesisOptions& options)
 {
   if (options.patchSize != setup.patchSize || options.seed != setup.seed)
   {
@@ -722,8 +728,24 @@ SynthesisResult synthesise(const SynthesisSetup& setup, SynthesisOptions options
       "-cell patches and seed " + std::to_string(setup.seed) +
       ": prepare it again from the same request.");
   }
+}
+
+} // namespace
+
+SynthesisResult synthesise(const SynthesisSetup& setup, SynthesisOptions options)
+{
+  checkPreparedFor(setup, options);
   options.pool = setup.pool;
-  return synthesise(setup.target, setup.exemplarPointers(), setup.graphPointers(), options);
+  return synthesise(
+    setup.target, setup.exemplarPointers(), setup.graphPointers(), std::move(options));
+}
+
+SynthesisResult synthesiseTakingPool(SynthesisSetup& setup, SynthesisOptions options)
+{
+  checkPreparedFor(setup, options);
+  options.pool = std::move(setup.pool);
+  return synthesise(
+    setup.target, setup.exemplarPointers(), setup.graphPointers(), std::move(options));
 }
 
 } // namespace tsynth

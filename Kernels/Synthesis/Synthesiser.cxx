@@ -255,7 +255,7 @@ struct TiledRun
 SynthesisResult synthesiseTiled(const SynthesisTarget& target,
   const std::vector<const Heightfield*>& exemplars,
   const std::vector<const FeatureGraph*>& graphs,
-  const SynthesisOptions& o)
+  SynthesisOptions& o)
 {
   auto t0 = Clock::now();
   reportProgress(o.progress, 0.0, "setup");
@@ -302,6 +302,7 @@ SynthesisResult synthesiseTiled(const SynthesisTarget& target,
   const std::string backend = matcher->backendName();
   const std::vector<std::string> matcherWarnings = matcher->warnings();
   matcher.reset();
+  o.pool.reset(); // the pool too, unless the caller holds it
   whole.report(kTiledPlacementShare, "finishing");
   whole.releasePlacement(); // as untiled: the finishing's fields take that memory
   returnFreedMemory();
@@ -344,7 +345,7 @@ void checkRecordUse(const SynthesisTarget& target,
 SynthesisResult synthesise(const SynthesisTarget& target,
   const std::vector<const Heightfield*>& exemplars,
   const std::vector<const FeatureGraph*>& graphs,
-  const SynthesisOptions& o)
+  SynthesisOptions o)
 {
   if (exemplars.empty())
   {
@@ -416,6 +417,7 @@ SynthesisResult synthesise(const SynthesisTarget& target,
   const std::vector<std::string> matcherWarnings = matcher->warnings();
   state.releasePlacement();
   matcher.reset();
+  o.pool.reset();      // the pool too, unless the caller holds it
   returnFreedMemory(); // the finishing's fields take what the placement held
   SynthesisResult r = o.placementLimit == kAllPlacements ? state.finish() : state.unfinished();
   r.timings = { setup, features, fill, secondsSince(t0) };

@@ -188,10 +188,12 @@ struct SynthesisResult
 };
 
 // Throws tsynth::Error for unusable input (no exemplar, an exemplar or output
-// smaller than a patch).
+// smaller than a patch). The options are taken by value: their candidate pool
+// is let go once the placement ends, so when the caller handed over its only
+// reference (synthesiseTakingPool) the finishing runs without it.
 SynthesisResult synthesise(const SynthesisTarget& target,
   const std::vector<const Heightfield*>& exemplars,
   const std::vector<const FeatureGraph*>& graphs,
-  const SynthesisOptions& options);
+  SynthesisOptions options);
 
 } // namespace tsynth

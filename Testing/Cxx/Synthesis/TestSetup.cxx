@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <memory>
 #include <string>
 
 using namespace tsynth;
@@ -220,6 +222,49 @@ TEST(Setup, PrepareConvertsMetresResamplesExemplarsAndBuildsTheTarget)
   EXPECT_DOUBLE_EQ(b.y, 100.0);
   EXPECT_GT(s.memoryEstimate, 0.0);
   EXPECT_LE(s.memoryEstimate, s.memoryBudget);
+}
+
+// tsynth synth synthesises from its set-up once: the candidate pool it hands
+// over goes as soon as the placement ends, before the finishing's planes are
+// made, and the terrain is the one synthesise() makes from a set-up that
+// keeps its pool.
+TEST(Setup, APoolTakenOverGoesWhenThePlacementEndsAndChangesNothing)
+{
+  const auto prepared = []
+  {
+    SetupInputs in;
+    in.exemplars.push_back(ridgeExemplar(200, 45.0));
+    in.exemplarNames.push_back("ridge.tif");
+    in.sketch = sketchOf({ line({ { 600, 3000 }, { 5400, 3000 } }) });
+    in.grid.cellX = in.grid.cellY = 30.0;
+    in.patchSize = kPatch;
+    in.seed = 5;
+    return prepareSynthesis(std::move(in));
+  };
+  SynthesisSetup taken = prepared();
+  const SynthesisSetup kept = prepared();
+  const std::weak_ptr<const CandidatePool> pool = taken.pool;
+  ASSERT_FALSE(pool.expired());
+  SynthesisOptions o;
+  o.patchSize = kPatch;
+  o.seed = 5;
+  o.tileSize = 2 * kPatch; // the tiled run reports its finishing as a stage
+  o.backend = Backend::Cpu;
+  std::map<std::string, bool> heldWhenFirstReported;
+  o.progress = [&](double, const std::string& stage)
+  { heldWhenFirstReported.emplace(stage, !pool.expired()); };
+  const SynthesisResult r = synthesiseTakingPool(taken, o);
+  EXPECT_EQ(taken.pool, nullptr);
+  ASSERT_EQ(heldWhenFirstReported.count("fill"), 1u);
+  ASSERT_EQ(heldWhenFirstReported.count("finishing"), 1u);
+  EXPECT_TRUE(heldWhenFirstReported["fill"]); // the placement matched with it
+  EXPECT_FALSE(heldWhenFirstReported["finishing"]);
+  EXPECT_TRUE(pool.expired());
+
+  o.progress = nullptr;
+  const SynthesisResult same = synthesise(kept, o);
+  EXPECT_NE(kept.pool, nullptr); // synthesise() leaves the set-up its pool
+  EXPECT_EQ(same.terrain.z, r.terrain.z);
 }
 
 TEST(Setup, ImagesAndDemsAreNamedAndKeepTheirPixels)
