@@ -171,18 +171,29 @@ TEST(Setup, RasterSketchesGiveTheirPixelsAndSmallOutputsAreRefused)
   EXPECT_THROW(outputGrid(rasterExtent(512, 256), oneSide, 30.0, 30.0, kPatch), Error);
 }
 
-TEST(Setup, PrepareConvertsMetresResamplesExemplarsAndBuildsTheTarget)
+namespace
+{
+
+// The ridge exemplar on 45 m cells and a ridge sketched from 600 m to 5400 m
+// at y = 3000 m on 30 m cells: cells 20 to 180 of row 100, in an output half
+// a patch larger. Seed 5.
+SetupInputs ridgeOnThirtyMetreCells()
 {
   SetupInputs in;
   in.exemplars.push_back(ridgeExemplar(200, 45.0));
   in.exemplarNames.push_back("ridge.tif");
-  // A ridge from 600 m to 5400 m at y = 3000 m on 30 m cells: cells 20 to 180 of row 100, in
-  // an output half a patch larger.
   in.sketch = sketchOf({ line({ { 600, 3000 }, { 5400, 3000 } }) });
   in.grid.cellX = in.grid.cellY = 30.0;
   in.patchSize = kPatch;
   in.seed = 5;
-  const SynthesisSetup s = prepareSynthesis(std::move(in));
+  return in;
+}
+
+} // namespace
+
+TEST(Setup, PrepareConvertsMetresResamplesExemplarsAndBuildsTheTarget)
+{
+  const SynthesisSetup s = prepareSynthesis(ridgeOnThirtyMetreCells());
   EXPECT_EQ(s.sketchKind, "poly-lines");
   // What it was prepared for, which the synthesis must then be asked for.
   EXPECT_EQ(s.patchSize, kPatch);
@@ -230,19 +241,8 @@ TEST(Setup, PrepareConvertsMetresResamplesExemplarsAndBuildsTheTarget)
 // keeps its pool.
 TEST(Setup, APoolTakenOverGoesWhenThePlacementEndsAndChangesNothing)
 {
-  const auto prepared = []
-  {
-    SetupInputs in;
-    in.exemplars.push_back(ridgeExemplar(200, 45.0));
-    in.exemplarNames.push_back("ridge.tif");
-    in.sketch = sketchOf({ line({ { 600, 3000 }, { 5400, 3000 } }) });
-    in.grid.cellX = in.grid.cellY = 30.0;
-    in.patchSize = kPatch;
-    in.seed = 5;
-    return prepareSynthesis(std::move(in));
-  };
-  SynthesisSetup taken = prepared();
-  const SynthesisSetup kept = prepared();
+  SynthesisSetup taken = prepareSynthesis(ridgeOnThirtyMetreCells());
+  const SynthesisSetup kept = prepareSynthesis(ridgeOnThirtyMetreCells());
   const std::weak_ptr<const CandidatePool> pool = taken.pool;
   ASSERT_FALSE(pool.expired());
   SynthesisOptions o;
