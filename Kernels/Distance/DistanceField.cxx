@@ -14,6 +14,8 @@ namespace
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Columns of the first pass done together: 16 doubles, two cache lines per row.
 constexpr std::size_t kColumnBlock = 16;
+// distanceTransform measures in cells.
+constexpr double kUnitCell = 1.0;
 
 // One line of the transform: squared distances f (inf = no seed) at positions
 // q * spacing; writes the lower envelope d and, per position, which input
@@ -76,13 +78,9 @@ struct LineTransform
   }
 };
 
-} // namespace
-
-NearestSeeds nearestSeeds(const std::vector<std::uint8_t>& seeds,
-  int width,
-  int height,
-  double cellX,
-  double cellY)
+// The grid's size in cells, checked against the seed mask and the int32 cell
+// indices the transform stores.
+std::size_t checkedCells(const std::vector<std::uint8_t>& seeds, int width, int height)
 {
   const std::size_t w = static_cast<std::size_t>(std::max(0, width));
   const std::size_t h = static_cast<std::size_t>(std::max(0, height));
@@ -95,16 +93,20 @@ NearestSeeds nearestSeeds(const std::vector<std::uint8_t>& seeds,
   {
     throw Error("Internal error: the seed mask does not match the grid.");
   }
-  NearestSeeds out;
-  out.width = width;
-  out.height = height;
-  out.distance.assign(w * h, std::numeric_limits<float>::infinity());
-  out.nearest.assign(w * h, -1);
-  // Pass 1, down each column: squared distance to the nearest seed of that
-  // column and its row. Columns go kColumnBlock at a time, so that the row
-  // segments read and written are contiguous, not one cache line per cell.
-  std::vector<double> columnD(w * h);
-  std::vector<std::int32_t> columnRow(w * h);
+  return w * h;
+}
+
+// Pass 1, down each column: the row of the nearest seed in that column (-1
+// when the column has none), into seedRow. Columns go kColumnBlock at a time,
+// so that the row segments read and written are contiguous, not one cache
+// line per cell. Only the row is kept: pass 2 recomputes the squared distance
+// from it with the same arithmetic, so no plane of doubles is needed.
+void nearestSeedRowPerColumn(const std::vector<std::uint8_t>& seeds,
+  std::size_t w,
+  std::size_t h,
+  double cellY,
+  std::int32_t* seedRow)
+{
   const long blocks = static_cast<long>((w + kColumnBlock - 1) / kColumnBlock);
 #pragma omp parallel
   {
@@ -132,45 +134,92 @@ NearestSeeds nearestSeeds(const std::vector<std::uint8_t>& seeds,
       {
         for (std::size_t c = 0; c < count; ++c)
         {
-          columnD[j * w + i0 + c] = d[c][j];
-          columnRow[j * w + i0 + c] = from[c][j];
+          seedRow[j * w + i0 + c] = from[c][j];
         }
       }
     }
   }
-  // Pass 2, along each row over the column results.
+}
+
+// Pass 2, along each row: the lower envelope over the columns' squared
+// distances, giving each cell's distance and (when nearest is given) its
+// nearest seed. seedRow may be the nearest plane itself: each row's column
+// results are copied out before the row is written.
+void nearestAlongRows(const std::int32_t* seedRow,
+  std::size_t w,
+  std::size_t h,
+  double cellX,
+  double cellY,
+  float* distance,
+  std::int32_t* nearest)
+{
 #pragma omp parallel
   {
     LineTransform line;
     std::vector<double> f(w), d(w);
-    std::vector<std::int32_t> from(w);
+    std::vector<std::int32_t> from(w), rowOf(w);
 #pragma omp for schedule(static)
     for (long row = 0; row < static_cast<long>(h); ++row)
     {
       const std::size_t j = static_cast<std::size_t>(row);
-      std::copy(columnD.begin() + static_cast<long>(j * w),
-        columnD.begin() + static_cast<long>((j + 1) * w),
-        f.begin());
+      std::copy(seedRow + j * w, seedRow + (j + 1) * w, rowOf.begin());
+      for (std::size_t i = 0; i < w; ++i)
+      {
+        // The column pass's squared distance, as LineTransform::run gave it.
+        const double dy = static_cast<double>(j) * cellY - static_cast<double>(rowOf[i]) * cellY;
+        f[i] = rowOf[i] < 0 ? kInf : dy * dy;
+      }
       line.run(f, w, cellX, d, from);
       for (std::size_t i = 0; i < w; ++i)
       {
-        if (from[i] < 0 || !(d[i] < kInf))
+        const std::size_t c = j * w + i;
+        const bool reached = from[i] >= 0 && d[i] < kInf;
+        distance[c] =
+          reached ? static_cast<float>(std::sqrt(d[i])) : std::numeric_limits<float>::infinity();
+        if (nearest != nullptr)
         {
-          continue;
+          const std::size_t column = static_cast<std::size_t>(from[i]);
+          nearest[c] = reached
+            ? static_cast<std::int32_t>(static_cast<std::size_t>(rowOf[column]) * w + column)
+            : -1;
         }
-        const std::size_t column = static_cast<std::size_t>(from[i]);
-        const std::size_t seedRow = static_cast<std::size_t>(columnRow[j * w + column]);
-        out.distance[j * w + i] = static_cast<float>(std::sqrt(d[i]));
-        out.nearest[j * w + i] = static_cast<std::int32_t>(seedRow * w + column);
       }
     }
   }
+}
+
+} // namespace
+
+NearestSeeds nearestSeeds(const std::vector<std::uint8_t>& seeds,
+  int width,
+  int height,
+  double cellX,
+  double cellY)
+{
+  const std::size_t cells = checkedCells(seeds, width, height);
+  const std::size_t w = static_cast<std::size_t>(std::max(0, width));
+  const std::size_t h = cells == 0 ? 0 : cells / w;
+  NearestSeeds out;
+  out.width = width;
+  out.height = height;
+  out.distance.resize(cells);
+  out.nearest.resize(cells);
+  // The nearest plane holds the column pass's rows until pass 2 overwrites it.
+  nearestSeedRowPerColumn(seeds, w, h, cellY, out.nearest.data());
+  nearestAlongRows(out.nearest.data(), w, h, cellX, cellY, out.distance.data(), out.nearest.data());
   return out;
 }
 
 std::vector<float> distanceTransform(const std::vector<std::uint8_t>& seeds, int width, int height)
 {
-  return nearestSeeds(seeds, width, height).distance;
+  const std::size_t cells = checkedCells(seeds, width, height);
+  const std::size_t w = static_cast<std::size_t>(std::max(0, width));
+  const std::size_t h = cells == 0 ? 0 : cells / w;
+  std::vector<std::int32_t> seedRow(cells);
+  nearestSeedRowPerColumn(seeds, w, h, kUnitCell, seedRow.data());
+  std::vector<float> distance(cells);
+  nearestAlongRows(seedRow.data(), w, h, kUnitCell, kUnitCell, distance.data(), nullptr);
+  return distance;
 }
 
 } // namespace tsynth

@@ -174,10 +174,32 @@ TEST(DistanceField, NoSeedsAndBadInput)
   EXPECT_THROW(nearestSeeds(std::vector<std::uint8_t>(11, 1), 4, 3), Error);
   EXPECT_THROW(nearestSeeds(std::vector<std::uint8_t>(13, 1), 4, 3), Error);
   EXPECT_THROW(distanceTransform(std::vector<std::uint8_t>(5, 1), 2, 2), Error);
+}
 
-  // distanceTransform is the unit-cell distance of nearestSeeds.
-  const SeedGrid g{ 19, 13, 1.0, 1.0 };
-  const std::vector<std::uint8_t> seeds = randomSeeds(g, 0.05, 99);
-  EXPECT_EQ(
-    distanceTransform(seeds, g.width, g.height), nearestSeeds(seeds, g.width, g.height).distance);
+TEST(DistanceField, DistancesOnlyEqualBruteForceInUnitCells)
+{
+  // distanceTransform keeps no nearest-seed plane (its own path through the
+  // second pass), so it is checked against the brute force on its own,
+  // including grids one cell wide or high and grids without any seed.
+  const std::vector<SeedGrid> grids = {
+    { 19, 13, 1.0, 1.0 }, { 40, 3, 1.0, 1.0 }, { 1, 33, 1.0, 1.0 }, { 35, 1, 1.0, 1.0 }
+  };
+  const std::array<double, 4> densities = { 0.0, 0.01, 0.05, 0.3 };
+  unsigned seed = 99;
+  for (const SeedGrid& g : grids)
+  {
+    for (double density : densities)
+    {
+      const std::vector<std::uint8_t> seeds = randomSeeds(g, density, seed++);
+      const std::vector<float> d = distanceTransform(seeds, g.width, g.height);
+      const BruteForce slow = bruteForce(seeds, g);
+      ASSERT_EQ(d.size(), seeds.size());
+      for (std::size_t c = 0; c < seeds.size(); ++c)
+      {
+        ASSERT_EQ(d[c], static_cast<float>(std::sqrt(slow.squared[c])))
+          << g.width << " x " << g.height << ", density " << density << ", cell " << c;
+      }
+      EXPECT_EQ(d, nearestSeeds(seeds, g.width, g.height).distance);
+    }
+  }
 }
