@@ -230,7 +230,7 @@ private:
   const std::vector<const FeatureGraph*>& graphs_;
   // Per exemplar, its graph's chain points by kind, for ownLine.
   std::vector<ChainPointGrid> linePoints_;
-  std::vector<float> toRidge_, toValley_; // cells to the sketched ridges, valleys
+  std::vector<float> toRidge_, toValley_; // cells to the sketched ridges, valleys (empty: none)
   const SynthesisOptions& o_;
   int P_;
   // Feature sites crowd (featureSitesCrowd): a DEM target's own tree, or lines
