@@ -506,7 +506,9 @@ struct PreviewSummary
   std::string file;
   OutputGrid grid;
   int patchSize = 0;
-  double seconds = 0.0;
+  double seconds = 0.0;        // set-up, synthesis and upsampling, wall clock
+  double prepareSeconds = 0.0; // of it, the set-up at the preview's cells
+  SynthesisTimings timings;    // of it, the synthesis' stages
 };
 
 // --preview: the coarse level (Preview.h), written before the whole synthesis starts.
@@ -522,7 +524,7 @@ PreviewSummary writePreview(const SynthArguments& a, const SetupInputs& in)
             << plan.patchSize << ") in " << p.seconds << " s (prepare " << p.prepareSeconds
             << ", matcher setup " << t.setup << ", features " << t.features << ", fill " << t.fill
             << "): " << *a.preview << std::endl;
-  return { *a.preview, plan.coarse, plan.patchSize, p.seconds };
+  return { *a.preview, plan.coarse, plan.patchSize, p.seconds, p.prepareSeconds, t };
 }
 
 // How the run went, besides the synthesis itself.
@@ -726,7 +728,13 @@ void writeReport(const std::string& path,
       { "size", { p.grid.width, p.grid.height } },
       { "cell_size_m", { p.grid.cellX, p.grid.cellY } },
       { "patch_size", p.patchSize },
-      { "seconds", p.seconds } };
+      { "seconds", p.seconds },
+      { "times_s",
+        { { "prepare", p.prepareSeconds },
+          { "setup", p.timings.setup },
+          { "features", p.timings.features },
+          { "fill", p.timings.fill },
+          { "finish", p.timings.finish } } } };
   }
   if (!figures.correlation.empty())
   {

@@ -22,7 +22,8 @@ Comparisons (the figures that count on a shared, noisy machine):
   --preview     each run writes the quick coarse look first (tsynth synth
                 --preview): its seconds (in the process: set-up, synthesis,
                 upsampling) are printed with their ratio to the same run's whole
-                synthesis and, with --vs, to the baseline's preview.
+                synthesis and, with --vs, to the baseline's preview; then
+                the last preview's own stages (its report's times_s).
   --rss         samples our resident memory every 0.25 s and says when, in
                 which stage, it peaked (on with --large).
   --edit        also times the re-synthesis of edits (tsynth synth --previous)
@@ -232,6 +233,10 @@ def time_case(case, tsynth, baseline, runs, tmp, cached, preview, rss=False):
         for who, (seconds, wholes) in previews.items():
             if seconds:
                 print("         " + preview_line(who, seconds, wholes))
+        if "times_s" in report.get("preview", {}):
+            t = report["preview"]["times_s"]
+            split = ", ".join(f"{k} {t[k]:.3f}" for k in ("prepare", "setup", "features", "fill", "finish"))
+            print(f"          ours' last preview: {split}")
         if previews["ours"][0] and previews["baseline"][0]:
             pairs = [a / b for a, b in zip(*(previews[w][0] for w in ("ours", "baseline")))]
             print(f"          preview ours / baseline {statistics.median(pairs):.3f}")

@@ -453,6 +453,13 @@ class SynthTest(unittest.TestCase):
         self.assertEqual(preview["patch_size"], 20)
         whole_seconds = sum(plain["times_s"].values())
         self.assertLess(preview["seconds"], 0.5 * whole_seconds, (preview, plain["times_s"]))
+        # Its own stages: each one measured, together within its wall-clock seconds.
+        stages = preview["times_s"]
+        self.assertEqual(set(stages), {"prepare", "setup", "features", "fill", "finish"})
+        self.assertGreater(stages["prepare"], 0.0, stages)
+        self.assertGreater(stages["fill"], 0.0, stages)
+        self.assertGreater(stages["features"], 0.0, stages)
+        self.assertLessEqual(sum(stages.values()), preview["seconds"], (stages, preview["seconds"]))
         # It draws the same sketch: most of the strokes' length is legible in it, as in the terrain
         # (a random patchwork scores about 0.1).
         result = tsynth("evaluate", self.path("preview.tif"), "--exemplar", colorado, "--sketch", sketch, "--json")
