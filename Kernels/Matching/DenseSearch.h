@@ -145,7 +145,8 @@ public:
     std::vector<float>
       pairs; // same layout: mean of the 2 x 2 blocks from (a, b) on, then the same landform rows
     std::vector<float> quads; // same layout: mean of the 4 x 4 blocks from (a, b) on, then the same
-    Heightfield landform;     // the low-passed exemplar (LandformTerm.h), laid out as `full`
+    Heightfield landform;     // the low-passed exemplar (LandformTerm.h), laid out as `full`;
+                              // its mask dropped once landformBlocks are made
     std::vector<float> landformBlocks;     // its block means, laid out as `coarse`
     std::vector<std::uint8_t> coarseValid; // per coarse offset: whole window valid
     std::vector<std::uint8_t> groupValid;  // per run of 16 coarse offsets: any of them valid
