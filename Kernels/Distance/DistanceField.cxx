@@ -78,22 +78,32 @@ struct LineTransform
   }
 };
 
-// The grid's size in cells, checked against the seed mask and the int32 cell
-// indices the transform stores.
-std::size_t checkedCells(const std::vector<std::uint8_t>& seeds, int width, int height)
+// The grid's width and height in cells (both 0 when either is), checked
+// against the seed mask and the int32 cell indices the transform stores.
+struct CheckedGrid
 {
-  const std::size_t w = static_cast<std::size_t>(std::max(0, width));
-  const std::size_t h = static_cast<std::size_t>(std::max(0, height));
-  if (w * h > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+  std::size_t w = 0, h = 0;
+  std::size_t cells() const { return w * h; }
+};
+
+CheckedGrid checkedGrid(const std::vector<std::uint8_t>& seeds, int width, int height)
+{
+  CheckedGrid grid{ static_cast<std::size_t>(std::max(0, width)),
+    static_cast<std::size_t>(std::max(0, height)) };
+  if (grid.cells() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
   {
     throw Error("The grid (" + std::to_string(width) + " x " + std::to_string(height) +
       " cells) is too large for the distance transform.");
   }
-  if (seeds.size() != w * h)
+  if (seeds.size() != grid.cells())
   {
     throw Error("Internal error: the seed mask does not match the grid.");
   }
-  return w * h;
+  if (grid.cells() == 0)
+  {
+    grid = CheckedGrid{};
+  }
+  return grid;
 }
 
 // Pass 1, down each column: the row of the nearest seed in that column (-1
@@ -196,9 +206,8 @@ NearestSeeds nearestSeeds(const std::vector<std::uint8_t>& seeds,
   double cellX,
   double cellY)
 {
-  const std::size_t cells = checkedCells(seeds, width, height);
-  const std::size_t w = static_cast<std::size_t>(std::max(0, width));
-  const std::size_t h = cells == 0 ? 0 : cells / w;
+  const auto [w, h] = checkedGrid(seeds, width, height);
+  const std::size_t cells = w * h;
   NearestSeeds out;
   out.width = width;
   out.height = height;
@@ -212,9 +221,8 @@ NearestSeeds nearestSeeds(const std::vector<std::uint8_t>& seeds,
 
 std::vector<float> distanceTransform(const std::vector<std::uint8_t>& seeds, int width, int height)
 {
-  const std::size_t cells = checkedCells(seeds, width, height);
-  const std::size_t w = static_cast<std::size_t>(std::max(0, width));
-  const std::size_t h = cells == 0 ? 0 : cells / w;
+  const auto [w, h] = checkedGrid(seeds, width, height);
+  const std::size_t cells = w * h;
   std::vector<std::int32_t> seedRow(cells);
   nearestSeedRowPerColumn(seeds, w, h, kUnitCell, seedRow.data());
   std::vector<float> distance(cells);
