@@ -4,6 +4,7 @@
 #include "CliSupport.h"
 #include "CommandLine.h"
 #include "Commands.h"
+#include "RuntimeSettings.h"
 
 #include "Core/Error.h"
 #include "Core/Memory.h"
@@ -38,38 +39,12 @@ Commands:
 Run "tsynth COMMAND --help" for a command's options.
 )";
 
-// Settings the C library and OpenMP read once at start-up, so synth re-runs
-// itself with them (once: the second run finds them set):
-// - glibc.malloc.hugetlb=1 (GLIBC_TUNABLES): malloc asks for transparent huge
-//   pages, where the system gives them on request (THP mode "madvise", as
-//   here). A 1024^2 synthesis touches 270 MB of fresh memory; in 4 KB pages
-//   that was 67,000 page faults and 0.3-0.4 s of a 5.7 s run, in 2 MB pages
-//   4,000. Left alone if the user set the tunable either way.
-// - OMP_WAIT_POLICY=passive unless the user chose a policy: libgomp's
-//   threads spin for milliseconds after each parallel region and took the
-//   cores PoCL's threads need (fill 20% faster passive), and on a machine busy
-//   with other work the cores everything else needs (a preview, all small
-//   parallel regions, took 2.9 s instead of 0.2 s beside another run with
-//   spinning threads; Norway as a DEM target on the CPU backend, beside a
-//   build and a test run, 26.7 s instead of 8.3 s). On an idle machine
-//   spinning gained 2% there (7.5 s against 7.7 s): not worth the risk.
-void tuneRuntimes(char** argv)
+// Run directly (not through the launcher, Launcher.cxx), synth puts its
+// start-up settings (RuntimeSettings.h) in place and re-runs itself with them,
+// once: the second run finds them set.
+void applySynthRuntimeSettings(char** argv)
 {
-  bool changed = false;
-  const char* tunables = std::getenv("GLIBC_TUNABLES");
-  const std::string given = tunables != nullptr ? tunables : "";
-  if (given.find("glibc.malloc.hugetlb") == std::string::npos)
-  {
-    const std::string hugePages = "glibc.malloc.hugetlb=1";
-    setenv("GLIBC_TUNABLES", (given.empty() ? hugePages : given + ":" + hugePages).c_str(), 1);
-    changed = true;
-  }
-  if (std::getenv("OMP_WAIT_POLICY") == nullptr)
-  {
-    setenv("OMP_WAIT_POLICY", "passive", 1);
-    changed = true;
-  }
-  if (changed)
+  if (tsynth::cli::setSynthRuntimeSettings())
   {
     execv("/proc/self/exe", argv); // returns only on failure: carry on as we are
   }
@@ -100,7 +75,7 @@ int dispatch(const std::string& command,
   }
   if (command == "synth")
   {
-    tuneRuntimes(argv);
+    applySynthRuntimeSettings(argv);
     return tsynth::cli::runSynth(std::move(args));
   }
   if (command == "pits")

@@ -408,6 +408,69 @@ class CliTest(unittest.TestCase):
         self.assert_clean_failure(tsynth("info", "a.tif", "--cell", "-4"), 2, "--cell")
         self.assert_clean_failure(tsynth("info", "a.tif", "--z-unit", "yd"), 2, "--z-unit")
 
+    # The launcher (Apps/Launcher.cxx) ------------------------------------------------------
+
+    def test_synth_loads_the_program_once(self):
+        """tsynth synth starts with its runtime settings in place: the dynamic loader initialises
+        the project's kernels once (a synth that set them itself and re-ran loaded everything
+        twice, 0.15 s each here)."""
+        env = {k: v for k, v in os.environ.items() if k not in ("OMP_WAIT_POLICY", "GLIBC_TUNABLES")}
+        env["LD_DEBUG"] = "files"
+        result = tsynth("synth", "--exemplar", self.path("absent.png"), "--sketch",
+                        self.path("absent-sketch.png"), "-o", self.path("out.tif"), env=env)
+        self.assertEqual(result.returncode, 1, result.stderr[-2000:])
+        inits = [line for line in result.stderr.splitlines()
+                 if "calling init:" in line and "libtsynth_kernels.so" in line]
+        self.assertEqual(len(inits), 1, "the kernels were initialised %d times" % len(inits))
+
+    def test_synth_runs_with_its_settings_and_keeps_the_users(self):
+        """The synthesis process (tsynth-main, same pid) has passive OpenMP waiting and huge pages
+        in its environment, unless the user set them: then the user's values stand."""
+        import signal
+        import time
+        sketch = os.path.join(PATHS.bundled_data, "sketches", "strokes_y_ridges.png")
+        base = {k: v for k, v in os.environ.items() if k not in ("OMP_WAIT_POLICY", "GLIBC_TUNABLES")}
+        cases = [("unset", base, {"OMP_WAIT_POLICY": "passive",
+                                  "GLIBC_TUNABLES": "glibc.malloc.hugetlb=1"}),
+                 ("given", dict(base, OMP_WAIT_POLICY="active",
+                                GLIBC_TUNABLES="glibc.malloc.hugetlb=0"),
+                  {"OMP_WAIT_POLICY": "active", "GLIBC_TUNABLES": "glibc.malloc.hugetlb=0"})]
+        for name, env, expected in cases:
+            with self.subTest(environment=name):
+                process = subprocess.Popen(
+                    [PATHS.tsynth, "synth", "--exemplar", self.dem("colorado.png"), "--sketch",
+                     sketch, "--size", "1024x1024", "-o", self.path("out-%s.tif" % name)],
+                    env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                found = None
+                deadline = time.monotonic() + 60
+                while found is None and process.poll() is None and time.monotonic() < deadline:
+                    try:
+                        with open("/proc/%d/maps" % process.pid) as maps:
+                            loaded = "libtsynth_kernels.so" in maps.read()
+                        if loaded:
+                            with open("/proc/%d/environ" % process.pid, "rb") as f:
+                                found = dict(item.decode().split("=", 1)
+                                             for item in f.read().split(b"\0") if b"=" in item)
+                    except OSError:
+                        pass
+                    time.sleep(0.005)
+                process.send_signal(signal.SIGINT)
+                process.communicate(timeout=120)
+                self.assertIsNotNone(found, "the synthesis process was never seen running")
+                for key, value in expected.items():
+                    self.assertEqual(found.get(key), value, key)
+
+    def test_launcher_without_the_program_says_so(self):
+        """The launcher alone, without tsynth-main beside it: one sentence, exit 1."""
+        alone = self.path("tsynth")
+        shutil.copy(PATHS.tsynth, alone)
+        result = subprocess.run([alone, "info", "x.tif"], capture_output=True, text=True, timeout=60)
+        self.assertEqual(result.returncode, 1)
+        lines = [line for line in result.stderr.splitlines() if line.strip()]
+        self.assertEqual(len(lines), 1, result.stderr)
+        self.assertIn("cannot start", lines[0])
+        self.assertIn("tsynth-main", lines[0])
+
     def test_help(self):
         for command in ("info", "render", "convert", "features"):
             result = tsynth(command, "--help")
