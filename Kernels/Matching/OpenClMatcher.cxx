@@ -136,7 +136,10 @@ Backend parseBackend(const std::string& text)
   return static_cast<Backend>(choicesOf(kBackendWords).valueOf(text, "The backend"));
 }
 
-bool openClHasAccelerator()
+namespace
+{
+
+bool anyPlatformHasAccelerator()
 {
   cl_uint platforms = 0;
   if (clGetPlatformIDs(0, nullptr, &platforms) != CL_SUCCESS || platforms == 0)
@@ -156,6 +159,14 @@ bool openClHasAccelerator()
     }
   }
   return false;
+}
+
+} // namespace
+
+bool openClHasAccelerator()
+{
+  static const bool answer = anyPlatformHasAccelerator(); // asked once: see the header
+  return answer;
 }
 
 bool matchesOnOpenCl(Backend backend)

@@ -39,6 +39,9 @@ Backend parseBackend(const std::string& text);
 // is installed). Where OpenCL's only device is a CPU (PoCL), it runs the same
 // kernels on the same cores as the CPU backend, which is quicker there (a
 // 1024^2 synthesis 5.4 s against 6.4 s, here), so Backend::Auto takes the CPU.
+// Asked once per process and remembered: loading the platforms takes 0.1 s
+// here (PoCL loads LLVM), so a synthesis asks only when it must (the memory
+// check of the whole run, the matcher's set-up), after its preview.
 bool openClHasAccelerator();
 
 // Whether the matcher will run on OpenCL with this backend choice (for Auto,

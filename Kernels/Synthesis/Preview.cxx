@@ -75,7 +75,7 @@ SetupInputs previewInputs(const SetupInputs& full, const PreviewPlan& plan)
   in.grid.cellY = plan.coarse.cellY;
   in.patchSize = plan.patchSize;
   in.rasterSketchPatch = full.rasterSketchPatch > 0 ? full.rasterSketchPatch : full.patchSize;
-  in.openClMatcher = kPreviewBackend != Backend::Cpu;
+  in.matcherBackend = kPreviewBackend;
   in.pool = nullptr; // a given pool is the whole synthesis', at its patch size and cells
   return in;
 }

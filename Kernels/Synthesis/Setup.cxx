@@ -201,7 +201,8 @@ void checkMemory(const SetupInputs& in, const OutputGrid& g, SynthesisSetup& s)
   {
     cells.push_back(cellsAtOutputSize(hf, g));
   }
-  s.memoryEstimate = synthesisMemoryEstimate(g.width, g.height, cells, in.openClMatcher) +
+  s.memoryEstimate =
+    synthesisMemoryEstimate(g.width, g.height, cells, matchesOnOpenCl(in.matcherBackend)) +
     in.previousRecordBytes +
     (in.recordedTileSize > 0 ? tileRecordBytes(g.width, g.height, in.recordedTileSize, in.patchSize)
                              : 0.0);

@@ -161,8 +161,10 @@ struct SetupInputs
   GridRequest grid;
   int patchSize = kDefaultSynthesisPatch;
   double memoryBudget = 0.0; // bytes; 0: defaultMemoryBudget()
-  // The matcher will run on OpenCL (matchesOnOpenCl): its memory counts too.
-  bool openClMatcher = true;
+  // The backend the matcher is asked for: when it runs on OpenCL
+  // (matchesOnOpenCl, asked only when the memory is checked), OpenCL's memory
+  // counts too.
+  Backend matcherBackend = Backend::OpenCL;
   std::uint64_t seed = 0; // breaks ties in the target (valley outlets)
   // Sketched ridges and valleys get this times the relief they are given to
   // stand out of the exemplars' own land (the exemplars' major ones', raised

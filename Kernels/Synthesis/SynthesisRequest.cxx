@@ -50,7 +50,7 @@ SetupInputs setupInputs(const SynthesisRequest& request,
   in.seed = request.options.seed;
   in.landformRelief = request.landformRelief;
   in.memoryBudget = request.memoryBudgetGB * kBytesPerGB;
-  in.openClMatcher = matchesOnOpenCl(request.options.backend);
+  in.matcherBackend = request.options.backend;
   in.cacheDirectory = !request.useExemplarCache ? std::string()
     : request.cacheDirectory.empty()            ? defaultExemplarCacheDirectory()
                                                 : request.cacheDirectory;

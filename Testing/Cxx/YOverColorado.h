@@ -23,7 +23,7 @@ inline const SynthesisSetup& yOverColoradoSetup()
     in.grid.width = kYSize;
     in.grid.height = kYSize;
     in.patchSize = kYPatch;
-    in.openClMatcher = false;
+    in.matcherBackend = Backend::Cpu;
     return prepareSynthesis(in);
   }();
   return setup;

@@ -140,7 +140,7 @@ TEST(PatchPlacement, WhereFeatureSitesCrowdTheSeamIsCutForTheBestFewAlignedCandi
   in.grid.width = test::kYSize;
   in.grid.height = test::kYSize;
   in.patchSize = test::kYPatch;
-  in.openClMatcher = false;
+  in.matcherBackend = Backend::Cpu;
   const SynthesisSetup dem = prepareSynthesis(in);
   ASSERT_TRUE(dem.target.detailed);
   const std::vector<int> crowded = featureSeamTrials(dem);

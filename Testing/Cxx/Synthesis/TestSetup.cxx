@@ -308,7 +308,7 @@ TEST(Setup, MemoryOverTheBudgetIsRefusedWithTheEstimate)
     110.0e6,
     5.0e6);
   SetupInputs in;
-  in.openClMatcher = false;
+  in.matcherBackend = Backend::Cpu;
   in.exemplars.push_back(ridgeExemplar(200, kCell));
   // To 12870 m, cell 143, and half a patch beyond: 160 x 160 cells.
   in.sketch = sketchOf({ line({ { 900, 900 }, { 12870, 12870 } }) });

@@ -43,7 +43,7 @@ TEST(SynthesisRequest, TheSetUpTakesEachOptionFromTheRequestOnce)
   const SetupInputs in = inputsOf(r);
   EXPECT_EQ(in.patchSize, 48);
   EXPECT_EQ(in.seed, 7u);
-  EXPECT_FALSE(in.openClMatcher);
+  EXPECT_EQ(in.matcherBackend, Backend::Cpu);
   EXPECT_EQ(in.grid.width, 300);
   EXPECT_EQ(in.grid.cellX, 25.0);
   EXPECT_EQ(in.landformRelief, 2.0);

@@ -77,7 +77,7 @@ const SynthesisSetup& setupOf(int shift)
     in.grid.width = kWidth;
     in.grid.height = kHeight;
     in.patchSize = kPatch;
-    in.openClMatcher = false;
+    in.matcherBackend = Backend::Cpu;
     s = std::make_unique<SynthesisSetup>(prepareSynthesis(in));
   }
   return *s;
@@ -320,7 +320,7 @@ TEST(TileRecord, TheMemoryEstimateCountsTheRecordsAsLargeAsTheyAre)
   in.grid.width = kWidth;
   in.grid.height = kHeight;
   in.patchSize = kPatch;
-  in.openClMatcher = false;
+  in.matcherBackend = Backend::Cpu;
   const double without = prepareSynthesis(in).memoryEstimate;
   in.recordedTileSize = kTile;
   in.previousRecordBytes = actual;
