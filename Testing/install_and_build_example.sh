@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the build tree into a scratch prefix, builds Examples/cxx against it with
-# find_package(TerrainSynthesis), and runs the program on a bundled DEM.
+# find_package(TerrainSynthesis), and runs the program on a bundled DEM; then the installed tsynth.
 #   install_and_build_example.sh BUILD_DIR SOURCE_DIR SCRATCH_DIR DEM
 set -euo pipefail
 build="$1"; source="$2"; scratch="$3"; dem="$4"
@@ -16,3 +16,6 @@ cmake --build "$scratch/example" > "$scratch/build.log"
 grep -Eq "^pits before 679, after 0; [0-9]+ cells lowered" "$scratch/run.log" ||
   { echo "unexpected figures from drain_dem"; exit 1; }
 test -s "$scratch/drained.tif"
+# The installed command line: the launcher finds tsynth-main beside it, which finds its libraries.
+"$scratch/prefix/bin/tsynth" info "$dem" > "$scratch/info.log"
+grep -q "648 x 648 cells" "$scratch/info.log" || { echo "the installed tsynth did not run"; exit 1; }
