@@ -66,23 +66,6 @@ bool displayAnswers()
   return connection != nullptr;
 }
 
-// render3D from its module (Render3D.h), found on tsynth-main's library path; the module
-// stays loaded until the program ends.
-Render3DFunction loadRender3D()
-{
-  void* module = dlopen(kRender3DModule, RTLD_NOW | RTLD_LOCAL);
-  const auto entry = module == nullptr
-    ? nullptr
-    : reinterpret_cast<Render3DFunction (*)()>(dlsym(module, kRender3DEntry));
-  if (entry == nullptr)
-  {
-    const char* why = dlerror();
-    throw Error(std::string("--3d needs ") + kRender3DModule + ", which did not load (" +
-      (why != nullptr ? why : "no reason given") + "); reinstall TerrainSynthesis.");
-  }
-  return entry();
-}
-
 void ensureDisplay(int argc, char** argv)
 {
   const char* display = std::getenv("DISPLAY");
@@ -226,7 +209,7 @@ int runRender(std::vector<std::string> args, int argc, char** argv)
   {
     ensureDisplay(argc, argv);
     a.view.exaggeration = a.exaggeration.value_or(a.view.exaggeration);
-    loadRender3D()(hf, a.output, a.view);
+    render3D(hf, a.output, a.view);
   }
   else
   {
