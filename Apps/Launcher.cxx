@@ -2,7 +2,7 @@
 // settings in the environment (RuntimeSettings.h) and then becomes
 // tsynth-main, the command line itself (tsynth.cxx), found beside it. The
 // same process (same pid, arguments and signals), loaded once with the
-// settings in place. tsynth-main loads 168 libraries (VTK, GDAL and theirs)
+// settings in place. tsynth-main loaded 168 libraries (VTK, GDAL and theirs)
 // in 0.14-0.16 s here; when it set the settings itself and re-ran, every
 // synth paid that twice (0.30-0.32 s to fail on a missing exemplar, against
 // 0.14-0.16 s with the settings already set). Nothing else happens here: this

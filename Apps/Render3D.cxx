@@ -230,3 +230,9 @@ void render3D(const Heightfield& input, const std::string& pngPath, const Render
 }
 
 } // namespace tsynth
+
+// The module's entry (Render3D.h): looked up by name with dlsym.
+extern "C" __attribute__((visibility("default"))) tsynth::Render3DFunction tsynthRender3D()
+{
+  return &tsynth::render3D;
+}

@@ -11,11 +11,14 @@
 #include "Core/FileRoles.h"
 #include "Core/HeightfieldIO.h"
 
+#include <climits>
 #include <cstdlib>
 #include <dlfcn.h>
 #include <iostream>
 #include <optional>
+#include <string>
 #include <unistd.h>
+#include <vector>
 
 namespace tsynth::cli
 {
@@ -64,6 +67,48 @@ bool displayAnswers()
   }
   dlclose(x11);
   return connection != nullptr;
+}
+
+// Where the module is: the library folder beside the program's (the build tree mirrors the
+// installed one, CMakeLists.txt), named by path. A bare name would do through tsynth-main's
+// RUNPATH, but not under AddressSanitizer, whose dlopen interceptor searches only the system's
+// folders; the bare name stays as the last resort.
+std::vector<std::string> render3DModuleCandidates()
+{
+  std::vector<std::string> candidates;
+  char self[PATH_MAX];
+  const ssize_t length = readlink("/proc/self/exe", self, sizeof(self) - 1);
+  if (length > 0)
+  {
+    const std::string program(self, static_cast<std::size_t>(length));
+    candidates.push_back(program.substr(0, program.rfind('/') + 1) + TSYNTH_LIBDIR_FROM_BINDIR +
+      "/" + kRender3DModule);
+  }
+  candidates.emplace_back(kRender3DModule);
+  return candidates;
+}
+
+// render3D from its module (Render3D.h); the module stays loaded until the program ends.
+Render3DFunction loadRender3D()
+{
+  std::string why = "no reason given";
+  for (const std::string& candidate : render3DModuleCandidates())
+  {
+    void* module = dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
+    const auto entry = module == nullptr
+      ? nullptr
+      : reinterpret_cast<Render3DFunction (*)()>(dlsym(module, kRender3DEntry));
+    if (entry != nullptr)
+    {
+      return entry();
+    }
+    if (const char* error = dlerror(); error != nullptr && candidate.front() == '/')
+    {
+      why = error; // the path beside the program says most about what is wrong
+    }
+  }
+  throw Error(std::string("--3d needs ") + kRender3DModule + ", which did not load (" + why +
+    "); reinstall TerrainSynthesis.");
 }
 
 void ensureDisplay(int argc, char** argv)
@@ -209,7 +254,7 @@ int runRender(std::vector<std::string> args, int argc, char** argv)
   {
     ensureDisplay(argc, argv);
     a.view.exaggeration = a.exaggeration.value_or(a.view.exaggeration);
-    render3D(hf, a.output, a.view);
+    loadRender3D()(hf, a.output, a.view);
   }
   else
   {

@@ -3,7 +3,7 @@
     python3 Testing/Benchmarks/bench_startup.py [build dir] [--runs N]
 
 tsynth (Apps/Launcher.cxx) puts synth's runtime settings in the environment and becomes
-tsynth-main, which loads the project's 168 libraries once. tsynth-main run alone sets them
+tsynth-main, which loads its libraries (136, VTK and GDAL among them) once. tsynth-main run alone sets them
 itself and re-runs: the way every synth started before the launcher. Each pair runs both, in
 alternating order, with the user's OMP_WAIT_POLICY and GLIBC_TUNABLES cleared:
   start:   synth on a missing exemplar, which fails as soon as the command line is read;

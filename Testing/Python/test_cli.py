@@ -460,6 +460,16 @@ class CliTest(unittest.TestCase):
                 for key, value in expected.items():
                     self.assertEqual(found.get(key), value, key)
 
+    def test_only_render_3d_loads_vtk_rendering(self):
+        """VTK's rendering libraries (and X11, GL) are in render --3d's module, not loaded by the
+        other commands: tsynth info does not load them."""
+        env = dict(os.environ, LD_DEBUG="files")
+        result = tsynth("info", self.dem("colorado.png"), env=env)
+        self.assertEqual(result.returncode, 0, result.stderr[-2000:])
+        loaded = [line for line in result.stderr.splitlines() if "file=" in line]
+        self.assertTrue(any("libtsynth_kernels.so" in line for line in loaded))
+        self.assertFalse([line for line in loaded if "libvtkRenderingOpenGL2" in line])
+
     def test_launcher_without_the_program_says_so(self):
         """The launcher alone, without tsynth-main beside it: one sentence, exit 1."""
         alone = self.path("tsynth")
