@@ -1337,6 +1337,257 @@ LandformStatistics withReliefs(const LandformStatistics& s, double ridge, double
   return r;
 }
 
+// The output's cells, as the steps of landformField read them.
+struct LandGrid
+{
+  int w = 0;
+  int h = 0;
+  double cellX = 1.0; // metres
+  double cellY = 1.0;
+  // The finer side: the unit of the landforms' widths and smoothings.
+  double cell() const { return std::min(cellX, cellY); }
+};
+
+// The room the drawing leaves each landform, read off its strokes' spacing
+// (StrokeSpacing) and held to a share of their length
+// (kStrokeLengthPerHalfWidth): all the lines' (a landform's shape reaches up
+// to the divide implied beside it) and the drawn lines' alone (its raise, and
+// the scale the result follows it at). Only the half spacings are kept.
+struct LandformRoom
+{
+  FeatureGraph drawn;      // the drawn chains alone, on the output grid
+  bool implied = false;    // the graph has implied lines past the drawn ones
+  StrokeSpacing all;       // every line together
+  StrokeSpacing drawnOnly; // the drawn lines alone; empty unless `implied`
+  const StrokeSpacing& drawnRoom() const { return implied ? drawnOnly : all; }
+};
+
+LandformRoom landformRoom(const FeatureGraph& graph,
+  std::size_t impliedChainsFrom,
+  const LandGrid& grid)
+{
+  LandformRoom room;
+  checkCancellation(); // each step below takes tens of milliseconds at 1024^2: a stop waits
+  room.all = strokeSpacing(
+    chainCells(graph, grid.w, grid.h, nullptr), grid.w, grid.h, grid.cellX, grid.cellY);
+  checkCancellation(); // for one step at most
+  room.drawn = graph;
+  room.drawn.chains.resize(std::min(room.drawn.chains.size(), impliedChainsFrom));
+  room.drawn.width = grid.w;
+  room.drawn.height = grid.h;
+  // A short stroke's landform is held to a share of its length, the drawn
+  // strokes' alone: an implied divide is as long as the valleys it parts.
+  room.implied = room.drawn.chains.size() < graph.chains.size();
+  {
+    const std::vector<float> drawnLength = nearestStrokeLength(room.drawn, grid.cellX, grid.cellY);
+    limitByStrokeLength(room.all, drawnLength);
+    checkCancellation();
+    if (room.implied)
+    {
+      room.drawnOnly = strokeSpacing(
+        chainCells(room.drawn, grid.w, grid.h, nullptr), grid.w, grid.h, grid.cellX, grid.cellY);
+      limitByStrokeLength(room.drawnOnly, drawnLength);
+    }
+  }
+  keepHalfSpacingOnly(room.all);
+  keepHalfSpacingOnly(room.drawnOnly);
+  return room;
+}
+
+// Each kind's relief factor (out.ridgeRaise, out.valleyRaise): raised to stand
+// out at the room the drawn lines leave it.
+void raiseReliefs(LandformField& out,
+  const LandformStatistics& measured,
+  const LandformRoom& room,
+  const LandformFieldOptions& o,
+  double cell,
+  double narrowest)
+{
+  const MonotoneProfile ridgeShape = measured.ridge.section.normalised();
+  const MonotoneProfile valleyShape = measured.valley.section.normalised();
+  const CrossSection ridgeSection(ridgeShape, measured.ridge.width, narrowest);
+  const CrossSection valleySection(valleyShape, measured.valley.width, narrowest);
+  out.ridgeRaise = reliefFactor(measured.ridge,
+    ridgeSection,
+    FeatureType::Ridge,
+    typicalRoom(room.drawn, FeatureType::Ridge, room.drawnRoom(), measured.ridge.width),
+    measured,
+    o,
+    cell);
+  out.valleyRaise = reliefFactor(measured.valley,
+    valleySection,
+    FeatureType::Valley,
+    typicalRoom(room.drawn, FeatureType::Valley, room.drawnRoom(), measured.valley.width),
+    measured,
+    o,
+    cell);
+}
+
+// The land the landforms stand on: `base` where it is given and valid, else `level`.
+Heightfield baseField(const LandGrid& grid, double level, const Heightfield* base)
+{
+  Heightfield field(grid.w, grid.h, static_cast<float>(level));
+  field.cellX = grid.cellX;
+  field.cellY = grid.cellY;
+  field.cellSizeKnown = true;
+  if (base != nullptr)
+  {
+    for (std::size_t k = 0; k < field.size(); ++k)
+    {
+      field.z[k] = base->isValid(k) ? base->z[k] : static_cast<float>(level);
+    }
+  }
+  return field;
+}
+
+// The land's height under each vertex of a network (at its nearest cell).
+std::vector<double> baseUnder(const LineNetwork& net, const Heightfield& land)
+{
+  std::vector<double> b(net.size());
+  for (std::size_t v = 0; v < net.size(); ++v)
+  {
+    const int i = std::clamp(static_cast<int>(std::lround(net.position(v).x)), 0, land.width - 1);
+    const int j = std::clamp(static_cast<int>(std::lround(net.position(v).y)), 0, land.height - 1);
+    b[v] = land.at(i, j);
+  }
+  return b;
+}
+
+// One kind of line as the blend reads it: each cell's distance to the nearest
+// line of the kind, and that line's value spread onto the land
+// (lineValueField); `at` is empty when there is no line of the kind.
+struct KindLines
+{
+  NearestSeeds near; // its nearest cells are let go of once `at` is made
+  std::vector<double> at;
+  bool any = false; // there are lines of the kind
+};
+
+// A kind's lines from their raster, which is then let go of, and with it the
+// map's nearest cells unless another raster of the same lines still needs them.
+KindLines kindLines(RasterLines& cells,
+  const FeatureGraph& graph,
+  const LandGrid& grid,
+  int patchSize,
+  bool keepNearest = false)
+{
+  KindLines lines;
+  lines.near = nearestSeeds(cells.seeds, grid.w, grid.h, grid.cellX, grid.cellY);
+  exactLineDistances(lines.near, cells, graph, grid.cellX, grid.cellY);
+  lines.any = !lines.near.empty();
+  lines.at = lineValueField(cells, lines.near, grid.w, grid.h, grid.cell(), patchSize);
+  releaseLineValues(cells, lines.near, !keepNearest);
+  return lines;
+}
+
+// What the blend of the landforms reads besides the land under them (the
+// field it writes over).
+struct LandformTerms
+{
+  const LandformStatistics& raised; // the statistics with the reliefs raised
+  const LandformRoom& room;
+  const KindLines& ridges;
+  const KindLines& valleys; // `at`: the floors
+  const std::vector<double>& rims;
+  const KindLines& troughs;
+  const RasterLines& flow; // the valleys' flow distances, on their cells
+  double narrowest;        // metres: kNarrowestHalfWidthCells
+};
+
+// Each cell's blend of its nearest lines' terms (inverse squared distance
+// weights, a valley's gorge cut through a ridge), with the target's confidence,
+// half width and flow distance, row by row on every thread (each cell reads
+// shared inputs and writes only its own outputs).
+void blendLandforms(LandformField& out, const LandformTerms& t, const LandGrid& grid, int patchSize)
+{
+  const LandformStatistics& s = t.raised;
+  const double cell = grid.cell();
+  const std::size_t n = out.field.size();
+  out.weight.assign(n, 0.0f);
+  out.halfWidth.assign(n, 0.0f);
+  out.downstream.assign(n, kNaN);
+  const MonotoneProfile ridgeShape = s.ridge.section.normalised();
+  const MonotoneProfile valleyShape = s.valley.section.normalised();
+  const CrossSection ridgeSection(ridgeShape, s.ridge.width, t.narrowest);
+  const CrossSection valleySection(valleyShape, s.valley.width, t.narrowest);
+  const double fade = kConfidenceFadeInPatches * patchSize * cell;
+  const double gorgeSlope =
+    (s.ridge.relief + s.valley.relief) / (kGorgeReachInPatches * patchSize * cell);
+  const double ridgeConfident = s.ridge.section.reach(kConfidentReach);
+  const double valleyConfident = s.valley.section.reach(kConfidentReach);
+  const double ridgeSoft2 = std::pow(kRidgeSoftening * cell, 2.0);
+  const double valleySoft2 = std::pow(kValleySoftening * cell, 2.0);
+  const std::vector<float>& room = t.room.all.halfSpacing;
+  const std::vector<float>& drawnRoom = t.room.drawnRoom().halfSpacing;
+  const auto blend = [&](std::size_t k)
+  {
+    const double b = out.field.z[k];
+    double sum = 0.0;
+    double weights = 0.0;
+    double conf = 0.0;
+    double nearest = kInfinity;
+    double width = 0.0;
+    if (t.ridges.any)
+    {
+      const double toLine = t.ridges.near.distance[k];
+      const double d = ridgeSection.distance(toLine, room[k]);
+      const double top = t.ridges.at[k];
+      const double a = 1.0 / (d * d + ridgeSoft2);
+      sum += a * (top - (top - b) * ridgeSection.shape(toLine, room[k]));
+      weights += a;
+      conf = std::max(conf, confidence(d, ridgeConfident, fade));
+      nearest = toLine;
+      width = s.ridge.width;
+    }
+    double gorge = kInfinity;
+    if (t.valleys.any)
+    {
+      const double toLine = t.valleys.near.distance[k];
+      const double d = valleySection.distance(toLine, room[k]);
+      const double bottom = t.valleys.at[k];
+      const double top = t.rims[k];
+      const double a = 1.0 / (d * d + valleySoft2);
+      sum += a * (bottom + (top - bottom) * valleySection.shape(toLine, room[k]));
+      weights += a;
+      conf = std::max(conf, confidence(d, valleyConfident, fade));
+      gorge = bottom + gorgeSlope * d;
+      if (toLine < nearest)
+      {
+        width = s.valley.width;
+      }
+    }
+    if (t.troughs.any)
+    {
+      const double toLine = t.troughs.near.distance[k];
+      const double d = valleySection.distance(toLine, room[k]);
+      const double bottom = t.troughs.at[k];
+      const double a = 1.0 / (d * d + valleySoft2);
+      sum += a * (bottom + (b - bottom) * valleySection.shape(toLine, room[k]));
+      weights += a;
+      conf = std::max(conf, confidence(d, valleyConfident, fade));
+    }
+    if (weights > 0.0)
+    {
+      out.field.z[k] = static_cast<float>(std::min(gorge, sum / weights));
+    }
+    out.weight[k] = static_cast<float>(conf);
+    out.halfWidth[k] =
+      static_cast<float>(std::max(t.narrowest, std::min<double>(width, drawnRoom[k])) / cell);
+    if (t.flow.seeds[k] != 0)
+    {
+      out.downstream[k] = t.flow.value[k];
+    }
+  };
+  forRowBands(grid.h,
+    [&](int j)
+    {
+      for (int i = 0; i < grid.w; ++i)
+      {
+        blend(rowMajor(i, j, grid.w));
+      }
+    });
+}
+
 } // namespace
 
 LandformField landformField(const FeatureGraph& sketch,
@@ -1349,116 +1600,48 @@ LandformField landformField(const FeatureGraph& sketch,
   const Heightfield* base,
   const LineHeights* sketchHeights)
 {
+  const LandGrid grid{ w, h, cellX, cellY };
   const DenseLines dense = densify(sketch, sketchHeights);
   const FeatureGraph& graph = dense.graph;
   const LineHeights* heights = sketchHeights != nullptr ? &dense.heights : nullptr;
-  const double cell = std::min(cellX, cellY);
+  const double cell = grid.cell();
   const double narrowest = kNarrowestHalfWidthCells * cell;
-  // Each landform's shape takes the room all the lines leave it (a valley
-  // reaches up to the divide implied beside it); its raise and the scale the
-  // result follows it at, the room the drawn lines leave.
-  checkCancellation(); // each step below takes tens of milliseconds at 1024^2: a stop waits
-  StrokeSpacing spacing = strokeSpacing(chainCells(graph, w, h, nullptr), w, h, cellX, cellY);
-  checkCancellation(); // for one step at most
-  FeatureGraph drawn = graph;
-  drawn.chains.resize(std::min(drawn.chains.size(), o.impliedChainsFrom));
-  drawn.width = w;
-  drawn.height = h;
-  // A short stroke's landform is held to a share of its length
-  // (kStrokeLengthPerHalfWidth), the drawn strokes' alone: an implied divide
-  // is as long as the valleys it parts.
-  const bool anyImplied = drawn.chains.size() < graph.chains.size();
-  StrokeSpacing drawnSpacing;
-  {
-    const std::vector<float> drawnLength = nearestStrokeLength(drawn, cellX, cellY);
-    limitByStrokeLength(spacing, drawnLength);
-    checkCancellation();
-    if (anyImplied)
-    {
-      drawnSpacing = strokeSpacing(chainCells(drawn, w, h, nullptr), w, h, cellX, cellY);
-      limitByStrokeLength(drawnSpacing, drawnLength);
-    }
-  }
-  // Only the half spacings are read from here on.
-  keepHalfSpacingOnly(spacing);
-  keepHalfSpacingOnly(drawnSpacing);
-  const StrokeSpacing& drawnRoom = anyImplied ? drawnSpacing : spacing;
+  const LandformRoom room = landformRoom(graph, o.impliedChainsFrom, grid);
   LandformField out;
-  // Each kind's relief raised to stand out at the room the drawing leaves it.
-  {
-    const MonotoneProfile ridgeShape = measured.ridge.section.normalised();
-    const MonotoneProfile valleyShape = measured.valley.section.normalised();
-    const CrossSection ridgeSection(ridgeShape, measured.ridge.width, narrowest);
-    const CrossSection valleySection(valleyShape, measured.valley.width, narrowest);
-    out.ridgeRaise = reliefFactor(measured.ridge,
-      ridgeSection,
-      FeatureType::Ridge,
-      typicalRoom(drawn, FeatureType::Ridge, drawnRoom, measured.ridge.width),
-      measured,
-      o,
-      cell);
-    out.valleyRaise = reliefFactor(measured.valley,
-      valleySection,
-      FeatureType::Valley,
-      typicalRoom(drawn, FeatureType::Valley, drawnRoom, measured.valley.width),
-      measured,
-      o,
-      cell);
-  }
+  raiseReliefs(out, measured, room, o, cell, narrowest);
   const LandformStatistics s = withReliefs(measured, out.ridgeRaise, out.valleyRaise);
-  out.field = Heightfield(w, h, static_cast<float>(s.base));
-  out.field.cellX = cellX;
-  out.field.cellY = cellY;
-  out.field.cellSizeKnown = true;
-  const std::size_t n = out.field.size();
-  if (base != nullptr)
-  {
-    for (std::size_t k = 0; k < n; ++k)
-    {
-      out.field.z[k] = base->isValid(k) ? base->z[k] : static_cast<float>(s.base);
-    }
-  }
-  auto baseOf = [&](const LineNetwork& net)
-  {
-    std::vector<double> b(net.size(), s.base);
-    for (std::size_t v = 0; v < net.size(); ++v)
-    {
-      const int i = std::clamp(static_cast<int>(std::lround(net.position(v).x)), 0, w - 1);
-      const int j = std::clamp(static_cast<int>(std::lround(net.position(v).y)), 0, h - 1);
-      b[v] = out.field.at(i, j);
-    }
-    return b;
-  };
+  out.field = baseField(grid, s.base, base);
 
   // Implied troughs (valleys between two drawn ridges) are a term of their
   // own: no outlet, no flow, a floor the valley relief below the base and the
   // base itself for a rim. Sharing the drawn valleys' nearest line, the field
   // jumped where the nearest changed from a drawn valley's rim to a trough's.
-  const LineNetwork ridges(graph, FeatureType::Ridge, cellX, cellY);
-  const LineNetwork valleys(graph, FeatureType::Valley, cellX, cellY, 0, o.impliedChainsFrom);
-  const LineNetwork troughs(graph, FeatureType::Valley, cellX, cellY, o.impliedChainsFrom);
-  std::vector<double> troughFloor = baseOf(troughs);
+  const LineNetwork ridgeNet(graph, FeatureType::Ridge, cellX, cellY);
+  const LineNetwork valleyNet(graph, FeatureType::Valley, cellX, cellY, 0, o.impliedChainsFrom);
+  const LineNetwork troughNet(graph, FeatureType::Valley, cellX, cellY, o.impliedChainsFrom);
+  std::vector<double> troughFloor = baseUnder(troughNet, out.field);
   for (double& z : troughFloor)
   {
     z -= s.valley.relief;
   }
-  // Each kind's line values are spread (lineValueField) right after its
+  // Each kind's line values are spread (kindLines) right after its
   // nearest-line map is made, and then the rasters' values and the maps'
-  // nearest cells go: the loop below reads only the distances. Held for every
+  // nearest cells go: the blend reads only the distances. Held for every
   // kind at once they set the peak of a large target's set-up.
-  RasterLines troughCells = rasteriseNetwork(graph, troughs, troughFloor, w, h);
-  NearestSeeds nearTrough = nearestSeeds(troughCells.seeds, w, h, cellX, cellY);
-  exactLineDistances(nearTrough, troughCells, graph, cellX, cellY);
-  const bool anyTrough = !nearTrough.empty();
-  const std::vector<double> troughAt =
-    lineValueField(troughCells, nearTrough, w, h, cell, o.patchSize);
-  releaseLineValues(troughCells, nearTrough);
+  RasterLines troughCells = rasteriseNetwork(graph, troughNet, troughFloor, w, h);
+  const KindLines troughs = kindLines(troughCells, graph, grid, o.patchSize);
   checkCancellation();
-  const std::vector<double> crest =
-    crestHeights(ridges, vertexValues(ridges, graph, heights), baseOf(ridges), s, o, cell, w, h);
-  const ValleyFloors floors = valleyFloors(valleys,
-    vertexValues(valleys, graph, heights),
-    baseOf(valleys),
+  const std::vector<double> crest = crestHeights(ridgeNet,
+    vertexValues(ridgeNet, graph, heights),
+    baseUnder(ridgeNet, out.field),
+    s,
+    o,
+    cell,
+    w,
+    h);
+  const ValleyFloors floors = valleyFloors(valleyNet,
+    vertexValues(valleyNet, graph, heights),
+    baseUnder(valleyNet, out.field),
     s,
     measured,
     o,
@@ -1466,114 +1649,24 @@ LandformField landformField(const FeatureGraph& sketch,
     w,
     h,
     out.warnings);
-  RasterLines ridgeCells = rasteriseNetwork(graph, ridges, crest, w, h);
+  RasterLines ridgeCells = rasteriseNetwork(graph, ridgeNet, crest, w, h);
   checkCancellation();
-  NearestSeeds nearRidge = nearestSeeds(ridgeCells.seeds, w, h, cellX, cellY);
-  exactLineDistances(nearRidge, ridgeCells, graph, cellX, cellY);
-  const bool anyRidge = !nearRidge.empty();
-  const std::vector<double> crestAt =
-    lineValueField(ridgeCells, nearRidge, w, h, cell, o.patchSize);
-  releaseLineValues(ridgeCells, nearRidge);
+  const KindLines ridges = kindLines(ridgeCells, graph, grid, o.patchSize);
   checkCancellation();
-  RasterLines valleyCells = rasteriseNetwork(graph, valleys, floors.floor, w, h);
+  RasterLines valleyCells = rasteriseNetwork(graph, valleyNet, floors.floor, w, h);
   checkCancellation();
-  NearestSeeds nearValley = nearestSeeds(valleyCells.seeds, w, h, cellX, cellY);
-  exactLineDistances(nearValley, valleyCells, graph, cellX, cellY);
-  const bool anyValley = !nearValley.empty();
-  checkCancellation();
-  const std::vector<double> floorAt =
-    lineValueField(valleyCells, nearValley, w, h, cell, o.patchSize);
-  releaseLineValues(valleyCells, nearValley, false);
+  KindLines valleys = kindLines(valleyCells, graph, grid, o.patchSize, true);
   // The rims and the flow lie on the floors' cells: each raster is made when
   // it is read, and only its values are kept.
-  RasterLines valleyRims = rasteriseNetwork(graph, valleys, floors.rim, w, h);
+  RasterLines valleyRims = rasteriseNetwork(graph, valleyNet, floors.rim, w, h);
   keepValuesOnly(valleyRims);
-  const std::vector<double> rimAt = lineValueField(valleyRims, nearValley, w, h, cell, o.patchSize);
-  releaseLineValues(valleyRims, nearValley);
-  RasterLines flow = rasteriseNetwork(graph, valleys, floors.downstream, w, h);
+  const std::vector<double> rims =
+    lineValueField(valleyRims, valleys.near, w, h, cell, o.patchSize);
+  releaseLineValues(valleyRims, valleys.near);
+  RasterLines flow = rasteriseNetwork(graph, valleyNet, floors.downstream, w, h);
   keepValuesOnly(flow);
-  // The outputs' planes besides the field, made when the blend fills them.
-  out.weight.assign(n, 0.0f);
-  out.halfWidth.assign(n, 0.0f);
-  out.downstream.assign(n, kNaN);
-  const MonotoneProfile ridgeShape = s.ridge.section.normalised();
-  const MonotoneProfile valleyShape = s.valley.section.normalised();
-  const CrossSection ridgeSection(ridgeShape, s.ridge.width, narrowest);
-  const CrossSection valleySection(valleyShape, s.valley.width, narrowest);
-  const double fade = kConfidenceFadeInPatches * o.patchSize * cell;
-  const double gorgeSlope =
-    (s.ridge.relief + s.valley.relief) / (kGorgeReachInPatches * o.patchSize * cell);
-  const double ridgeConfident = s.ridge.section.reach(kConfidentReach);
-  const double valleyConfident = s.valley.section.reach(kConfidentReach);
-  const double ridgeSoft2 = std::pow(kRidgeSoftening * cell, 2.0);
-  const double valleySoft2 = std::pow(kValleySoftening * cell, 2.0);
-  // Each cell's blend of its nearest lines' terms, row by row on every
-  // thread (each cell reads shared inputs and writes only its own outputs).
-  const auto blend = [&](std::size_t k)
-  {
-    const double b = out.field.z[k];
-    const double room = spacing.halfSpacing[k];
-    double sum = 0.0;
-    double weights = 0.0;
-    double conf = 0.0;
-    double nearest = kInfinity;
-    double width = 0.0;
-    if (anyRidge)
-    {
-      const double d = ridgeSection.distance(nearRidge.distance[k], room);
-      const double top = crestAt[k];
-      const double a = 1.0 / (d * d + ridgeSoft2);
-      sum += a * (top - (top - b) * ridgeSection.shape(nearRidge.distance[k], room));
-      weights += a;
-      conf = std::max(conf, confidence(d, ridgeConfident, fade));
-      nearest = nearRidge.distance[k];
-      width = s.ridge.width;
-    }
-    double gorge = kInfinity;
-    if (anyValley)
-    {
-      const double d = valleySection.distance(nearValley.distance[k], room);
-      const double bottom = floorAt[k];
-      const double top = rimAt[k];
-      const double a = 1.0 / (d * d + valleySoft2);
-      sum += a * (bottom + (top - bottom) * valleySection.shape(nearValley.distance[k], room));
-      weights += a;
-      conf = std::max(conf, confidence(d, valleyConfident, fade));
-      gorge = bottom + gorgeSlope * d;
-      if (nearValley.distance[k] < nearest)
-      {
-        width = s.valley.width;
-      }
-    }
-    if (anyTrough)
-    {
-      const double d = valleySection.distance(nearTrough.distance[k], room);
-      const double bottom = troughAt[k];
-      const double a = 1.0 / (d * d + valleySoft2);
-      sum += a * (bottom + (b - bottom) * valleySection.shape(nearTrough.distance[k], room));
-      weights += a;
-      conf = std::max(conf, confidence(d, valleyConfident, fade));
-    }
-    if (weights > 0.0)
-    {
-      out.field.z[k] = static_cast<float>(std::min(gorge, sum / weights));
-    }
-    out.weight[k] = static_cast<float>(conf);
-    out.halfWidth[k] = static_cast<float>(
-      std::max(narrowest, std::min<double>(width, drawnRoom.halfSpacing[k])) / cell);
-    if (flow.seeds[k] != 0)
-    {
-      out.downstream[k] = flow.value[k];
-    }
-  };
-  forRowBands(h,
-    [&](int j)
-    {
-      for (int i = 0; i < w; ++i)
-      {
-        blend(rowMajor(i, j, w));
-      }
-    });
+  blendLandforms(
+    out, { s, room, ridges, valleys, rims, troughs, flow, narrowest }, grid, o.patchSize);
   return out;
 }
 
