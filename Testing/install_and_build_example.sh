@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the build tree into a scratch prefix, builds Examples/cxx against it with
-# find_package(TerrainSynthesis), and runs the program on a bundled DEM; then the installed tsynth.
+# find_package(TerrainSynthesis), and runs the program on a bundled DEM; then the installed tsynth
+# (info, and render --3d through its module).
 #   install_and_build_example.sh BUILD_DIR SOURCE_DIR SCRATCH_DIR DEM
 set -euo pipefail
 build="$1"; source="$2"; scratch="$3"; dem="$4"
@@ -19,3 +20,6 @@ test -s "$scratch/drained.tif"
 # The installed command line: the launcher finds tsynth-main beside it, which finds its libraries.
 "$scratch/prefix/bin/tsynth" info "$dem" > "$scratch/info.log"
 grep -q "648 x 648 cells" "$scratch/info.log" || { echo "the installed tsynth did not run"; exit 1; }
+# ... and render --3d's module, which the installed tsynth-main loads from the prefix's library folder.
+"$scratch/prefix/bin/tsynth" render "$dem" --3d --size 160x120 -o "$scratch/view.png" > "$scratch/render.log"
+test -s "$scratch/view.png" || { echo "the installed tsynth did not draw the 3D view"; exit 1; }
