@@ -572,150 +572,211 @@ std::vector<Polyline> clipToGrid(const std::vector<Polyline>& lines, int width, 
   return out;
 }
 
-} // namespace
-
-FeatureGraph polylineFeatures(const std::vector<Polyline>& drawn,
-  int width,
-  int height,
-  double cellX,
-  double cellY,
-  double snapTolerance,
-  double controlRadius)
+// The drawn lines as a graph of vertices: points closer than the snap tolerance
+// are one vertex (so strokes drawn to meet do meet), each segment an edge of
+// its line's type, a segment drawn twice kept once.
+class SnappedLines
 {
-  // Beyond the grid nothing is sketched, and lines of any length or position
-  // cost no more than the grid's own size.
-  const std::vector<Polyline> lines = clipToGrid(drawn, width, height);
+public:
   struct Vertex
   {
     Point2 p;
     float constraint = std::numeric_limits<float>::quiet_NaN();
     std::vector<std::pair<int, FeatureType>> adjacent; // (vertex, type of the segment)
   };
-  std::vector<Vertex> vertices;
-  const double tol = std::max(snapTolerance, 1e-9);
-  std::map<std::pair<long, long>, std::vector<int>> buckets;
-  auto vertexFor = [&](const Point2& p, float constraint)
+
+  SnappedLines(const std::vector<Polyline>& lines, double snapTolerance)
+    : snap_(snapTolerance)
+    , bucketSide_(std::max(snapTolerance, 1e-9))
   {
-    const long bx = static_cast<long>(std::floor(p.x / tol));
-    const long by = static_cast<long>(std::floor(p.y / tol));
+    for (const Polyline& line : lines)
+    {
+      int prev = -1;
+      for (std::size_t k = 0; k < line.points.size(); ++k)
+      {
+        const float c =
+          k < line.elevation.size() ? line.elevation[k] : std::numeric_limits<float>::quiet_NaN();
+        const int v = vertexFor(line.points[k], c);
+        if (prev >= 0)
+        {
+          addSegment(prev, v, line.type);
+        }
+        prev = v;
+      }
+    }
+  }
+
+  const std::vector<Vertex>& vertices() const { return vertices_; }
+  const Vertex& at(int v) const { return byId(vertices_, v); }
+
+private:
+  // The vertex within the tolerance of p (the first one made, which takes the
+  // constraint if it has none), or a new one.
+  int vertexFor(const Point2& p, float constraint)
+  {
+    const long bx = static_cast<long>(std::floor(p.x / bucketSide_));
+    const long by = static_cast<long>(std::floor(p.y / bucketSide_));
     for (long dx = -1; dx <= 1; ++dx)
     {
       for (long dy = -1; dy <= 1; ++dy)
       {
-        auto it = buckets.find({ bx + dx, by + dy });
-        if (it == buckets.end())
+        auto it = buckets_.find({ bx + dx, by + dy });
+        if (it == buckets_.end())
         {
           continue;
         }
         for (int v : it->second)
         {
-          const Point2& q = byId(vertices, v).p;
-          if (std::hypot(q.x - p.x, q.y - p.y) <= snapTolerance)
+          Vertex& q = byId(vertices_, v);
+          if (std::hypot(q.p.x - p.x, q.p.y - p.y) <= snap_)
           {
-            if (std::isnan(byId(vertices, v).constraint))
+            if (std::isnan(q.constraint))
             {
-              byId(vertices, v).constraint = constraint;
+              q.constraint = constraint;
             }
             return v;
           }
         }
       }
     }
-    const int id = static_cast<int>(vertices.size());
-    vertices.push_back({ p, constraint, {} });
-    buckets[{ bx, by }].push_back(id);
+    const int id = static_cast<int>(vertices_.size());
+    vertices_.push_back({ p, constraint, {} });
+    buckets_[{ bx, by }].push_back(id);
     return id;
-  };
-  auto addSegment = [&](int a, int b, FeatureType type)
+  }
+
+  void addSegment(int a, int b, FeatureType type)
   {
     if (a == b)
     {
       return;
     }
-    auto& adj = byId(vertices, a).adjacent;
+    auto& adj = byId(vertices_, a).adjacent;
     if (std::any_of(adj.begin(), adj.end(), [&](const auto& e) { return e.first == b; }))
     {
       return; // the same segment drawn twice
     }
     adj.push_back({ b, type });
-    byId(vertices, b).adjacent.push_back({ a, type });
-  };
-  for (const Polyline& line : lines)
+    byId(vertices_, b).adjacent.push_back({ a, type });
+  }
+
+  double snap_;
+  double bucketSide_; // buckets of this side: a vertex's match lies in its 3 x 3 neighbourhood
+  std::vector<Vertex> vertices_;
+  std::map<std::pair<long, long>, std::vector<int>> buckets_;
+};
+
+// The feature graph of snapped lines: a node at every end and branch vertex,
+// a chain along the vertices between two nodes, and each closed loop anchored
+// at its first vertex.
+class ChainWalker
+{
+public:
+  ChainWalker(const SnappedLines& lines, FeatureGraph& g)
+    : lines_(lines)
+    , g_(g)
+    , nodeOf_(lines.vertices().size(), -1)
   {
-    int prev = -1;
-    for (std::size_t k = 0; k < line.points.size(); ++k)
+  }
+
+  void walkAll()
+  {
+    const std::size_t count = lines_.vertices().size();
+    for (std::size_t v = 0; v < count; ++v)
     {
-      const float c =
-        k < line.elevation.size() ? line.elevation[k] : std::numeric_limits<float>::quiet_NaN();
-      const int v = vertexFor(line.points[k], c);
-      if (prev >= 0)
+      const std::size_t d = lines_.vertices()[v].adjacent.size();
+      if (d == 1 || d >= 3)
       {
-        addSegment(prev, v, line.type);
+        addNode(static_cast<int>(v));
       }
-      prev = v;
+    }
+    const int realNodes = static_cast<int>(g_.nodes.size());
+    for (std::size_t v = 0; v < count; ++v)
+    {
+      if (nodeOf_[v] >= 0 && nodeOf_[v] < realNodes)
+      {
+        walkFrom(static_cast<int>(v));
+      }
+    }
+    // Closed poly-lines: anchor each loop at its first vertex.
+    for (std::size_t v = 0; v < count; ++v)
+    {
+      const int vertex = static_cast<int>(v);
+      const auto& adj = lines_.at(vertex).adjacent;
+      const bool unused =
+        std::any_of(adj.begin(), adj.end(), [&](const auto& e) { return !used(vertex, e.first); });
+      if (nodeOf_[v] < 0 && unused)
+      {
+        addNode(vertex);
+        walk(vertex, adj.front().first);
+      }
     }
   }
 
-  FeatureGraph g;
-  g.width = width;
-  g.height = height;
-  g.cellX = cellX;
-  g.cellY = cellY;
-  std::vector<int> nodeOf(vertices.size(), -1);
-  auto addNode = [&](int v)
+private:
+  void addNode(int v)
   {
-    const Vertex& vx = byId(vertices, v);
+    const SnappedLines::Vertex& vx = lines_.at(v);
     FeatureNode n;
     n.position = vx.p;
     n.elevation = vx.constraint;
     n.degree = static_cast<int>(vx.adjacent.size());
     n.kind = n.degree == 1 ? NodeKind::End : (n.degree >= 3 ? NodeKind::Branch : NodeKind::Path);
     n.type = vx.adjacent.empty() ? FeatureType::Ridge : vx.adjacent.front().second;
-    byId(nodeOf, v) = static_cast<int>(g.nodes.size());
-    g.nodes.push_back(n);
-  };
-  for (std::size_t v = 0; v < vertices.size(); ++v)
+    byId(nodeOf_, v) = static_cast<int>(g_.nodes.size());
+    g_.nodes.push_back(n);
+  }
+
+  static std::pair<int, int> edge(int a, int b) { return { std::min(a, b), std::max(a, b) }; }
+  bool used(int a, int b) const { return used_.count(edge(a, b)) > 0; }
+
+  // Every chain leaving vertex v along a segment not yet walked.
+  void walkFrom(int v)
   {
-    const std::size_t d = vertices[v].adjacent.size();
-    if (d == 1 || d >= 3)
+    for (const auto& e : lines_.at(v).adjacent)
     {
-      addNode(static_cast<int>(v));
+      if (!used(v, e.first))
+      {
+        walk(v, e.first);
+      }
     }
   }
-  std::map<std::pair<int, int>, bool> used;
-  auto walk = [&](int start, int first)
+
+  // The chain from node `start` through `first` to the next node (or to a
+  // dead end of segments already walked).
+  void walk(int start, int first)
   {
     FeatureChain c;
-    c.from = byId(nodeOf, start);
+    c.from = byId(nodeOf_, start);
     c.type = FeatureType::Ridge;
-    int prev = start;
-    int cur = first;
-    auto push = [&](int v)
-    {
-      c.points.push_back(byId(vertices, v).p);
-      c.elevation.push_back(byId(vertices, v).constraint);
-      c.constraint.push_back(byId(vertices, v).constraint);
-    };
-    for (const auto& e : byId(vertices, start).adjacent)
+    for (const auto& e : lines_.at(start).adjacent)
     {
       if (e.first == first)
       {
         c.type = e.second;
       }
     }
+    auto push = [&](int v)
+    {
+      c.points.push_back(lines_.at(v).p);
+      c.elevation.push_back(lines_.at(v).constraint);
+      c.constraint.push_back(lines_.at(v).constraint);
+    };
+    int prev = start;
+    int cur = first;
     push(start);
     while (true)
     {
-      used[{ std::min(prev, cur), std::max(prev, cur) }] = true;
+      used_[edge(prev, cur)] = true;
       push(cur);
-      if (byId(nodeOf, cur) >= 0)
+      if (byId(nodeOf_, cur) >= 0)
       {
         break;
       }
       int next = -1;
-      for (const auto& e : byId(vertices, cur).adjacent)
+      for (const auto& e : lines_.at(cur).adjacent)
       {
-        if (e.first != prev && !used.count({ std::min(cur, e.first), std::max(cur, e.first) }))
+        if (e.first != prev && !used(cur, e.first))
         {
           next = e.first;
           break;
@@ -728,47 +789,38 @@ FeatureGraph polylineFeatures(const std::vector<Polyline>& drawn,
       prev = cur;
       cur = next;
     }
-    c.to = byId(nodeOf, cur);
-    const int id = static_cast<int>(g.chains.size());
-    byId(g.nodes, c.from).chains.push_back(id);
-    byId(g.nodes, c.to).chains.push_back(id);
-    g.chains.push_back(std::move(c));
-  };
-  auto walkAll = [&](int v)
-  {
-    for (const auto& e : byId(vertices, v).adjacent)
-    {
-      if (!used.count({ std::min(v, e.first), std::max(v, e.first) }))
-      {
-        walk(v, e.first);
-      }
-    }
-  };
-  const int realNodes = static_cast<int>(g.nodes.size());
-  for (std::size_t v = 0; v < vertices.size(); ++v)
-  {
-    if (nodeOf[v] >= 0 && nodeOf[v] < realNodes)
-    {
-      walkAll(static_cast<int>(v));
-    }
+    c.to = byId(nodeOf_, cur);
+    const int id = static_cast<int>(g_.chains.size());
+    byId(g_.nodes, c.from).chains.push_back(id);
+    byId(g_.nodes, c.to).chains.push_back(id);
+    g_.chains.push_back(std::move(c));
   }
-  // Closed poly-lines: anchor each loop at its first vertex.
-  for (std::size_t v = 0; v < vertices.size(); ++v)
-  {
-    const auto& adj = vertices[v].adjacent;
-    const bool unused = std::any_of(adj.begin(),
-      adj.end(),
-      [&](const auto& e)
-      {
-        return !used.count(
-          { std::min(static_cast<int>(v), e.first), std::max(static_cast<int>(v), e.first) });
-      });
-    if (nodeOf[v] < 0 && unused)
-    {
-      addNode(static_cast<int>(v));
-      walk(static_cast<int>(v), adj.front().first);
-    }
-  }
+
+  const SnappedLines& lines_;
+  FeatureGraph& g_;
+  std::vector<int> nodeOf_; // per vertex: its node, -1 for none
+  std::map<std::pair<int, int>, bool> used_;
+};
+
+} // namespace
+
+FeatureGraph polylineFeatures(const std::vector<Polyline>& drawn,
+  int width,
+  int height,
+  double cellX,
+  double cellY,
+  double snapTolerance,
+  double controlRadius)
+{
+  // Beyond the grid nothing is sketched, and lines of any length or position
+  // cost no more than the grid's own size.
+  const SnappedLines lines(clipToGrid(drawn, width, height), snapTolerance);
+  FeatureGraph g;
+  g.width = width;
+  g.height = height;
+  g.cellX = cellX;
+  g.cellY = cellY;
+  ChainWalker(lines, g).walkAll();
   computeBreadthFirstOrder(g);
   computeControlPoints(g, controlRadius);
   return g;
