@@ -291,20 +291,10 @@ void landformSamples(const Heightfield& smooth,
   }
 }
 
-} // namespace
-
-CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplars,
-  const std::vector<const FeatureGraph*>& graphs,
-  const PoolOptions& options,
-  const std::vector<std::string>& names)
+// The exemplars' height spread (standard deviation over every valid cell):
+// the unit the pool's costs are measured in.
+double poolHeightScale(const std::vector<const Heightfield*>& exemplars)
 {
-  if (exemplars.size() != graphs.size())
-  {
-    throw Error("Each exemplar needs its feature graph.");
-  }
-  const int P = options.patchSize;
-  CandidatePool pool;
-  pool.patchSize = P;
   double sum = 0.0;
   double square = 0.0;
   double count = 0.0;
@@ -321,29 +311,144 @@ CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplar
     }
   }
   const double mean = count > 0 ? sum / count : 0.0;
-  pool.heightScale =
-    std::max(1e-6, std::sqrt(std::max(0.0, square / std::max(1.0, count) - mean * mean)));
+  return std::max(1e-6, std::sqrt(std::max(0.0, square / std::max(1.0, count) - mean * mean)));
+}
 
+// Exemplar e's entry, once it is known to hold a patch.
+ExemplarInfo exemplarInfo(const Heightfield& ex,
+  std::size_t e,
+  const std::vector<std::string>& names,
+  int patchSize,
+  std::size_t firstCandidate)
+{
+  ExemplarInfo info;
+  info.name = e < names.size() ? names[e] : "exemplar " + std::to_string(e);
+  info.width = ex.width;
+  info.height = ex.height;
+  info.firstCandidate = firstCandidate;
+  if (ex.width < patchSize || ex.height < patchSize)
+  {
+    const std::string patch = std::to_string(patchSize);
+    throw Error(info.name + " is " + std::to_string(ex.width) + " x " + std::to_string(ex.height) +
+      " cells, smaller than one patch (" + patch + " x " + patch + ").");
+  }
+  return info;
+}
+
+// One candidate's row: the site seen through variant k, its arms in
+// counter-clockwise order of their placed angles (a mirror swaps the two
+// sides of an arm), and the site's noise.
+void addCandidate(CandidatePool& pool,
+  std::size_t e,
+  int siteIndex,
+  const FeatureSite& site,
+  const SiteProfiles& prof,
+  const std::array<float, kNoiseLevels>& noise,
+  int k)
+{
+  const Variant v = variant(k);
+  pool.exemplar.push_back(static_cast<int>(e));
+  pool.site.push_back(siteIndex);
+  pool.variant.push_back(k);
+  pool.kind.push_back(static_cast<int>(site.kind));
+  pool.type.push_back(static_cast<int>(site.type));
+  pool.arms.push_back(static_cast<int>(prof.angle.size()));
+  pool.centreX.push_back(static_cast<float>(site.centre.x));
+  pool.centreY.push_back(static_cast<float>(site.centre.y));
+  std::vector<std::size_t> order(prof.angle.size());
+  std::iota(order.begin(), order.end(), std::size_t{ 0 });
+  std::vector<double> placed(prof.angle.size());
+  for (std::size_t a = 0; a < placed.size(); ++a)
+  {
+    placed[a] = v.placedAngle(prof.angle[a]);
+  }
+  std::sort(order.begin(),
+    order.end(),
+    [&](std::size_t x, std::size_t y) { return placed[x] < placed[y]; });
+  for (std::size_t slot = 0; slot < kMaxArms; ++slot)
+  {
+    const bool used = slot < order.size();
+    const std::size_t a = used ? order[slot] : 0;
+    pool.angles.push_back(used ? static_cast<float>(placed[a]) : 0.0f);
+    for (std::size_t s = 0; s < kAlongSamples; ++s)
+    {
+      pool.along.push_back(used ? prof.along[a][s] : 0.0f);
+    }
+    for (std::size_t s = 0; s < kAcrossSamples; ++s)
+    {
+      const std::size_t src = v.mirrored ? kAcrossSamples - 1 - s : s;
+      pool.across.push_back(used ? prof.across[a][src] : 0.0f);
+    }
+  }
+  pool.noise.insert(pool.noise.end(), noise.begin(), noise.end());
+}
+
+// Summaries of the candidates from `first` on (all of exemplar ex): block
+// means of the exemplar as seen through each variant, one oriented copy at a
+// time (summed-area table: four reads a block), and the landform samples of
+// the low-passed exemplar seen the same way.
+void addSummaries(CandidatePool& pool,
+  const Heightfield& ex,
+  std::size_t first,
+  const PoolOptions& options)
+{
+  const int P = options.patchSize;
+  pool.descriptor.resize(pool.size() * kDescriptorSize);
+  pool.landform.resize(pool.size() * kLandformStride, 0.0f);
+  const Heightfield smooth = landformImage(ex, P);
+  for (int k = 0; k < kVariantCount; ++k)
+  {
+    if (!byId(options.variants, k))
+    {
+      continue;
+    }
+    const Variant v = variant(k);
+    double cu = 0.0;
+    double cv = 0.0;
+    const BlockMeans means(orientExemplar(ex, v, &cu, &cv));
+    for (std::size_t c = first; c < pool.size(); ++c)
+    {
+      if (pool.variant[c] != k)
+      {
+        continue;
+      }
+      // The site's centre in the oriented copy: m^-1 (centre - exemplar centre).
+      const double dx = pool.centreX[c] - 0.5 * (ex.width - 1);
+      const double dy = pool.centreY[c] - 0.5 * (ex.height - 1);
+      const double det = v.m[0] * v.m[3] - v.m[1] * v.m[2];
+      const double px = cu + (v.m[3] * dx - v.m[1] * dy) / det;
+      const double py = cv + (-v.m[2] * dx + v.m[0] * dy) / det;
+      means.summary(px, py, P, pool.descriptor.data() + c * kDescriptorSize);
+      landformSamples(
+        smooth, v, pool.centreX[c], pool.centreY[c], P, pool.landform.data() + c * kLandformStride);
+    }
+  }
+}
+
+} // namespace
+
+CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplars,
+  const std::vector<const FeatureGraph*>& graphs,
+  const PoolOptions& options,
+  const std::vector<std::string>& names)
+{
+  if (exemplars.size() != graphs.size())
+  {
+    throw Error("Each exemplar needs its feature graph.");
+  }
+  const int P = options.patchSize;
+  CandidatePool pool;
+  pool.patchSize = P;
+  pool.heightScale = poolHeightScale(exemplars);
   // A square of this half-side contains the patch in every rotation.
   const int footprint = static_cast<int>(std::ceil(0.5 * P * std::sqrt(2.0))) + 1;
   for (std::size_t e = 0; e < exemplars.size(); ++e)
   {
     const Heightfield& ex = *exemplars[e];
-    ExemplarInfo info;
-    info.name = e < names.size() ? names[e] : "exemplar " + std::to_string(e);
-    info.width = ex.width;
-    info.height = ex.height;
-    info.firstCandidate = pool.size();
-    if (ex.width < P || ex.height < P)
-    {
-      throw Error(info.name + " is " + std::to_string(ex.width) + " x " +
-        std::to_string(ex.height) + " cells, smaller than one patch (" + std::to_string(P) + " x " +
-        std::to_string(P) + ").");
-    }
+    ExemplarInfo info = exemplarInfo(ex, e, names, P, pool.size());
     const FootprintCheck check(ex);
     const NoiseVariance noise(ex);
-    std::vector<FeatureSite> sites = featureSites(*graphs[e], P);
-    for (FeatureSite& site : sites)
+    for (const FeatureSite& site : featureSites(*graphs[e], P))
     {
       if (site.arms.empty() || !check.clear(site.centre.x, site.centre.y, footprint))
       {
@@ -353,89 +458,15 @@ CandidatePool buildCandidatePool(const std::vector<const Heightfield*>& exemplar
       const auto nv = noise.window(site.centre.x, site.centre.y, P);
       const int siteIndex = static_cast<int>(pool.sites.size());
       pool.sites.push_back(site);
-      const int arms = static_cast<int>(prof.angle.size());
       for (int k = 0; k < kVariantCount; ++k)
       {
-        if (!byId(options.variants, k))
+        if (byId(options.variants, k))
         {
-          continue;
+          addCandidate(pool, e, siteIndex, site, prof, nv, k);
         }
-        const Variant v = variant(k);
-        pool.exemplar.push_back(static_cast<int>(e));
-        pool.site.push_back(siteIndex);
-        pool.variant.push_back(k);
-        pool.kind.push_back(static_cast<int>(site.kind));
-        pool.type.push_back(static_cast<int>(site.type));
-        pool.arms.push_back(arms);
-        pool.centreX.push_back(static_cast<float>(site.centre.x));
-        pool.centreY.push_back(static_cast<float>(site.centre.y));
-        // Arms in counter-clockwise order of their placed angles.
-        std::vector<std::size_t> order(prof.angle.size());
-        std::iota(order.begin(), order.end(), std::size_t{ 0 });
-        std::vector<double> placed(prof.angle.size());
-        for (std::size_t a = 0; a < placed.size(); ++a)
-        {
-          placed[a] = v.placedAngle(prof.angle[a]);
-        }
-        std::sort(order.begin(),
-          order.end(),
-          [&](std::size_t x, std::size_t y) { return placed[x] < placed[y]; });
-        for (std::size_t slot = 0; slot < kMaxArms; ++slot)
-        {
-          const bool used = slot < order.size();
-          const std::size_t a = used ? order[slot] : 0;
-          pool.angles.push_back(used ? static_cast<float>(placed[a]) : 0.0f);
-          for (std::size_t s = 0; s < kAlongSamples; ++s)
-          {
-            pool.along.push_back(used ? prof.along[a][s] : 0.0f);
-          }
-          for (std::size_t s = 0; s < kAcrossSamples; ++s)
-          {
-            // A mirror swaps the two sides of an arm.
-            const std::size_t src = v.mirrored ? kAcrossSamples - 1 - s : s;
-            pool.across.push_back(used ? prof.across[a][src] : 0.0f);
-          }
-        }
-        pool.noise.insert(pool.noise.end(), nv.begin(), nv.end());
       }
     }
-    // Summaries: block means of the exemplar as seen through each variant, one
-    // oriented copy at a time (summed-area table: four reads a block), and the
-    // landform samples of the low-passed exemplar seen the same way.
-    pool.descriptor.resize(pool.size() * kDescriptorSize);
-    pool.landform.resize(pool.size() * kLandformStride, 0.0f);
-    const Heightfield smooth = landformImage(ex, P);
-    for (int k = 0; k < kVariantCount; ++k)
-    {
-      if (!byId(options.variants, k))
-      {
-        continue;
-      }
-      const Variant v = variant(k);
-      double cu = 0.0;
-      double cv = 0.0;
-      const BlockMeans means(orientExemplar(ex, v, &cu, &cv));
-      for (std::size_t c = info.firstCandidate; c < pool.size(); ++c)
-      {
-        if (pool.variant[c] != k)
-        {
-          continue;
-        }
-        // The site's centre in the oriented copy: m^-1 (centre - exemplar centre).
-        const double dx = pool.centreX[c] - 0.5 * (ex.width - 1);
-        const double dy = pool.centreY[c] - 0.5 * (ex.height - 1);
-        const double det = v.m[0] * v.m[3] - v.m[1] * v.m[2];
-        const double px = cu + (v.m[3] * dx - v.m[1] * dy) / det;
-        const double py = cv + (-v.m[2] * dx + v.m[0] * dy) / det;
-        means.summary(px, py, P, pool.descriptor.data() + c * kDescriptorSize);
-        landformSamples(smooth,
-          v,
-          pool.centreX[c],
-          pool.centreY[c],
-          P,
-          pool.landform.data() + c * kLandformStride);
-      }
-    }
+    addSummaries(pool, ex, info.firstCandidate, options);
     info.candidateCount = pool.size() - info.firstCandidate;
     if (info.candidateCount == 0)
     {
