@@ -328,40 +328,31 @@ RasterInfo describe(GDALDataset& ds, const std::string& path, const ReadOptions&
   return info;
 }
 
-RasterInfo describeRaster(GDALDataset& ds, const std::string& path, const ReadOptions& options)
+// NAME.json beside the raster, when asked for and there; its nodata stands in
+// for a raster that declares none.
+Sidecar sidecarFor(RasterInfo& info, const std::string& path, const ReadOptions& options)
 {
-  RasterInfo info;
-  info.path = path;
-  info.driver = ds.GetDriver() != nullptr ? ds.GetDriver()->GetDescription() : "";
-  info.width = ds.GetRasterXSize();
-  info.height = ds.GetRasterYSize();
-  info.bands = ds.GetRasterCount();
-  GDALRasterBand* band = heightBand(ds, path);
-  info.dataType = isSignedByte(*band) ? "Int8" : GDALGetDataTypeName(band->GetRasterDataType());
-
-  int hasNodata = 0;
-  const double nodata = band->GetNoDataValue(&hasNodata);
-  if (hasNodata != 0)
-  {
-    info.nodata = nodata;
-  }
-
   Sidecar sidecar;
-  if (options.useSidecar)
+  if (!options.useSidecar)
   {
-    const std::string sc = sidecarPathFor(path);
-    if (sc != path && fs::exists(sc))
+    return sidecar;
+  }
+  const std::string sc = sidecarPathFor(path);
+  if (sc != path && fs::exists(sc))
+  {
+    sidecar = readSidecar(sc);
+    info.sidecarPath = sc;
+    if (sidecar.nodata && !info.nodata)
     {
-      sidecar = readSidecar(sc);
-      info.sidecarPath = sc;
-      if (sidecar.nodata && !info.nodata)
-      {
-        info.nodata = sidecar.nodata;
-      }
+      info.nodata = sidecar.nodata;
     }
   }
+  return sidecar;
+}
 
-  // Georeference.
+// The CRS and the geotransform, and the cell size they give.
+void readGeoreference(RasterInfo& info, GDALDataset& ds)
+{
   const OGRSpatialReference* srs = ds.GetSpatialRef();
   if (srs != nullptr)
   {
@@ -383,6 +374,16 @@ RasterInfo describeRaster(GDALDataset& ds, const std::string& path, const ReadOp
   {
     info.cellSizeSource = "unknown (1 m assumed; give a sidecar or a cell size)";
   }
+}
+
+// The cell size: the options', else the sidecar's (with a warning when the
+// georeference disagrees), else the georeference's. Throws for one that is
+// not a positive finite size.
+void settleCellSize(RasterInfo& info,
+  const Sidecar& sidecar,
+  const std::string& path,
+  const ReadOptions& options)
+{
   if (sidecar.cellX)
   {
     if (info.georef.hasGeoTransform &&
@@ -412,11 +413,19 @@ RasterInfo describeRaster(GDALDataset& ds, const std::string& path, const ReadOp
     throw Error(path + " has a degenerate geotransform (cell size " + std::to_string(info.cellX) +
       " x " + std::to_string(info.cellY) + "); give the cell size explicitly.");
   }
+}
 
-  // Vertical unit: options, then sidecar, then the band's own unit, else metres.
+// The vertical unit: the options', then the sidecar's (with a warning when the
+// file says otherwise), then the band's own, else metres.
+void settleZUnit(RasterInfo& info,
+  GDALRasterBand& band,
+  const Sidecar& sidecar,
+  const std::string& path,
+  const ReadOptions& options)
+{
   info.zUnit = ZUnit::Metres;
   info.zUnitSource = "default";
-  const std::optional<ZUnit> bandUnit = parseZUnit(band->GetUnitType());
+  const std::optional<ZUnit> bandUnit = parseZUnit(band.GetUnitType());
   if (bandUnit && *bandUnit != ZUnit::Auto)
   {
     info.zUnit = *bandUnit;
@@ -438,9 +447,17 @@ RasterInfo describeRaster(GDALDataset& ds, const std::string& path, const ReadOp
     info.zUnit = options.zUnit;
     info.zUnitSource = "options";
   }
+}
 
-  // Normalised range for integer images: options, else the sidecar.
-  const bool integerCodes = integerTypeMax(band->GetRasterDataType()) != 0.0;
+// The normalised range of an integer image: the options', else the
+// sidecar's. Throws for a range given by halves, empty, or for float values.
+void settleNormalisedRange(RasterInfo& info,
+  GDALRasterBand& band,
+  const Sidecar& sidecar,
+  const std::string& path,
+  const ReadOptions& options)
+{
+  const bool integerCodes = integerTypeMax(band.GetRasterDataType()) != 0.0;
   if (options.zMin || options.zMax)
   {
     const double lo = options.zMin.value_or(0.0);
@@ -473,6 +490,29 @@ RasterInfo describeRaster(GDALDataset& ds, const std::string& path, const ReadOp
         path + " stores " + info.dataType + " heights, so the range is ignored.");
     }
   }
+}
+
+RasterInfo describeRaster(GDALDataset& ds, const std::string& path, const ReadOptions& options)
+{
+  RasterInfo info;
+  info.path = path;
+  info.driver = ds.GetDriver() != nullptr ? ds.GetDriver()->GetDescription() : "";
+  info.width = ds.GetRasterXSize();
+  info.height = ds.GetRasterYSize();
+  info.bands = ds.GetRasterCount();
+  GDALRasterBand* band = heightBand(ds, path);
+  info.dataType = isSignedByte(*band) ? "Int8" : GDALGetDataTypeName(band->GetRasterDataType());
+  int hasNodata = 0;
+  const double nodata = band->GetNoDataValue(&hasNodata);
+  if (hasNodata != 0)
+  {
+    info.nodata = nodata;
+  }
+  const Sidecar sidecar = sidecarFor(info, path, options);
+  readGeoreference(info, ds);
+  settleCellSize(info, sidecar, path, options);
+  settleZUnit(info, *band, sidecar, path, options);
+  settleNormalisedRange(info, *band, sidecar, path, options);
   return info;
 }
 
