@@ -34,6 +34,100 @@ namespace
 {
 constexpr int kExemplarHeights = 1; // SetInputArrayToProcess index of the exemplars' heights
 constexpr int kPoolPort = 3;        // the Candidate Builder's table
+
+// Per target cell, 1 where the chosen known-cells array is non-zero (every
+// cell without one).
+std::vector<std::uint8_t> knownCells(vtkImageData* target, const char* arrayName, std::size_t cells)
+{
+  std::vector<std::uint8_t> known(cells, 1);
+  if (vtkDataArray* k =
+        tsynth::chosenPointArray(target, arrayName, vtkTerrainPatchMatcher::kDefaultKnownArray))
+  {
+    for (std::size_t c = 0; c < known.size(); ++c)
+    {
+      known[c] = k->GetComponent(static_cast<vtkIdType>(c), 0) != 0.0 ? 1 : 0;
+    }
+  }
+  return known;
+}
+
+// The ranked matches, one row each (their place in world coordinates and in
+// their exemplar's cells), and as field data the window they fill.
+void writeMatchTable(vtkTable* table,
+  const tsynth::SiteMatchResult& match,
+  const tsynth::PatchMatcher& matcher,
+  const tsynth::ExemplarInputs& in,
+  int patchSize)
+{
+  const std::vector<tsynth::PatchCandidate>& found = match.candidates;
+  vtkNew<vtkIntArray> rank, exemplar, variantColumn, feature, featureType;
+  vtkNew<vtkDoubleArray> x, y, cellX, cellY;
+  vtkNew<vtkFloatArray> cost;
+  rank->SetName("Rank");
+  exemplar->SetName("Exemplar");
+  variantColumn->SetName("Variant");
+  feature->SetName("Feature");
+  featureType->SetName("FeatureType");
+  x->SetName("X");
+  y->SetName("Y");
+  cellX->SetName("CellX");
+  cellY->SetName("CellY");
+  cost->SetName("Cost");
+  for (std::size_t r = 0; r < found.size(); ++r)
+  {
+    const tsynth::PatchCandidate& m = found[r];
+    const auto e = static_cast<std::size_t>(m.exemplar);
+    rank->InsertNextValue(static_cast<int>(r));
+    exemplar->InsertNextValue(m.exemplar);
+    variantColumn->InsertNextValue(m.variant);
+    feature->InsertNextValue(m.feature ? 1 : 0);
+    // The ridge or valley a feature match brings (+1, -1; 0 for a fill match).
+    const bool inPool = m.feature && m.poolIndex < matcher.pool().size();
+    featureType->InsertNextValue(inPool ? matcher.pool().type[m.poolIndex] : 0);
+    x->InsertNextValue(in.originX[e] + m.centreX * in.heights[e].cellX);
+    y->InsertNextValue(in.originY[e] + m.centreY * in.heights[e].cellY);
+    cellX->InsertNextValue(m.centreX);
+    cellY->InsertNextValue(m.centreY);
+    cost->InsertNextValue(m.cost);
+  }
+  table->AddColumn(rank);
+  table->AddColumn(exemplar);
+  table->AddColumn(variantColumn);
+  table->AddColumn(x);
+  table->AddColumn(y);
+  table->AddColumn(cost);
+  table->AddColumn(feature);
+  table->AddColumn(featureType);
+  table->AddColumn(cellX);
+  table->AddColumn(cellY);
+  // Where the patch goes: the lower-left target cell of the window matched.
+  vtkNew<vtkIntArray> window;
+  window->SetName("PatchCell");
+  window->InsertNextValue(tsynth::windowCorner(match.centreX, patchSize));
+  window->InsertNextValue(tsynth::windowCorner(match.centreY, patchSize));
+  table->GetFieldData()->AddArray(window);
+  vtkNew<vtkIntArray> patch;
+  patch->SetName("PatchSize");
+  patch->InsertNextValue(patchSize);
+  table->GetFieldData()->AddArray(patch);
+}
+
+// The cost map over the first exemplar: the lowest cost of a candidate
+// centred on each cell.
+void writeCostMap(vtkImageData* map,
+  const tsynth::SiteMatchResult& match,
+  const tsynth::ExemplarInputs& in)
+{
+  const tsynth::Heightfield& first = in.heights.front();
+  map->SetExtent(0, first.width - 1, 0, first.height - 1, 0, 0);
+  map->SetSpacing(first.cellX, first.cellY, 1.0);
+  map->SetOrigin(in.originX.front(), in.originY.front(), 0.0);
+  vtkNew<vtkFloatArray> costMap;
+  costMap->SetName("MatchCost");
+  costMap->SetNumberOfTuples(static_cast<vtkIdType>(match.costMap.size()));
+  std::copy(match.costMap.begin(), match.costMap.end(), costMap->GetPointer(0));
+  map->GetPointData()->SetScalars(costMap);
+}
 } // namespace
 
 vtkTerrainPatchMatcher::vtkTerrainPatchMatcher()
@@ -139,15 +233,8 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
       tsynth::checkPatchSizeInRange(this->PatchSize, "Patch Size");
       const tsynth::Heightfield target =
         tsynth::imageToHeightfield(targetImage, this->GetInputArrayToProcess(0, inputVector));
-      std::vector<std::uint8_t> known(target.size(), 1);
-      if (vtkDataArray* k =
-            tsynth::chosenPointArray(targetImage, this->KnownArray, kDefaultKnownArray))
-      {
-        for (std::size_t c = 0; c < known.size(); ++c)
-        {
-          known[c] = k->GetComponent(static_cast<vtkIdType>(c), 0) != 0.0 ? 1 : 0;
-        }
-      }
+      const std::vector<std::uint8_t> known =
+        knownCells(targetImage, this->KnownArray, target.size());
       vtkTable* poolTable = vtkTable::GetData(inputVector[kPoolPort], 0);
       const tsynth::ExemplarHeights heights = tsynth::exemplarHeightsNamed(
         this->GetInputArrayInformation(kExemplarHeights), inputVector[1]);
@@ -189,69 +276,8 @@ int vtkTerrainPatchMatcher::RequestData(vtkInformation*,
       {
         vtkWarningMacro(<< w);
       }
-      const std::vector<tsynth::PatchCandidate>& found = match.candidates;
-
-      // Table of matches.
-      vtkNew<vtkIntArray> rank, exemplar, variantColumn, feature, featureType;
-      vtkNew<vtkDoubleArray> x, y, cellX, cellY;
-      vtkNew<vtkFloatArray> cost;
-      rank->SetName("Rank");
-      exemplar->SetName("Exemplar");
-      variantColumn->SetName("Variant");
-      feature->SetName("Feature");
-      featureType->SetName("FeatureType");
-      x->SetName("X");
-      y->SetName("Y");
-      cellX->SetName("CellX");
-      cellY->SetName("CellY");
-      cost->SetName("Cost");
-      for (std::size_t r = 0; r < found.size(); ++r)
-      {
-        const auto e = static_cast<std::size_t>(found[r].exemplar);
-        rank->InsertNextValue(static_cast<int>(r));
-        exemplar->InsertNextValue(found[r].exemplar);
-        variantColumn->InsertNextValue(found[r].variant);
-        feature->InsertNextValue(found[r].feature ? 1 : 0);
-        // The ridge or valley a feature match brings (+1, -1; 0 for a fill match).
-        const bool inPool = found[r].feature && found[r].poolIndex < matcher.pool().size();
-        featureType->InsertNextValue(inPool ? matcher.pool().type[found[r].poolIndex] : 0);
-        x->InsertNextValue(in.originX[e] + found[r].centreX * in.heights[e].cellX);
-        y->InsertNextValue(in.originY[e] + found[r].centreY * in.heights[e].cellY);
-        cellX->InsertNextValue(found[r].centreX);
-        cellY->InsertNextValue(found[r].centreY);
-        cost->InsertNextValue(found[r].cost);
-      }
-      table->AddColumn(rank);
-      table->AddColumn(exemplar);
-      table->AddColumn(variantColumn);
-      table->AddColumn(x);
-      table->AddColumn(y);
-      table->AddColumn(cost);
-      table->AddColumn(feature);
-      table->AddColumn(featureType);
-      table->AddColumn(cellX);
-      table->AddColumn(cellY);
-      // Where the patch goes: the lower-left target cell of the window matched.
-      vtkNew<vtkIntArray> window;
-      window->SetName("PatchCell");
-      window->InsertNextValue(tsynth::windowCorner(match.centreX, this->PatchSize));
-      window->InsertNextValue(tsynth::windowCorner(match.centreY, this->PatchSize));
-      table->GetFieldData()->AddArray(window);
-      vtkNew<vtkIntArray> patchSize;
-      patchSize->SetName("PatchSize");
-      patchSize->InsertNextValue(this->PatchSize);
-      table->GetFieldData()->AddArray(patchSize);
-
-      // Cost map over the first exemplar: lowest cost of a candidate centred on each cell.
-      const tsynth::Heightfield& first = in.heights.front();
-      map->SetExtent(0, first.width - 1, 0, first.height - 1, 0, 0);
-      map->SetSpacing(first.cellX, first.cellY, 1.0);
-      map->SetOrigin(in.originX.front(), in.originY.front(), 0.0);
-      vtkNew<vtkFloatArray> costMap;
-      costMap->SetName("MatchCost");
-      costMap->SetNumberOfTuples(static_cast<vtkIdType>(match.costMap.size()));
-      std::copy(match.costMap.begin(), match.costMap.end(), costMap->GetPointer(0));
-      map->GetPointData()->SetScalars(costMap);
+      writeMatchTable(table, match, matcher, in, this->PatchSize);
+      writeCostMap(map, match, in);
     });
 }
 
